@@ -1,0 +1,68 @@
+#pragma once
+/// \file tum_dataset.h Reader for a TUM RGB-D folder (depth.txt, rgb.txt, groundtruth.txt).
+#include <opencv2/core.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gasp/core/camera_intrinsics.h"
+#include "gasp/core/depth_image.h"
+#include "gasp/core/tum_trajectory.h"
+
+namespace gasp {
+
+/// One depth frame of a TUM folder, in depth.txt order.
+struct TumFrame {
+  double timestamp = 0.0;                 ///< depth timestamp [s]
+  std::string depth_path;                 ///< absolute or folder-relative path of the depth PNG
+  std::optional<double> rgb_timestamp;    ///< associated rgb frame (associate.py, |dt| < max_dt)
+  std::optional<std::string> rgb_path;
+  std::optional<Isometry3> T_world_camera;  ///< ground truth, nearest in time within max_dt
+};
+
+/// A `timestamp filename` list (depth.txt, rgb.txt); '#' lines skipped; errors name file:line.
+std::vector<std::pair<double, std::string>> readTumFileList(const std::string& path);
+
+class TumDataset {
+ public:
+  struct Options {
+    /// Intrinsics to use; when unset: DIR/intrinsics.txt if present (GASP's simulator writes
+    /// it), else a TUM preset guessed from the folder name (freiburg1/fr1_, ...), else ROS default.
+    std::optional<CameraIntrinsics> intrinsics;
+    double max_dt = 0.02;  ///< rgb and ground-truth association tolerance [s] (TUM: 0.02)
+    double depth_units_per_metre = kTumDepthUnitsPerMetre;
+  };
+
+  /// Opens DIR: depth.txt is required, rgb.txt and groundtruth.txt optional. Throws gasp::Error
+  /// for a missing folder or depth.txt and for malformed lines (with file and line).
+  static TumDataset open(const std::string& dir, const Options& options);
+  static TumDataset open(const std::string& dir) { return open(dir, Options{}); }
+
+  const std::string& directory() const { return dir_; }
+  const CameraIntrinsics& intrinsics() const { return intrinsics_; }
+  /// Where the intrinsics came from: "option", "DIR/intrinsics.txt", "preset fr1 (folder name)"...
+  const std::string& intrinsicsSource() const { return intrinsics_source_; }
+  double depthUnitsPerMetre() const { return options_.depth_units_per_metre; }
+
+  std::size_t size() const { return frames_.size(); }
+  const TumFrame& frame(std::size_t i) const;
+  const std::vector<TumFrame>& frames() const { return frames_; }
+  /// The whole groundtruth.txt (empty when absent).
+  const Trajectory& groundTruth() const { return ground_truth_; }
+  /// Number of depth frames that have a ground-truth pose.
+  std::size_t countWithGroundTruth() const;
+
+  cv::Mat loadDepthRaw(std::size_t i) const;  ///< uint16 as stored; size checked
+  cv::Mat loadDepth(std::size_t i) const;     ///< metres, CV_32FC1
+  cv::Mat loadRgb(std::size_t i) const;       ///< BGR 8-bit; empty when the frame has no rgb
+
+ private:
+  std::string dir_;
+  Options options_;
+  CameraIntrinsics intrinsics_;
+  std::string intrinsics_source_;
+  std::vector<TumFrame> frames_;
+  Trajectory ground_truth_;
+};
+
+}  // namespace gasp

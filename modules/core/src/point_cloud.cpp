@@ -1,0 +1,45 @@
+#include "gasp/core/point_cloud.h"
+
+#include <limits>
+
+#include "gasp/core/depth_image.h"
+#include "gasp/core/error.h"
+
+namespace gasp {
+
+std::size_t OrganizedPointCloud::countValid() const {
+  std::size_t n = 0;
+  for (const auto& p : points) n += p.allFinite() ? 1 : 0;
+  return n;
+}
+
+OrganizedPointCloud backProject(const cv::Mat& depth_m, const CameraIntrinsics& k) {
+  k.validate();
+  if (depth_m.type() != CV_32FC1)
+    throw Error("backProject: depth must be CV_32FC1 in metres, got type " +
+                std::to_string(depth_m.type()));
+  if (depth_m.cols != k.width || depth_m.rows != k.height)
+    throw Error("backProject: depth is " + std::to_string(depth_m.cols) + "x" +
+                std::to_string(depth_m.rows) + " but the intrinsics are for " +
+                std::to_string(k.width) + "x" + std::to_string(k.height));
+  OrganizedPointCloud cloud;
+  cloud.width = k.width;
+  cloud.height = k.height;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  cloud.points.assign(static_cast<std::size_t>(k.width) * k.height, Eigen::Vector3f(nan, nan, nan));
+  const float inv_fx = static_cast<float>(1.0 / k.fx), inv_fy = static_cast<float>(1.0 / k.fy);
+  const float cx = static_cast<float>(k.cx), cy = static_cast<float>(k.cy);
+  for (int v = 0; v < k.height; ++v) {
+    const float* row = depth_m.ptr<float>(v);
+    for (int u = 0; u < k.width; ++u) {
+      const float z = row[u];
+      if (!isValidDepth(z)) continue;
+      cloud.points[static_cast<std::size_t>(v) * k.width + u] =
+          Eigen::Vector3f((static_cast<float>(u) - cx) * z * inv_fx,
+                          (static_cast<float>(v) - cy) * z * inv_fy, z);
+    }
+  }
+  return cloud;
+}
+
+}  // namespace gasp

@@ -1,0 +1,129 @@
+#include "gasp/core/tum_dataset.h"
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <sstream>
+
+#include "gasp/core/error.h"
+#include "gasp/core/text_file.h"
+
+namespace fs = std::filesystem;
+
+namespace gasp {
+
+std::vector<std::pair<double, std::string>> readTumFileList(const std::string& path) {
+  std::vector<std::pair<double, std::string>> entries;
+  forEachDataLine(path, [&](const std::string& line, int line_no) {
+    std::istringstream ss(line);
+    std::string stamp, file, extra;
+    ss >> stamp >> file;
+    if (file.empty() || (ss >> extra))
+      throw Error(path + ":" + std::to_string(line_no) + ": expected 'timestamp filename', got '" +
+                  line + "'");
+    const auto v = parseNumbers(stamp, path, line_no);
+    entries.emplace_back(v.at(0), file);
+  });
+  return entries;
+}
+
+namespace {
+
+/// TUM folder names carry the camera: rgbd_dataset_freiburg1_xyz, fr1_xyz, ...
+std::optional<std::string> presetFromFolderName(const fs::path& dir) {
+  std::string name = fs::weakly_canonical(dir).filename().string();
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+  for (const char* n : {"1", "2", "3"}) {
+    const std::string digit(n);
+    if (name.find("freiburg" + digit) != std::string::npos || name.rfind("fr" + digit, 0) == 0 ||
+        name.find("_fr" + digit) != std::string::npos)
+      return "fr" + digit;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+TumDataset TumDataset::open(const std::string& dir, const Options& options) {
+  if (!fs::is_directory(dir)) throw Error("TUM folder '" + dir + "' does not exist or is not a folder");
+  TumDataset ds;
+  ds.dir_ = dir;
+  ds.options_ = options;
+  const fs::path root(dir);
+
+  if (options.intrinsics) {
+    ds.intrinsics_ = *options.intrinsics;
+    ds.intrinsics_source_ = "option";
+  } else if (fs::exists(root / "intrinsics.txt")) {
+    ds.intrinsics_ = CameraIntrinsics::load((root / "intrinsics.txt").string());
+    ds.intrinsics_source_ = (root / "intrinsics.txt").string();
+  } else if (const auto preset = presetFromFolderName(root)) {
+    ds.intrinsics_ = CameraIntrinsics::fromPreset(*preset);
+    ds.intrinsics_source_ = "preset " + *preset + " (from the folder name)";
+  } else {
+    ds.intrinsics_ = CameraIntrinsics::rosDefault();
+    ds.intrinsics_source_ = "preset ros (default; pass intrinsics to override)";
+  }
+  ds.intrinsics_.validate();
+
+  const fs::path depth_list = root / "depth.txt";
+  if (!fs::exists(depth_list)) throw Error("TUM folder '" + dir + "' has no depth.txt");
+  for (const auto& [stamp, file] : readTumFileList(depth_list.string())) {
+    TumFrame f;
+    f.timestamp = stamp;
+    f.depth_path = (root / file).string();
+    ds.frames_.push_back(f);
+  }
+
+  const fs::path rgb_list = root / "rgb.txt";
+  if (fs::exists(rgb_list)) {
+    const auto rgb = readTumFileList(rgb_list.string());
+    std::vector<double> depth_stamps, rgb_stamps;
+    for (const auto& f : ds.frames_) depth_stamps.push_back(f.timestamp);
+    for (const auto& r : rgb) rgb_stamps.push_back(r.first);
+    for (const auto& [id, ir] : associateTimestamps(depth_stamps, rgb_stamps, options.max_dt)) {
+      ds.frames_[id].rgb_timestamp = rgb[ir].first;
+      ds.frames_[id].rgb_path = (root / rgb[ir].second).string();
+    }
+  }
+
+  const fs::path gt = root / "groundtruth.txt";
+  if (fs::exists(gt)) {
+    ds.ground_truth_ = readTumTrajectory(gt.string());
+    for (auto& f : ds.frames_)
+      if (const auto i = findNearest(ds.ground_truth_, f.timestamp, options.max_dt))
+        f.T_world_camera = ds.ground_truth_[*i].T_world_camera;
+  }
+  return ds;
+}
+
+const TumFrame& TumDataset::frame(std::size_t i) const {
+  if (i >= frames_.size())
+    throw Error("frame index " + std::to_string(i) + " out of range: '" + dir_ + "' has " +
+                std::to_string(frames_.size()) + " depth frames");
+  return frames_[i];
+}
+
+std::size_t TumDataset::countWithGroundTruth() const {
+  return static_cast<std::size_t>(std::count_if(
+      frames_.begin(), frames_.end(), [](const TumFrame& f) { return f.T_world_camera.has_value(); }));
+}
+
+cv::Mat TumDataset::loadDepthRaw(std::size_t i) const {
+  return gasp::loadDepthRaw(frame(i).depth_path, intrinsics_.width, intrinsics_.height);
+}
+
+cv::Mat TumDataset::loadDepth(std::size_t i) const {
+  return depthFromRaw(loadDepthRaw(i), options_.depth_units_per_metre);
+}
+
+cv::Mat TumDataset::loadRgb(std::size_t i) const {
+  const auto& f = frame(i);
+  if (!f.rgb_path) return {};
+  cv::Mat img = cv::imread(*f.rgb_path, cv::IMREAD_COLOR);
+  if (img.empty()) throw Error("rgb image '" + *f.rgb_path + "' is missing or unreadable");
+  return img;
+}
+
+}  // namespace gasp

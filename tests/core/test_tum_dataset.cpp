@@ -1,0 +1,68 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "gasp/core/error.h"
+#include "gasp/core/tum_dataset.h"
+#include "gasp_test_data.h"
+
+TEST(TumDataset, ReadsFr1Desk9WithGroundTruthAndRgb) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const auto ds = gasp::TumDataset::open(dir);
+  ASSERT_EQ(ds.size(), 9u);
+  EXPECT_EQ(ds.countWithGroundTruth(), 9u);
+  EXPECT_DOUBLE_EQ(ds.intrinsics().fx, 517.3);  // guessed from "fr1_" in the folder name
+  for (std::size_t i = 0; i < ds.size(); ++i) {
+    EXPECT_TRUE(ds.frame(i).rgb_path.has_value());
+    if (i > 0) {
+      EXPECT_GT(ds.frame(i).timestamp, ds.frame(i - 1).timestamp);
+    }
+  }
+  const cv::Mat depth = ds.loadDepth(0);
+  EXPECT_EQ(depth.type(), CV_32FC1);
+  EXPECT_EQ(depth.cols, 640);
+  EXPECT_GT(gasp::countValidDepth(depth), 200000u);
+  EXPECT_EQ(ds.loadRgb(0).type(), CV_8UC3);
+  // Consecutive frames: ~14 mm apart per the data's README.
+  const auto T_0_1 = gasp::relativePose(*ds.frame(0).T_world_camera, *ds.frame(1).T_world_camera);
+  EXPECT_LT(T_0_1.translation().norm(), 0.05);
+  EXPECT_THROW(ds.frame(9), gasp::Error);
+}
+
+TEST(TumDataset, ReadsFr3CabinetKeyframes) {
+  GASP_REQUIRE_DATA(dir, "tum/fr3_cabinet_kf");
+  const auto ds = gasp::TumDataset::open(dir);
+  ASSERT_EQ(ds.size(), 30u);
+  EXPECT_EQ(ds.countWithGroundTruth(), 30u);
+  EXPECT_DOUBLE_EQ(ds.intrinsics().fx, 535.4);
+  EXPECT_EQ(ds.loadRgb(3).type(), CV_8UC3);  // JPEG rgb
+  const cv::Mat d = ds.loadDepth(29);
+  EXPECT_GT(gasp::countValidDepth(d), 100000u);
+}
+
+TEST(TumDataset, ExplicitIntrinsicsOverrideAndGroundTruthWindow) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  gasp::TumDataset::Options opt;
+  opt.intrinsics = gasp::CameraIntrinsics::rosDefault();
+  opt.max_dt = 1e-6;  // ground truth at 100 Hz: almost no frame has a pose this close
+  const auto ds = gasp::TumDataset::open(dir, opt);
+  EXPECT_EQ(ds.intrinsicsSource(), "option");
+  EXPECT_LT(ds.countWithGroundTruth(), 9u);
+}
+
+TEST(TumDataset, MissingAndMalformedInputs) {
+  const std::string dir = gasp::test::scratchDir();
+  EXPECT_THROW(gasp::TumDataset::open(dir + "/nope"), gasp::Error);
+  EXPECT_THROW(gasp::TumDataset::open(dir), gasp::Error);  // no depth.txt
+  std::ofstream(dir + "/depth.txt") << "# c\n1.0 depth/1.png\n2.0\n";
+  try {
+    gasp::TumDataset::open(dir);
+    FAIL();
+  } catch (const gasp::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("depth.txt:3"), std::string::npos) << e.what();
+  }
+  std::ofstream(dir + "/depth.txt") << "1.0 depth/1.png\n";
+  const auto ds = gasp::TumDataset::open(dir);
+  EXPECT_EQ(ds.size(), 1u);
+  EXPECT_THROW(ds.loadDepth(0), gasp::Error);  // the PNG is missing
+}
