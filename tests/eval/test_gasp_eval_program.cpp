@@ -1,0 +1,66 @@
+// End-to-end checks of the gasp-eval program: output lines and exit codes.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+
+#include "gasp/core/tum_trajectory.h"
+#include "gasp_test_data.h"
+
+namespace {
+
+struct Run {
+  int exit_code;
+  std::string output;  // stdout and stderr
+};
+
+Run run(const std::string& args) {
+  const std::string cmd = std::string(GASP_BIN_DIR) + "/gasp-eval " + args + " 2>&1";
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
+  std::string out;
+  std::array<char, 512> buf{};
+  while (fgets(buf.data(), buf.size(), pipe.get())) out += buf.data();
+  const int status = pclose(pipe.release());
+  return {WEXITSTATUS(status), out};
+}
+
+void writeLine(const std::string& path, int n, double dx) {
+  gasp::Trajectory t;
+  for (int i = 0; i < n; ++i)
+    t.push_back({1.0 + i / 30.0, gasp::Isometry3(Eigen::Translation3d(i * dx, 0.1 * (i % 3), 0))});
+  gasp::writeTumTrajectory(path, t);
+}
+
+}  // namespace
+
+TEST(GaspEvalProgram, AteAndRpePrintTumStyleLines) {
+  const std::string dir = gasp::test::scratchDir();
+  writeLine(dir + "/gt.txt", 30, 0.05);
+  writeLine(dir + "/est.txt", 30, 0.05);
+  auto r = run("ate --gt " + dir + "/gt.txt --est " + dir + "/est.txt --aligned " + dir + "/al.txt");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("compared_pose_pairs: 30"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("absolute_translational_error.rmse: 0.000000 m"), std::string::npos) << r.output;
+  EXPECT_EQ(gasp::readTumTrajectory(dir + "/al.txt").size(), 30u);
+  r = run("rpe --gt " + dir + "/gt.txt --est " + dir + "/est.txt --delta 2 --delta-unit frames");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("compared_pose_pairs: 27"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("rotational_error.median:"), std::string::npos) << r.output;
+}
+
+TEST(GaspEvalProgram, BadInputExitsNonZeroWithMessage) {
+  const std::string dir = gasp::test::scratchDir();
+  writeLine(dir + "/gt.txt", 10, 0.05);
+  std::ofstream(dir + "/bad.txt") << "1.0 0 0 0 0 0 0 1\n2.0 0 0 x 0 0 0 1\n";
+  auto r = run("ate --gt " + dir + "/gt.txt --est " + dir + "/bad.txt");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("bad.txt:2"), std::string::npos) << r.output;
+  r = run("ate --gt " + dir + "/gt.txt --est " + dir + "/missing.txt");
+  EXPECT_NE(r.exit_code, 0);
+  r = run("rpe --gt " + dir + "/gt.txt --est " + dir + "/gt.txt --delta-unit parsecs");
+  EXPECT_NE(r.exit_code, 0);
+  r = run("");
+  EXPECT_NE(r.exit_code, 0);
+}
