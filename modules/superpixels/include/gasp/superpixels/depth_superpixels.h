@@ -1,0 +1,29 @@
+#pragma once
+/// \file depth_superpixels.h The depth-superpixel decomposition of one view (paper III-A):
+/// normals -> smooth-surface components -> area-regularised K-means patches -> clean-up ->
+/// patch records and the patch adjacency graph.
+#include <opencv2/core.hpp>
+
+#include "gasp/core/camera_intrinsics.h"
+#include "gasp/core/point_cloud.h"
+#include "gasp/superpixels/superpixel_params.h"
+#include "gasp/superpixels/surface_patch.h"
+
+namespace gasp {
+
+/// Decomposes a depth image [m] (CV_32FC1; 0 or NaN = no data) into surface patches in the camera
+/// frame. Throws gasp::Error for a wrong image type, a size that differs from the intrinsics', or
+/// invalid parameters. An image without valid depth gives an empty, valid result.
+SuperpixelSegmentation segmentDepthSuperpixels(const cv::Mat& depth_m,
+                                               const CameraIntrinsics& intrinsics,
+                                               const SuperpixelParams& params = {});
+
+/// Throws gasp::Error naming the first parameter out of its range.
+void validate(const SuperpixelParams& params);
+
+/// Patch records, adjacency and statistics from a final label image (used by the pipeline).
+void computePatchRecords(SuperpixelSegmentation& seg, int num_patches, const OrganizedPointCloud& cloud,
+                         const cv::Mat& normals, const CameraIntrinsics& intrinsics,
+                         const SuperpixelParams& params);
+
+}  // namespace gasp

@@ -1,0 +1,44 @@
+#pragma once
+/// \file superpixel_params.h Parameters of the depth-superpixel decomposition (paper III-A),
+/// with defaults for a Kinect-class sensor at 640x480. Units are in the names.
+#include <cstdint>
+
+namespace gasp {
+
+struct SuperpixelParams {
+  // ---- Depth connectivity: 4-neighbours are on one surface only when
+  //      |z1 - z2| <= discontinuity_abs_m + discontinuity_rel * z^2 (Kinect depth steps grow with z^2).
+  double discontinuity_abs_m = 0.01;
+  double discontinuity_rel = 0.02;  ///< [1/m]
+
+  // ---- Normals from smoothed 3D gradients over a depth-adaptive square window that never crosses
+  //      a discontinuity (integral images). Window half-size: normal_radius_m * fx / z pixels,
+  //      clamped to [normal_min_radius_px, normal_max_radius_px] and to the distance to the
+  //      nearest discontinuity; pixels closer than normal_min_radius_px to one get no normal.
+  double normal_radius_m = 0.025;
+  int normal_min_radius_px = 2;
+  int normal_max_radius_px = 10;
+
+  // ---- Smooth-surface components. Pixels whose normals across their window differ by more than
+  //      max_crease_angle_deg (creases, corners) are set aside and re-added after patching.
+  double max_crease_angle_deg = 25.0;
+  double max_neighbour_normal_angle_deg = 10.0;  ///< between 4-neighbours inside a component
+  int min_component_pixels = 40;                 ///< smaller components are set aside too
+
+  // ---- Area-regularised patches (K-means seeded k-means++ style over the surface).
+  double target_patch_area_m2 = 0.004;  ///< ~6.3 x 6.3 cm; a desk frame gives a few hundred patches
+  int kmeans_iterations = 6;
+  double kmeans_normal_weight = 0.5;  ///< weight of (1 - n.n_c) against (distance / patch radius)^2
+  int seed_sampling_step_px = 3;      ///< k-means++ draws seeds from every n-th pixel
+  std::uint64_t seed = 1;             ///< random seed of the k-means++ seeding (deterministic)
+  double max_incidence_deg = 80.0;    ///< foreshortening of a pixel's area is clamped at this angle
+
+  // ---- Clean-up: patches below min_patch_pixels or min_patch_area_ratio * target area are merged
+  //      into the most similar adjacent patch; leftover pixels join adjacent patches by proximity
+  //      and normal (priority region growing, depth-connected only).
+  int min_patch_pixels = 20;
+  double min_patch_area_ratio = 0.25;
+  double regrow_normal_weight_m = 0.02;  ///< cost of a 90 deg normal mismatch, as a distance [m]
+};
+
+}  // namespace gasp

@@ -1,0 +1,117 @@
+#include "gasp/superpixels/normals.h"
+
+#include <Eigen/Geometry>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "gasp/core/error.h"
+
+namespace gasp {
+
+namespace {
+
+/// 255 where a pixel is valid and depth-connected to all its valid 4-neighbours, else 0.
+cv::Mat interiorMask(const OrganizedPointCloud& cloud, const SuperpixelParams& p) {
+  const int w = cloud.width, h = cloud.height;
+  cv::Mat mask(h, w, CV_8U, cv::Scalar(0));
+  for (int v = 0; v < h; ++v) {
+    auto* m = mask.ptr<std::uint8_t>(v);
+    for (int u = 0; u < w; ++u) {
+      if (!cloud.isValid(u, v)) continue;
+      const float z = cloud.at(u, v).z();
+      bool ok = true;
+      const int nu[4] = {u - 1, u + 1, u, u};
+      const int nv[4] = {v, v, v - 1, v + 1};
+      for (int k = 0; k < 4 && ok; ++k) {
+        if (nu[k] < 0 || nu[k] >= w || nv[k] < 0 || nv[k] >= h) continue;
+        ok = cloud.isValid(nu[k], nv[k]) && depthConnected(z, cloud.at(nu[k], nv[k]).z(), p);
+      }
+      m[u] = ok ? 255 : 0;
+    }
+  }
+  return mask;
+}
+
+}  // namespace
+
+SurfaceNormals estimateNormals(const OrganizedPointCloud& cloud, const CameraIntrinsics& k,
+                               const SuperpixelParams& p) {
+  const int w = cloud.width, h = cloud.height;
+  if (w <= 0 || h <= 0 || cloud.points.size() != static_cast<std::size_t>(w) * h)
+    throw Error("estimateNormals: empty or inconsistent organised cloud");
+  SurfaceNormals out;
+  out.normals = cv::Mat(h, w, CV_32FC3, cv::Scalar(0, 0, 0));
+  out.crease = cv::Mat(h, w, CV_32F, cv::Scalar(std::nanf("")));
+  out.radius = cv::Mat(h, w, CV_32S, cv::Scalar(0));
+
+  // Chessboard distance to the nearest pixel that is invalid or next to a discontinuity: a
+  // window of half-size d - 1 then holds only points of one smooth surface.
+  cv::Mat dist;
+  cv::distanceTransform(interiorMask(cloud, p), dist, cv::DIST_C, 3, CV_32F);
+
+  cv::Mat xyz(h, w, CV_64FC3);
+  for (int v = 0; v < h; ++v) {
+    auto* row = xyz.ptr<cv::Vec3d>(v);
+    for (int u = 0; u < w; ++u) {
+      const Eigen::Vector3f& q = cloud.at(u, v);
+      row[u] = q.allFinite() ? cv::Vec3d(q.x(), q.y(), q.z()) : cv::Vec3d(0, 0, 0);
+    }
+  }
+  cv::Mat sum;  // (h+1) x (w+1), sum(r0..r1-1, c0..c1-1) = S(r1,c1) - S(r0,c1) - S(r1,c0) + S(r0,c0)
+  cv::integral(xyz, sum, CV_64F);
+  auto box = [&sum](int c0, int r0, int c1, int r1) {  // inclusive corners
+    return sum.at<cv::Vec3d>(r1 + 1, c1 + 1) - sum.at<cv::Vec3d>(r0, c1 + 1) -
+           sum.at<cv::Vec3d>(r1 + 1, c0) + sum.at<cv::Vec3d>(r0, c0);
+  };
+
+  for (int v = 0; v < h; ++v) {
+    const float* d = dist.ptr<float>(v);
+    auto* n_row = out.normals.ptr<cv::Vec3f>(v);
+    auto* r_row = out.radius.ptr<int>(v);
+    for (int u = 0; u < w; ++u) {
+      if (d[u] < 1.0f) continue;
+      const float z = cloud.at(u, v).z();
+      int r = static_cast<int>(std::lround(p.normal_radius_m * k.fx / z));
+      r = std::clamp(r, p.normal_min_radius_px, p.normal_max_radius_px);
+      r = std::min({r, static_cast<int>(d[u]) - 1, u, v, w - 1 - u, h - 1 - v});  // stay inside
+      if (r < p.normal_min_radius_px) continue;
+      const double half = static_cast<double>(r) * (2 * r + 1);
+      const cv::Vec3d dx = (box(u + 1, v - r, u + r, v + r) - box(u - r, v - r, u - 1, v + r)) / half;
+      const cv::Vec3d dy = (box(u - r, v + 1, u + r, v + r) - box(u - r, v - r, u + r, v - 1)) / half;
+      Eigen::Vector3d n = Eigen::Vector3d(dy[0], dy[1], dy[2]).cross(Eigen::Vector3d(dx[0], dx[1], dx[2]));
+      const double len = n.norm();
+      if (!(len > 0.0)) continue;
+      n /= len;
+      if (n.dot(cloud.at(u, v).cast<double>()) > 0.0) n = -n;  // face the camera
+      n_row[u] = cv::Vec3f(static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z()));
+      r_row[u] = r;
+    }
+  }
+
+  // Crease measure: angle between the normals at both ends of the window, horizontally and
+  // vertically (the larger); catches creases that have no depth discontinuity.
+  for (int v = 0; v < h; ++v) {
+    const int* r_row = out.radius.ptr<int>(v);
+    float* c_row = out.crease.ptr<float>(v);
+    for (int u = 0; u < w; ++u) {
+      const int r = r_row[u];
+      if (r == 0) continue;
+      const cv::Vec3f& n0 = out.normals.at<cv::Vec3f>(v, u);
+      float min_dot = 1.0f;
+      auto compare = [&](int ua, int va, int ub, int vb) {
+        const bool a_ok = out.radius.at<int>(va, ua) > 0, b_ok = out.radius.at<int>(vb, ub) > 0;
+        const cv::Vec3f& na = a_ok ? out.normals.at<cv::Vec3f>(va, ua) : n0;
+        const cv::Vec3f& nb = b_ok ? out.normals.at<cv::Vec3f>(vb, ub) : n0;
+        min_dot = std::min(min_dot, na.dot(nb));
+      };
+      compare(u - r, v, u + r, v);
+      compare(u, v - r, u, v + r);
+      c_row[u] = std::acos(std::clamp(min_dot, -1.0f, 1.0f));
+    }
+  }
+  return out;
+}
+
+}  // namespace gasp
