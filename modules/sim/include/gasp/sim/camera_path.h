@@ -1,0 +1,58 @@
+#pragma once
+/// \file camera_path.h The simulator's deterministic camera trajectory with labelled segments.
+#include <string>
+#include <vector>
+
+#include "gasp/core/pose.h"
+#include "gasp/core/tum_trajectory.h"
+
+namespace gasp::sim {
+
+/// Segment names of the camera path, in path order.
+inline const char* const kWideBaseline = "wide_baseline";        ///< >= 1 m and >= 30 deg yaw
+inline const char* const kPartialOverlap = "partial_overlap";    ///< ~45 deg pan (partial overlap)
+inline const char* const kOccluderAppears = "occluder_appears";  ///< an occluder appears midway
+inline const char* const kRoll180 = "roll_180";                  ///< 180 deg about the optical axis
+
+/// Frames [first_frame, last_frame] (inclusive) of a named part of the path. Consecutive
+/// segments share their boundary frame.
+struct TrajectorySegment {
+  std::string name;
+  int first_frame = 0;
+  int last_frame = 0;
+};
+
+/// Camera poses (T_world_camera of the optical frame, one per frame) and the segments.
+struct CameraPath {
+  Trajectory poses;
+  std::vector<TrajectorySegment> segments;
+
+  int size() const { return static_cast<int>(poses.size()); }
+  /// The segment with that name; throws gasp::Error listing the names otherwise.
+  const TrajectorySegment& segment(const std::string& name) const;
+};
+
+/// Parameters of makeCameraPath().
+struct CameraPathOptions {
+  int frames = 60;              ///< number of frames (>= kMinPathFrames)
+  double start_time_s = 1000.0;  ///< timestamp of frame 0 [s]
+  double rate_hz = 30.0;         ///< frame rate [Hz]; timestamps are rounded to microseconds
+};
+
+/// Fewest frames makeCameraPath() accepts (each segment needs at least one step).
+constexpr int kMinPathFrames = 8;
+
+/// The path through five waypoints (world z up): segments wide_baseline, partial_overlap,
+/// occluder_appears and roll_180 get 30%, 25%, 20% and 25% of the frames. Between waypoints the
+/// position is interpolated linearly, the look-at orientation by slerp, and the roll about the
+/// optical axis linearly (so the 180-degree roll is not short-cut). Throws gasp::Error when
+/// frames < kMinPathFrames or the rate is not positive.
+CameraPath makeCameraPath(const CameraPathOptions& options = {});
+
+/// Optical camera pose at `position` looking at `target` with world `up` (image y points down),
+/// then rolled by roll_rad about the optical axis. Throws gasp::Error when the viewing direction
+/// is zero or parallel to up.
+Isometry3 lookAt(const Eigen::Vector3d& position, const Eigen::Vector3d& target, double roll_rad = 0.0,
+                 const Eigen::Vector3d& up = Eigen::Vector3d::UnitZ());
+
+}  // namespace gasp::sim

@@ -1,0 +1,26 @@
+#pragma once
+/// \file renderer.h Analytic ray casting of a scene into a pinhole depth camera.
+#include <opencv2/core.hpp>
+
+#include "gasp/core/camera_intrinsics.h"
+#include "gasp/core/pose.h"
+#include "gasp/sim/scene.h"
+
+namespace gasp::sim {
+
+/// Ground truth of one view: for each pixel the nearest surface along the pixel's ray.
+struct RenderedFrame {
+  cv::Mat depth;       ///< CV_32FC1 true depth z [m] (optical frame); 0 where the ray hits nothing
+  cv::Mat surface_id;  ///< CV_16UC1 surface id of the hit; 0 where the ray hits nothing
+  /// CV_32FC3 unit surface normal (x, y, z) in the camera frame, turned to face the camera;
+  /// zero where the ray hits nothing.
+  cv::Mat normal;
+};
+
+/// Casts one ray per pixel centre (u, v) through the pinhole (no distortion) and keeps the
+/// nearest hit of the objects visible at frame_index. Exact up to double rounding; the depth is
+/// stored as float.
+RenderedFrame renderFrame(const Scene& scene, const CameraIntrinsics& intrinsics,
+                          const Isometry3& T_world_camera, int frame_index = 0);
+
+}  // namespace gasp::sim

@@ -1,0 +1,99 @@
+#include "gasp/sim/camera_path.h"
+
+#include <array>
+#include <cmath>
+
+#include "gasp/core/error.h"
+
+namespace gasp::sim {
+
+const TrajectorySegment& CameraPath::segment(const std::string& name) const {
+  std::string names;
+  for (const auto& s : segments) {
+    if (s.name == name) return s;
+    names += (names.empty() ? "" : ", ") + s.name;
+  }
+  throw Error("camera path has no segment '" + name + "'; segments: " + names);
+}
+
+Isometry3 lookAt(const Eigen::Vector3d& position, const Eigen::Vector3d& target, double roll_rad,
+                 const Eigen::Vector3d& up) {
+  const Eigen::Vector3d forward = target - position;
+  if (forward.norm() < 1e-9) throw Error("lookAt: target equals the camera position");
+  const Eigen::Vector3d z = forward.normalized();
+  const Eigen::Vector3d x_raw = z.cross(up);
+  if (x_raw.norm() < 1e-9) throw Error("lookAt: viewing direction is parallel to the up vector");
+  const Eigen::Vector3d x = x_raw.normalized();
+  const Eigen::Vector3d y = z.cross(x);  // points down in the image
+  Eigen::Matrix3d R;
+  R.col(0) = x;
+  R.col(1) = y;
+  R.col(2) = z;
+  Isometry3 T = Isometry3::Identity();
+  T.linear() = R * Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = position;
+  return T;
+}
+
+namespace {
+
+struct Waypoint {
+  Eigen::Vector3d position;
+  Eigen::Vector3d target;
+  double roll_deg;
+};
+
+}  // namespace
+
+CameraPath makeCameraPath(const CameraPathOptions& options) {
+  if (options.frames < kMinPathFrames)
+    throw Error("camera path: frames must be at least " + std::to_string(kMinPathFrames) + ", got " +
+                std::to_string(options.frames));
+  if (!(std::isfinite(options.rate_hz) && options.rate_hz > 0.0))
+    throw Error("camera path: rate_hz must be positive, got " + std::to_string(options.rate_hz));
+  if (!std::isfinite(options.start_time_s))
+    throw Error("camera path: start_time_s must be finite");
+
+  // Waypoints (world: z up, metres). See scenes.cpp for what is where.
+  const std::array<Waypoint, 5> wp{{
+      {{-1.0, -0.7, 1.4}, {2.5, 0.3, 0.6}, 0.0},   // start: looking at the table
+      {{0.2, 0.6, 1.2}, {2.5, -0.3, 0.6}, 0.0},    // after the wide baseline (1.8 m, ~37 deg yaw)
+      {{0.2, 0.4, 1.2}, {1.5, -2.5, 0.8}, 0.0},    // after the pan towards -y (~45 deg)
+      {{0.0, 0.0, 1.3}, {2.5, 0.0, 0.7}, 0.0},     // back to the table; the occluder appears
+      {{0.0, 0.0, 1.3}, {2.5, 0.0, 0.7}, 180.0},   // rolled by 180 deg about the optical axis
+  }};
+  const std::array<const char*, 4> names{kWideBaseline, kPartialOverlap, kOccluderAppears, kRoll180};
+  const std::array<double, 5> cumulative{0.0, 0.30, 0.55, 0.75, 1.0};
+
+  const int last = options.frames - 1;
+  std::array<int, 5> key{};
+  for (std::size_t i = 0; i < key.size(); ++i)
+    key[i] = static_cast<int>(std::lround(cumulative[i] * last));
+  for (std::size_t i = 1; i < key.size(); ++i)  // at least one step per segment
+    if (key[i] <= key[i - 1]) key[i] = key[i - 1] + 1;
+  key.back() = last;
+
+  CameraPath path;
+  for (std::size_t s = 0; s < names.size(); ++s) path.segments.push_back({names[s], key[s], key[s + 1]});
+
+  for (int f = 0; f <= last; ++f) {
+    std::size_t s = 0;
+    while (s + 1 < names.size() && f > key[s + 1]) ++s;
+    const double a = static_cast<double>(f - key[s]) / static_cast<double>(key[s + 1] - key[s]);
+    const Waypoint& w0 = wp[s];
+    const Waypoint& w1 = wp[s + 1];
+    const Eigen::Quaterniond q0(lookAt(w0.position, w0.target).linear());
+    const Eigen::Quaterniond q1(lookAt(w1.position, w1.target).linear());
+    const double roll = (w0.roll_deg + a * (w1.roll_deg - w0.roll_deg)) * EIGEN_PI / 180.0;
+    StampedPose p;
+    p.timestamp = std::round((options.start_time_s + f / options.rate_hz) * 1e6) / 1e6;
+    p.T_world_camera = Isometry3::Identity();
+    p.T_world_camera.linear() = (q0.slerp(a, q1).toRotationMatrix() *
+                                 Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitZ()).toRotationMatrix());
+    p.T_world_camera.translation() = (1.0 - a) * w0.position + a * w1.position;
+    path.poses.push_back(p);
+  }
+  return path;
+}
+
+}  // namespace gasp::sim

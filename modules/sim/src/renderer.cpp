@@ -1,0 +1,86 @@
+#include "gasp/sim/renderer.h"
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace gasp::sim {
+
+namespace {
+
+/// An object prepared for one view: the camera-to-object transform and its bounding sphere.
+struct PreparedObject {
+  const SceneObject* object = nullptr;
+  Eigen::Matrix3d R_object_camera;
+  Eigen::Vector3d t_object_camera;      ///< camera centre in the object frame
+  Eigen::Matrix3d R_camera_object;
+  Eigen::Vector3d centre_camera;        ///< bounding sphere centre in the camera frame
+  double radius_sq = 0.0;               ///< bounding radius squared (inf: always tested)
+  bool always = false;
+};
+
+}  // namespace
+
+RenderedFrame renderFrame(const Scene& scene, const CameraIntrinsics& K,
+                          const Isometry3& T_world_camera, int frame_index) {
+  K.validate();
+  const Isometry3 T_camera_world = T_world_camera.inverse();
+  std::vector<PreparedObject> prepared;
+  for (const auto& obj : scene.objects) {
+    if (!obj.visibleAt(frame_index)) continue;
+    PreparedObject p;
+    p.object = &obj;
+    const Isometry3 T_object_camera = obj.T_world_object.inverse() * T_world_camera;
+    p.R_object_camera = T_object_camera.linear();
+    p.t_object_camera = T_object_camera.translation();
+    p.R_camera_object = p.R_object_camera.transpose();
+    p.centre_camera = T_camera_world * obj.T_world_object.translation();
+    const double r = boundingRadius(obj.shape);
+    p.always = !std::isfinite(r);
+    p.radius_sq = r * r;
+    prepared.push_back(p);
+  }
+
+  RenderedFrame out;
+  out.depth = cv::Mat::zeros(K.height, K.width, CV_32FC1);
+  out.surface_id = cv::Mat::zeros(K.height, K.width, CV_16UC1);
+  out.normal = cv::Mat::zeros(K.height, K.width, CV_32FC3);
+  constexpr double kTMin = 1e-6;
+  for (int v = 0; v < K.height; ++v) {
+    auto* depth_row = out.depth.ptr<float>(v);
+    auto* id_row = out.surface_id.ptr<std::uint16_t>(v);
+    auto* normal_row = out.normal.ptr<cv::Vec3f>(v);
+    for (int u = 0; u < K.width; ++u) {
+      const Eigen::Vector3d d_camera((u - K.cx) / K.fx, (v - K.cy) / K.fy, 1.0);
+      const double dd = d_camera.squaredNorm();
+      double best_t = std::numeric_limits<double>::infinity();
+      RayHit best_hit;
+      const PreparedObject* best_obj = nullptr;
+      for (const auto& p : prepared) {
+        if (!p.always) {  // bounding-sphere early out
+          const double q = p.centre_camera.dot(d_camera);
+          const double disc = q * q - dd * (p.centre_camera.squaredNorm() - p.radius_sq);
+          if (disc < 0.0) continue;
+          if ((q - std::sqrt(disc)) / dd >= best_t) continue;
+        }
+        RayHit hit;
+        if (intersect(p.object->shape, p.t_object_camera, p.R_object_camera * d_camera, kTMin, hit) &&
+            hit.t < best_t) {
+          best_t = hit.t;
+          best_hit = hit;
+          best_obj = &p;
+        }
+      }
+      if (!best_obj) continue;
+      Eigen::Vector3d n = best_obj->R_camera_object * best_hit.normal;
+      if (n.dot(d_camera) > 0.0) n = -n;  // face the camera (rectangles are two-sided)
+      depth_row[u] = static_cast<float>(best_t);
+      id_row[u] = best_obj->object->surfaceId(best_hit.face);
+      normal_row[u] = cv::Vec3f(static_cast<float>(n.x()), static_cast<float>(n.y()),
+                                static_cast<float>(n.z()));
+    }
+  }
+  return out;
+}
+
+}  // namespace gasp::sim

@@ -1,0 +1,125 @@
+// The named scenes of makeScene(). Laid out around the camera path of camera_path.cpp: the camera
+// stays near x in [-1, 0.2], y in [-0.7, 0.6], z in [1.2, 1.4] and looks towards +x (wide
+// baseline, roll, occluder) and towards -y (partial-overlap pan).
+#include <algorithm>
+
+#include "gasp/core/error.h"
+#include "gasp/sim/scene.h"
+
+namespace gasp::sim {
+
+namespace {
+
+Box box(double hx, double hy, double hz) { return Box{Eigen::Vector3d(hx, hy, hz)}; }
+
+/// Room x in [-2.5, 4.5], y in [-3, 3], z in [0, 2.8] (7 x 6 x 2.8 m).
+void addRoom(Scene& s) {
+  s.add("room", Room{Eigen::Vector3d(3.5, 3.0, 1.4)}, placeAt(1.0, 0.0, 1.4));
+}
+
+Scene roomScene() {
+  Scene s;
+  s.name = "room";
+  s.description = "furnished room: table with objects, chair, cabinet, shelf, bin, balls, crates, pillar";
+  addRoom(s);
+  // Table 1.2 x 0.8 m, top at 0.775 m, on four thin legs.
+  s.add("table_top", box(0.6, 0.4, 0.025), placeAt(2.3, 0.2, 0.75));
+  int leg = 0;
+  for (double dx : {-0.55, 0.55})
+    for (double dy : {-0.35, 0.35})
+      s.add("table_leg" + std::to_string(leg++), Cylinder{0.03, 0.3625},
+            placeAt(2.3 + dx, 0.2 + dy, 0.3625));
+  s.add("book", box(0.15, 0.1, 0.04), placeAt(2.0, 0.35, 0.815, 15.0));
+  s.add("vase", Cylinder{0.08, 0.15}, placeAt(2.6, 0.0, 0.925));
+  s.add("ball", Sphere{0.12}, placeAt(2.2, -0.05, 0.895));
+  // Chair facing the table.
+  s.add("chair_seat", box(0.22, 0.22, 0.025), placeAt(1.5, 0.3, 0.45));
+  s.add("chair_base", box(0.15, 0.15, 0.21), placeAt(1.5, 0.3, 0.21));
+  s.add("chair_back", box(0.025, 0.22, 0.25), placeAt(1.29, 0.3, 0.725));
+  // Furniture along the walls.
+  s.add("cabinet", box(0.3, 0.45, 0.5), placeAt(3.8, -1.3, 0.5, 20.0));
+  s.add("shelf", box(0.2, 0.6, 0.9), placeAt(4.25, 1.2, 0.9));
+  s.add("picture", box(0.02, 0.4, 0.3), placeAt(4.48, -0.3, 1.5));
+  s.add("bin", Cylinder{0.25, 0.4}, placeAt(3.2, 1.7, 0.4));
+  s.add("big_ball", Sphere{0.35}, placeAt(1.0, 1.9, 0.35));
+  // The -y side, seen during the pan.
+  s.add("crate", box(0.4, 0.25, 0.3), placeAt(1.3, -2.6, 0.3, -10.0));
+  s.add("crate_top", box(0.25, 0.25, 0.25), placeAt(1.4, -2.55, 0.85, 25.0));
+  s.add("pillar", Cylinder{0.2, 1.4}, placeAt(0.3, -2.5, 1.4));
+  s.add("floor_ball", Sphere{0.25}, placeAt(2.4, -2.3, 0.25));
+  s.add("bench", box(0.6, 0.2, 0.22), placeAt(-0.8, -2.7, 0.22));
+  return s;
+}
+
+Scene repeatedScene() {
+  Scene s;
+  s.name = "repeated";
+  s.description = "identical boxes, cylinders and spheres in a near-symmetric grid (one box turned 5 deg, one shifted 5 cm)";
+  addRoom(s);
+  int n = 0;
+  for (double x : {1.6, 2.6, 3.6})
+    for (double y : {-0.9, 0.9}) {
+      const bool turned = (n == 3);
+      const double shift = (n == 4) ? 0.05 : 0.0;
+      s.add("box" + std::to_string(n++), box(0.2, 0.2, 0.4), placeAt(x + shift, y, 0.4, turned ? 5.0 : 0.0));
+    }
+  n = 0;
+  for (double x : {2.1, 3.1}) s.add("cylinder" + std::to_string(n++), Cylinder{0.15, 0.5}, placeAt(x, 0.0, 0.5));
+  n = 0;
+  for (double x : {1.6, 2.6, 3.6}) s.add("sphere" + std::to_string(n++), Sphere{0.2}, placeAt(x, 0.0, 0.2));
+  n = 0;
+  for (double x : {0.0, 1.0, 2.0}) s.add("wall_box" + std::to_string(n++), box(0.3, 0.3, 0.3), placeAt(x, -2.6, 0.3));
+  return s;
+}
+
+Scene sparseScene() {
+  Scene s;
+  s.name = "sparse";
+  s.description = "a room with one box, one cylinder and one sphere";
+  addRoom(s);
+  s.add("box", box(0.4, 0.3, 0.4), placeAt(2.2, 0.3, 0.4, 20.0));
+  s.add("cylinder", Cylinder{0.2, 0.6}, placeAt(3.0, -0.8, 0.6));
+  s.add("sphere", Sphere{0.3}, placeAt(1.4, -2.2, 0.3));
+  return s;
+}
+
+Scene planeScene() {
+  Scene s;
+  s.name = "plane";
+  s.description = "degenerate: one 40 x 40 m plane at x = 3 m facing the camera, nothing else";
+  s.degenerate = true;
+  Isometry3 T = placeAt(3.0, 0.0, 1.4);
+  T.linear() = Eigen::AngleAxisd(-EIGEN_PI / 2.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  s.add("plane", Rectangle{20.0, 20.0}, T);
+  return s;
+}
+
+Scene corridorScene() {
+  Scene s;
+  s.name = "corridor";
+  s.description = "degenerate: two parallel walls at y = +-1.2 m along x, nothing else";
+  s.degenerate = true;
+  for (int side : {-1, 1}) {
+    Isometry3 T = placeAt(5.0, 1.2 * side, 1.4);
+    T.linear() = Eigen::AngleAxisd(side * EIGEN_PI / 2.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
+    s.add(side < 0 ? "wall_right" : "wall_left", Rectangle{20.0, 10.0}, T);
+  }
+  return s;
+}
+
+}  // namespace
+
+std::vector<std::string> sceneNames() { return {"room", "repeated", "sparse", "plane", "corridor"}; }
+
+Scene makeScene(const std::string& name) {
+  if (name == "room") return roomScene();
+  if (name == "repeated") return repeatedScene();
+  if (name == "sparse") return sparseScene();
+  if (name == "plane") return planeScene();
+  if (name == "corridor") return corridorScene();
+  std::string valid;
+  for (const auto& n : sceneNames()) valid += (valid.empty() ? "" : ", ") + n;
+  throw Error("unknown scene '" + name + "'; valid scenes: " + valid);
+}
+
+}  // namespace gasp::sim

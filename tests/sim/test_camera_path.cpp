@@ -1,0 +1,133 @@
+// The camera path has the promised segments; the occluder appears during its segment.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "gasp/core/error.h"
+#include "gasp/sim/camera_path.h"
+#include "gasp/sim/simulation.h"
+
+namespace {
+
+constexpr double kRadToDeg = 180.0 / EIGEN_PI;
+
+const gasp::Isometry3& pose(const gasp::sim::CameraPath& p, int frame) {
+  return p.poses.at(static_cast<std::size_t>(frame)).T_world_camera;
+}
+
+/// Heading of the optical axis in the world xy plane [deg].
+double yawDeg(const gasp::Isometry3& T_world_camera) {
+  const Eigen::Vector3d z = T_world_camera.linear().col(2);
+  return std::atan2(z.y(), z.x()) * kRadToDeg;
+}
+
+}  // namespace
+
+TEST(SimCameraPath, SegmentsCoverThePathInOrder) {
+  for (int frames : {8, 9, 30, 60, 200}) {
+    gasp::sim::CameraPathOptions o;
+    o.frames = frames;
+    const auto path = gasp::sim::makeCameraPath(o);
+    ASSERT_EQ(path.size(), frames);
+    ASSERT_EQ(path.segments.size(), 4u);
+    EXPECT_EQ(path.segments[0].name, gasp::sim::kWideBaseline);
+    EXPECT_EQ(path.segments[1].name, gasp::sim::kPartialOverlap);
+    EXPECT_EQ(path.segments[2].name, gasp::sim::kOccluderAppears);
+    EXPECT_EQ(path.segments[3].name, gasp::sim::kRoll180);
+    EXPECT_EQ(path.segments.front().first_frame, 0);
+    EXPECT_EQ(path.segments.back().last_frame, frames - 1);
+    for (std::size_t i = 0; i < path.segments.size(); ++i) {
+      EXPECT_LT(path.segments[i].first_frame, path.segments[i].last_frame);
+      if (i > 0) {
+        EXPECT_EQ(path.segments[i].first_frame, path.segments[i - 1].last_frame);
+      }
+    }
+    EXPECT_DOUBLE_EQ(path.poses.front().timestamp, 1000.0);
+    for (int f = 1; f < frames; ++f)
+      EXPECT_NEAR(path.poses[static_cast<std::size_t>(f)].timestamp -
+                      path.poses[static_cast<std::size_t>(f - 1)].timestamp,
+                  1.0 / 30.0, 2e-6);
+  }
+}
+
+TEST(SimCameraPath, HardPairsAndSmallSteps) {
+  const auto path = gasp::sim::makeCameraPath();
+  ASSERT_EQ(path.size(), 60);
+
+  const auto& wide = path.segment(gasp::sim::kWideBaseline);
+  const auto T_wide = gasp::relativePose(pose(path, wide.first_frame), pose(path, wide.last_frame));
+  EXPECT_GE(gasp::translationNorm(T_wide), 1.0);
+  EXPECT_GE(std::abs(yawDeg(pose(path, wide.last_frame)) - yawDeg(pose(path, wide.first_frame))), 30.0);
+
+  const auto& roll = path.segment(gasp::sim::kRoll180);
+  const auto T_roll = gasp::relativePose(pose(path, roll.first_frame), pose(path, roll.last_frame));
+  const Eigen::Matrix3d R = T_roll.linear();
+  EXPECT_NEAR(std::abs(std::atan2(R(1, 0), R(0, 0))) * kRadToDeg, 180.0, 1.0);
+  EXPECT_NEAR(R(2, 2), 1.0, 1e-4) << "the rotation is about the optical axis";
+  EXPECT_NEAR(gasp::rotationAngle(T_roll) * kRadToDeg, 180.0, 1.0);
+
+  // The pan turns by less than the horizontal field of view (62.7 deg): partial overlap.
+  const auto& pan = path.segment(gasp::sim::kPartialOverlap);
+  const double pan_deg =
+      gasp::rotationAngle(gasp::relativePose(pose(path, pan.first_frame), pose(path, pan.last_frame))) *
+      kRadToDeg;
+  EXPECT_GT(pan_deg, 30.0);
+  EXPECT_LT(pan_deg, 55.0);
+
+  // Adjacent frames are close enough for odometry.
+  for (int f = 1; f < path.size(); ++f) {
+    const auto T = gasp::relativePose(pose(path, f - 1), pose(path, f));
+    EXPECT_LT(gasp::translationNorm(T), 0.15) << "frame " << f;
+    EXPECT_LT(gasp::rotationAngle(T) * kRadToDeg, 15.0) << "frame " << f;
+  }
+  EXPECT_THROW(path.segment("nope"), gasp::Error);
+}
+
+TEST(SimCameraPath, TooFewFramesIsAnError) {
+  gasp::sim::CameraPathOptions o;
+  for (int frames : {-1, 0, 7}) {
+    o.frames = frames;
+    EXPECT_THROW(gasp::sim::makeCameraPath(o), gasp::Error);
+  }
+}
+
+TEST(SimCameraPath, LookAtIsAnOpticalFrame) {
+  const auto T = gasp::sim::lookAt({0, 0, 1}, {2, 0, 1});
+  // Optical axis +x world, image x right = -y world, image y down = -z world.
+  EXPECT_TRUE(T.linear().col(2).isApprox(Eigen::Vector3d(1, 0, 0)));
+  EXPECT_TRUE(T.linear().col(0).isApprox(Eigen::Vector3d(0, -1, 0)));
+  EXPECT_TRUE(T.linear().col(1).isApprox(Eigen::Vector3d(0, 0, -1)));
+  EXPECT_THROW(gasp::sim::lookAt({0, 0, 0}, {0, 0, 1}), gasp::Error);
+}
+
+TEST(SimCameraPath, OccluderAppearsDuringItsSegment) {
+  gasp::sim::SimulationOptions o;  // room, 60 frames
+  const gasp::sim::Simulation sim(o);
+  const auto& seg = sim.path().segment(gasp::sim::kOccluderAppears);
+  const auto& occ = sim.scene().object(gasp::sim::kOccluderName);
+  EXPECT_GT(occ.visible_from_frame, seg.first_frame);
+  EXPECT_LE(occ.visible_from_frame, seg.last_frame);
+  const auto countOccluder = [&](int frame) {
+    const cv::Mat ids = sim.render(frame).surface_id;
+    int n = 0;
+    for (auto it = ids.begin<std::uint16_t>(); it != ids.end<std::uint16_t>(); ++it) n += occ.ownsSurface(*it);
+    return n;
+  };
+  EXPECT_EQ(countOccluder(seg.first_frame), 0);
+  EXPECT_EQ(countOccluder(occ.visible_from_frame - 1), 0);
+  EXPECT_GT(countOccluder(seg.last_frame), 640 * 480 / 20);
+}
+
+TEST(SimCameraPath, EveryViewOfTheRoomHasStructure) {
+  gasp::sim::SimulationOptions o;
+  o.frames = 8;
+  const gasp::sim::Simulation sim(o);
+  for (int f = 0; f < sim.size(); ++f) {
+    const auto frame = sim.frame(f);
+    EXPECT_GT(cv::countNonZero(frame.depth), 640 * 480 * 8 / 10) << "frame " << f;
+    // Several surfaces in view, not just walls.
+    std::set<std::uint16_t> ids(frame.labels.begin<std::uint16_t>(), frame.labels.end<std::uint16_t>());
+    EXPECT_GE(ids.size(), 6u) << "frame " << f;
+  }
+}
