@@ -1,0 +1,63 @@
+#pragma once
+/// \file rawlog_reader.h Reads the RGB-D (CObservation3DRangeScan) observations of an MRPT rawlog.
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gasp/rawlog/rawlog_format.h"
+#include "gasp/rawlog/rgbd_frame.h"
+
+namespace gasp {
+
+/// Streams the CObservation3DRangeScan observations of a rawlog in file order, converted to
+/// RgbdFrame (see frameFromObservation()). Reads format #1 (actions / sensory frames) and #2
+/// (observations), gzip-compressed or plain. Other observation types and actions are skipped and
+/// counted. Externally stored range images and intensity images are resolved against
+/// findRawlogImagesDirectory(path) ("<name>_Images" beside the rawlog), whatever the working
+/// directory.
+///
+/// Errors (gasp::Error, naming the file): missing file; empty file; not a rawlog or corrupt
+/// stream (the MRPT message is included); a rawlog without any CObservation3DRangeScan (reported
+/// by next() at the end, listing the types found); a scan without range image.
+class RawlogReader {
+ public:
+  /// Opens the rawlog and reads its first object (so that empty or garbage files fail here).
+  explicit RawlogReader(const std::string& path);
+  ~RawlogReader();
+  RawlogReader(RawlogReader&&) noexcept;
+  RawlogReader& operator=(RawlogReader&&) noexcept;
+
+  /// The next 3D range scan as a frame, or nullopt at the end of the file.
+  std::optional<RgbdFrame> next();
+
+  const std::string& path() const { return path_; }
+  /// Folder against which relative external files are resolved.
+  const std::string& imagesDirectory() const { return images_dir_; }
+  /// The layout seen so far (decided by the first object).
+  RawlogFormat format() const { return format_; }
+  /// Number of 3D range scans returned so far.
+  std::size_t scansRead() const { return scans_read_; }
+  /// Class names and counts of the other objects met so far (observations of other types,
+  /// CActionCollection, ...).
+  const std::map<std::string, std::size_t>& skipped() const { return skipped_; }
+  /// "3 x CObservationOdometry, 1 x CObservationIMU" (or "nothing").
+  std::string skippedSummary() const;
+
+ private:
+  struct Impl;
+  std::string path_;
+  std::string images_dir_;
+  RawlogFormat format_ = RawlogFormat::Observations;
+  std::size_t scans_read_ = 0;
+  std::size_t objects_read_ = 0;
+  std::map<std::string, std::size_t> skipped_;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// All 3D range scans of a rawlog (RawlogReader::next() until the end).
+std::vector<RgbdFrame> readRawlogFrames(const std::string& path);
+
+}  // namespace gasp

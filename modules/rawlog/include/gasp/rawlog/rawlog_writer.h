@@ -1,0 +1,53 @@
+#pragma once
+/// \file rawlog_writer.h Writes RGB-D frames as an MRPT rawlog of CObservation3DRangeScan.
+#include <cstddef>
+#include <memory>
+#include <string>
+
+#include "gasp/rawlog/rawlog_format.h"
+#include "gasp/rawlog/rgbd_frame.h"
+
+namespace gasp {
+
+struct RawlogWriterOptions {
+  /// #2 (default): a stream of observations; #1: each observation in its own CSensoryFrame,
+  /// preceded by an empty CActionCollection.
+  RawlogFormat format = RawlogFormat::Observations;
+  /// Store range images (MRPT's gz-compressed .bin matrix files) and rgb images (PNG) in
+  /// "<name>_Images" beside the rawlog, referenced by relative file names, instead of inline.
+  bool external_storage = false;
+  /// gzip level of the rawlog itself (0 = plain, 1..9); MRPT reads both.
+  int compress_level = 1;
+};
+
+/// Writes a rawlog; the file is complete when the writer is closed or destroyed.
+class RawlogWriter {
+ public:
+  /// Creates (overwrites) the rawlog, creating its folder if needed; with external storage also
+  /// creates "<name>_Images".
+  /// Throws gasp::Error when the file or folder cannot be created.
+  explicit RawlogWriter(const std::string& path, const RawlogWriterOptions& options = {});
+  ~RawlogWriter();
+  RawlogWriter(RawlogWriter&&) noexcept;
+  RawlogWriter& operator=(RawlogWriter&&) noexcept;
+
+  /// Converts the frame (observationFromFrame()) and appends it. Throws gasp::Error.
+  void write(const RgbdFrame& frame);
+  /// Flushes and closes the file (also done by the destructor).
+  void close();
+
+  std::size_t framesWritten() const { return frames_written_; }
+  const std::string& path() const { return path_; }
+  /// "<name>_Images" (only created with external storage).
+  const std::string& imagesDirectory() const { return images_dir_; }
+
+ private:
+  struct Impl;
+  std::string path_;
+  std::string images_dir_;
+  RawlogWriterOptions options_;
+  std::size_t frames_written_ = 0;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace gasp

@@ -1,0 +1,109 @@
+#include "gasp/rawlog/rawlog_writer.h"
+
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/io/CFileOutputStream.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+
+#include "gasp/core/error.h"
+#include "gasp/rawlog/observation_conversion.h"
+
+namespace gasp {
+
+struct RawlogWriter::Impl {
+  std::unique_ptr<mrpt::io::CStream> stream;
+};
+
+RawlogWriter::RawlogWriter(const std::string& path, const RawlogWriterOptions& options)
+    : path_(path), images_dir_(rawlogImagesDirectory(path)), options_(options),
+      impl_(std::make_unique<Impl>()) {
+  namespace fs = std::filesystem;
+  if (options_.compress_level < 0 || options_.compress_level > 9)
+    throw Error("rawlog '" + path + "': compress_level must be 0..9");
+  const fs::path parent = fs::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) fs::create_directories(parent, ec);
+  if (!parent.empty() && !fs::is_directory(parent, ec))
+    throw Error("rawlog '" + path + "': cannot create the output folder '" + parent.string() + "'");
+  try {
+    if (options_.compress_level == 0) {
+      auto f = std::make_unique<mrpt::io::CFileOutputStream>();
+      if (!f->open(path)) throw Error("rawlog '" + path + "': cannot create the file");
+      impl_->stream = std::move(f);
+    } else {
+      auto f = std::make_unique<mrpt::io::CFileGZOutputStream>();
+      if (!f->open(path, options_.compress_level))
+        throw Error("rawlog '" + path + "': cannot create the file");
+      impl_->stream = std::move(f);
+    }
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error("rawlog '" + path + "': cannot create the file: " + e.what());
+  }
+  if (options_.external_storage) {
+    fs::create_directories(images_dir_, ec);
+    if (!fs::is_directory(images_dir_))
+      throw Error("rawlog '" + path + "': cannot create the images folder '" + images_dir_ + "'");
+  }
+}
+
+RawlogWriter::~RawlogWriter() {
+  try {
+    close();
+  } catch (...) {  // destructors must not throw; close() explicitly to see errors
+  }
+}
+RawlogWriter::RawlogWriter(RawlogWriter&&) noexcept = default;
+RawlogWriter& RawlogWriter::operator=(RawlogWriter&&) noexcept = default;
+
+void RawlogWriter::write(const RgbdFrame& frame) {
+  if (!impl_ || !impl_->stream) throw Error("rawlog '" + path_ + "': writer already closed");
+  auto obs = observationFromFrame(frame);
+
+  if (options_.external_storage) {
+    char stem[64];
+    std::snprintf(stem, sizeof stem, "_%06zu", frames_written_);
+    const std::string base = frame.sensor_label + stem;
+    try {
+      // MRPT writes IMAGES_DIR/<base>_depth.bin (gz-compressed rows, cols, uint16 data).
+      obs->rangeImage_convertToExternalStorage(base + "_depth.bin", images_dir_);
+    } catch (const std::exception& e) {
+      throw Error("rawlog '" + path_ + "': cannot write the external range image in '" +
+                  images_dir_ + "': " + e.what());
+    }
+    if (obs->hasIntensityImage) {
+      const std::string rgb_name = base + "_rgb.png";
+      if (!cv::imwrite(images_dir_ + "/" + rgb_name, frame.rgb))
+        throw Error("rawlog '" + path_ + "': cannot write '" + images_dir_ + "/" + rgb_name + "'");
+      obs->intensityImage.setExternalStorage(rgb_name);
+    }
+  }
+
+  try {
+    auto ar = mrpt::serialization::archiveFrom(*impl_->stream);
+    if (options_.format == RawlogFormat::ActionsSensoryFrames) {
+      mrpt::obs::CActionCollection actions;
+      mrpt::obs::CSensoryFrame sf;
+      sf.insert(obs);
+      ar << actions << sf;
+    } else {
+      ar << *obs;
+    }
+  } catch (const std::exception& e) {
+    throw Error("rawlog '" + path_ + "': write failed: " + e.what());
+  }
+  ++frames_written_;
+}
+
+void RawlogWriter::close() {
+  if (impl_ && impl_->stream) impl_->stream.reset();
+}
+
+}  // namespace gasp

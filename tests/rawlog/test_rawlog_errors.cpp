@@ -1,0 +1,171 @@
+// Bad rawlogs and bad program input give a gasp::Error (or an "error:" exit) that says what is wrong.
+#include <gtest/gtest.h>
+#include <mrpt/core/Clock.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "gasp/core/error.h"
+#include "gasp/rawlog/rawlog_reader.h"
+#include "gasp/rawlog/rawlog_writer.h"
+#include "gasp_test_data.h"
+#include "rawlog_test_frames.h"
+
+namespace {
+
+/// The gasp::Error message of reading the whole rawlog, or "" when it did not throw.
+std::string readError(const std::string& path) {
+  try {
+    gasp::readRawlogFrames(path);
+  } catch (const gasp::Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+TEST(RawlogErrors, MissingEmptyAndGarbageFiles) {
+  const std::string dir = gasp::test::scratchDir();
+  std::string msg = readError(dir + "/missing.rawlog");
+  EXPECT_TRUE(contains(msg, "missing.rawlog") && contains(msg, "not found")) << msg;
+
+  std::ofstream(dir + "/empty.rawlog").close();
+  msg = readError(dir + "/empty.rawlog");
+  EXPECT_TRUE(contains(msg, "empty.rawlog") && contains(msg, "empty")) << msg;
+
+  {
+    std::ofstream f(dir + "/garbage.rawlog", std::ios::binary);
+    for (int i = 0; i < 5000; ++i) f << static_cast<char>((i * 7919 + 13) % 251);
+  }
+  msg = readError(dir + "/garbage.rawlog");
+  EXPECT_TRUE(contains(msg, "garbage.rawlog") && contains(msg, "not an MRPT rawlog")) << msg;
+
+  std::ofstream(dir + "/text.rawlog") << "timestamp x y z\n1 2 3 4\n";
+  msg = readError(dir + "/text.rawlog");
+  EXPECT_TRUE(contains(msg, "text.rawlog") && contains(msg, "not an MRPT rawlog")) << msg;
+
+  msg = readError(dir);
+  EXPECT_TRUE(contains(msg, "directory")) << msg;
+}
+
+TEST(RawlogErrors, RawlogWithoutRangeScansSaysWhatItHolds) {
+  const std::string path = gasp::test::scratchDir() + "/odometry.rawlog";
+  {
+    mrpt::io::CFileGZOutputStream out(path);
+    auto ar = mrpt::serialization::archiveFrom(out);
+    for (int i = 0; i < 3; ++i) {
+      mrpt::obs::CObservationOdometry odo;
+      odo.timestamp = mrpt::Clock::fromDouble(10.0 + i);
+      odo.sensorLabel = "ODOMETRY";
+      ar << odo;
+    }
+  }
+  const std::string msg = readError(path);
+  EXPECT_TRUE(contains(msg, "odometry.rawlog") && contains(msg, "no CObservation3DRangeScan") &&
+              contains(msg, "3 x CObservationOdometry"))
+      << msg;
+}
+
+TEST(RawlogErrors, OtherObservationsAreSkippedAndCounted) {
+  const std::string path = gasp::test::scratchDir() + "/mixed.rawlog";
+  {
+    mrpt::io::CFileGZOutputStream out(path);
+    auto ar = mrpt::serialization::archiveFrom(out);
+    mrpt::obs::CObservationOdometry odo;
+    ar << odo;
+    mrpt::obs::CObservation3DRangeScan scan;
+    scan.hasRangeImage = true;
+    scan.cameraParams.ncols = 4;
+    scan.cameraParams.nrows = 3;
+    scan.cameraParams.setIntrinsicParamsFromValues(5.0, 5.0, 1.5, 1.0);
+    scan.rangeImage_setSize(3, 4);
+    scan.rangeImage.fill(1234);
+    scan.rangeUnits = 0.001f;
+    ar << scan << odo;
+  }
+  gasp::RawlogReader reader(path);
+  const auto f = reader.next();
+  ASSERT_TRUE(f.has_value());
+  EXPECT_FLOAT_EQ(f->depth_m.at<float>(2, 3), 1.234f);
+  EXPECT_DOUBLE_EQ(f->depth_units_per_metre, 1000.0);
+  EXPECT_FALSE(reader.next().has_value());
+  EXPECT_EQ(reader.skipped().at("CObservationOdometry"), 2u);
+}
+
+TEST(RawlogErrors, ScanWithoutRangeImage) {
+  const std::string path = gasp::test::scratchDir() + "/norange.rawlog";
+  {
+    mrpt::io::CFileGZOutputStream out(path);
+    auto ar = mrpt::serialization::archiveFrom(out);
+    mrpt::obs::CObservation3DRangeScan scan;
+    scan.sensorLabel = "TOF";
+    ar << scan;
+  }
+  const std::string msg = readError(path);
+  EXPECT_TRUE(contains(msg, "norange.rawlog") && contains(msg, "no range image")) << msg;
+}
+
+TEST(Tum2RawlogProgram, MissingTumFolderFailsWithError) {
+  const std::string program = std::string(GASP_BIN_DIR) + "/gasp-tum2rawlog";
+  ASSERT_TRUE(std::filesystem::exists(program)) << program;
+  const std::string dir = gasp::test::scratchDir();
+  const std::string cmd = "'" + program + "' '" + dir + "/no_such_tum' '" + dir +
+                          "/out.rawlog' 2> '" + dir + "/stderr.txt'";
+  const int status = std::system(cmd.c_str());
+  EXPECT_NE(status, 0);
+  std::ifstream err(dir + "/stderr.txt");
+  const std::string text((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.rfind("error: ", 0), 0u) << text;
+  EXPECT_TRUE(contains(text, "no_such_tum")) << text;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out.rawlog"));
+
+  // Bad option values are rejected too.
+  const std::string bad = "'" + program + "' '" + dir + "' '" + dir + "/x.rawlog' --format 3 2>/dev/null";
+  EXPECT_NE(std::system(bad.c_str()), 0);
+}
+
+TEST(Tum2RawlogProgram, ConvertsFr1Desk9) {
+  GASP_REQUIRE_DATA(tum, "tum/fr1_desk9");
+  const std::string program = std::string(GASP_BIN_DIR) + "/gasp-tum2rawlog";
+  const std::string dir = gasp::test::scratchDir();
+  const std::string cmd = "'" + program + "' '" + tum + "' '" + dir +
+                          "/d.rawlog' --format 1 --max-frames 5 --intrinsics fr1 > '" + dir +
+                          "/stdout.txt'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  std::ifstream out(dir + "/stdout.txt");
+  const std::string text((std::istreambuf_iterator<char>(out)), std::istreambuf_iterator<char>());
+  EXPECT_TRUE(contains(text, "frames written:      5")) << text;
+  EXPECT_TRUE(contains(text, "d_groundtruth.txt")) << text;
+  EXPECT_EQ(gasp::readRawlogFrames(dir + "/d.rawlog").size(), 5u);
+}
+
+TEST(RawlogErrors, TruncatedRawlogIsReportedAsCorrupt) {
+  const std::string dir = gasp::test::scratchDir();
+  const std::string path = dir + "/cut.rawlog";
+  {
+    gasp::RawlogWriter writer(path, {gasp::RawlogFormat::Observations, false, 0});  // plain
+    for (int i = 0; i < 3; ++i) writer.write(gasp::test::syntheticFrame(1.0 + i));
+  }
+  const auto size = std::filesystem::file_size(path);
+  std::filesystem::resize_file(path, size * 5 / 6);  // cut inside the third observation
+  gasp::RawlogReader reader(path);
+  EXPECT_TRUE(reader.next().has_value());
+  EXPECT_TRUE(reader.next().has_value());
+  try {
+    reader.next();
+    FAIL() << "expected gasp::Error for the truncated third observation";
+  } catch (const gasp::Error& e) {
+    EXPECT_TRUE(contains(e.what(), "cut.rawlog") && contains(e.what(), "truncated")) << e.what();
+  }
+}

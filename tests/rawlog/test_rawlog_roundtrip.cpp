@@ -1,0 +1,216 @@
+// Writing and reading rawlogs: synthetic frames (always) and the real fr1_desk9 folder, in both
+// formats and with external storage; rawlog-edit's view of the result.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "gasp/core/error.h"
+#include "gasp/core/tum_dataset.h"
+#include "gasp/core/tum_trajectory.h"
+#include "gasp/rawlog/rawlog_reader.h"
+#include "gasp/rawlog/rawlog_writer.h"
+#include "gasp/rawlog/tum_to_rawlog.h"
+#include "gasp_test_data.h"
+#include "rawlog_test_frames.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Variant {
+  gasp::RawlogFormat format;
+  bool external;
+  int compress_level;
+  const char* name;
+};
+const Variant kVariants[] = {
+    {gasp::RawlogFormat::Observations, false, 1, "f2"},
+    {gasp::RawlogFormat::ActionsSensoryFrames, false, 1, "f1"},
+    {gasp::RawlogFormat::Observations, true, 1, "f2_external"},
+    {gasp::RawlogFormat::ActionsSensoryFrames, true, 0, "f1_external_plain"},
+};
+
+/// Runs a command, returns its stdout (empty on failure to start).
+std::string runCommand(const std::string& cmd) {
+  std::string out;
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
+  if (!pipe) return out;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), static_cast<int>(buf.size()), pipe.get())) out += buf.data();
+  return out;
+}
+
+std::size_t countOccurrences(const std::string& text, const std::string& word) {
+  std::size_t n = 0;
+  for (auto p = text.find(word); p != std::string::npos; p = text.find(word, p + 1)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST(RawlogRoundTrip, SyntheticFramesAllVariants) {
+  const std::string dir = gasp::test::scratchDir();
+  for (const auto& v : kVariants) {
+    SCOPED_TRACE(v.name);
+    const std::string path = dir + "/" + v.name + ".rawlog";
+    std::vector<gasp::RgbdFrame> frames;
+    for (int i = 0; i < 3; ++i) frames.push_back(gasp::test::syntheticFrame(100.0 + 0.033 * i));
+    frames[1].rgb.release();  // a frame without rgb
+    {
+      gasp::RawlogWriter writer(path, {v.format, v.external, v.compress_level});
+      for (const auto& f : frames) writer.write(f);
+      EXPECT_EQ(writer.framesWritten(), 3u);
+    }
+    EXPECT_EQ(fs::is_directory(dir + "/" + v.name + "_Images"), v.external);
+
+    gasp::RawlogReader reader(path);
+    EXPECT_EQ(reader.format(), v.format);
+    std::size_t i = 0;
+    while (auto g = reader.next()) {
+      ASSERT_LT(i, frames.size());
+      const auto& f = frames[i];
+      EXPECT_TRUE(gasp::test::sameMat(g->depth_raw, f.depth_raw));
+      EXPECT_TRUE(gasp::test::sameMat(g->depth_m, f.depth_m));
+      EXPECT_TRUE(gasp::test::sameMat(g->rgb, f.rgb)) << "frame " << i;
+      EXPECT_EQ(g->depth_intrinsics, f.depth_intrinsics);
+      EXPECT_NEAR(g->timestamp, f.timestamp, 1e-6);
+      ++i;
+    }
+    EXPECT_EQ(i, 3u);
+    EXPECT_EQ(reader.scansRead(), 3u);
+    if (v.format == gasp::RawlogFormat::ActionsSensoryFrames) {
+      EXPECT_EQ(reader.skipped().at("CActionCollection"), 3u);
+    } else {
+      EXPECT_TRUE(reader.skipped().empty()) << reader.skippedSummary();
+    }
+  }
+}
+
+TEST(RawlogRoundTrip, ExternalStorageResolvedRelativeToTheRawlogNotTheWorkingDir) {
+  const std::string dir = gasp::test::scratchDir();
+  const gasp::RgbdFrame f = gasp::test::syntheticFrame(7.0);
+  {
+    gasp::RawlogWriter writer(dir + "/a/cam.rawlog", {gasp::RawlogFormat::Observations, true, 1});
+    writer.write(f);
+  }
+  // The rawlog holds only file names: small; the data is in cam_Images.
+  EXPECT_LT(fs::file_size(dir + "/a/cam.rawlog"), 2000u);
+  EXPECT_TRUE(fs::exists(dir + "/a/cam_Images/RGBD_000000_depth.bin"));
+  EXPECT_TRUE(fs::exists(dir + "/a/cam_Images/RGBD_000000_rgb.png"));
+  // Move the whole thing elsewhere and read it from another working directory.
+  fs::rename(dir + "/a", dir + "/b");
+  const auto cwd = fs::current_path();
+  fs::current_path(dir);
+  const auto frames = gasp::readRawlogFrames(dir + "/b/cam.rawlog");
+  fs::current_path(cwd);
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_TRUE(gasp::test::sameMat(frames[0].depth_raw, f.depth_raw));
+  EXPECT_TRUE(gasp::test::sameMat(frames[0].rgb, f.rgb));
+
+  // A missing external file gives a gasp::Error naming it.
+  fs::remove(dir + "/b/cam_Images/RGBD_000000_depth.bin");
+  try {
+    gasp::readRawlogFrames(dir + "/b/cam.rawlog");
+    FAIL() << "expected gasp::Error";
+  } catch (const gasp::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("RGBD_000000_depth.bin"), std::string::npos) << e.what();
+  }
+}
+
+TEST(RawlogRoundTrip, TumFr1Desk9BothFormatsAndExternal) {
+  GASP_REQUIRE_DATA(tum, "tum/fr1_desk9");
+  const std::string dir = gasp::test::scratchDir();
+  const auto ds = gasp::TumDataset::open(tum);
+  for (const auto& v : kVariants) {
+    SCOPED_TRACE(v.name);
+    const std::string out = dir + "/" + v.name + ".rawlog";
+    gasp::TumToRawlogOptions opt;
+    opt.writer = {v.format, v.external, v.compress_level};
+    const auto summary = gasp::convertTumToRawlog(tum, out, opt);
+    EXPECT_EQ(summary.frames_written, 9u);
+    EXPECT_EQ(summary.frames_with_rgb, 9u);
+    EXPECT_EQ(summary.frames_with_ground_truth, 9u);
+    EXPECT_EQ(summary.ground_truth_path, dir + "/" + v.name + "_groundtruth.txt");
+
+    const auto frames = gasp::readRawlogFrames(out);
+    ASSERT_EQ(frames.size(), 9u);
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      const auto& g = frames[i];
+      EXPECT_TRUE(gasp::test::sameMat(g.depth_raw, ds.loadDepthRaw(i))) << "frame " << i;
+      EXPECT_TRUE(gasp::test::sameMat(g.depth_m, ds.loadDepth(i))) << "frame " << i;
+      EXPECT_TRUE(gasp::test::sameMat(g.rgb, ds.loadRgb(i))) << "frame " << i;
+      EXPECT_DOUBLE_EQ(g.depth_units_per_metre, 5000.0);
+      EXPECT_EQ(g.depth_intrinsics, ds.intrinsics());
+      EXPECT_EQ(g.rgb_intrinsics, ds.intrinsics());
+      EXPECT_NEAR(g.timestamp, ds.frame(i).timestamp, 1e-6);
+      EXPECT_TRUE(g.T_depth_rgb.isApprox(gasp::Isometry3::Identity()));
+      EXPECT_EQ(g.sensor_label, "RGBD");
+    }
+    const auto gt = gasp::readTumTrajectory(summary.ground_truth_path);
+    ASSERT_EQ(gt.size(), 9u);
+    for (std::size_t i = 0; i < gt.size(); ++i) {
+      EXPECT_NEAR(gt[i].timestamp, ds.frame(i).timestamp, 1e-6);
+      // writeTumTrajectory prints 9 decimals.
+      EXPECT_TRUE(gt[i].T_world_camera.isApprox(*ds.frame(i).T_world_camera, 1e-7));
+    }
+  }
+}
+
+TEST(RawlogRoundTrip, TumOptionsNoRgbMaxFramesIntrinsics) {
+  GASP_REQUIRE_DATA(tum, "tum/fr3_cabinet_kf");
+  const std::string out = gasp::test::scratchDir() + "/cab.rawlog";
+  gasp::TumToRawlogOptions opt;
+  opt.with_rgb = false;
+  opt.max_frames = 4;
+  opt.intrinsics = gasp::CameraIntrinsics::rosDefault();
+  const auto s = gasp::convertTumToRawlog(tum, out, opt);
+  EXPECT_EQ(s.frames_written, 4u);
+  EXPECT_EQ(s.frames_with_rgb, 0u);
+  EXPECT_EQ(s.frames_with_ground_truth, 4u);
+  const auto frames = gasp::readRawlogFrames(out);
+  ASSERT_EQ(frames.size(), 4u);
+  EXPECT_TRUE(frames[0].rgb.empty());
+  EXPECT_EQ(frames[0].depth_intrinsics, gasp::CameraIntrinsics::rosDefault());
+}
+
+TEST(RawlogEdit, InfoListsTheObservations) {
+  if (!fs::exists("/usr/bin/rawlog-edit")) GTEST_SKIP() << "/usr/bin/rawlog-edit not installed";
+  const std::string dir = gasp::test::scratchDir();
+  for (const auto& v : kVariants) {
+    SCOPED_TRACE(v.name);
+    const std::string path = dir + "/" + v.name + ".rawlog";
+    {
+      gasp::RawlogWriter writer(path, {v.format, v.external, v.compress_level});
+      for (int i = 0; i < 5; ++i) writer.write(gasp::test::syntheticFrame(10.0 + i));
+    }
+    // Run in the rawlog's folder with a bare file name: MRPT 2.5.8 only finds "<name>_Images"
+    // that way.
+    const std::string info = runCommand("cd '" + dir + "' && /usr/bin/rawlog-edit --info -i '" +
+                                        v.name + ".rawlog' 2>&1");
+    const bool f1 = v.format == gasp::RawlogFormat::ActionsSensoryFrames;
+    EXPECT_NE(info.find("Overall number of objects         : " + std::string(f1 ? "10" : "5")),
+              std::string::npos) << info;
+    EXPECT_NE(info.find(std::string("Actions/SensoryFrame format       : ") + (f1 ? "Yes" : "No")),
+              std::string::npos) << info;
+    EXPECT_NE(info.find("RGBD /      5"), std::string::npos) << info;
+    if (v.external) {
+      EXPECT_NE(info.find("Found external storage directory"), std::string::npos) << info;
+    }
+    // --info gives no class names; --list-timestamps does ("t label class" per observation).
+    const std::string list = dir + "/" + v.name + "_list.txt";
+    runCommand("/usr/bin/rawlog-edit --list-timestamps -i '" + path + "' --text-file-output '" +
+               list + "' 2>&1");
+    std::string text;
+    {
+      std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(list.c_str(), "r"), std::fclose);
+      ASSERT_TRUE(f) << "rawlog-edit wrote no " << list;
+      std::array<char, 4096> buf{};
+      while (std::fgets(buf.data(), static_cast<int>(buf.size()), f.get())) text += buf.data();
+    }
+    EXPECT_EQ(countOccurrences(text, "mrpt::obs::CObservation3DRangeScan"), 5u) << text;
+  }
+}
