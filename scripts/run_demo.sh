@@ -26,7 +26,8 @@ fi
 echo "== converting to an MRPT rawlog"
 "$BIN/gasp-tum2rawlog" "$DATA" "$OUT/sequence.rawlog"
 if command -v rawlog-edit >/dev/null; then
-  rawlog-edit --info -i "$OUT/sequence.rawlog" 2>&1 | grep -E "CObservation3DRangeScan|Objects|entries" || true
+  echo "== MRPT's rawlog-edit --info on it"
+  (cd "$OUT" && rawlog-edit --info -i sequence.rawlog 2>&1 | grep -E "number of objects|format|sensor labels|Sensor \(" ) || true
 fi
 
 echo "== evaluating a stand-still odometry baseline against the ground truth"

@@ -19,6 +19,12 @@ struct Cluster {
 
 /// Uniform double in [0, 1) from 53 random bits (same on every platform, unlike
 /// std::uniform_real_distribution).
+/// A centre searches pixels within this many patch radii (projected) of it; SLIC uses about 1.8
+/// (twice the grid step S ~ sqrt(pi) R, as a full width).
+constexpr double kWindowRadii = 1.8;
+/// Image bucket size [px] of the seeds' spatial index.
+constexpr int kBucket = 16;
+
 double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
 }  // namespace
@@ -33,30 +39,29 @@ AreaPatches splitIntoAreaPatches(const cv::Mat& region_labels, int num_regions,
   const float inv_r2 = 1.0f / (radius * radius);
   const float w_n = static_cast<float>(p.kmeans_normal_weight);
 
-  auto normalAt = [&](int i) -> Eigen::Vector3f {
-    const cv::Vec3f& n = normals.normals.at<cv::Vec3f>(i / w, i % w);
-    return {n[0], n[1], n[2]};
-  };
+  // Flat views of the per-pixel data (all matrices are continuous, row-major).
+  const int* region = region_labels.ptr<int>(0);
+  const int* has_normal = normals.radius.ptr<int>(0);
+  const auto* normal_px = reinterpret_cast<const Eigen::Vector3f*>(normals.normals.ptr<float>(0));
+  auto normalAt = [&](int i) -> const Eigen::Vector3f& { return normal_px[i]; };
 
   // Pixels of each region, in raster order (CSR layout).
   std::vector<int> start(static_cast<std::size_t>(num_regions) + 1, 0);
-  for (int i = 0; i < static_cast<int>(n_px); ++i) {
-    const int r = region_labels.at<int>(i / w, i % w);
-    if (r >= 0) ++start[static_cast<std::size_t>(r) + 1];
-  }
+  for (std::size_t i = 0; i < n_px; ++i)
+    if (region[i] >= 0) ++start[static_cast<std::size_t>(region[i]) + 1];
   for (int r = 0; r < num_regions; ++r) start[r + 1] += start[r];
   std::vector<int> members(static_cast<std::size_t>(start.back()));
   {
     std::vector<int> fill(start.begin(), start.end() - 1);
-    for (int i = 0; i < static_cast<int>(n_px); ++i) {
-      const int r = region_labels.at<int>(i / w, i % w);
-      if (r >= 0) members[static_cast<std::size_t>(fill[r]++)] = i;
-    }
+    for (int i = 0; i < static_cast<int>(n_px); ++i)
+      if (region[i] >= 0) members[static_cast<std::size_t>(fill[region[i]]++)] = i;
   }
 
   AreaPatches out;
   out.labels = cv::Mat(h, w, CV_32S, cv::Scalar(-1));
   std::vector<float> area(n_px, 0.0f), best(n_px, 0.0f);
+  const int buckets_x = (w + kBucket - 1) / kBucket, buckets_y = (h + kBucket - 1) / kBucket;
+  std::vector<std::vector<int>> buckets(static_cast<std::size_t>(buckets_x * buckets_y));
   std::vector<int> assign(n_px, -1);
 
   for (int r = 0; r < num_regions; ++r) {
@@ -76,43 +81,49 @@ AreaPatches splitIntoAreaPatches(const cv::Mat& region_labels, int num_regions,
       continue;
     }
 
-    // ---- k-means++ seeding over a subsample of the surface (D^2 x pixel area).
+    // ---- Seeds spread uniformly over the surface: Poisson-disk dart throwing in a seeded random
+    //      order (each accepted seed at least d_min from all others in 3D). Random sequential
+    //      packing covers ~54.7% of the plane with discs of diameter d_min, so d_min is chosen for
+    //      about K seeds: 0.547 * A / (pi d_min^2 / 4) = A / A_t.
     std::vector<int> cand;
     const int step = std::max(1, p.seed_sampling_step_px);
     for (int j = 0; j < n; ++j) {
       const int i = first[j];
       if ((i % w) % step == 0 && (i / w) % step == 0) cand.push_back(i);
     }
-    if (static_cast<int>(cand.size()) < 2 * K) cand.assign(first, first + n);
-    K = std::min(K, static_cast<int>(cand.size()));
+    if (static_cast<int>(cand.size()) < 4 * K) cand.assign(first, first + n);
     std::mt19937_64 rng(p.seed * 0x9E3779B97F4A7C15ULL + static_cast<std::uint64_t>(r) + 1);
-    std::vector<float> d2(cand.size(), std::numeric_limits<float>::infinity());
+    for (std::size_t j = cand.size(); j > 1; --j)  // Fisher-Yates with a portable index draw
+      std::swap(cand[j - 1], cand[static_cast<std::size_t>(uniform01(rng) * static_cast<double>(j))]);
+    const float d_min = static_cast<float>(std::sqrt(0.547 * 4.0 / M_PI * p.target_patch_area_m2));
     std::vector<Cluster> clusters;
-    auto addSeed = [&](int i) {
+    std::vector<int> touched;
+    for (const int i : cand) {
+      const Eigen::Vector3f& q = cloud.points[i];
+      const int u = i % w, v = i / w;
+      const float reach = static_cast<float>(k.fx) * d_min / std::max(q.z() - d_min, 0.05f);
+      const int b0 = std::max(0, static_cast<int>((u - reach) / kBucket)),
+                b1 = std::min(buckets_x - 1, static_cast<int>((u + reach) / kBucket));
+      const int c0 = std::max(0, static_cast<int>((v - reach) / kBucket)),
+                c1 = std::min(buckets_y - 1, static_cast<int>((v + reach) / kBucket));
+      bool free = true;
+      for (int by = c0; by <= c1 && free; ++by)
+        for (int bx = b0; bx <= b1 && free; ++bx)
+          for (const int s : buckets[static_cast<std::size_t>(by * buckets_x + bx)])
+            if ((clusters[static_cast<std::size_t>(s)].centre - q).squaredNorm() < d_min * d_min) {
+              free = false;
+              break;
+            }
+      if (!free) continue;
+      const std::size_t b = static_cast<std::size_t>((v / kBucket) * buckets_x + u / kBucket);
+      if (buckets[b].empty()) touched.push_back(static_cast<int>(b));
+      buckets[b].push_back(static_cast<int>(clusters.size()));
       Cluster c;
-      c.centre = cloud.points[i];
+      c.centre = q;
       c.normal = normalAt(i);
       clusters.push_back(c);
-      for (std::size_t j = 0; j < cand.size(); ++j)
-        d2[j] = std::min(d2[j], (cloud.points[cand[j]] - c.centre).squaredNorm());
-    };
-    auto sample = [&](bool weighted_by_d2) {
-      double sum = 0.0;
-      for (std::size_t j = 0; j < cand.size(); ++j) sum += area[cand[j]] * (weighted_by_d2 ? d2[j] : 1.0f);
-      if (!(sum > 0.0)) return -1;
-      double x = uniform01(rng) * sum;
-      for (std::size_t j = 0; j < cand.size(); ++j) {
-        x -= area[cand[j]] * (weighted_by_d2 ? d2[j] : 1.0f);
-        if (x <= 0.0) return cand[j];
-      }
-      return cand.back();
-    };
-    addSeed(sample(false));
-    while (static_cast<int>(clusters.size()) < K) {
-      const int i = sample(true);
-      if (i < 0) break;
-      addSeed(i);
     }
+    for (const int b : touched) buckets[static_cast<std::size_t>(b)].clear();
 
     // ---- Lloyd iterations with windowed assignment.
     for (int it = 0; it < std::max(1, p.kmeans_iterations); ++it) {
@@ -125,16 +136,14 @@ AreaPatches splitIntoAreaPatches(const cv::Mat& region_labels, int num_regions,
         if (!cl.alive) continue;
         double uc = 0, vc = 0;
         if (!k.project(cl.centre.cast<double>(), uc, vc)) continue;
-        const int win = std::min(200, static_cast<int>(std::ceil(2.0 * radius * k.fx / cl.centre.z())) + 1);
+        const int win = std::min(200, static_cast<int>(std::ceil(kWindowRadii * radius * k.fx / cl.centre.z())) + 1);
         const int u0 = std::max(0, static_cast<int>(uc) - win), u1 = std::min(w - 1, static_cast<int>(uc) + win);
         const int v0 = std::max(0, static_cast<int>(vc) - win), v1 = std::min(h - 1, static_cast<int>(vc) + win);
         for (int v = v0; v <= v1; ++v) {
-          const int* reg = region_labels.ptr<int>(v);
-          for (int u = u0; u <= u1; ++u) {
-            if (reg[u] != r) continue;
-            const int i = v * w + u;
+          for (int i = v * w + u0; i <= v * w + u1; ++i) {
+            if (region[i] != r) continue;
             float d = (cloud.points[i] - cl.centre).squaredNorm() * inv_r2;
-            if (normals.radius.at<int>(v, u) > 0) d += w_n * (1.0f - normalAt(i).dot(cl.normal));
+            if (has_normal[i] > 0) d += w_n * (1.0f - normalAt(i).dot(cl.normal));
             if (d < best[i]) {
               best[i] = d;
               assign[i] = c;

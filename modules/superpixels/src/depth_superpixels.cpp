@@ -40,7 +40,7 @@ void validate(const SuperpixelParams& p) {
     if (!ok) throw Error(std::string("superpixel parameters: ") + what);
   };
   require(p.discontinuity_abs_m >= 0 && p.discontinuity_rel >= 0, "discontinuity thresholds must be >= 0");
-  require(p.normal_radius_m > 0, "normal_radius_m must be > 0");
+  require(p.normal_window_px_per_m > 0, "normal_window_px_per_m must be > 0");
   require(p.normal_min_radius_px >= 1 && p.normal_max_radius_px >= p.normal_min_radius_px,
           "need 1 <= normal_min_radius_px <= normal_max_radius_px");
   require(p.max_crease_angle_deg > 0 && p.max_neighbour_normal_angle_deg > 0, "angles must be > 0");

@@ -36,7 +36,7 @@ cv::Mat interiorMask(const OrganizedPointCloud& cloud, const SuperpixelParams& p
 
 }  // namespace
 
-SurfaceNormals estimateNormals(const OrganizedPointCloud& cloud, const CameraIntrinsics& k,
+SurfaceNormals estimateNormals(const OrganizedPointCloud& cloud, const CameraIntrinsics& /*intrinsics*/,
                                const SuperpixelParams& p) {
   const int w = cloud.width, h = cloud.height;
   if (w <= 0 || h <= 0 || cloud.points.size() != static_cast<std::size_t>(w) * h)
@@ -61,9 +61,11 @@ SurfaceNormals estimateNormals(const OrganizedPointCloud& cloud, const CameraInt
   }
   cv::Mat sum;  // (h+1) x (w+1), sum(r0..r1-1, c0..c1-1) = S(r1,c1) - S(r0,c1) - S(r1,c0) + S(r0,c0)
   cv::integral(xyz, sum, CV_64F);
-  auto box = [&sum](int c0, int r0, int c1, int r1) {  // inclusive corners
-    return sum.at<cv::Vec3d>(r1 + 1, c1 + 1) - sum.at<cv::Vec3d>(r0, c1 + 1) -
-           sum.at<cv::Vec3d>(r1 + 1, c0) + sum.at<cv::Vec3d>(r0, c0);
+  const auto* S = sum.ptr<cv::Vec3d>(0);
+  const int stride = w + 1;
+  auto box = [S, stride](int c0, int r0, int c1, int r1) {  // inclusive corners
+    return S[(r1 + 1) * stride + c1 + 1] - S[r0 * stride + c1 + 1] - S[(r1 + 1) * stride + c0] +
+           S[r0 * stride + c0];
   };
 
   for (int v = 0; v < h; ++v) {
@@ -73,7 +75,7 @@ SurfaceNormals estimateNormals(const OrganizedPointCloud& cloud, const CameraInt
     for (int u = 0; u < w; ++u) {
       if (d[u] < 1.0f) continue;
       const float z = cloud.at(u, v).z();
-      int r = static_cast<int>(std::lround(p.normal_radius_m * k.fx / z));
+      int r = static_cast<int>(std::lround(p.normal_window_px_per_m * z));
       r = std::clamp(r, p.normal_min_radius_px, p.normal_max_radius_px);
       r = std::min({r, static_cast<int>(d[u]) - 1, u, v, w - 1 - u, h - 1 - v});  // stay inside
       if (r < p.normal_min_radius_px) continue;
@@ -92,23 +94,23 @@ SurfaceNormals estimateNormals(const OrganizedPointCloud& cloud, const CameraInt
 
   // Crease measure: angle between the normals at both ends of the window, horizontally and
   // vertically (the larger); catches creases that have no depth discontinuity.
+  const int* R = out.radius.ptr<int>(0);
+  const cv::Vec3f* N = out.normals.ptr<cv::Vec3f>(0);
+  float* C = out.crease.ptr<float>(0);
   for (int v = 0; v < h; ++v) {
-    const int* r_row = out.radius.ptr<int>(v);
-    float* c_row = out.crease.ptr<float>(v);
     for (int u = 0; u < w; ++u) {
-      const int r = r_row[u];
+      const int i = v * w + u;
+      const int r = R[i];
       if (r == 0) continue;
-      const cv::Vec3f& n0 = out.normals.at<cv::Vec3f>(v, u);
       float min_dot = 1.0f;
-      auto compare = [&](int ua, int va, int ub, int vb) {
-        const bool a_ok = out.radius.at<int>(va, ua) > 0, b_ok = out.radius.at<int>(vb, ub) > 0;
-        const cv::Vec3f& na = a_ok ? out.normals.at<cv::Vec3f>(va, ua) : n0;
-        const cv::Vec3f& nb = b_ok ? out.normals.at<cv::Vec3f>(vb, ub) : n0;
+      auto compare = [&](int a, int b) {
+        const cv::Vec3f& na = R[a] > 0 ? N[a] : N[i];
+        const cv::Vec3f& nb = R[b] > 0 ? N[b] : N[i];
         min_dot = std::min(min_dot, na.dot(nb));
       };
-      compare(u - r, v, u + r, v);
-      compare(u, v - r, u, v + r);
-      c_row[u] = std::acos(std::clamp(min_dot, -1.0f, 1.0f));
+      compare(i - r, i + r);
+      compare(i - r * w, i + r * w);
+      C[i] = std::acos(std::clamp(min_dot, -1.0f, 1.0f));
     }
   }
   return out;

@@ -23,7 +23,7 @@ using Trajectory = std::vector<StampedPose>;
 /// missing file. The result is sorted by timestamp; duplicated timestamps are an error.
 Trajectory readTumTrajectory(const std::string& path);
 
-/// Writes a TUM trajectory with an optional '#' header line; full double precision.
+/// Writes a TUM trajectory with an optional '#' header line (stamps with 6 decimals, poses with 9).
 void writeTumTrajectory(const std::string& path, const Trajectory& trajectory,
                         const std::string& header = "");
 

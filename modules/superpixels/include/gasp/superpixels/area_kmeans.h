@@ -1,7 +1,8 @@
 #pragma once
 /// \file area_kmeans.h Splits smooth surfaces into compact patches of similar surface area
-/// (paper III-A): K = round(area / target area) clusters per surface, seeded k-means++ style over
-/// the surface (D^2 sampling weighted by pixel area), refined by Lloyd iterations on 3D position
+/// (paper III-A): about area / target area clusters per surface, seeded uniformly over the surface
+/// (Poisson-disk dart throwing in 3D; the paper seeds "similar to k-means++", which spreads seeds
+/// the same way at O(n K) cost instead of O(n)), refined by Lloyd iterations on 3D position
 /// and normal, each centre searching only the pixels in an image window around its projection
 /// (as SLIC does), which keeps an iteration linear in the pixel count.
 #include <opencv2/core.hpp>

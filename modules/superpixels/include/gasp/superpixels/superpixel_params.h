@@ -12,12 +12,13 @@ struct SuperpixelParams {
   double discontinuity_rel = 0.02;  ///< [1/m]
 
   // ---- Normals from smoothed 3D gradients over a depth-adaptive square window that never crosses
-  //      a discontinuity (integral images). Window half-size: normal_radius_m * fx / z pixels,
-  //      clamped to [normal_min_radius_px, normal_max_radius_px] and to the distance to the
-  //      nearest discontinuity; pixels closer than normal_min_radius_px to one get no normal.
-  double normal_radius_m = 0.025;
+  //      a discontinuity (integral images). Window half-size: normal_window_px_per_m * z pixels
+  //      (the window widens with depth, as Kinect noise grows with z^2), clamped to
+  //      [normal_min_radius_px, normal_max_radius_px] and to the distance to the nearest
+  //      discontinuity; pixels closer than normal_min_radius_px to one get no normal.
+  double normal_window_px_per_m = 6.0;
   int normal_min_radius_px = 2;
-  int normal_max_radius_px = 10;
+  int normal_max_radius_px = 12;
 
   // ---- Smooth-surface components. Pixels whose normals across their window differ by more than
   //      max_crease_angle_deg (creases, corners) are set aside and re-added after patching.
@@ -25,12 +26,12 @@ struct SuperpixelParams {
   double max_neighbour_normal_angle_deg = 10.0;  ///< between 4-neighbours inside a component
   int min_component_pixels = 40;                 ///< smaller components are set aside too
 
-  // ---- Area-regularised patches (K-means seeded k-means++ style over the surface).
+  // ---- Area-regularised patches (K-means seeded uniformly over the surface).
   double target_patch_area_m2 = 0.004;  ///< ~6.3 x 6.3 cm; a desk frame gives a few hundred patches
   int kmeans_iterations = 6;
   double kmeans_normal_weight = 0.5;  ///< weight of (1 - n.n_c) against (distance / patch radius)^2
-  int seed_sampling_step_px = 3;      ///< k-means++ draws seeds from every n-th pixel
-  std::uint64_t seed = 1;             ///< random seed of the k-means++ seeding (deterministic)
+  int seed_sampling_step_px = 2;      ///< seeds are drawn from every n-th pixel (each direction)
+  std::uint64_t seed = 1;             ///< random seed of the seeding order (deterministic)
   double max_incidence_deg = 80.0;    ///< foreshortening of a pixel's area is clamped at this angle
 
   // ---- Clean-up: patches below min_patch_pixels or min_patch_area_ratio * target area are merged
