@@ -16,6 +16,7 @@
 #include "gasp/core/error.h"
 #include "gasp/core/tum_dataset.h"
 #include "gasp/superpixels/depth_superpixels.h"
+#include "gasp/superpixels/patch_repeatability.h"
 #include "gasp/superpixels/segmentation_picture.h"
 
 namespace {
@@ -44,13 +45,37 @@ void writePicture(const std::string& path, const cv::Mat& depth, const gasp::Sup
     throw gasp::Error("cannot write picture '" + path + "'");
 }
 
+/// Repeatability of patches over pairs (i, i + skip); prints one line per pair and the mean.
+int measurePairs(const gasp::TumDataset& ds, const gasp::SuperpixelParams& params, std::size_t skip,
+                 std::size_t every) {
+  double sum = 0.0;
+  int pairs = 0;
+  for (std::size_t i = 0; i + skip < ds.size(); i += every) {
+    const auto& fa = ds.frame(i);
+    const auto& fb = ds.frame(i + skip);
+    if (!fa.T_world_camera || !fb.T_world_camera) continue;
+    const cv::Mat depth_a = ds.loadDepth(i), depth_b = ds.loadDepth(i + skip);
+    const auto sa = gasp::segmentDepthSuperpixels(depth_a, ds.intrinsics(), params);
+    const auto sb = gasp::segmentDepthSuperpixels(depth_b, ds.intrinsics(), params);
+    const auto r = gasp::measureRepeatability(sa, sb, depth_b, ds.intrinsics(),
+                                              gasp::relativePose(*fb.T_world_camera, *fa.T_world_camera));
+    std::printf("pair: %zu %zu patches %zu %zu in_overlap %d repeated %d repeatability %.3f\n", i, i + skip,
+                sa.patches.size(), sb.patches.size(), r.in_overlap, r.repeated, r.fraction());
+    sum += r.fraction();
+    ++pairs;
+  }
+  if (pairs == 0) throw gasp::Error("no pair of frames with ground truth at skip " + std::to_string(skip));
+  std::printf("pairs: %d\nmean_repeatability: %.3f\n", pairs, sum / pairs);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"gasp-segment: decompose depth images into regularised surface patches (depth superpixels)"};
   std::string depth_path, tum_dir, intrinsics_arg, out;
   double depth_scale = gasp::kTumDepthUnitsPerMetre, area_cm2 = -1;
-  int every = 1;
+  int every = 1, pair_skip = 0;
   auto* depth_opt = app.add_option("--depth", depth_path, "one 16-bit depth PNG");
   auto* tum_opt = app.add_option("--tum", tum_dir, "a TUM RGB-D folder: every frame is segmented");
   depth_opt->excludes(tum_opt);
@@ -58,10 +83,17 @@ int main(int argc, char** argv) {
   app.add_option("--depth-scale", depth_scale, "raw depth units per metre")->capture_default_str();
   app.add_option("--area-cm2", area_cm2, "target patch area [cm^2] (default from SuperpixelParams)");
   app.add_option("--every", every, "with --tum: segment every N-th frame")->check(CLI::PositiveNumber)->capture_default_str();
-  app.add_option("--out", out, "picture (PNG) for --depth; output folder for --tum")->required();
+  app.add_option("--pairs", pair_skip, "with --tum: measure patch repeatability on pairs (i, i+SKIP) "
+                 "of frames with ground truth, i every --every frames, instead of writing pictures")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--out", out, "picture (PNG) for --depth; output folder for --tum");
   CLI11_PARSE(app, argc, argv);
   if (depth_path.empty() && tum_dir.empty()) {
     std::cerr << "error: give --depth FILE.png or --tum DIR\n";
+    return 2;
+  }
+  if (out.empty() && pair_skip == 0) {
+    std::cerr << "error: --out is required (except with --pairs)\n";
     return 2;
   }
   try {
@@ -80,6 +112,7 @@ int main(int argc, char** argv) {
     if (!intrinsics_arg.empty()) opt.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg);
     opt.depth_units_per_metre = depth_scale;
     const auto ds = gasp::TumDataset::open(tum_dir, opt);
+    if (pair_skip > 0) return measurePairs(ds, params, static_cast<std::size_t>(pair_skip), static_cast<std::size_t>(every));
     std::filesystem::create_directories(out);
     for (std::size_t i = 0; i < ds.size(); i += static_cast<std::size_t>(every)) {
       const cv::Mat depth = ds.loadDepth(i);

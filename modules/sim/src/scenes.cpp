@@ -12,9 +12,10 @@ namespace {
 
 Box box(double hx, double hy, double hz) { return Box{Eigen::Vector3d(hx, hy, hz)}; }
 
-/// Room x in [-2.5, 4.5], y in [-3, 3], z in [0, 2.8] (7 x 6 x 2.8 m).
+/// Room x in [-2.0, 3.2], y in [-2.5, 2.5], z in [0, 2.8] (5.2 x 5 x 2.8 m): walls within Kinect
+/// range (at most ~4.5 m from the camera path), where its depth noise stays moderate.
 void addRoom(Scene& s) {
-  s.add("room", Room{Eigen::Vector3d(3.5, 3.0, 1.4)}, placeAt(1.0, 0.0, 1.4));
+  s.add("room", Room{Eigen::Vector3d(2.6, 2.5, 1.4)}, placeAt(0.6, 0.0, 1.4));
 }
 
 Scene roomScene() {
@@ -37,17 +38,17 @@ Scene roomScene() {
   s.add("chair_base", box(0.15, 0.15, 0.21), placeAt(1.5, 0.3, 0.21));
   s.add("chair_back", box(0.025, 0.22, 0.25), placeAt(1.29, 0.3, 0.725));
   // Furniture along the walls.
-  s.add("cabinet", box(0.3, 0.45, 0.5), placeAt(3.8, -1.3, 0.5, 20.0));
-  s.add("shelf", box(0.2, 0.6, 0.9), placeAt(4.25, 1.2, 0.9));
-  s.add("picture", box(0.02, 0.4, 0.3), placeAt(4.48, -0.3, 1.5));
-  s.add("bin", Cylinder{0.25, 0.4}, placeAt(3.2, 1.7, 0.4));
-  s.add("big_ball", Sphere{0.35}, placeAt(1.0, 1.9, 0.35));
+  s.add("cabinet", box(0.3, 0.45, 0.5), placeAt(2.7, -1.3, 0.5, 20.0));
+  s.add("shelf", box(0.2, 0.6, 0.9), placeAt(2.95, 1.2, 0.9));
+  s.add("picture", box(0.02, 0.4, 0.3), placeAt(3.18, -0.3, 1.5));
+  s.add("bin", Cylinder{0.25, 0.4}, placeAt(2.6, 1.7, 0.4));
+  s.add("big_ball", Sphere{0.35}, placeAt(1.0, 1.8, 0.35));
   // The -y side, seen during the pan.
-  s.add("crate", box(0.4, 0.25, 0.3), placeAt(1.3, -2.6, 0.3, -10.0));
-  s.add("crate_top", box(0.25, 0.25, 0.25), placeAt(1.4, -2.55, 0.85, 25.0));
-  s.add("pillar", Cylinder{0.2, 1.4}, placeAt(0.3, -2.5, 1.4));
-  s.add("floor_ball", Sphere{0.25}, placeAt(2.4, -2.3, 0.25));
-  s.add("bench", box(0.6, 0.2, 0.22), placeAt(-0.8, -2.7, 0.22));
+  s.add("crate", box(0.4, 0.25, 0.3), placeAt(1.3, -2.1, 0.3, -10.0));
+  s.add("crate_top", box(0.25, 0.25, 0.25), placeAt(1.4, -2.05, 0.85, 25.0));
+  s.add("pillar", Cylinder{0.2, 1.4}, placeAt(0.3, -2.2, 1.4));
+  s.add("floor_ball", Sphere{0.25}, placeAt(2.4, -2.1, 0.25));
+  s.add("bench", box(0.6, 0.2, 0.22), placeAt(-0.8, -2.25, 0.22));
   return s;
 }
 
@@ -57,18 +58,18 @@ Scene repeatedScene() {
   s.description = "identical boxes, cylinders and spheres in a near-symmetric grid (one box turned 5 deg, one shifted 5 cm)";
   addRoom(s);
   int n = 0;
-  for (double x : {1.6, 2.6, 3.6})
+  for (double x : {1.0, 1.8, 2.6})
     for (double y : {-0.9, 0.9}) {
       const bool turned = (n == 3);
       const double shift = (n == 4) ? 0.05 : 0.0;
       s.add("box" + std::to_string(n++), box(0.2, 0.2, 0.4), placeAt(x + shift, y, 0.4, turned ? 5.0 : 0.0));
     }
   n = 0;
-  for (double x : {2.1, 3.1}) s.add("cylinder" + std::to_string(n++), Cylinder{0.15, 0.5}, placeAt(x, 0.0, 0.5));
+  for (double x : {1.4, 2.2}) s.add("cylinder" + std::to_string(n++), Cylinder{0.15, 0.5}, placeAt(x, 0.0, 0.5));
   n = 0;
-  for (double x : {1.6, 2.6, 3.6}) s.add("sphere" + std::to_string(n++), Sphere{0.2}, placeAt(x, 0.0, 0.2));
+  for (double x : {1.0, 1.8, 2.6}) s.add("sphere" + std::to_string(n++), Sphere{0.2}, placeAt(x, 0.0, 0.2));
   n = 0;
-  for (double x : {0.0, 1.0, 2.0}) s.add("wall_box" + std::to_string(n++), box(0.3, 0.3, 0.3), placeAt(x, -2.6, 0.3));
+  for (double x : {0.0, 1.0, 2.0}) s.add("wall_box" + std::to_string(n++), box(0.3, 0.3, 0.3), placeAt(x, -2.15, 0.3));
   return s;
 }
 
@@ -78,8 +79,8 @@ Scene sparseScene() {
   s.description = "a room with one box, one cylinder and one sphere";
   addRoom(s);
   s.add("box", box(0.4, 0.3, 0.4), placeAt(2.2, 0.3, 0.4, 20.0));
-  s.add("cylinder", Cylinder{0.2, 0.6}, placeAt(3.0, -0.8, 0.6));
-  s.add("sphere", Sphere{0.3}, placeAt(1.4, -2.2, 0.3));
+  s.add("cylinder", Cylinder{0.2, 0.6}, placeAt(2.7, -0.8, 0.6));
+  s.add("sphere", Sphere{0.3}, placeAt(1.4, -1.9, 0.3));
   return s;
 }
 

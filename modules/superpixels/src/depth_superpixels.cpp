@@ -52,7 +52,8 @@ void validate(const SuperpixelParams& p) {
 }
 
 void computePatchRecords(SuperpixelSegmentation& seg, int count, const OrganizedPointCloud& cloud,
-                         const cv::Mat& normals, const CameraIntrinsics& k, const SuperpixelParams& p) {
+                         const DepthLinks& links, const cv::Mat& normals, const CameraIntrinsics& k,
+                         const SuperpixelParams& p) {
   const int w = cloud.width, h = cloud.height;
   const float min_cos = static_cast<float>(std::cos(p.max_incidence_deg * M_PI / 180.0));
   seg.patches.assign(static_cast<std::size_t>(count), SurfacePatch{});
@@ -104,13 +105,13 @@ void computePatchRecords(SuperpixelSegmentation& seg, int count, const Organized
       seg.patches[static_cast<std::size_t>(l)].area_m2 += detail::pixelArea(q, n, k, min_cos);
       auto link = [&](int uu, int vv) {
         const int m = seg.labels.at<int>(vv, uu);
-        if (m >= 0 && m != l && depthConnected(q.z(), cloud.at(uu, vv).z(), p)) {
+        if (m >= 0 && m != l) {
           adjacent[l].insert(m);
           adjacent[m].insert(l);
         }
       };
-      if (u + 1 < w) link(u + 1, v);
-      if (v + 1 < h) link(u, v + 1);
+      if (links.right(v * w + u)) link(u + 1, v);
+      if (links.down(v * w + u)) link(u, v + 1);
     }
   seg.adjacency.assign(static_cast<std::size_t>(count), {});
   for (int l = 0; l < count; ++l) seg.adjacency[l].assign(adjacent[l].begin(), adjacent[l].end());
@@ -125,20 +126,21 @@ SuperpixelSegmentation segmentDepthSuperpixels(const cv::Mat& depth_m, const Cam
   seg.stats.valid_pixels = cloud.countValid();
   seg.timings.cloud_ms = timer.lap();
 
-  const SurfaceNormals normals = estimateNormals(cloud, k, p);
+  const DepthLinks links(cloud, p);
+  const SurfaceNormals normals = estimateNormals(cloud, links, p);
   seg.timings.normals_ms = timer.lap();
 
-  const SmoothComponents components = segmentSmoothComponents(cloud, normals, p);
+  const SmoothComponents components = segmentSmoothComponents(links, normals, p);
   seg.timings.components_ms = timer.lap();
 
   AreaPatches patches = splitIntoAreaPatches(components.labels, components.count, cloud, normals, k, p);
   seg.timings.kmeans_ms = timer.lap();
 
   seg.labels = patches.labels;
-  const int count = cleanUpPatches(seg.labels, cloud, normals, k, p);
+  const int count = cleanUpPatches(seg.labels, cloud, links, normals, k, p);
   seg.timings.cleanup_ms = timer.lap();
 
-  computePatchRecords(seg, count, cloud, normals.normals, k, p);
+  computePatchRecords(seg, count, cloud, links, normals.normals, k, p);
   for (const auto& patch : seg.patches) seg.stats.assigned_pixels += static_cast<std::size_t>(patch.pixel_count);
   seg.stats.dropped_pixels = seg.stats.valid_pixels - seg.stats.assigned_pixels;
   seg.timings.patches_ms = timer.lap();

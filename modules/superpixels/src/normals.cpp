@@ -10,33 +10,7 @@
 
 namespace gasp {
 
-namespace {
-
-/// 255 where a pixel is valid and depth-connected to all its valid 4-neighbours, else 0.
-cv::Mat interiorMask(const OrganizedPointCloud& cloud, const SuperpixelParams& p) {
-  const int w = cloud.width, h = cloud.height;
-  cv::Mat mask(h, w, CV_8U, cv::Scalar(0));
-  for (int v = 0; v < h; ++v) {
-    auto* m = mask.ptr<std::uint8_t>(v);
-    for (int u = 0; u < w; ++u) {
-      if (!cloud.isValid(u, v)) continue;
-      const float z = cloud.at(u, v).z();
-      bool ok = true;
-      const int nu[4] = {u - 1, u + 1, u, u};
-      const int nv[4] = {v, v, v - 1, v + 1};
-      for (int k = 0; k < 4 && ok; ++k) {
-        if (nu[k] < 0 || nu[k] >= w || nv[k] < 0 || nv[k] >= h) continue;
-        ok = cloud.isValid(nu[k], nv[k]) && depthConnected(z, cloud.at(nu[k], nv[k]).z(), p);
-      }
-      m[u] = ok ? 255 : 0;
-    }
-  }
-  return mask;
-}
-
-}  // namespace
-
-SurfaceNormals estimateNormals(const OrganizedPointCloud& cloud, const CameraIntrinsics& /*intrinsics*/,
+SurfaceNormals estimateNormals(const OrganizedPointCloud& cloud, const DepthLinks& links,
                                const SuperpixelParams& p) {
   const int w = cloud.width, h = cloud.height;
   if (w <= 0 || h <= 0 || cloud.points.size() != static_cast<std::size_t>(w) * h)
@@ -45,11 +19,18 @@ SurfaceNormals estimateNormals(const OrganizedPointCloud& cloud, const CameraInt
   out.normals = cv::Mat(h, w, CV_32FC3, cv::Scalar(0, 0, 0));
   out.crease = cv::Mat(h, w, CV_32F, cv::Scalar(std::nanf("")));
   out.radius = cv::Mat(h, w, CV_32S, cv::Scalar(0));
+  out.smoothed = cv::Mat(h, w, CV_32FC3);
+  for (int i = 0; i < w * h; ++i) {
+    const Eigen::Vector3f& q = cloud.points[static_cast<std::size_t>(i)];
+    out.smoothed.ptr<cv::Vec3f>(0)[i] = cv::Vec3f(q.x(), q.y(), q.z());
+  }
 
   // Chessboard distance to the nearest pixel that is invalid or next to a discontinuity: a
   // window of half-size d - 1 then holds only points of one smooth surface.
+  cv::Mat interior(h, w, CV_8U);
+  for (int i = 0; i < w * h; ++i) interior.data[i] = links.interior(i) ? 255 : 0;
   cv::Mat dist;
-  cv::distanceTransform(interiorMask(cloud, p), dist, cv::DIST_C, 3, CV_32F);
+  cv::distanceTransform(interior, dist, cv::DIST_C, 3, CV_32F);
 
   cv::Mat xyz(h, w, CV_64FC3);
   for (int v = 0; v < h; ++v) {
@@ -75,7 +56,7 @@ SurfaceNormals estimateNormals(const OrganizedPointCloud& cloud, const CameraInt
     for (int u = 0; u < w; ++u) {
       if (d[u] < 1.0f) continue;
       const float z = cloud.at(u, v).z();
-      int r = static_cast<int>(std::lround(p.normal_window_px_per_m * z));
+      int r = static_cast<int>(p.normal_window_px_per_m * z + 0.5);
       r = std::clamp(r, p.normal_min_radius_px, p.normal_max_radius_px);
       r = std::min({r, static_cast<int>(d[u]) - 1, u, v, w - 1 - u, h - 1 - v});  // stay inside
       if (r < p.normal_min_radius_px) continue;
@@ -89,11 +70,12 @@ SurfaceNormals estimateNormals(const OrganizedPointCloud& cloud, const CameraInt
       if (n.dot(cloud.at(u, v).cast<double>()) > 0.0) n = -n;  // face the camera
       n_row[u] = cv::Vec3f(static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z()));
       r_row[u] = r;
+      out.smoothed.at<cv::Vec3f>(v, u) = box(u - r, v - r, u + r, v + r) / static_cast<double>((2 * r + 1) * (2 * r + 1));
     }
   }
 
-  // Crease measure: angle between the normals at both ends of the window, horizontally and
-  // vertically (the larger); catches creases that have no depth discontinuity.
+  // Crease measure: angle between the normals half a window left/right and above/below the
+  // pixel (the larger); catches creases that have no depth discontinuity.
   const int* R = out.radius.ptr<int>(0);
   const cv::Vec3f* N = out.normals.ptr<cv::Vec3f>(0);
   float* C = out.crease.ptr<float>(0);
@@ -108,8 +90,10 @@ SurfaceNormals estimateNormals(const OrganizedPointCloud& cloud, const CameraInt
         const cv::Vec3f& nb = R[b] > 0 ? N[b] : N[i];
         min_dot = std::min(min_dot, na.dot(nb));
       };
-      compare(i - r, i + r);
-      compare(i - r * w, i + r * w);
+      // Half the window apart: the band set aside around a crease stays about one window wide.
+      const int step = std::max(1, r / 2);
+      compare(i - step, i + step);
+      compare(i - step * w, i + step * w);
       C[i] = std::acos(std::clamp(min_dot, -1.0f, 1.0f));
     }
   }

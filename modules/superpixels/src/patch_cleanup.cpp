@@ -22,26 +22,12 @@ struct PlaneModel {
   int pixels = 0;
 };
 
-/// Neighbour offsets right and down (each unordered pair is visited once).
-template <typename Fn>
-void forEachDepthConnectedPair(const OrganizedPointCloud& cloud, const SuperpixelParams& p, Fn fn) {
-  const int w = cloud.width, h = cloud.height;
-  for (int v = 0; v < h; ++v)
-    for (int u = 0; u < w; ++u) {
-      if (!cloud.isValid(u, v)) continue;
-      const float z = cloud.at(u, v).z();
-      const int i = v * w + u;
-      if (u + 1 < w && cloud.isValid(u + 1, v) && depthConnected(z, cloud.at(u + 1, v).z(), p)) fn(i, i + 1);
-      if (v + 1 < h && cloud.isValid(u, v + 1) && depthConnected(z, cloud.at(u, v + 1).z(), p)) fn(i, i + w);
-    }
-}
-
 /// 1. Keep the largest depth-connected piece of each label.
-void enforceContiguity(cv::Mat& labels, const OrganizedPointCloud& cloud, const SuperpixelParams& p) {
+void enforceContiguity(cv::Mat& labels, const DepthLinks& links) {
   int* L = labels.ptr<int>(0);
   const std::size_t n_px = labels.total();
   detail::DisjointSets sets(n_px);
-  forEachDepthConnectedPair(cloud, p, [&](int a, int b) {
+  links.forEachLink([&](int a, int b) {
     if (L[a] >= 0 && L[a] == L[b]) sets.unite(a, b);
   });
   std::vector<int> piece_size(n_px, 0);
@@ -69,7 +55,7 @@ std::vector<PlaneModel> planeModels(const cv::Mat& labels, int count, const Orga
   std::vector<Eigen::Vector3d> sum_p(m.size(), Eigen::Vector3d::Zero()), sum_n(m.size(), Eigen::Vector3d::Zero());
   const int w = cloud.width;
   const int* L = labels.ptr<int>(0);
-  for (std::size_t i = 0; i < labels.total(); ++i) {
+  for (std::size_t i = 0, n_px = labels.total(); i < n_px; ++i) {
     if (L[i] < 0) continue;
     const int u = static_cast<int>(i) % w, v = static_cast<int>(i) / w;
     auto& pm = m[static_cast<std::size_t>(L[i])];
@@ -86,7 +72,7 @@ std::vector<PlaneModel> planeModels(const cv::Mat& labels, int count, const Orga
     m[c].normal = sum_n[c].norm() > 0 ? sum_n[c].normalized().cast<float>()
                                       : (-m[c].centroid).normalized();
   }
-  for (std::size_t i = 0; i < labels.total(); ++i)
+  for (std::size_t i = 0, n_px = labels.total(); i < n_px; ++i)
     if (L[i] >= 0) {
       auto& pm = m[static_cast<std::size_t>(L[i])];
       pm.area += detail::pixelArea(cloud.points[i], pm.normal, k, min_cos);
@@ -96,14 +82,14 @@ std::vector<PlaneModel> planeModels(const cv::Mat& labels, int count, const Orga
 
 /// 2. Priority region growing of unlabelled valid pixels into adjacent patches.
 void regrowLeftovers(cv::Mat& labels, int count, const OrganizedPointCloud& cloud,
-                     const SurfaceNormals& normals, const CameraIntrinsics& k, const SuperpixelParams& p,
-                     float min_cos) {
+                     const DepthLinks& links, const SurfaceNormals& normals, const CameraIntrinsics& k, const SuperpixelParams& p,
+                     float min_cos, float area_cap_ratio, float cost_radii) {
   const int w = cloud.width, h = cloud.height;
   int* L = labels.ptr<int>(0);
   auto models = planeModels(labels, count, cloud, normals, k, min_cos);
   // A patch stops growing at twice the target area; what is left becomes new patches (step 3).
-  const float max_area = static_cast<float>(2.0 * p.target_patch_area_m2);
-  const float max_cost = static_cast<float>(std::sqrt(p.target_patch_area_m2 / M_PI));
+  const float max_area = static_cast<float>(area_cap_ratio * p.target_patch_area_m2);
+  const float max_cost = cost_radii * static_cast<float>(std::sqrt(p.target_patch_area_m2 / M_PI));
   const float w_n = static_cast<float>(p.regrow_normal_weight_m);
   auto cost = [&](int i, int label) {
     const PlaneModel& m = models[static_cast<std::size_t>(label)];
@@ -118,14 +104,11 @@ void regrowLeftovers(cv::Mat& labels, int count, const OrganizedPointCloud& clou
   using Entry = std::tuple<float, int, int>;  // cost, pixel, label: total order -> deterministic
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
   auto pushNeighbours = [&](int i) {
-    const int u = i % w, v = i / w;
-    const int nb[4] = {u > 0 ? i - 1 : -1, u + 1 < w ? i + 1 : -1, v > 0 ? i - w : -1, v + 1 < h ? i + w : -1};
-    for (int j : nb) {
-      if (j < 0 || L[j] >= 0 || !cloud.points[j].allFinite()) continue;
-      if (!depthConnected(cloud.points[i].z(), cloud.points[j].z(), p)) continue;
+    links.forEachNeighbour(i, [&](int j) {
+      if (L[j] >= 0) return;
       const float c = cost(j, L[i]);
       if (c <= max_cost) queue.emplace(c, j, L[i]);
-    }
+    });
   };
   for (int i = 0; i < w * h; ++i)
     if (L[i] >= 0) pushNeighbours(i);
@@ -143,12 +126,12 @@ void regrowLeftovers(cv::Mat& labels, int count, const OrganizedPointCloud& clou
 
 /// 4. Merge patches below the minimum size into their most similar neighbour.
 void mergeSmallPatches(cv::Mat& labels, int count, const OrganizedPointCloud& cloud,
-                       const SurfaceNormals& normals, const CameraIntrinsics& k,
+                       const DepthLinks& links, const SurfaceNormals& normals, const CameraIntrinsics& k,
                        const SuperpixelParams& p, float min_cos) {
   int* L = labels.ptr<int>(0);
   auto models = planeModels(labels, count, cloud, normals, k, min_cos);
   std::vector<std::set<int>> adjacent(static_cast<std::size_t>(count));
-  forEachDepthConnectedPair(cloud, p, [&](int a, int b) {
+  links.forEachLink([&](int a, int b) {
     if (L[a] >= 0 && L[b] >= 0 && L[a] != L[b]) {
       adjacent[L[a]].insert(L[b]);
       adjacent[L[b]].insert(L[a]);
@@ -207,35 +190,40 @@ void mergeSmallPatches(cv::Mat& labels, int count, const OrganizedPointCloud& cl
     while (c >= 0 && target[c] != c) c = target[c];
     return c;
   };
-  for (std::size_t i = 0; i < labels.total(); ++i)
+  for (std::size_t i = 0, n_px = labels.total(); i < n_px; ++i)
     if (L[i] >= 0) L[i] = resolve(L[i]);
 }
 
 }  // namespace
 
-int cleanUpPatches(cv::Mat& labels, const OrganizedPointCloud& cloud, const SurfaceNormals& normals,
-                   const CameraIntrinsics& k, const SuperpixelParams& p) {
+int cleanUpPatches(cv::Mat& labels, const OrganizedPointCloud& cloud, const DepthLinks& links,
+                   const SurfaceNormals& normals, const CameraIntrinsics& k, const SuperpixelParams& p) {
   const float min_cos = static_cast<float>(std::cos(p.max_incidence_deg * M_PI / 180.0));
   int count = relabelInRasterOrder(labels);
-  enforceContiguity(labels, cloud, p);
+  enforceContiguity(labels, links);
   count = relabelInRasterOrder(labels);
-  regrowLeftovers(labels, count, cloud, normals, k, p, min_cos);
+  // First pass: patches grow up to twice the target area, within one patch radius of their plane.
+  regrowLeftovers(labels, count, cloud, links, normals, k, p, min_cos, 2.0f, 1.0f);
+  // Second pass, for what is left next to patches (crease bands of far, noisy surfaces):
+  // up to three times the area and two radii from the plane.
+  regrowLeftovers(labels, count, cloud, links, normals, k, p, min_cos, 3.0f, 2.0f);
 
   // 3. Leftover depth-connected groups become regions of their own, split by area like surfaces.
   {
     const int w = cloud.width, h = cloud.height;
     const int* L = labels.ptr<int>(0);
     detail::DisjointSets sets(labels.total());
-    forEachDepthConnectedPair(cloud, p, [&](int a, int b) {
+    links.forEachLink([&](int a, int b) {
       if (L[a] < 0 && L[b] < 0) sets.unite(a, b);
     });
     cv::Mat groups(h, w, CV_32S, cv::Scalar(-1));
+    int* G = groups.ptr<int>(0);
     for (int i = 0; i < w * h; ++i)
-      if (L[i] < 0 && cloud.points[i].allFinite()) groups.at<int>(i / w, i % w) = sets.find(i);
+      if (L[i] < 0 && links.valid(i)) G[i] = sets.find(i);
     const int n_groups = relabelInRasterOrder(groups);
     if (n_groups > 0) {
       AreaPatches extra = splitIntoAreaPatches(groups, n_groups, cloud, normals, k, p);
-      enforceContiguity(extra.labels, cloud, p);
+      enforceContiguity(extra.labels, links);
       for (int i = 0; i < w * h; ++i) {
         const int e = extra.labels.at<int>(i / w, i % w);
         if (e >= 0) labels.at<int>(i / w, i % w) = count + e;
@@ -243,7 +231,7 @@ int cleanUpPatches(cv::Mat& labels, const OrganizedPointCloud& cloud, const Surf
       count = relabelInRasterOrder(labels);
     }
   }
-  mergeSmallPatches(labels, count, cloud, normals, k, p, min_cos);
+  mergeSmallPatches(labels, count, cloud, links, normals, k, p, min_cos);
   return relabelInRasterOrder(labels);
 }
 

@@ -24,43 +24,32 @@ int relabelInRasterOrder(cv::Mat& labels) {
   return next;
 }
 
-SmoothComponents segmentSmoothComponents(const OrganizedPointCloud& cloud,
-                                         const SurfaceNormals& normals,
+SmoothComponents segmentSmoothComponents(const DepthLinks& links, const SurfaceNormals& normals,
                                          const SuperpixelParams& p) {
-  const int w = cloud.width, h = cloud.height;
+  const int w = links.width(), h = links.height();
   const float max_crease = static_cast<float>(p.max_crease_angle_deg * M_PI / 180.0);
   const float min_dot = static_cast<float>(std::cos(p.max_neighbour_normal_angle_deg * M_PI / 180.0));
-  cv::Mat core(h, w, CV_8U, cv::Scalar(0));
-  for (int v = 0; v < h; ++v)
-    for (int u = 0; u < w; ++u)
-      core.at<std::uint8_t>(v, u) = normals.hasNormal(u, v) && normals.crease.at<float>(v, u) <= max_crease;
+  const int* radius = normals.radius.ptr<int>(0);
+  const float* crease = normals.crease.ptr<float>(0);
+  const cv::Vec3f* n = normals.normals.ptr<cv::Vec3f>(0);
+  std::vector<std::uint8_t> core(static_cast<std::size_t>(w) * h);
+  for (int i = 0; i < w * h; ++i) core[i] = radius[i] > 0 && crease[i] <= max_crease;
 
   detail::DisjointSets sets(static_cast<std::size_t>(w) * h);
-  auto joinable = [&](int ua, int va, int ub, int vb) {
-    return core.at<std::uint8_t>(vb, ub) &&
-           depthConnected(cloud.at(ua, va).z(), cloud.at(ub, vb).z(), p) &&
-           normals.normals.at<cv::Vec3f>(va, ua).dot(normals.normals.at<cv::Vec3f>(vb, ub)) >= min_dot;
-  };
-  for (int v = 0; v < h; ++v)
-    for (int u = 0; u < w; ++u) {
-      if (!core.at<std::uint8_t>(v, u)) continue;
-      const int i = v * w + u;
-      if (u + 1 < w && joinable(u, v, u + 1, v)) sets.unite(i, i + 1);
-      if (v + 1 < h && joinable(u, v, u, v + 1)) sets.unite(i, i + w);
-    }
-
+  links.forEachLink([&](int a, int b) {
+    if (core[a] && core[b] && n[a].dot(n[b]) >= min_dot) sets.unite(a, b);
+  });
+  std::vector<int> size(static_cast<std::size_t>(w) * h, 0);
+  for (int i = 0; i < w * h; ++i)
+    if (core[i]) ++size[static_cast<std::size_t>(sets.find(i))];
   SmoothComponents out;
   out.labels = cv::Mat(h, w, CV_32S, cv::Scalar(-1));
-  std::vector<int> size(static_cast<std::size_t>(w) * h, 0);
-  for (int v = 0; v < h; ++v)
-    for (int u = 0; u < w; ++u)
-      if (core.at<std::uint8_t>(v, u)) ++size[static_cast<std::size_t>(sets.find(v * w + u))];
-  for (int v = 0; v < h; ++v)
-    for (int u = 0; u < w; ++u) {
-      if (!core.at<std::uint8_t>(v, u)) continue;
-      const int root = sets.find(v * w + u);
-      if (size[static_cast<std::size_t>(root)] >= p.min_component_pixels) out.labels.at<int>(v, u) = root;
-    }
+  int* L = out.labels.ptr<int>(0);
+  for (int i = 0; i < w * h; ++i) {
+    if (!core[i]) continue;
+    const int root = sets.find(i);
+    if (size[static_cast<std::size_t>(root)] >= p.min_component_pixels) L[i] = root;
+  }
   out.count = relabelInRasterOrder(out.labels);
   return out;
 }

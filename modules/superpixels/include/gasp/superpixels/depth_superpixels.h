@@ -6,6 +6,7 @@
 
 #include "gasp/core/camera_intrinsics.h"
 #include "gasp/core/point_cloud.h"
+#include "gasp/superpixels/depth_links.h"
 #include "gasp/superpixels/superpixel_params.h"
 #include "gasp/superpixels/surface_patch.h"
 
@@ -23,7 +24,7 @@ void validate(const SuperpixelParams& params);
 
 /// Patch records, adjacency and statistics from a final label image (used by the pipeline).
 void computePatchRecords(SuperpixelSegmentation& seg, int num_patches, const OrganizedPointCloud& cloud,
-                         const cv::Mat& normals, const CameraIntrinsics& intrinsics,
-                         const SuperpixelParams& params);
+                         const DepthLinks& links, const cv::Mat& normals,
+                         const CameraIntrinsics& intrinsics, const SuperpixelParams& params);
 
 }  // namespace gasp

@@ -19,7 +19,8 @@ namespace gasp {
 
 /// Cleans `labels` (CV_32S, -1 = none) in place and relabels patches 0..n-1 in raster order;
 /// returns n.
-int cleanUpPatches(cv::Mat& labels, const OrganizedPointCloud& cloud, const SurfaceNormals& normals,
-                   const CameraIntrinsics& intrinsics, const SuperpixelParams& params);
+int cleanUpPatches(cv::Mat& labels, const OrganizedPointCloud& cloud, const DepthLinks& links,
+                   const SurfaceNormals& normals, const CameraIntrinsics& intrinsics,
+                   const SuperpixelParams& params);
 
 }  // namespace gasp

@@ -4,7 +4,6 @@
 /// from "core" pixels only (a normal exists and no crease); the rest is set aside.
 #include <opencv2/core.hpp>
 
-#include "gasp/core/point_cloud.h"
 #include "gasp/superpixels/normals.h"
 
 namespace gasp {
@@ -14,8 +13,7 @@ struct SmoothComponents {
   int count = 0;
 };
 
-SmoothComponents segmentSmoothComponents(const OrganizedPointCloud& cloud,
-                                         const SurfaceNormals& normals,
+SmoothComponents segmentSmoothComponents(const DepthLinks& links, const SurfaceNormals& normals,
                                          const SuperpixelParams& params);
 
 /// Relabels a label image so that labels >= 0 become 0..n-1 in raster order of first appearance;

@@ -39,7 +39,7 @@ struct SuperpixelParams {
   //      and normal (priority region growing, depth-connected only).
   int min_patch_pixels = 20;
   double min_patch_area_ratio = 0.25;
-  double regrow_normal_weight_m = 0.02;  ///< cost of a 90 deg normal mismatch, as a distance [m]
+  double regrow_normal_weight_m = 0.1;  ///< cost of a 90 deg normal mismatch, as a distance [m]
 };
 
 }  // namespace gasp

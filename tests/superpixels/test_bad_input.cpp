@@ -1,0 +1,65 @@
+// Bad input gives a clear error or an empty, valid result -- never a crash or a hang.
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "gasp/core/error.h"
+#include "gasp/superpixels/depth_superpixels.h"
+
+namespace {
+const gasp::CameraIntrinsics kCamera = gasp::CameraIntrinsics::rosDefault();
+}
+
+TEST(SuperpixelsBadInput, NoValidDepthGivesAnEmptyResult) {
+  for (float fill : {0.0f, std::numeric_limits<float>::quiet_NaN(), -1.0f,
+                     std::numeric_limits<float>::infinity()}) {
+    const cv::Mat depth(480, 640, CV_32FC1, cv::Scalar(fill));
+    const auto seg = gasp::segmentDepthSuperpixels(depth, kCamera);
+    EXPECT_TRUE(seg.patches.empty());
+    EXPECT_EQ(seg.stats.valid_pixels, 0u);
+    EXPECT_EQ(seg.stats.coverage(), 0.0);
+    EXPECT_EQ(cv::countNonZero(seg.labels != -1), 0);
+  }
+}
+
+TEST(SuperpixelsBadInput, ASingleValidPixelIsNoPatch) {
+  cv::Mat depth(480, 640, CV_32FC1, cv::Scalar(0.0f));
+  depth.at<float>(200, 300) = 1.5f;
+  const auto seg = gasp::segmentDepthSuperpixels(depth, kCamera);
+  EXPECT_TRUE(seg.patches.empty());
+  EXPECT_EQ(seg.stats.valid_pixels, 1u);
+  EXPECT_EQ(seg.stats.dropped_pixels, 1u);
+}
+
+TEST(SuperpixelsBadInput, OnePlaneIsSegmentedNormally) {
+  const cv::Mat depth(480, 640, CV_32FC1, cv::Scalar(2.0f));
+  const auto seg = gasp::segmentDepthSuperpixels(depth, kCamera);
+  EXPECT_GT(seg.patches.size(), 50u);
+  EXPECT_DOUBLE_EQ(seg.stats.coverage(), 1.0);
+  for (const auto& p : seg.patches) EXPECT_GT(-p.normal.z(), 0.999);
+}
+
+TEST(SuperpixelsBadInput, WrongTypeOrSizeThrows) {
+  EXPECT_THROW(gasp::segmentDepthSuperpixels(cv::Mat(480, 640, CV_16UC1, cv::Scalar(1000)), kCamera), gasp::Error);
+  EXPECT_THROW(gasp::segmentDepthSuperpixels(cv::Mat(240, 320, CV_32FC1, cv::Scalar(1.0f)), kCamera), gasp::Error);
+  EXPECT_THROW(gasp::segmentDepthSuperpixels(cv::Mat(), kCamera), gasp::Error);
+}
+
+TEST(SuperpixelsBadInput, InvalidParametersThrow) {
+  const cv::Mat depth(480, 640, CV_32FC1, cv::Scalar(2.0f));
+  gasp::SuperpixelParams p;
+  p.target_patch_area_m2 = 0.0;
+  EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
+  p = {};
+  p.normal_min_radius_px = 0;
+  EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
+}
+
+TEST(SuperpixelsBadInput, SparseSpecklesDoNotHang) {
+  cv::Mat depth(480, 640, CV_32FC1, cv::Scalar(0.0f));
+  for (int v = 0; v < 480; v += 3)
+    for (int u = 0; u < 640; u += 3) depth.at<float>(v, u) = 1.0f + 0.001f * static_cast<float>((u * 7 + v * 13) % 100);
+  const auto seg = gasp::segmentDepthSuperpixels(depth, kCamera);
+  EXPECT_TRUE(seg.patches.empty());  // isolated pixels: no surface
+  EXPECT_EQ(seg.stats.dropped_pixels, seg.stats.valid_pixels);
+}
