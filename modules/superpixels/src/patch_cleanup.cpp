@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <queue>
 #include <set>
-#include <tuple>
 
 #include "disjoint_sets.h"
 #include "gasp/superpixels/area_kmeans.h"
@@ -91,34 +89,43 @@ void regrowLeftovers(cv::Mat& labels, int count, const OrganizedPointCloud& clou
   const float max_area = static_cast<float>(area_cap_ratio * p.target_patch_area_m2);
   const float max_cost = cost_radii * static_cast<float>(std::sqrt(p.target_patch_area_m2 / M_PI));
   const float w_n = static_cast<float>(p.regrow_normal_weight_m);
+  const int* has_normal = normals.radius.ptr<int>(0);
+  const auto* normal_px = reinterpret_cast<const Eigen::Vector3f*>(normals.normals.ptr<float>(0));
   auto cost = [&](int i, int label) {
     const PlaneModel& m = models[static_cast<std::size_t>(label)];
-    float c = std::abs(m.normal.dot(cloud.points[i] - m.centroid));
-    const int u = i % w, v = i / w;
-    if (normals.hasNormal(u, v)) {
-      const cv::Vec3f& n = normals.normals.at<cv::Vec3f>(v, u);
-      c += w_n * (1.0f - std::abs(m.normal.dot(Eigen::Vector3f(n[0], n[1], n[2]))));
-    }
+    float c = std::abs(m.normal.dot(cloud.points[static_cast<std::size_t>(i)] - m.centroid));
+    if (has_normal[i] > 0) c += w_n * (1.0f - std::abs(m.normal.dot(normal_px[i])));
     return c;
   };
-  using Entry = std::tuple<float, int, int>;  // cost, pixel, label: total order -> deterministic
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  // Bucket queue over the cost range [0, max_cost]: O(1) push and pop; within a bucket, last in
+  // first out. Deterministic; costs closer than max_cost / kBuckets may be taken out of order.
+  constexpr int kBuckets = 256;
+  std::vector<std::vector<std::pair<int, int>>> buckets(kBuckets);  // (pixel, label)
+  int lowest = kBuckets;
   auto pushNeighbours = [&](int i) {
     links.forEachNeighbour(i, [&](int j) {
       if (L[j] >= 0) return;
       const float c = cost(j, L[i]);
-      if (c <= max_cost) queue.emplace(c, j, L[i]);
+      if (c > max_cost) return;
+      const int b = std::min(kBuckets - 1, static_cast<int>(c / max_cost * kBuckets));
+      buckets[static_cast<std::size_t>(b)].emplace_back(j, L[i]);
+      lowest = std::min(lowest, b);
     });
   };
   for (int i = 0; i < w * h; ++i)
     if (L[i] >= 0) pushNeighbours(i);
-  while (!queue.empty()) {
-    const auto [c, i, label] = queue.top();
-    queue.pop();
+  while (lowest < kBuckets) {
+    auto& bucket = buckets[static_cast<std::size_t>(lowest)];
+    if (bucket.empty()) {
+      ++lowest;
+      continue;
+    }
+    const auto [i, label] = bucket.back();
+    bucket.pop_back();
     if (L[i] >= 0) continue;
     PlaneModel& m = models[static_cast<std::size_t>(label)];
     if (m.area >= max_area) continue;
-    m.area += detail::pixelArea(cloud.points[i], m.normal, k, min_cos);
+    m.area += detail::pixelArea(cloud.points[static_cast<std::size_t>(i)], m.normal, k, min_cos);
     L[i] = label;
     pushNeighbours(i);
   }
