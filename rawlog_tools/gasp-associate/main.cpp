@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   app.add_option("--k", params.feature_sets.neighbourhood.k, "neighbourhood size (0 = full view)")->capture_default_str();
   app.add_option("--candidates", params.candidates, "KD-tree candidates per patch (C)")->capture_default_str();
   app.add_option("--lambda", params.lambda, "gating on the normalised edit distance")->capture_default_str();
+  app.add_flag("!--no-mutual", params.mutual_check, "keep one-way best partners too (no mutual check)");
   CLI11_PARSE(app, argc, argv);
   try {
     gasp::TumDataset::Options opt;
@@ -41,8 +42,8 @@ int main(int argc, char** argv) {
                 result.associations.size());
     std::printf("time_ms: segmentation %.1f + %.1f, features %.1f, kd-tree %.1f, matching %.1f\n",
                 seg_a.timings.total(), seg_b.timings.total(), s.features_ms, s.tree_ms, s.matching_ms);
-    std::printf("comparisons: %zu of %zu without KD-tree, %zu cut early, %zu gated out\n", s.comparisons,
-                s.comparisons_full, s.cut_early, s.gated_out);
+    std::printf("comparisons: %zu of %zu without KD-tree, %zu cut early, %zu gated out, %zu not mutual\n",
+                s.comparisons, s.comparisons_full, s.cut_early, s.gated_out, s.not_mutual);
     const auto& fa = ds.frame(from);
     const auto& fb = ds.frame(to);
     if (fa.T_world_camera && fb.T_world_camera) {

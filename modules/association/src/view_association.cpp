@@ -53,6 +53,71 @@ void validate(const AssociationParams& p) {
   if (!(p.lambda >= 0.0 && p.lambda <= 1.0)) throw Error("association: lambda must be in [0, 1]");
 }
 
+namespace {
+
+/// For every patch of `from`, its best partner in `to` (b = -1 where none), D_hat-gated; adds to
+/// the statistics.
+std::vector<PatchAssociation> bestPartners(const std::vector<std::vector<Feature>>& from,
+                                           const std::vector<std::vector<Feature>>& to,
+                                           const AssociationParams& p, AssociationStats& stats) {
+  const auto t_tree = std::chrono::steady_clock::now();
+  MeanCloud cloud;
+  std::vector<std::uint32_t> index_to;  // tree point -> patch of `to`
+  for (std::size_t j = 0; j < to.size(); ++j) {
+    if (to[j].empty()) continue;
+    cloud.points.push_back(normalisedMean(to[j], p.match));
+    index_to.push_back(static_cast<std::uint32_t>(j));
+  }
+  MeanTree tree(7, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  tree.buildIndex();
+  stats.tree_ms += msSince(t_tree);
+
+  const auto t_match = std::chrono::steady_clock::now();
+  const std::size_t C = std::min<std::size_t>(static_cast<std::size_t>(p.candidates), cloud.points.size());
+  std::vector<PatchAssociation> best(from.size());
+  std::vector<unsigned char> gated(from.size(), 0);
+  std::atomic<std::size_t> comparisons{0}, cut{0};
+  tbb::enumerable_thread_specific<EditDistanceWorkspace> workspaces;
+  tbb::parallel_for(std::size_t{0}, from.size(), [&](std::size_t i) {
+    if (from[i].empty()) return;
+    auto& ws = workspaces.local();
+    const Mean query = normalisedMean(from[i], p.match);
+    std::vector<std::uint32_t> idx(C);
+    std::vector<double> dist(C);
+    const std::size_t found = tree.knnSearch(query.data(), C, idx.data(), dist.data());
+    double best_hat = std::numeric_limits<double>::infinity();
+    int best_j = -1;
+    std::size_t local_cut = 0;
+    for (std::size_t c = 0; c < found; ++c) {
+      const int j = static_cast<int>(index_to[idx[c]]);
+      const auto& q_to = to[static_cast<std::size_t>(j)];
+      const double denom = static_cast<double>(from[i].size() + q_to.size());
+      // Bound lambda (k_S + k_S'), tightened to the best found so far.
+      const double d = featureSetDistance(from[i], q_to, p.match, p.costs, std::min(p.lambda, best_hat) * denom, ws);
+      if (d == kExceedsBound) {
+        ++local_cut;
+        continue;
+      }
+      const double hat = d / denom;
+      if (hat < best_hat || (hat == best_hat && j < best_j)) {
+        best_hat = hat;
+        best_j = j;
+      }
+    }
+    comparisons += found;
+    cut += local_cut;
+    if (best_j >= 0 && best_hat <= p.lambda) best[i] = {static_cast<int>(i), best_j, best_hat};
+    else if (found > 0) gated[i] = 1;
+  });
+  stats.comparisons += comparisons;
+  stats.cut_early += cut;
+  for (unsigned char g : gated) stats.gated_out += g;
+  stats.matching_ms += msSince(t_match);
+  return best;
+}
+
+}  // namespace
+
 AssociationResult associateFeatureSets(const std::vector<std::vector<Feature>>& qa,
                                        const std::vector<std::vector<Feature>>& qb,
                                        const AssociationParams& p) {
@@ -66,63 +131,18 @@ AssociationResult associateFeatureSets(const std::vector<std::vector<Feature>>& 
     r.reason = "a view has no patch with a feature set (needs at least two usable patches)";
     return r;
   }
-  const auto t_tree = std::chrono::steady_clock::now();
-  MeanCloud cloud;
-  std::vector<std::uint32_t> index_b;  // tree point -> patch of B
-  for (std::size_t j = 0; j < qb.size(); ++j) {
-    if (qb[j].empty()) continue;
-    cloud.points.push_back(normalisedMean(qb[j], p.match));
-    index_b.push_back(static_cast<std::uint32_t>(j));
-  }
-  MeanTree tree(7, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
-  tree.buildIndex();
-  r.stats.tree_ms = msSince(t_tree);
-
-  const auto t_match = std::chrono::steady_clock::now();
-  const std::size_t C = std::min<std::size_t>(static_cast<std::size_t>(p.candidates), cloud.points.size());
-  std::vector<PatchAssociation> best(qa.size());
-  std::vector<unsigned char> gated(qa.size(), 0);
-  std::atomic<std::size_t> comparisons{0}, cut{0};
-  tbb::enumerable_thread_specific<EditDistanceWorkspace> workspaces;
-  tbb::parallel_for(std::size_t{0}, qa.size(), [&](std::size_t i) {
-    if (qa[i].empty()) return;
-    auto& ws = workspaces.local();
-    const Mean query = normalisedMean(qa[i], p.match);
-    std::vector<std::uint32_t> idx(C);
-    std::vector<double> dist(C);
-    const std::size_t found = tree.knnSearch(query.data(), C, idx.data(), dist.data());
-    double best_hat = std::numeric_limits<double>::infinity();
-    int best_b = -1;
-    std::size_t local_cut = 0;
-    for (std::size_t c = 0; c < found; ++c) {
-      const int j = static_cast<int>(index_b[idx[c]]);
-      const double denom = static_cast<double>(qa[i].size() + qb[static_cast<std::size_t>(j)].size());
-      // Bound: lambda (k_S + k_S'), tightened to the best found so far.
-      const double bound = std::min(p.lambda, best_hat) * denom;
-      const double d = featureSetDistance(qa[i], qb[static_cast<std::size_t>(j)], p.match, p.costs, bound, ws);
-      if (d == kExceedsBound) {
-        ++local_cut;
-        continue;
-      }
-      const double hat = d / denom;
-      if (hat < best_hat || (hat == best_hat && j < best_b)) {
-        best_hat = hat;
-        best_b = j;
-      }
+  r.stats.comparisons_full = r.stats.with_features_a * r.stats.with_features_b * (p.mutual_check ? 2 : 1);
+  const auto a_to_b = bestPartners(qa, qb, p, r.stats);
+  std::vector<PatchAssociation> b_to_a;
+  if (p.mutual_check) b_to_a = bestPartners(qb, qa, p, r.stats);
+  for (const auto& s : a_to_b) {
+    if (s.b < 0) continue;
+    if (p.mutual_check && b_to_a[static_cast<std::size_t>(s.b)].b != s.a) {
+      ++r.stats.not_mutual;
+      continue;
     }
-    comparisons += found;
-    cut += local_cut;
-    if (best_b >= 0 && best_hat <= p.lambda) best[i] = {static_cast<int>(i), best_b, best_hat};
-    else if (found > 0) gated[i] = 1;
-  });
-  r.stats.comparisons = comparisons;
-  r.stats.cut_early = cut;
-  r.stats.comparisons_full = r.stats.with_features_a * r.stats.with_features_b;
-  for (std::size_t i = 0; i < qa.size(); ++i) {
-    if (best[i].b >= 0) r.associations.push_back(best[i]);
-    r.stats.gated_out += gated[i];
+    r.associations.push_back(s);
   }
-  r.stats.matching_ms = msSince(t_match);
   if (r.associations.empty()) r.reason = "no candidate within the gating distance lambda";
   return r;
 }

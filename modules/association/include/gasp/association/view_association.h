@@ -4,7 +4,8 @@
 /// feature-set means are nearest (KD-tree) are candidates; the one with the least restricted
 /// Damerau-Levenshtein distance D is the putative partner, accepted when the normalised distance
 /// D_hat = D / (k_S + k_S') is at most lambda. Early termination stops a comparison as soon as
-/// D must exceed lambda (k_S + k_S'). Parallel over the patches of A, deterministic.
+/// D must exceed lambda (k_S + k_S'). Optionally (default) only mutual best partners are kept.
+/// Parallel over the patches, deterministic.
 #include <string>
 #include <vector>
 
@@ -23,6 +24,9 @@ struct AssociationParams {
   EditCosts costs;     ///< insert = delete = 1, replace disabled, transposition 0 (paper)
   int candidates = 75;   ///< C, KD-tree candidates per patch (paper: 75)
   double lambda = 0.5;   ///< gating on D_hat, in [0, 1] (paper: 0.65 - 0.8 before RANSAC)
+  /// Keep (a, b) only when a is also b's best partner in A (B -> A search, twice the matching
+  /// time). Not in the paper; on fr1_xyz 0 -> 10 it lifts precision from 0.26 to 0.63.
+  bool mutual_check = true;
 
   static FeatureSetParams defaultFeatureSets() {
     FeatureSetParams p;
@@ -46,7 +50,8 @@ struct AssociationStats {
   std::size_t comparisons = 0;        ///< edit distances computed (A patch x candidate)
   std::size_t cut_early = 0;          ///< of those, stopped by early termination
   std::size_t comparisons_full = 0;   ///< comparisons a search without KD-tree would make
-  std::size_t gated_out = 0;          ///< best candidate found but D_hat > lambda
+  std::size_t gated_out = 0;          ///< best candidate found but D_hat > lambda (both directions)
+  std::size_t not_mutual = 0;         ///< A -> B partners dropped by the mutual check
   double features_ms = 0, tree_ms = 0, matching_ms = 0;
 };
 
