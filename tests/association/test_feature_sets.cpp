@@ -12,8 +12,11 @@
 
 #include "gasp/association/feature_sets.h"
 #include "gasp/core/error.h"
+#include "patch_motion.h"
 
 namespace {
+
+using gasp::test::moved;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -38,15 +41,6 @@ Eigen::Isometry3d randomMotion(std::mt19937& rng, bool roll_180) {
   }
   t.translation() = Eigen::Vector3d(g(rng), g(rng), g(rng)) * 3.0;
   return t;
-}
-
-std::vector<gasp::PatchGeometry> moved(const std::vector<gasp::PatchGeometry>& p, const Eigen::Isometry3d& t) {
-  auto out = p;
-  for (auto& x : out) {
-    x.centroid = t * x.centroid;
-    x.normal = t.linear() * x.normal;
-  }
-  return out;
 }
 
 bool nearInteger(double x, double margin) { return std::abs(x - std::round(x)) < margin; }

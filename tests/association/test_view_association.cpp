@@ -6,9 +6,12 @@
 
 #include "gasp/association/view_association.h"
 #include "gasp/core/error.h"
+#include "patch_motion.h"
 #include "gasp/core/pose.h"
 
 namespace {
+
+using gasp::test::moved;
 
 /// n patches scattered in a 3 x 2 x 2 m box with random unit normals (fixed seed).
 std::vector<gasp::PatchGeometry> randomPatches(int n, unsigned seed) {
@@ -20,15 +23,6 @@ std::vector<gasp::PatchGeometry> randomPatches(int n, unsigned seed) {
     p.centroid = Eigen::Vector3d(1.5 * u(rng), u(rng), 2.0 + u(rng));
     p.normal = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
     out.push_back(p);
-  }
-  return out;
-}
-
-std::vector<gasp::PatchGeometry> moved(const std::vector<gasp::PatchGeometry>& in, const gasp::Isometry3& T) {
-  auto out = in;
-  for (auto& p : out) {
-    p.centroid = T * p.centroid;
-    p.normal = T.linear() * p.normal;
   }
   return out;
 }
