@@ -1,11 +1,13 @@
 // gasp-associate: dense patch associations between two depth frames of a TUM folder.
 //   gasp-associate --tum DIR --from I --to J [--intrinsics P] [--k 30] [--candidates 75] [--lambda 0.5]
+//                  [--r-dev 0.04] [--theta-dev 10] [--no-mutual]
 // I and J are frame indices in depth.txt order. Prints the patch count of each view, the number of
 // associations and, where both frames have ground truth, `precision:` and `density:` lines
 // (definitions in gasp/association/association_quality.h). Exit codes: 0 associations found,
 // 1 bad input, 2 usage error, 3 no association (the reason is printed).
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -27,8 +29,12 @@ int main(int argc, char** argv) {
   app.add_option("--k", params.feature_sets.neighbourhood.k, "neighbourhood size (0 = full view)")->capture_default_str();
   app.add_option("--candidates", params.candidates, "KD-tree candidates per patch (C)")->capture_default_str();
   app.add_option("--lambda", params.lambda, "gating on the normalised edit distance")->capture_default_str();
+  double theta_dev_deg = params.match.theta_dev_rad * 180.0 / M_PI;
+  app.add_option("--r-dev", params.match.r_dev_m, "match tolerance of the distance components [m]")->capture_default_str();
+  app.add_option("--theta-dev", theta_dev_deg, "match tolerance of the angle components [deg]")->capture_default_str();
   app.add_flag("!--no-mutual", params.mutual_check, "keep one-way best partners too (no mutual check)");
   CLI11_PARSE(app, argc, argv);
+  params.match.theta_dev_rad = theta_dev_deg * M_PI / 180.0;
   try {
     gasp::TumDataset::Options opt;
     if (!intrinsics_arg.empty()) opt.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg);
