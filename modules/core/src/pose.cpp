@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/SVD>
 
 #include "gasp/core/error.h"
 
@@ -24,15 +23,6 @@ Isometry3 poseFromTranslationQuaternion(double tx, double ty, double tz, double 
 double rotationAngle(const Isometry3& T) {
   const double c = (T.linear().trace() - 1.0) / 2.0;
   return std::acos(std::clamp(c, -1.0, 1.0));
-}
-
-Isometry3 orthonormalized(const Isometry3& T) {
-  Isometry3 out = T;
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(T.linear(), Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
-  D(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1.0 : 1.0;
-  out.linear() = svd.matrixU() * D * svd.matrixV().transpose();
-  return out;
 }
 
 }  // namespace gasp

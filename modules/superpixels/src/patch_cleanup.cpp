@@ -85,7 +85,8 @@ void regrowLeftovers(cv::Mat& labels, int count, const OrganizedPointCloud& clou
   const int w = cloud.width, h = cloud.height;
   int* L = labels.ptr<int>(0);
   auto models = planeModels(labels, count, cloud, normals, k, min_cos);
-  // A patch stops growing at twice the target area; what is left becomes new patches (step 3).
+  // A patch stops growing at area_cap_ratio x the target area; what is left becomes new patches
+  // (step 3).
   const float max_area = static_cast<float>(area_cap_ratio * p.target_patch_area_m2);
   const float max_cost = cost_radii * static_cast<float>(std::sqrt(p.target_patch_area_m2 / M_PI));
   const float w_n = static_cast<float>(p.regrow_normal_weight_m);

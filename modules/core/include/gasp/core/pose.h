@@ -26,7 +26,4 @@ double rotationAngle(const Isometry3& T);
 /// Translation length [m].
 inline double translationNorm(const Isometry3& T) { return T.translation().norm(); }
 
-/// Orthonormalises the rotation block (closest rotation), leaving the translation.
-Isometry3 orthonormalized(const Isometry3& T);
-
 }  // namespace gasp
