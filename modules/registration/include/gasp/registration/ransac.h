@@ -1,0 +1,48 @@
+#pragma once
+/// \file ransac.h A first T_target_source from patch correspondences by RANSAC over centroids.
+///
+/// Minimal samples of 3 correspondences; each is first checked for consistency (rigid motions
+/// keep distances and angles): the pairwise centroid distances must agree between the views,
+/// |d_s(i,j) - d_t(i,j)| <= edge_tolerance_m, as must the pairwise normal angles,
+/// |angle(n_si, n_sj) - angle(n_ti, n_tj)| <= normal_pair_tolerance_deg, and the source triangle
+/// must not be thin (its smallest height >= min_triangle_height_m). A passing sample gives T in
+/// closed form (Eigen::umeyama, no scale) and is scored by its inliers (InlierCriterion), ties
+/// broken by the truncated cost sum_i min(d_i^2 / d_max^2, 1) (MSAC). The number of samples
+/// adapts to the best inlier ratio e: N = log(1 - confidence) / log(1 - e^3), capped at
+/// max_iterations. The best model is re-fitted on its inliers (weighted least squares) and the
+/// inliers recounted, twice. Single-threaded and deterministic for a seed.
+#include <string>
+#include <vector>
+
+#include "gasp/core/pose.h"
+#include "gasp/registration/correspondence.h"
+#include "gasp/registration/inlier_criterion.h"
+
+namespace gasp {
+
+struct RansacParams {
+  InlierCriterion inlier;                  ///< 0.05 m centroid distance, 20 deg normal angle
+  double edge_tolerance_m = 0.03;          ///< max |d_s(i,j) - d_t(i,j)| within a sample [m]
+  double normal_pair_tolerance_deg = 20.0; ///< max disagreement of a sample's normal angles [deg]
+  double min_triangle_height_m = 0.05;     ///< smallest height of a sample's source triangle [m]
+  int min_inliers = 8;                     ///< fewer inliers than this: no estimate
+  int max_iterations = 10000;              ///< cap on the samples drawn (rejected ones count)
+  double confidence = 0.999;               ///< in (0, 1): probability of one all-inlier sample
+  unsigned seed = 1;                       ///< std::mt19937 seed
+};
+
+/// Throws gasp::Error naming the first invalid parameter.
+void validate(const RansacParams& params);
+
+struct RansacResult {
+  bool success = false;  ///< a model with >= min_inliers inliers was found
+  Isometry3 T_target_source = Isometry3::Identity();
+  std::vector<int> inliers;   ///< ascending indices into the correspondences
+  int iterations = 0;         ///< samples drawn
+  int rejected_samples = 0;   ///< of those, rejected by the consistency checks before fitting
+  std::string reason;         ///< why there is no estimate
+};
+
+RansacResult ransacPose(const std::vector<PatchCorrespondence>& correspondences, const RansacParams& params = {});
+
+}  // namespace gasp

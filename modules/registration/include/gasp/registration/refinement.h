@@ -1,0 +1,49 @@
+#pragma once
+/// \file refinement.h Robust point-to-plane refinement of T_target_source (Ceres).
+///
+/// With T = (R, t) and weights w, the residuals [m] are, for each patch correspondence,
+///   forward:  r_f = n_t . (R p_s + t - p_t)            source centroid vs the target patch's plane
+///   backward: r_b = n_s . (R^T (p_t - t) - p_s)        target centroid, mapped back, vs the source plane
+/// (backward only when bidirectional), and for each dense term r_d = n . (R p + t - q). The
+/// cost is 1/2 sum_i w_i rho(r_i^2) with rho the robust loss of scale a = loss_scale_m, w_i the
+/// term's weight, halved for the two directions of a patch pair (both measure nearly the same
+/// error, since n_t ~ R n_s, so together they count as one measurement):
+///   Huber:  rho(s) = s for s <= a^2, 2 a sqrt(s) - a^2 beyond;   Cauchy: rho(s) = a^2 log(1 + s/a^2).
+/// The pose lives on SO(3) x R^3: an Eigen quaternion with ceres::EigenQuaternionManifold
+/// (q <- [cos|d|, sin|d| d/|d|] * q, a rotation by 2|d| on the left) and a Euclidean
+/// translation. Levenberg-Marquardt, dense QR.
+///
+/// Information: the Jacobian J of the residuals at the solution (Problem::Evaluate, robustified:
+/// row i scaled by sqrt(w_i rho'(r_i^2)), Ceres' corrector for rho'' <= 0) is mapped to the left
+/// perturbation xi = [rho; omega] of registration_result.h, and I = J^T J / noise_sigma_m^2.
+/// The degeneracy check (degeneracy.h) runs on I; a degenerate estimate is not claimed.
+#include <vector>
+
+#include "gasp/core/pose.h"
+#include "gasp/registration/correspondence.h"
+#include "gasp/registration/degeneracy.h"
+#include "gasp/registration/registration_result.h"
+
+namespace gasp {
+
+enum class RobustLoss { kNone, kHuber, kCauchy };
+
+struct RefinementParams {
+  RobustLoss loss = RobustLoss::kHuber;
+  double loss_scale_m = 0.02;  ///< a, the robust loss's scale [m]
+  bool bidirectional = true;   ///< also the backward residuals (target centroids vs source planes)
+  int max_iterations = 50;     ///< Levenberg-Marquardt iterations; 0 evaluates at T_init only
+  double noise_sigma_m = 0.01; ///< sigma of a point-to-plane residual, scales the information [m]
+  DegeneracyParams degeneracy; ///< ratio 1e-2, max std 0.05 m
+};
+
+/// Throws gasp::Error naming the first invalid parameter.
+void validate(const RefinementParams& params);
+
+/// Refines T_init on all the given patch correspondences (their indices are the result's
+/// inliers) and the optional dense terms; either list may be empty, not both. Invalid input or
+/// a failed solve gives success = false with a reason; never throws for data.
+RegistrationResult refinePose(const std::vector<PatchCorrespondence>& correspondences, const Isometry3& T_init,
+                              const RefinementParams& params = {}, const std::vector<PointToPlane>& dense = {});
+
+}  // namespace gasp

@@ -1,0 +1,160 @@
+// Point-to-plane refinement: it recovers a perturbed pose, the dense terms work alone, and its
+// information matrix equals a numerical J^T W J / sigma^2.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+
+#include "gasp/core/error.h"
+#include "gasp/registration/refinement.h"
+#include "synthetic_scene.h"
+
+namespace {
+
+using namespace gasp;
+using namespace gasp::test;
+
+Isometry3 perturbed(const Isometry3& T) {
+  const Eigen::AngleAxisd rotation(3.0 * M_PI / 180, Eigen::Vector3d(1, -1, 2).normalized());
+  return Eigen::Translation3d(0.03, -0.02, 0.04) * rotation * T;
+}
+
+TEST(Refinement, RecoversAPerturbedPoseExactlyWithoutNoise) {
+  for (const Isometry3& T : testMotions()) {
+    const Scene s = makeScene(roomCorner(), T, {});
+    const RegistrationResult r = refinePose(s.correspondences, perturbed(T));
+    ASSERT_TRUE(r.success) << r.reason;
+    EXPECT_LT(translationError(r.T_target_source, T), 1e-6);
+    EXPECT_LT(rotationErrorDeg(r.T_target_source, T), 1e-5);
+    EXPECT_EQ(r.num_residuals, 2 * 200);
+    EXPECT_EQ(r.num_inliers, 200);
+    EXPECT_LT(r.rms_residual_m, 1e-7);
+    EXPECT_GT(r.iterations, 0);
+  }
+}
+
+TEST(Refinement, ImprovesAPerturbedPoseWithNoise) {
+  SceneOptions o;
+  o.centroid_sigma_m = 0.005;
+  o.normal_sigma_deg = 2.0;
+  for (const Isometry3& T : testMotions()) {
+    const Scene s = makeScene(roomCorner(), T, o);
+    const Isometry3 start = perturbed(T);
+    const RegistrationResult r = refinePose(s.correspondences, start);
+    ASSERT_TRUE(r.success) << r.reason;
+    EXPECT_LT(translationError(r.T_target_source, T), 0.01);
+    EXPECT_LT(rotationErrorDeg(r.T_target_source, T), 0.5);
+    EXPECT_LT(translationError(r.T_target_source, T), 0.2 * translationError(start, T));
+    EXPECT_GT(r.rms_residual_m, 0.003);  // the noise is still there
+    EXPECT_LT(r.median_residual_m, r.rms_residual_m * 1.5);
+  }
+}
+
+TEST(Refinement, DenseTermsAloneRecoverThePose) {
+  const Isometry3 T = testMotions()[3];
+  std::mt19937 rng(3);
+  std::vector<PointToPlane> dense;
+  for (int i = 0; i < 300; ++i) {
+    // A source point against its plane in the target, through another point of the same plane.
+    const auto planes = roomCorner();
+    const Plane& p = planes[i % 3];
+    std::uniform_real_distribution<double> s(-1.0, 1.0);
+    const Eigen::Vector3d a = p.centre + s(rng) * p.half_u * p.u + s(rng) * p.half_v * p.v;
+    const Eigen::Vector3d b = p.centre + s(rng) * p.half_u * p.u + s(rng) * p.half_v * p.v;
+    dense.push_back({a, T * b, T.linear() * p.normal, 1.0});
+  }
+  const RegistrationResult r = refinePose({}, perturbed(T), {}, dense);
+  ASSERT_TRUE(r.success) << r.reason;
+  EXPECT_LT(translationError(r.T_target_source, T), 1e-6);
+  EXPECT_LT(rotationErrorDeg(r.T_target_source, T), 1e-5);
+  EXPECT_EQ(r.num_residuals, 300);
+  EXPECT_EQ(r.num_inliers, 0);
+}
+
+/// Residuals of refinement.h at T, in the order the problem adds them (forward, backward).
+std::vector<double> residualsAt(const std::vector<PatchCorrespondence>& c, const Isometry3& T) {
+  std::vector<double> r;
+  for (const auto& k : c) {
+    r.push_back(k.n_target.dot(T * k.p_source - k.p_target));
+    r.push_back(k.n_source.dot(T.inverse() * k.p_target - k.p_source));
+  }
+  return r;
+}
+
+/// sum_i w_i rho'(r_i^2) J_i^T J_i / sigma^2 with J by central differences over xi = [rho; omega],
+/// T <- [Exp(omega) | rho] T (equal to Exp(xi) T to first order).
+Matrix6d numericalInformation(const std::vector<PatchCorrespondence>& c, const Isometry3& T, double huber_a,
+                              double sigma) {
+  const double h = 1e-6;
+  const std::vector<double> r0 = residualsAt(c, T);
+  Eigen::MatrixXd J(r0.size(), 6);
+  for (int k = 0; k < 6; ++k) {
+    Vector6d xi = Vector6d::Zero();
+    xi(k) = h;
+    auto moved = [&](const Vector6d& x) {
+      Isometry3 D = Isometry3::Identity();
+      const Eigen::Vector3d omega = x.tail<3>();
+      if (omega.norm() > 0) D.linear() = Eigen::AngleAxisd(omega.norm(), omega.normalized()).toRotationMatrix();
+      D.translation() = x.head<3>();
+      return residualsAt(c, D * T);
+    };
+    const auto plus = moved(xi), minus = moved(-xi);
+    for (std::size_t i = 0; i < r0.size(); ++i) J(i, k) = (plus[i] - minus[i]) / (2 * h);
+  }
+  Matrix6d I = Matrix6d::Zero();
+  for (std::size_t i = 0; i < r0.size(); ++i) {
+    const double w = 0.5 * c[i / 2].weight * std::min(1.0, huber_a / std::abs(r0[i]));  // halved, Huber rho'
+    I += w * J.row(i).transpose() * J.row(i);
+  }
+  return I / (sigma * sigma);
+}
+
+TEST(Refinement, InformationMatchesNumericalJacobian) {
+  SceneOptions o;
+  o.n = 12;
+  o.centroid_sigma_m = 0.03;  // some residuals beyond the Huber scale: their rho' < 1
+  o.normal_sigma_deg = 5.0;
+  const Isometry3 T = testMotions()[2];
+  Scene s = makeScene(roomCorner(), T, o);
+  for (std::size_t i = 0; i < s.correspondences.size(); ++i) s.correspondences[i].weight = 0.5 + 0.1 * i;
+  RefinementParams p;
+  p.max_iterations = 0;  // evaluate at T
+  p.noise_sigma_m = 0.02;
+  const RegistrationResult r = refinePose(s.correspondences, T, p);
+  const Matrix6d expected = numericalInformation(s.correspondences, T, p.loss_scale_m, p.noise_sigma_m);
+  EXPECT_LT((r.information - expected).norm(), 1e-5 * expected.norm()) << r.information << "\n\n" << expected;
+  int beyond = 0;
+  for (double v : residualsAt(s.correspondences, T)) beyond += std::abs(v) > p.loss_scale_m;
+  EXPECT_GT(beyond, 0);  // the robust weights were exercised
+}
+
+TEST(Refinement, InformationIsSymmetricPositiveSemidefinite) {
+  SceneOptions o;
+  o.outlier_fraction = 0.3;  // outliers: large residuals, down-weighted by the loss
+  o.centroid_sigma_m = 0.005;
+  const Isometry3 T = testMotions()[4];
+  const Scene s = makeScene(roomCorner(), T, o);
+  for (RobustLoss loss : {RobustLoss::kNone, RobustLoss::kHuber, RobustLoss::kCauchy}) {
+    RefinementParams p;
+    p.loss = loss;
+    const RegistrationResult r = refinePose(s.correspondences, T, p);
+    EXPECT_EQ(r.information, r.information.transpose());
+    const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(r.information);
+    EXPECT_GT(eig.eigenvalues().minCoeff(), -1e-9 * eig.eigenvalues().maxCoeff());
+    EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
+  }
+}
+
+TEST(Refinement, BadInputGivesAReason) {
+  Scene s = makeScene(roomCorner(), Isometry3::Identity(), {});
+  EXPECT_FALSE(refinePose({}, Isometry3::Identity()).success);
+  EXPECT_NE(refinePose({}, Isometry3::Identity()).reason.find("no residuals"), std::string::npos);
+  s.correspondences[4].n_target.x() = std::numeric_limits<double>::infinity();
+  const RegistrationResult r = refinePose(s.correspondences, Isometry3::Identity());
+  EXPECT_FALSE(r.success);
+  EXPECT_NE(r.reason.find("correspondence 4"), std::string::npos) << r.reason;
+  RefinementParams p;
+  p.noise_sigma_m = -1.0;
+  EXPECT_THROW(refinePose({}, Isometry3::Identity(), p), gasp::Error);
+}
+
+}  // namespace
