@@ -1,0 +1,23 @@
+#pragma once
+/// \file depth_view.h One depth view ready for association: the depth image, its intrinsics and
+/// its depth-superpixel decomposition (paper III-A).
+#include <opencv2/core.hpp>
+
+#include "gasp/core/camera_intrinsics.h"
+#include "gasp/superpixels/superpixel_params.h"
+#include "gasp/superpixels/surface_patch.h"
+
+namespace gasp {
+
+struct DepthView {
+  cv::Mat depth_m;  ///< CV_32FC1 [m], 0 or NaN = no data
+  CameraIntrinsics intrinsics;
+  SuperpixelSegmentation segmentation;
+};
+
+/// Segments `depth_m` (see segmentDepthSuperpixels(); throws gasp::Error for a wrong image type
+/// or size). A view without valid depth has no patches; it is not an error here.
+DepthView makeDepthView(const cv::Mat& depth_m, const CameraIntrinsics& intrinsics,
+                        const SuperpixelParams& params = {});
+
+}  // namespace gasp

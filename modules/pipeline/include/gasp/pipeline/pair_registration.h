@@ -1,0 +1,62 @@
+#pragma once
+/// \file pair_registration.h The whole GASP front-end for one pair of depth views: patch
+/// associations (paper III-B..E, association module), RANSAC over the associated centroids and
+/// point-to-plane refinement with the patch normals (registration module), then an optional
+/// dense refinement: projective point-to-plane terms from the patches' pixels
+/// (projective_terms.h), re-associated at each round with a shrinking distance gate.
+/// The result is what a SLAM system consumes: T_target_source with its information matrix, or
+/// no estimate with the reason (too few associations, no consensus, degenerate geometry).
+#include <string>
+#include <vector>
+
+#include "gasp/association/view_association.h"
+#include "gasp/pipeline/depth_view.h"
+#include "gasp/pipeline/projective_terms.h"
+#include "gasp/pipeline/view_degeneracy.h"
+#include "gasp/registration/register_patches.h"
+
+namespace gasp {
+
+struct PairParams {
+  SuperpixelParams superpixels;     ///< used by callers that build the views (makeDepthView)
+  /// Checked first: a view whose own geometry cannot fix a pose (one plane, parallel planes)
+  /// gives no estimate with degenerate = true, whatever the associations.
+  ViewDegeneracyParams view_degeneracy;
+  AssociationParams association;    ///< k 30, C 75, lambda 0.5, mutual check
+  PoseEstimationParams pose;        ///< RANSAC 0.05 m / 20 deg, Huber 0.02 m
+  bool refine = true;               ///< false: RANSAC pose only (no patch or dense refinement)
+  /// Dense rounds after the patch refinement (0 = none). Each round re-associates the pixels at
+  /// the current pose; the distance gate of round k is max(dense_gates_m[k], last entry).
+  int dense_rounds = 3;
+  std::vector<double> dense_gates_m{0.10, 0.05, 0.03};
+  ProjectiveTermParams projective;  ///< pixel step 4, normals within 20 deg
+  /// Degeneracy rule of the dense problem. Its thousands of pixel terms are not independent, so
+  /// its absolute standard deviations are optimistic and only the eigenvalue ratio separates a
+  /// plane from a scene: a noisy single plane gives ~1e-4 (patch normals jitter by ~1 deg), a desk
+  /// or a room corner above 3e-3 (docs/pipeline.md).
+  DegeneracyParams dense_degeneracy{1e-3, 0.05};
+};
+
+/// Throws gasp::Error naming the first invalid parameter.
+void validate(const PairParams& params);
+
+/// Wall-clock time per stage [ms] (segmentation is timed by the views themselves).
+struct PairTimings {
+  double association_ms = 0, ransac_ms = 0, refine_ms = 0, dense_ms = 0;
+  double total() const { return association_ms + ransac_ms + refine_ms + dense_ms; }
+};
+
+struct PairResult {
+  RegistrationResult pose;  ///< pose.success = an estimate is claimed; pose.reason otherwise
+  AssociationResult association;
+  std::vector<PatchCorrespondence> correspondences;  ///< one per association, same order
+  int dense_terms = 0;  ///< dense terms in the last round
+  PairTimings timings;
+};
+
+/// Registers `source` (view A) to `target` (view B): pose.T_target_source maps A's camera frame
+/// into B's. Never throws for data (empty views, NaN, no overlap give pose.success = false with
+/// pose.reason); throws gasp::Error for invalid parameters.
+PairResult registerViews(const DepthView& source, const DepthView& target, const PairParams& params = {});
+
+}  // namespace gasp

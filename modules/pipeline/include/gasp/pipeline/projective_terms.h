@@ -1,0 +1,28 @@
+#pragma once
+/// \file projective_terms.h Dense point-to-plane terms from the patches' pixels, for the final
+/// refinement of a pair's pose: each sampled source pixel that lies in a patch is mapped by the
+/// current T_target_source and projected into the target image (projective association, as in
+/// KinectFusion); the target pixel's point and its patch's normal give the plane. Terms whose
+/// points are further apart than a distance gate, or whose patch normals disagree, are left out.
+#include <vector>
+
+#include "gasp/core/pose.h"
+#include "gasp/pipeline/depth_view.h"
+#include "gasp/registration/correspondence.h"
+
+namespace gasp {
+
+struct ProjectiveTermParams {
+  int pixel_step = 4;              ///< sample every pixel_step-th pixel in u and v (>= 1)
+  double max_distance_m = 0.05;    ///< gate on |T p_source - q_target| [m] (> 0)
+  double max_normal_angle_deg = 20.0;  ///< gate on the angle between the two patch normals [deg]
+};
+
+/// Throws gasp::Error for a parameter out of range.
+void validate(const ProjectiveTermParams& params);
+
+/// The terms for the current pose. Empty when nothing overlaps.
+std::vector<PointToPlane> projectiveTerms(const DepthView& source, const DepthView& target,
+                                          const Isometry3& T_target_source, const ProjectiveTermParams& params = {});
+
+}  // namespace gasp

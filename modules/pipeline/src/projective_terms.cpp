@@ -1,0 +1,54 @@
+#include "gasp/pipeline/projective_terms.h"
+
+#include <cmath>
+
+#include "gasp/core/depth_image.h"
+#include "gasp/core/error.h"
+
+namespace gasp {
+
+void validate(const ProjectiveTermParams& p) {
+  if (p.pixel_step < 1) throw Error("ProjectiveTermParams: pixel_step must be >= 1");
+  if (!(p.max_distance_m > 0) || !std::isfinite(p.max_distance_m))
+    throw Error("ProjectiveTermParams: max_distance_m must be finite and > 0");
+  if (!(p.max_normal_angle_deg > 0 && p.max_normal_angle_deg <= 180))
+    throw Error("ProjectiveTermParams: max_normal_angle_deg must be in (0, 180]");
+}
+
+std::vector<PointToPlane> projectiveTerms(const DepthView& source, const DepthView& target,
+                                          const Isometry3& T_target_source, const ProjectiveTermParams& p) {
+  validate(p);
+  std::vector<PointToPlane> terms;
+  const cv::Mat& ls = source.segmentation.labels;
+  const cv::Mat& lt = target.segmentation.labels;
+  if (ls.empty() || lt.empty() || !T_target_source.matrix().allFinite()) return terms;
+  const double cos_max = std::cos(p.max_normal_angle_deg * M_PI / 180.0);
+  const double max_d2 = p.max_distance_m * p.max_distance_m;
+  const Eigen::Matrix3d R = T_target_source.linear();
+  for (int v = 0; v < ls.rows; v += p.pixel_step)
+    for (int u = 0; u < ls.cols; u += p.pixel_step) {
+      const int la = ls.at<int>(v, u);
+      if (la < 0) continue;
+      const float z = source.depth_m.at<float>(v, u);
+      if (!isValidDepth(z)) continue;
+      const Eigen::Vector3d p_s = source.intrinsics.unproject(u, v, z);
+      const Eigen::Vector3d p_t = T_target_source * p_s;
+      double uf = 0, vf = 0;
+      if (!target.intrinsics.project(p_t, uf, vf)) continue;
+      const int ut = static_cast<int>(std::lround(uf)), vt = static_cast<int>(std::lround(vf));
+      if (ut < 0 || vt < 0 || ut >= lt.cols || vt >= lt.rows) continue;
+      const int lb = lt.at<int>(vt, ut);
+      if (lb < 0) continue;
+      const float zt = target.depth_m.at<float>(vt, ut);
+      if (!isValidDepth(zt)) continue;
+      const Eigen::Vector3d q = target.intrinsics.unproject(ut, vt, zt);
+      if ((q - p_t).squaredNorm() > max_d2) continue;
+      const Eigen::Vector3d& n_t = target.segmentation.patches[static_cast<std::size_t>(lb)].normal;
+      const Eigen::Vector3d n_s = R * source.segmentation.patches[static_cast<std::size_t>(la)].normal;
+      if (n_s.dot(n_t) < cos_max) continue;
+      terms.push_back(PointToPlane{p_s, q, n_t.normalized(), 1.0});
+    }
+  return terms;
+}
+
+}  // namespace gasp
