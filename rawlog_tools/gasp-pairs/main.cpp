@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
     if (!pairs_csv_path.empty()) {
       pairs_csv.open(pairs_csv_path);
       if (!pairs_csv) throw gasp::Error("cannot write " + pairs_csv_path);
-      pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,reason\n";
+      pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,reason\n";
     }
     for (const std::size_t skip : skips) {
       auto pairs = gasp::eval::makePairs(ds.size(), skip, starts_every);
@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
           if (pairs_csv) {
             pairs_csv << skip << ',' << method << ',' << i << ',' << j << ',' << (o.estimated ? 1 : 0) << ','
                       << o.t_err_m << ',' << o.r_err_deg << ',' << o.ms << ',' << r.association.associations.size() << ','
-                      << r.pose.num_inliers << ",\"" << o.reason << "\"\n";
+                      << r.pose.num_inliers << ',' << r.visibility.violation_ratio << ",\"" << o.reason << "\"\n";
           }
         }
         ++done;

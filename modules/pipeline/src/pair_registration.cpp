@@ -28,6 +28,18 @@ std::vector<PatchCorrespondence> toCorrespondences(const AssociationResult& r, c
   return out;
 }
 
+/// The free-space check of a claimed pose (visibility_check.h): a failure withdraws the claim.
+void verify(const DepthView& source, const DepthView& target, const PairParams& params, PairResult& r) {
+  if (!r.pose.success) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  r.visibility = checkVisibility(source, target, r.pose.T_target_source, params.visibility);
+  r.timings.dense_ms += msSince(t0);
+  if (!r.visibility.passed) {
+    r.pose.success = false;
+    r.pose.reason = r.visibility.reason;
+  }
+}
+
 }  // namespace
 
 void validate(const PairParams& p) {
@@ -36,6 +48,7 @@ void validate(const PairParams& p) {
   validate(p.pose);
   validate(p.projective);
   validate(p.dense_degeneracy);
+  validate(p.visibility);
   if (!(p.view_degeneracy.min_eigenvalue_ratio >= 0 && p.view_degeneracy.min_eigenvalue_ratio < 1))
     throw Error("PairParams: view_degeneracy.min_eigenvalue_ratio must be in [0, 1)");
   if (p.dense_rounds < 0) throw Error("PairParams: dense_rounds must be >= 0");
@@ -77,7 +90,11 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
   // to the dense rounds: the pixels of the whole overlap may observe what the patches did not.
   // The dense problem then gives the verdict.
   const bool pose_found = r.pose.success || (r.pose.degenerate && !r.pose.inliers.empty());
-  if (!pose_found || !params.refine || params.dense_rounds == 0) return r;
+  if (!pose_found) return r;
+  if (!params.refine || params.dense_rounds == 0) {
+    verify(source, target, params, r);
+    return r;
+  }
 
   // Dense rounds: the patch inliers stay in the problem (they anchor it where pixels are few).
   t0 = std::chrono::steady_clock::now();
@@ -112,6 +129,7 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
   current.refine_ms = r.pose.refine_ms;
   r.pose = current;
   r.timings.dense_ms = msSince(t0);
+  verify(source, target, params, r);
   return r;
 }
 

@@ -13,6 +13,7 @@
 #include "gasp/pipeline/depth_view.h"
 #include "gasp/pipeline/projective_terms.h"
 #include "gasp/pipeline/view_degeneracy.h"
+#include "gasp/pipeline/visibility_check.h"
 #include "gasp/registration/register_patches.h"
 
 namespace gasp {
@@ -35,6 +36,9 @@ struct PairParams {
   /// plane from a scene: a noisy single plane gives ~1e-4 (patch normals jitter by ~1 deg), a desk
   /// or a room corner above 3e-3 (docs/pipeline.md).
   DegeneracyParams dense_degeneracy{1e-3, 0.05};
+  /// Last: a pose whose mapped views contradict each other's free space is not claimed
+  /// (look-alike structure, repeated objects).
+  VisibilityCheckParams visibility;
 };
 
 /// Throws gasp::Error naming the first invalid parameter.
@@ -51,6 +55,7 @@ struct PairResult {
   AssociationResult association;
   std::vector<PatchCorrespondence> correspondences;  ///< one per association, same order
   int dense_terms = 0;  ///< dense terms in the last round
+  VisibilityCheck visibility;  ///< of the final pose (when one was found)
   PairTimings timings;
 };
 

@@ -1,0 +1,85 @@
+#include "gasp/pipeline/visibility_check.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "gasp/core/depth_image.h"
+#include "gasp/core/error.h"
+
+namespace gasp {
+
+void validate(const VisibilityCheckParams& p) {
+  if (p.pixel_step < 1) throw Error("VisibilityCheckParams: pixel_step must be >= 1");
+  if (!(p.gate_m > 0) || !(p.gate_per_m2 >= 0) || !std::isfinite(p.gate_m) || !std::isfinite(p.gate_per_m2))
+    throw Error("VisibilityCheckParams: gate_m must be > 0 and gate_per_m2 >= 0, both finite");
+  if (!(p.max_violation_ratio >= 0 && p.max_violation_ratio <= 1))
+    throw Error("VisibilityCheckParams: max_violation_ratio must be in [0, 1]");
+  if (p.min_consistent < 0) throw Error("VisibilityCheckParams: min_consistent must be >= 0");
+}
+
+namespace {
+
+struct Counts {
+  int consistent = 0, occluded = 0, violations = 0;
+  double ratio() const {
+    const int n = consistent + violations;
+    return n ? static_cast<double>(violations) / n : 0.0;
+  }
+};
+
+Counts countOneWay(const DepthView& from, const DepthView& to, const Isometry3& T_to_from, const VisibilityCheckParams& p) {
+  Counts c;
+  const cv::Mat& d = from.depth_m;
+  for (int v = 0; v < d.rows; v += p.pixel_step)
+    for (int u = 0; u < d.cols; u += p.pixel_step) {
+      const float z0 = d.at<float>(v, u);
+      if (!isValidDepth(z0)) continue;
+      const Eigen::Vector3d q = T_to_from * from.intrinsics.unproject(u, v, z0);
+      double uf = 0, vf = 0;
+      if (!to.intrinsics.project(q, uf, vf)) continue;
+      const int ut = static_cast<int>(std::lround(uf)), vt = static_cast<int>(std::lround(vf));
+      if (ut < 0 || vt < 0 || ut >= to.depth_m.cols || vt >= to.depth_m.rows) continue;
+      const float zt = to.depth_m.at<float>(vt, ut);
+      if (!isValidDepth(zt)) continue;
+      const double gate = p.gate_m + p.gate_per_m2 * zt * zt;
+      if (std::abs(q.z() - zt) <= gate) ++c.consistent;
+      else if (q.z() > zt) ++c.occluded;
+      else ++c.violations;
+    }
+  return c;
+}
+
+}  // namespace
+
+VisibilityCheck checkVisibility(const DepthView& source, const DepthView& target, const Isometry3& T_target_source,
+                                const VisibilityCheckParams& p) {
+  validate(p);
+  VisibilityCheck out;
+  if (!T_target_source.matrix().allFinite()) {
+    out.reason = "the pose is not finite";
+    return out;
+  }
+  const Counts st = countOneWay(source, target, T_target_source, p);
+  const Counts ts = countOneWay(target, source, T_target_source.inverse(), p);
+  out.consistent = st.consistent + ts.consistent;
+  out.occluded = st.occluded + ts.occluded;
+  out.violations = st.violations + ts.violations;
+  out.violation_ratio = std::max(st.ratio(), ts.ratio());
+  char buf[200];
+  if (std::min(st.consistent, ts.consistent) < p.min_consistent) {
+    std::snprintf(buf, sizeof buf, "visibility check: only %d consistent samples (at least %d needed): the views barely overlap at this pose",
+                  std::min(st.consistent, ts.consistent), p.min_consistent);
+    out.reason = buf;
+    return out;
+  }
+  if (out.violation_ratio > p.max_violation_ratio) {
+    std::snprintf(buf, sizeof buf, "visibility check: %.0f%% of the overlapping samples lie in space the other view saw as empty (at most %.0f%%)",
+                  100.0 * out.violation_ratio, 100.0 * p.max_violation_ratio);
+    out.reason = buf;
+    return out;
+  }
+  out.passed = true;
+  return out;
+}
+
+}  // namespace gasp
