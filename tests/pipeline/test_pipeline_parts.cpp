@@ -1,0 +1,82 @@
+// The pipeline's own parts on hand-made views: projective terms, view degeneracy, visibility.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include "gasp/core/error.h"
+#include "gasp/pipeline/projective_terms.h"
+#include "gasp/pipeline/view_degeneracy.h"
+#include "gasp/pipeline/visibility_check.h"
+
+using namespace gasp;
+
+namespace {
+
+/// A view of a fronto-parallel wall at 2 m, one patch per 80 x 80 pixel block (hand-made
+/// segmentation: the parts under test only read labels, patch normals and depth).
+DepthView wallView(double z = 2.0) {
+  DepthView v;
+  v.intrinsics = CameraIntrinsics::rosDefault();
+  v.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(static_cast<float>(z)));
+  v.segmentation.labels = cv::Mat(480, 640, CV_32S);
+  for (int r = 0; r < 480; ++r)
+    for (int c = 0; c < 640; ++c) v.segmentation.labels.at<int>(r, c) = (r / 80) * 8 + c / 80;
+  for (int id = 0; id < 48; ++id) {
+    SurfacePatch p;
+    p.id = id;
+    const double u = (id % 8) * 80 + 39.5, vv = (id / 8) * 80 + 39.5;
+    p.centroid = v.intrinsics.unproject(u, vv, z);
+    p.normal = Eigen::Vector3d(0, 0, -1);
+    p.area_m2 = 0.09;
+    v.segmentation.patches.push_back(p);
+  }
+  return v;
+}
+
+TEST(ProjectiveTerms, IdentityGivesZeroResidualTermsOnTheWall) {
+  const DepthView v = wallView();
+  const auto terms = projectiveTerms(v, v, Isometry3::Identity());
+  EXPECT_EQ(terms.size(), static_cast<std::size_t>((640 / 4) * (480 / 4)));
+  for (const auto& t : terms) EXPECT_NEAR(t.n_target.dot(t.p_source - t.q_target), 0.0, 1e-9);
+}
+
+TEST(ProjectiveTerms, DistanceGateDropsFarPoints) {
+  const DepthView a = wallView(2.0), b = wallView(2.2);
+  EXPECT_TRUE(projectiveTerms(a, b, Isometry3::Identity()).empty());  // 0.2 m > 0.05 m gate
+  ProjectiveTermParams p;
+  p.max_distance_m = 0.25;
+  EXPECT_FALSE(projectiveTerms(a, b, Isometry3::Identity(), p).empty());
+  p.pixel_step = 0;
+  EXPECT_THROW(projectiveTerms(a, b, Isometry3::Identity(), p), Error);
+}
+
+TEST(ViewDegeneracy, AWallIsDegenerateACornerIsNot) {
+  DepthView v = wallView();
+  const auto d = analyseViewGeometry(v.segmentation);
+  EXPECT_TRUE(d.degenerate);
+  EXPECT_EQ(d.unobservable_directions.cols(), 3);
+  // Turn a third of the patches into a floor and a third into a side wall: a corner.
+  for (auto& p : v.segmentation.patches) {
+    if (p.id % 3 == 1) p.normal = Eigen::Vector3d(0, -1, 0);
+    if (p.id % 3 == 2) p.normal = Eigen::Vector3d(1, 0, 0);
+  }
+  EXPECT_FALSE(analyseViewGeometry(v.segmentation).degenerate);
+  EXPECT_TRUE(analyseViewGeometry(SuperpixelSegmentation{}).degenerate);
+}
+
+TEST(VisibilityCheck, TruePosePassesAPoseInFreeSpaceFails) {
+  const DepthView a = wallView(2.0);
+  EXPECT_TRUE(checkVisibility(a, a, Isometry3::Identity()).passed);
+  // Mapping the wall 0.5 m towards the camera puts it in space the other view saw as empty.
+  Isometry3 T = Isometry3::Identity();
+  T.translation() = Eigen::Vector3d(0, 0, -0.5);
+  const auto c = checkVisibility(a, a, T);
+  EXPECT_FALSE(c.passed);
+  EXPECT_GT(c.violation_ratio, 0.9);
+  EXPECT_FALSE(c.reason.empty());
+  // Views that do not overlap at this pose: too few consistent samples.
+  T.translation() = Eigen::Vector3d(50, 0, 0);
+  EXPECT_FALSE(checkVisibility(a, a, T).passed);
+}
+
+}  // namespace
