@@ -1,68 +1,132 @@
-// gasp-associate: dense patch associations between two depth frames of a TUM folder.
-//   gasp-associate --tum DIR --from I --to J [--intrinsics P] [--k 30] [--candidates 75] [--lambda 0.5]
-//                  [--r-dev 0.04] [--theta-dev 10] [--no-mutual]
-// I and J are frame indices in depth.txt order. Prints the patch count of each view, the number of
-// associations and, where both frames have ground truth, `precision:` and `density:` lines
-// (definitions in gasp/association/association_quality.h). Exit codes: 0 associations found,
-// 1 bad input, 2 usage error, 3 no association (the reason is printed).
+// gasp-associate: patch associations and the relative pose between two depth views.
+//   gasp-associate --tum DIR --from I --to J [--out PICTURE.png] [options]
+//   gasp-associate --depth-a A.png --depth-b B.png [--intrinsics fr1|fr2|fr3|ros|FILE] [--depth-scale 5000]
+// I and J are frame indices in depth.txt order. Prints the patch count of each view, the number
+// of associations, time per stage, the pose T_b_a (maps A's camera frame into B's) with its
+// inliers and information, and, where both frames have ground truth, `precision:`, `density:`
+// (definitions in gasp/association/association_quality.h) and the pose error. Writes a picture:
+// both views side by side, associated patches in the same colour, others grey, lines for a
+// sample of associations (green correct, red wrong, white when there is no ground truth).
+// Exit codes: 0 pose estimated, 1 bad input, 2 usage error, 3 no association, 4 associations but
+// no pose estimate (the reason is printed).
 #include <CLI/CLI.hpp>
+#include <opencv2/imgcodecs.hpp>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
+#include "gasp/association/association_picture.h"
 #include "gasp/association/association_quality.h"
-#include "gasp/association/view_association.h"
+#include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
 #include "gasp/core/tum_dataset.h"
-#include "gasp/superpixels/depth_superpixels.h"
+#include "gasp/pipeline/pair_registration.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"gasp-associate: patch-to-patch associations between two depth views, from geometry alone"};
-  std::string tum_dir, intrinsics_arg;
+  CLI::App app{"gasp-associate: patch-to-patch associations and the relative pose between two depth views, from geometry alone"};
+  std::string tum_dir, depth_a_path, depth_b_path, intrinsics_arg, out_path;
   std::size_t from = 0, to = 0;
-  gasp::AssociationParams params;
-  app.add_option("--tum", tum_dir, "TUM RGB-D folder")->required();
-  app.add_option("--from", from, "index of view A in depth.txt order")->required();
-  app.add_option("--to", to, "index of view B in depth.txt order")->required();
-  app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: the folder's)");
-  app.add_option("--k", params.feature_sets.neighbourhood.k, "neighbourhood size (0 = full view)")->capture_default_str();
-  app.add_option("--candidates", params.candidates, "KD-tree candidates per patch (C)")->capture_default_str();
-  app.add_option("--lambda", params.lambda, "gating on the normalised edit distance")->capture_default_str();
-  double theta_dev_deg = params.match.theta_dev_rad * 180.0 / M_PI;
-  app.add_option("--r-dev", params.match.r_dev_m, "match tolerance of the distance components [m]")->capture_default_str();
+  double depth_scale = gasp::kTumDepthUnitsPerMetre;
+  gasp::PairParams params;
+  auto* tum = app.add_option("--tum", tum_dir, "TUM RGB-D folder");
+  app.add_option("--from", from, "index of view A in depth.txt order")->needs(tum);
+  app.add_option("--to", to, "index of view B in depth.txt order")->needs(tum);
+  auto* da = app.add_option("--depth-a", depth_a_path, "view A: a 16-bit depth PNG")->excludes(tum);
+  auto* db = app.add_option("--depth-b", depth_b_path, "view B: a 16-bit depth PNG")->excludes(tum);
+  da->needs(db);
+  db->needs(da);
+  app.add_option("--depth-scale", depth_scale, "raw depth units per metre (with --depth-a/-b)")->capture_default_str();
+  app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: the folder's; ros for PNGs)");
+  app.add_option("--out", out_path, "association picture (default: associations_I_J.png, or associations.png for PNGs)");
+  app.add_option("--k", params.association.feature_sets.neighbourhood.k, "neighbourhood size (0 = full view)")->capture_default_str();
+  app.add_option("--candidates", params.association.candidates, "KD-tree candidates per patch (C)")->capture_default_str();
+  app.add_option("--lambda", params.association.lambda, "gating on the normalised edit distance")->capture_default_str();
+  double theta_dev_deg = params.association.match.theta_dev_rad * 180.0 / M_PI;
+  app.add_option("--r-dev", params.association.match.r_dev_m, "match tolerance of the distance components [m]")->capture_default_str();
   app.add_option("--theta-dev", theta_dev_deg, "match tolerance of the angle components [deg]")->capture_default_str();
-  app.add_flag("!--no-mutual", params.mutual_check, "keep one-way best partners too (no mutual check)");
-  CLI11_PARSE(app, argc, argv);
-  params.match.theta_dev_rad = theta_dev_deg * M_PI / 180.0;
+  app.add_flag("!--no-mutual", params.association.mutual_check, "keep one-way best partners too (no mutual check)");
+  app.add_flag("!--no-refine", params.refine, "RANSAC pose only (no point-to-plane refinement)");
   try {
-    gasp::TumDataset::Options opt;
-    if (!intrinsics_arg.empty()) opt.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg);
-    const auto ds = gasp::TumDataset::open(tum_dir, opt);
-    const cv::Mat depth_a = ds.loadDepth(from), depth_b = ds.loadDepth(to);
-    const auto seg_a = gasp::segmentDepthSuperpixels(depth_a, ds.intrinsics());
-    const auto seg_b = gasp::segmentDepthSuperpixels(depth_b, ds.intrinsics());
-    const auto result = gasp::associateViews(gasp::toPatchGeometry(seg_a.patches), gasp::toPatchGeometry(seg_b.patches), params);
-    const auto& s = result.stats;
-    std::printf("patches_a: %zu\npatches_b: %zu\nassociations: %zu\n", seg_a.patches.size(), seg_b.patches.size(),
-                result.associations.size());
-    std::printf("time_ms: segmentation %.1f + %.1f, features %.1f, kd-tree %.1f, matching %.1f\n",
-                seg_a.timings.total(), seg_b.timings.total(), s.features_ms, s.tree_ms, s.matching_ms);
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;  // --help: 0; any usage error: 2
+  }
+  if (tum_dir.empty() && depth_a_path.empty()) {
+    std::cerr << "error: give --tum DIR --from I --to J, or --depth-a A.png --depth-b B.png\n";
+    return 2;
+  }
+  params.association.match.theta_dev_rad = theta_dev_deg * M_PI / 180.0;
+  try {
+    cv::Mat depth_a, depth_b;
+    gasp::CameraIntrinsics K;
+    std::optional<gasp::Isometry3> T_b_a_true;
+    if (!tum_dir.empty()) {
+      gasp::TumDataset::Options opt;
+      if (!intrinsics_arg.empty()) opt.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg);
+      const auto ds = gasp::TumDataset::open(tum_dir, opt);
+      depth_a = ds.loadDepth(from);
+      depth_b = ds.loadDepth(to);
+      K = ds.intrinsics();
+      const auto& fa = ds.frame(from);
+      const auto& fb = ds.frame(to);
+      if (fa.T_world_camera && fb.T_world_camera) T_b_a_true = gasp::relativePose(*fb.T_world_camera, *fa.T_world_camera);
+      if (out_path.empty()) out_path = "associations_" + std::to_string(from) + "_" + std::to_string(to) + ".png";
+    } else {
+      K = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg.empty() ? "ros" : intrinsics_arg);
+      depth_a = gasp::loadDepth(depth_a_path, depth_scale);
+      depth_b = gasp::loadDepth(depth_b_path, depth_scale);
+      if (out_path.empty()) out_path = "associations.png";
+    }
+    const auto va = gasp::makeDepthView(depth_a, K, params.superpixels);
+    const auto vb = gasp::makeDepthView(depth_b, K, params.superpixels);
+    const auto r = gasp::registerViews(va, vb, params);
+    const auto& s = r.association.stats;
+    std::printf("patches_a: %zu\npatches_b: %zu\nassociations: %zu\n", va.segmentation.patches.size(),
+                vb.segmentation.patches.size(), r.association.associations.size());
+    std::printf("time_ms: segmentation %.1f + %.1f, association %.1f (features %.1f, kd-tree %.1f, matching %.1f), "
+                "ransac %.1f, refinement %.1f, dense+check %.1f\n",
+                va.segmentation.timings.total(), vb.segmentation.timings.total(), r.timings.association_ms,
+                s.features_ms, s.tree_ms, s.matching_ms, r.timings.ransac_ms, r.timings.refine_ms, r.timings.dense_ms);
     std::printf("comparisons: %zu of %zu without KD-tree, %zu cut early, %zu gated out, %zu not mutual\n",
                 s.comparisons, s.comparisons_full, s.cut_early, s.gated_out, s.not_mutual);
-    const auto& fa = ds.frame(from);
-    const auto& fb = ds.frame(to);
-    if (fa.T_world_camera && fb.T_world_camera) {
-      const auto q = gasp::evaluateAssociations(result.associations, seg_a, seg_b, depth_b, ds.intrinsics(),
-                                                gasp::relativePose(*fb.T_world_camera, *fa.T_world_camera));
+    std::vector<unsigned char> correct;
+    if (T_b_a_true) {
+      const auto q = gasp::evaluateAssociations(r.association.associations, va.segmentation, vb.segmentation,
+                                                depth_b, K, *T_b_a_true);
+      for (const auto& a : r.association.associations)
+        correct.push_back(gasp::isSameSurface(va.segmentation.patches[static_cast<std::size_t>(a.a)],
+                                              vb.segmentation.patches[static_cast<std::size_t>(a.b)], *T_b_a_true));
       std::printf("correct: %d\nwith_true_partner: %d\nprecision: %.3f\ndensity: %.3f\n", q.correct,
                   q.with_true_partner, q.precision(), q.density());
     } else {
       std::printf("ground truth: not available for both frames\n");
     }
-    if (result.associations.empty()) {
-      std::printf("no associations: %s\n", result.reason.c_str());
+    const cv::Mat picture = gasp::drawAssociations(depth_a, va.segmentation, K, depth_b, vb.segmentation, K,
+                                                   r.association.associations, correct);
+    if (!cv::imwrite(out_path, picture)) throw gasp::Error("cannot write the picture " + out_path);
+    std::printf("picture: %s\n", out_path.c_str());
+    if (r.association.associations.empty()) {
+      std::printf("no associations: %s\n", r.association.reason.c_str());
       return 3;
+    }
+    std::printf("inliers: %d\n", r.pose.num_inliers);
+    if (!r.pose.success) {
+      std::printf("pose: none (%s)\n", r.pose.reason.c_str());
+      return 4;
+    }
+    const auto& T = r.pose.T_target_source;
+    const Eigen::Quaterniond qt(T.linear());
+    std::printf("pose_T_b_a: %.5f %.5f %.5f %.6f %.6f %.6f %.6f (tx ty tz qx qy qz qw)\n", T.translation().x(),
+                T.translation().y(), T.translation().z(), qt.x(), qt.y(), qt.z(), qt.w());
+    std::printf("residual_rms_m: %.4f\ninformation_diag: ", r.pose.rms_residual_m);
+    for (int i = 0; i < 6; ++i) std::printf("%.4g%s", r.pose.information(i, i), i < 5 ? " " : " (tx ty tz rx ry rz)\n");
+    std::printf("visibility_violations: %.3f\n", r.visibility.violation_ratio);
+    if (T_b_a_true) {
+      const gasp::Isometry3 E = T_b_a_true->inverse() * T;
+      std::printf("pose_error: %.4f m %.3f deg\n", gasp::translationNorm(E), gasp::rotationAngle(E) * 180.0 / M_PI);
     }
   } catch (const gasp::Error& e) {
     std::cerr << "error: " << e.what() << '\n';

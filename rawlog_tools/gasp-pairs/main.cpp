@@ -56,7 +56,11 @@ int main(int argc, char** argv) {
   app.add_option("--gt-offset", gt_offset,
                  "look ground truth up at depth timestamp + OFFSET [s] (nearest within 0.02 s; TUM fr1 depth lags "
                  "the motion capture, -0.02 fits better)")->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;  // --help: 0; any usage error: 2
+  }
   try {
     gasp::TumDataset::Options opt;
     if (!intrinsics_arg.empty()) opt.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg);
