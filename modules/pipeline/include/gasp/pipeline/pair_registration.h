@@ -24,7 +24,11 @@ struct PairParams {
   /// gives no estimate with degenerate = true, whatever the associations.
   ViewDegeneracyParams view_degeneracy;
   AssociationParams association;    ///< k 30, C 75, lambda 0.5, mutual check
-  PoseEstimationParams pose;        ///< RANSAC 0.05 m / 20 deg, Huber 0.02 m
+  /// RANSAC 0.05 m / 20 deg, Huber 0.02 m; degeneracy ratio 1e-3 instead of the registration
+  /// module's 1e-2: a scene's true degeneracy is caught by view_degeneracy first, and the
+  /// inliers of a floor-dominated view (fr3_cabinet) reach only 2e-3 - 5e-3 while their
+  /// centroid-to-centroid RANSAC fit does fix the in-plane directions.
+  PoseEstimationParams pose = defaultPoseParams();
   bool refine = true;               ///< false: RANSAC pose only (no patch or dense refinement)
   /// Dense rounds after the patch refinement (0 = none). Each round re-associates the pixels at
   /// the current pose; the distance gate of round k is max(dense_gates_m[k], last entry).
@@ -39,6 +43,12 @@ struct PairParams {
   /// Last: a pose whose mapped views contradict each other's free space is not claimed
   /// (look-alike structure, repeated objects).
   VisibilityCheckParams visibility;
+
+  static PoseEstimationParams defaultPoseParams() {
+    PoseEstimationParams p;
+    p.refinement.degeneracy.min_eigenvalue_ratio = 1e-3;
+    return p;
+  }
 };
 
 /// Throws gasp::Error naming the first invalid parameter.
