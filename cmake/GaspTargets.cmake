@@ -8,12 +8,17 @@ function(gasp_set_warnings target)
   endif()
 endfunction()
 
-# gasp_add_library(<name> SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
-# Builds library gasp_<name> from modules/<name>, aliased and exported as gasp::<name>.
+# gasp_add_library(<name> [SHARED] SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
+# Builds library gasp_<name> from modules/<name>, aliased and exported as gasp::<name>. SHARED is
+# for the MRPT plugin: its static registrations must not be dropped by the linker.
 function(gasp_add_library name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "SHARED" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
   set(target gasp_${name})
-  add_library(${target} ${ARG_SOURCES})
+  if(ARG_SHARED)
+    add_library(${target} SHARED ${ARG_SOURCES})
+  else()
+    add_library(${target} ${ARG_SOURCES})
+  endif()
   add_library(gasp::${name} ALIAS ${target})
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${name} OUTPUT_NAME gasp_${name})
   target_include_directories(${target} PUBLIC

@@ -1,0 +1,85 @@
+// gasp::ObservationMatcher_GASP through the name-based factory, on real MRPT observations made
+// from fr1_desk9 (skipped without the data) and on bad input.
+#include <gtest/gtest.h>
+#include <mrpt/obs/CObservation2DRangeScan.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+
+#include <cmath>
+
+#include "gasp/core/tum_dataset.h"
+#include "gasp/mrpt/observation_matcher.h"
+#include "gasp/rawlog/observation_conversion.h"
+#include "gasp/rawlog/tum_to_rawlog.h"
+#include "gasp_test_data.h"
+
+using namespace gasp;
+
+namespace {
+
+/// TUM frame i as an MRPT observation, the robot frame placed away from the camera so that the
+/// sensorPose handling is exercised; optionally without the intensity image (range-only).
+mrpt::obs::CObservation3DRangeScan::Ptr observation(const TumDataset& ds, std::size_t i, bool rgb,
+                                                    const Isometry3& T_robot_camera) {
+  RgbdFrame f = frameFromTum(ds, i, rgb);
+  f.T_robot_camera = T_robot_camera;
+  return observationFromFrame(f);
+}
+
+Isometry3 someMount() {
+  Isometry3 S = Isometry3::Identity();
+  S.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d(0.2, 1.0, 0.1).normalized()).toRotationMatrix();
+  S.translation() = Eigen::Vector3d(0.2, -0.1, 0.5);
+  return S;
+}
+
+}  // namespace
+
+TEST(ObservationMatcher, CreatedByNameRecoversTheRelativePose) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const auto ds = TumDataset::open(dir);
+  ASSERT_TRUE(ds.frame(0).T_world_camera && ds.frame(4).T_world_camera);
+  const Isometry3 S = someMount();
+  for (const bool rgb : {true, false}) {
+    const auto a = observation(ds, 0, rgb, S), b = observation(ds, 4, rgb, S);
+    const auto matcher = createObservationMatcher("gasp::ObservationMatcher_GASP");
+    const MatchConstraint c = matcher->match(*a, *b);
+    ASSERT_TRUE(c.success) << c.reason;
+    // Truth in robot frames: T_ra_rb = S T_ca_cb S^-1.
+    const Isometry3 T_ca_cb = relativePose(*ds.frame(0).T_world_camera, *ds.frame(4).T_world_camera);
+    const Isometry3 E = (S * T_ca_cb * S.inverse()).inverse() * fromCPose3D(c.T_a_b);
+    EXPECT_LT(translationNorm(E), 0.03) << (rgb ? "rgb-d" : "range-only");
+    EXPECT_LT(rotationAngle(E) * 180.0 / M_PI, 2.0) << (rgb ? "rgb-d" : "range-only");
+    EXPECT_GT(c.inliers, 8);
+    EXPECT_FALSE(c.associations.empty());
+    EXPECT_TRUE(c.information.isApprox(c.information.transpose(), 1e-6 * c.information.norm()));
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(c.information);
+    EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
+  }
+}
+
+TEST(ObservationMatcher, ParametersFromYaml) {
+  using mrpt::containers::yaml;
+  EXPECT_NO_THROW(createObservationMatcher("gasp::ObservationMatcher_GASP",
+                                           yaml::FromText("candidates: 20\nmutual_check: false\n")));
+  EXPECT_THROW(createObservationMatcher("gasp::ObservationMatcher_GASP", yaml::FromText("candidatez: 20\n")),
+               std::exception);
+  EXPECT_THROW(createObservationMatcher("gasp::ObservationMatcher_GASP", yaml::FromText("lambda: 3.0\n")),
+               std::exception);
+  EXPECT_THROW(createObservationMatcher("gasp::NoSuchMatcher"), std::exception);
+  EXPECT_THROW(createObservationMatcher("mrpt::obs::CObservation2DRangeScan"), std::exception);
+}
+
+TEST(ObservationMatcher, BadObservationsGiveClearErrors) {
+  const auto matcher = createObservationMatcher("gasp::ObservationMatcher_GASP");
+  mrpt::obs::CObservation2DRangeScan laser;
+  mrpt::obs::CObservation3DRangeScan empty;  // no range image
+  EXPECT_THROW(matcher->match(laser, laser), std::exception);
+  EXPECT_THROW(matcher->match(empty, empty), std::exception);
+  // All-zero depth: a valid observation with nothing in it -> no estimate with a reason.
+  RgbdFrame f;
+  f.depth_m = cv::Mat::zeros(480, 640, CV_32FC1);
+  const auto zero = observationFromFrame(f);
+  const MatchConstraint c = matcher->match(*zero, *zero);
+  EXPECT_FALSE(c.success);
+  EXPECT_FALSE(c.reason.empty());
+}
