@@ -1,12 +1,16 @@
-// Speed of the depth-superpixel decomposition on real 640x480 Kinect frames (fr1_xyz), one core.
+// Speed of the depth-superpixel decomposition on real 640x480 Kinect frames (fr1_xyz).
 //   build/release/bin/bench_superpixels [--frames N] [google benchmark flags]
-// Google Benchmark times the whole decomposition (one frame per iteration, cycling through the
-// frames); afterwards a table gives the median time of each stage over the frames.
+// Google Benchmark times the whole decomposition on one thread (one frame per iteration, cycling
+// through the frames) and a pair of frames segmented at once on two threads, one frame each (the
+// pair pipeline's case; wall time). Afterwards a table gives the median time of each stage over
+// the frames, one thread, and the median wall time of a pair on two threads.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <future>
 #include <vector>
 
 #include "bench_data.h"
@@ -37,6 +41,26 @@ void BM_SegmentFr1Xyz(benchmark::State& state) {
   state.counters["patches"] = benchmark::Counter(static_cast<double>(patches), benchmark::Counter::kAvgIterations);
 }
 BENCHMARK(BM_SegmentFr1Xyz)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
+/// Frames i and i + 1 segmented at once, each on its own thread.
+std::size_t segmentPair(std::size_t i) {
+  const auto& f = frames();
+  auto other = std::async(std::launch::async, [&] {
+    return gasp::segmentDepthSuperpixels(f.depth[(i + 1) % f.depth.size()], f.intrinsics).patches.size();
+  });
+  const std::size_t n = gasp::segmentDepthSuperpixels(f.depth[i % f.depth.size()], f.intrinsics).patches.size();
+  return n + other.get();
+}
+
+void BM_SegmentPairTwoThreads(benchmark::State& state) {
+  std::size_t i = 0, patches = 0;
+  for (auto _ : state) {
+    patches += segmentPair(i);
+    i += 2;
+  }
+  state.counters["patches"] = benchmark::Counter(static_cast<double>(patches), benchmark::Counter::kAvgIterations);
+}
+BENCHMARK(BM_SegmentPairTwoThreads)->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -72,20 +96,30 @@ int main(int argc, char** argv) {
   benchmark::Shutdown();
 
   // Per-stage medians over the frames (one pass each, after the warm-up above).
-  std::vector<double> cloud, normals, components, kmeans, cleanup, patches_ms, total, count;
+  std::vector<double> cloud, normals, components, kmeans, cleanup, refine, patches_ms, total, count;
   for (const auto& d : frames().depth) {
     const auto seg = gasp::segmentDepthSuperpixels(d, frames().intrinsics);
     const auto& t = seg.timings;
     cloud.push_back(t.cloud_ms); normals.push_back(t.normals_ms); components.push_back(t.components_ms);
-    kmeans.push_back(t.kmeans_ms); cleanup.push_back(t.cleanup_ms); patches_ms.push_back(t.patches_ms);
+    kmeans.push_back(t.kmeans_ms); cleanup.push_back(t.cleanup_ms); refine.push_back(t.refine_ms);
+    patches_ms.push_back(t.patches_ms);
     total.push_back(t.total()); count.push_back(static_cast<double>(seg.patches.size()));
   }
   std::printf("\nfr1_xyz, %zu frames, median per stage (ms):\n", frames().depth.size());
   std::printf("| stage | median ms |\n|---|---|\n");
-  std::printf("| back-projection | %.1f |\n| depth links + normals | %.1f |\n| smooth components | %.1f |\n"
-              "| area k-means | %.1f |\n| clean-up | %.1f |\n| patch records | %.1f |\n| **total** | **%.1f** |\n",
-              median(cloud), median(normals), median(components), median(kmeans), median(cleanup),
+  std::printf("| back-projection, depth links, 2x2 grid | %.1f |\n| normals (grid) | %.1f |\n"
+              "| smooth components (grid) | %.1f |\n| area k-means (grid) | %.1f |\n| clean-up (grid) | %.1f |\n"
+              "| full-resolution labels | %.1f |\n| patch records | %.1f |\n| **total** | **%.1f** |\n",
+              median(cloud), median(normals), median(components), median(kmeans), median(cleanup), median(refine),
               median(patches_ms), median(total));
   std::printf("median patches per frame: %.0f\n", median(count));
+
+  std::vector<double> pair;
+  for (std::size_t i = 0; i < frames().depth.size(); i += 2) {
+    const auto t0 = std::chrono::steady_clock::now();
+    segmentPair(i);
+    pair.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::printf("pair of frames on 2 threads (one frame each), median wall time: %.1f ms\n", median(pair));
   return 0;
 }

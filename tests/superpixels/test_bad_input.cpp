@@ -53,6 +53,17 @@ TEST(SuperpixelsBadInput, InvalidParametersThrow) {
   p = {};
   p.normal_min_radius_px = 0;
   EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
+  for (int step : {0, 5}) {
+    p = {};
+    p.processing_step_px = step;
+    EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error) << step;
+  }
+  p = {};
+  p.kmeans_iteration_step_px = 0;
+  EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
+  p = {};
+  p.kmeans_coarse_iterations = -1;
+  EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
 }
 
 TEST(SuperpixelsBadInput, SparseSpecklesDoNotHang) {

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <map>
 #include <numeric>
 
@@ -95,6 +96,30 @@ TEST(SuperpixelsSynthetic, SameInputGivesIdenticalLabels) {
   other.seed = 7;  // another seeding order gives another (equally valid) decomposition
   const auto c = gasp::segmentDepthSuperpixels(f.depth, gasp::CameraIntrinsics::rosDefault(), other);
   EXPECT_GT(cv::countNonZero(a.labels != c.labels), 0);
+}
+
+TEST(SuperpixelsSynthetic, ConcurrentCallsGiveTheSameLabels) {
+  // The pair pipeline segments two views at once: calls share no state.
+  const auto f = frameOf("room", 30);
+  const auto k = gasp::CameraIntrinsics::rosDefault();
+  const auto alone = gasp::segmentDepthSuperpixels(f.depth, k);
+  auto other = std::async(std::launch::async, [&] { return gasp::segmentDepthSuperpixels(f.depth, k); });
+  const auto here = gasp::segmentDepthSuperpixels(f.depth, k);
+  const auto there = other.get();
+  EXPECT_EQ(cv::countNonZero(alone.labels != here.labels), 0);
+  EXPECT_EQ(cv::countNonZero(alone.labels != there.labels), 0);
+}
+
+TEST(SuperpixelsSynthetic, FullResolutionProcessingStillHolds) {
+  // processing_step_px = 1: every stage at full resolution (no grid, no refinement).
+  gasp::SuperpixelParams p;
+  p.processing_step_px = 1;
+  const auto f = frameOf("room", 30);
+  const auto seg = gasp::segmentDepthSuperpixels(f.depth, gasp::CameraIntrinsics::rosDefault(), p);
+  std::printf("full resolution, frame 30: %zu patches, coverage %.4f\n", seg.patches.size(), seg.stats.coverage());
+  EXPECT_EQ(gasp::test::countNonContiguousPatches(seg), 0);
+  EXPECT_GE(seg.stats.coverage(), 0.95);
+  EXPECT_GT(seg.patches.size(), 1000u);
 }
 
 TEST(SuperpixelsSynthetic, AdjacencyIsSymmetricAndLocal) {

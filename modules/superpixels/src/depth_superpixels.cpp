@@ -1,18 +1,18 @@
 #include "gasp/superpixels/depth_superpixels.h"
 
-#include <Eigen/Eigenvalues>
-
 #include <chrono>
 #include <cmath>
-#include <set>
+#include <optional>
 
-#include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
 #include "gasp/superpixels/area_kmeans.h"
 #include "gasp/superpixels/normals.h"
 #include "gasp/superpixels/patch_cleanup.h"
 #include "gasp/superpixels/smooth_components.h"
-#include "pixel_area.h"
+#include "coarse_grid.h"
+#include "full_resolution.h"
+#include "patch_records.h"
+#include "region_growing.h"
 
 namespace gasp {
 
@@ -49,72 +49,9 @@ void validate(const SuperpixelParams& p) {
   require(p.seed_sampling_step_px >= 1, "seed_sampling_step_px must be >= 1");
   require(p.max_incidence_deg > 0 && p.max_incidence_deg < 90, "max_incidence_deg must be in (0, 90)");
   require(p.min_patch_pixels >= 1 && p.min_component_pixels >= 1, "minimum sizes must be >= 1");
-}
-
-void computePatchRecords(SuperpixelSegmentation& seg, int count, const OrganizedPointCloud& cloud,
-                         const DepthLinks& links, const cv::Mat& normals, const CameraIntrinsics& k,
-                         const SuperpixelParams& p) {
-  const int w = cloud.width, h = cloud.height;
-  const float min_cos = static_cast<float>(std::cos(p.max_incidence_deg * M_PI / 180.0));
-  seg.patches.assign(static_cast<std::size_t>(count), SurfacePatch{});
-  std::vector<Eigen::Vector3d> sum_p(seg.patches.size(), Eigen::Vector3d::Zero());
-  std::vector<Eigen::Matrix3d> sum_pp(seg.patches.size(), Eigen::Matrix3d::Zero());
-  std::vector<Eigen::Vector3d> sum_n(seg.patches.size(), Eigen::Vector3d::Zero());
-  std::vector<cv::Point> lo(seg.patches.size(), cv::Point(w, h)), hi(seg.patches.size(), cv::Point(-1, -1));
-  for (int v = 0; v < h; ++v)
-    for (int u = 0; u < w; ++u) {
-      const int l = seg.labels.at<int>(v, u);
-      if (l < 0) continue;
-      const Eigen::Vector3d q = cloud.at(u, v).cast<double>();
-      auto& patch = seg.patches[static_cast<std::size_t>(l)];
-      ++patch.pixel_count;
-      sum_p[l] += q;
-      sum_pp[l] += q * q.transpose();
-      const cv::Vec3f& n = normals.at<cv::Vec3f>(v, u);
-      sum_n[l] += Eigen::Vector3d(n[0], n[1], n[2]);  // zero where the pixel has no normal
-      lo[l] = cv::Point(std::min(lo[l].x, u), std::min(lo[l].y, v));
-      hi[l] = cv::Point(std::max(hi[l].x, u), std::max(hi[l].y, v));
-    }
-  for (int l = 0; l < count; ++l) {
-    auto& patch = seg.patches[static_cast<std::size_t>(l)];
-    patch.id = l;
-    const double n = patch.pixel_count;
-    patch.centroid = sum_p[l] / n;
-    patch.covariance = sum_pp[l] / n - patch.centroid * patch.centroid.transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(patch.covariance);
-    const Eigen::Vector3d ev = eig.eigenvalues().cwiseMax(0.0);
-    patch.planarity = ev(1) > 0 ? 1.0 - ev(0) / ev(1) : 0.0;
-    if (sum_n[l].norm() > 1e-9) {
-      patch.normal = sum_n[l].normalized();
-    } else {  // no pixel with a normal: the covariance's least direction, facing the camera
-      patch.normal = eig.eigenvectors().col(0);
-      if (patch.normal.dot(patch.centroid) > 0) patch.normal = -patch.normal;
-    }
-    patch.bbox = cv::Rect(lo[l], hi[l] + cv::Point(1, 1));
-  }
-  std::vector<std::set<int>> adjacent(static_cast<std::size_t>(count));
-  for (int v = 0; v < h; ++v)
-    for (int u = 0; u < w; ++u) {
-      const int l = seg.labels.at<int>(v, u);
-      if (l < 0) continue;
-      const Eigen::Vector3f& q = cloud.at(u, v);
-      const auto& patch = seg.patches[static_cast<std::size_t>(l)];
-      const cv::Vec3f& pn = normals.at<cv::Vec3f>(v, u);
-      const Eigen::Vector3f n = cv::norm(pn) > 0 ? Eigen::Vector3f(pn[0], pn[1], pn[2])
-                                                 : patch.normal.cast<float>();
-      seg.patches[static_cast<std::size_t>(l)].area_m2 += detail::pixelArea(q, n, k, min_cos);
-      auto link = [&](int uu, int vv) {
-        const int m = seg.labels.at<int>(vv, uu);
-        if (m >= 0 && m != l) {
-          adjacent[l].insert(m);
-          adjacent[m].insert(l);
-        }
-      };
-      if (links.right(v * w + u)) link(u + 1, v);
-      if (links.down(v * w + u)) link(u, v + 1);
-    }
-  seg.adjacency.assign(static_cast<std::size_t>(count), {});
-  for (int l = 0; l < count; ++l) seg.adjacency[l].assign(adjacent[l].begin(), adjacent[l].end());
+  require(p.processing_step_px >= 1 && p.processing_step_px <= 4, "processing_step_px must be in [1, 4]");
+  require(p.kmeans_iteration_step_px >= 1, "kmeans_iteration_step_px must be >= 1");
+  require(p.kmeans_coarse_iterations >= 0, "kmeans_coarse_iterations must be >= 0");
 }
 
 SuperpixelSegmentation segmentDepthSuperpixels(const cv::Mat& depth_m, const CameraIntrinsics& k,
@@ -123,24 +60,47 @@ SuperpixelSegmentation segmentDepthSuperpixels(const cv::Mat& depth_m, const Cam
   StageTimer timer;
   SuperpixelSegmentation seg;
   const OrganizedPointCloud cloud = backProject(depth_m, k);  // checks type and size
-  seg.stats.valid_pixels = cloud.countValid();
+  const DepthLinks links(cloud, p);
+  seg.stats.valid_pixels = links.validCount();
+  const bool subsampled = p.processing_step_px > 1;
+  const detail::CoarseGrid grid = subsampled ? detail::makeCoarseGrid(cloud, k, p) : detail::CoarseGrid{};
   seg.timings.cloud_ms = timer.lap();
 
-  const DepthLinks links(cloud, p);
-  const SurfaceNormals normals = estimateNormals(cloud, links, p);
+  // On the grid (or at full resolution with processing_step_px = 1).
+  const OrganizedPointCloud& gc = subsampled ? grid.cloud : cloud;
+  const CameraIntrinsics& gk = subsampled ? grid.intrinsics : k;
+  const SuperpixelParams& gp = subsampled ? grid.params : p;
+  const std::optional<DepthLinks> grid_links = subsampled ? std::optional<DepthLinks>(std::in_place, gc, gp) : std::nullopt;
+  const DepthLinks& gl = subsampled ? *grid_links : links;
+  const SurfaceNormals normals = estimateNormals(gc, gl, gp);
   seg.timings.normals_ms = timer.lap();
 
-  const SmoothComponents components = segmentSmoothComponents(links, normals, p);
+  const SmoothComponents components = segmentSmoothComponents(gl, normals, gp);
   seg.timings.components_ms = timer.lap();
 
-  AreaPatches patches = splitIntoAreaPatches(components.labels, components.count, cloud, normals, k, p);
+  AreaPatches patches = splitIntoAreaPatches(components.labels, components.count, gc, normals, gk, gp);
   seg.timings.kmeans_ms = timer.lap();
 
-  seg.labels = patches.labels;
-  const int count = cleanUpPatches(seg.labels, cloud, links, normals, k, p);
+  int count = cleanUpPatches(patches.labels, gc, gl, normals, gk, gp);
   seg.timings.cleanup_ms = timer.lap();
 
-  computePatchRecords(seg, count, cloud, links, normals.normals, k, p);
+  const auto* grid_normals = reinterpret_cast<const Eigen::Vector3f*>(normals.normals.ptr<float>(0));
+  detail::PixelNormals normal_of{grid_normals};
+  detail::FullResolutionLabels full;
+  if (subsampled) {
+    full = detail::refineToFullResolution(patches.labels, count, grid, normals, cloud, links, k, p);
+    seg.labels = full.labels;
+    count = full.count;
+    normal_of.cell = full.normal_cell.data();
+  } else {
+    seg.labels = patches.labels;
+  }
+  seg.timings.refine_ms = timer.lap();
+
+  // Patch ids in raster order of first pixel, renumbered in the records' pass (the full-resolution
+  // labels are not yet; the grid's are, which makes that a no-op).
+  detail::recordPatches(seg, count, cloud, links, normal_of, k, p, true,
+                        subsampled ? full.cell_area_factor.data() : nullptr);
   for (const auto& patch : seg.patches) seg.stats.assigned_pixels += static_cast<std::size_t>(patch.pixel_count);
   seg.stats.dropped_pixels = seg.stats.valid_pixels - seg.stats.assigned_pixels;
   seg.timings.patches_ms = timer.lap();

@@ -9,6 +9,11 @@ namespace gasp::detail {
 class DisjointSets {
  public:
   explicit DisjointSets(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  /// Adds a singleton set; returns its id.
+  int add() {
+    parent_.push_back(static_cast<int>(parent_.size()));
+    return parent_.back();
+  }
   int find(int x) {
     while (parent_[static_cast<std::size_t>(x)] != x) {
       auto& px = parent_[static_cast<std::size_t>(x)];

@@ -8,13 +8,23 @@
 
 namespace gasp::detail {
 
+/// The constants computed once, for loops over many pixels.
+struct PixelArea {
+  float inv_fxfy, min_cos;
+  PixelArea(const CameraIntrinsics& k, float min_cos_incidence)
+      : inv_fxfy(static_cast<float>(1.0 / (k.fx * k.fy))), min_cos(min_cos_incidence) {}
+  /// p: the point [m]; n: the surface normal (unit; zero counts as the clamped incidence).
+  float operator()(const Eigen::Vector3f& p, const Eigen::Vector3f& n) const {
+    const float frontal = p.z() * p.z() * inv_fxfy;
+    const float len = p.norm();
+    // frontal / max(|n.p| / len, min_cos), with one division.
+    return len > 0.0f ? frontal * len / std::max(std::abs(n.dot(p)), min_cos * len) : frontal;
+  }
+};
+
 inline float pixelArea(const Eigen::Vector3f& p, const Eigen::Vector3f& n, const CameraIntrinsics& k,
                        float min_cos) {
-  const float z = p.z();
-  const float frontal = z * z / static_cast<float>(k.fx * k.fy);
-  const float len = p.norm();
-  const float cos_inc = len > 0.0f ? std::abs(n.dot(p)) / len : 1.0f;
-  return frontal / std::max(cos_inc, min_cos);
+  return PixelArea(k, min_cos)(p, n);
 }
 
 }  // namespace gasp::detail

@@ -24,6 +24,7 @@ class DepthLinks {
 
   int width() const { return width_; }
   int height() const { return height_; }
+  std::size_t validCount() const { return valid_count_; }  ///< pixels with valid depth
   bool valid(int i) const { return bits_[static_cast<std::size_t>(i)] & kValid; }
   bool right(int i) const { return bits_[static_cast<std::size_t>(i)] & kRight; }  ///< i and i + 1
   bool down(int i) const { return bits_[static_cast<std::size_t>(i)] & kDown; }    ///< i and i + width
@@ -35,22 +36,26 @@ class DepthLinks {
   void forEachLink(Fn fn) const {
     const int n = width_ * height_;
     for (int i = 0; i < n; ++i) {
-      if (right(i)) fn(i, i + 1);
-      if (down(i)) fn(i, i + width_);
+      const std::uint8_t b = bits_[static_cast<std::size_t>(i)];
+      if (b & kRight) fn(i, i + 1);
+      if (b & kDown) fn(i, i + width_);
     }
   }
+  /// The raw bits of pixel i (kValid | kRight | kDown | kInterior), for tight loops.
+  std::uint8_t bits(int i) const { return bits_[static_cast<std::size_t>(i)]; }
+  static constexpr std::uint8_t kValid = 1, kRight = 2, kDown = 4, kInterior = 8;
   /// Calls fn(j) for every pixel j linked to pixel i.
   template <typename Fn>
   void forEachNeighbour(int i, Fn fn) const {
     if (right(i)) fn(i + 1);
     if (down(i)) fn(i + width_);
-    if (i % width_ > 0 && right(i - 1)) fn(i - 1);
+    if (i > 0 && right(i - 1)) fn(i - 1);  // the last pixel of a row has no right link
     if (i >= width_ && down(i - width_)) fn(i - width_);
   }
 
  private:
-  static constexpr std::uint8_t kValid = 1, kRight = 2, kDown = 4, kInterior = 8;
   int width_ = 0, height_ = 0;
+  std::size_t valid_count_ = 0;
   std::vector<std::uint8_t> bits_;
 };
 

@@ -1,7 +1,9 @@
 #pragma once
 /// \file depth_superpixels.h The depth-superpixel decomposition of one view (paper III-A):
-/// normals -> smooth-surface components -> area-regularised K-means patches -> clean-up ->
-/// patch records and the patch adjacency graph.
+/// normals -> smooth-surface components -> area-regularised K-means patches -> clean-up, on a grid
+/// subsampled by SuperpixelParams::processing_step_px -> labels decided at full resolution ->
+/// patch records and the patch adjacency graph. Calls share no state (two views can be segmented
+/// at once on two threads).
 #include <opencv2/core.hpp>
 
 #include "gasp/core/camera_intrinsics.h"
@@ -22,7 +24,8 @@ SuperpixelSegmentation segmentDepthSuperpixels(const cv::Mat& depth_m,
 /// Throws gasp::Error naming the first parameter out of its range.
 void validate(const SuperpixelParams& params);
 
-/// Patch records, adjacency and statistics from a final label image (used by the pipeline).
+/// Patch records and adjacency from a final label image with ids 0..num_patches-1 and per-pixel
+/// normals (CV_32FC3, zero where none).
 void computePatchRecords(SuperpixelSegmentation& seg, int num_patches, const OrganizedPointCloud& cloud,
                          const DepthLinks& links, const cv::Mat& normals,
                          const CameraIntrinsics& intrinsics, const SuperpixelParams& params);

@@ -3,9 +3,9 @@
 /// 1. contiguity: each patch keeps its largest 4-connected, depth-connected piece;
 /// 2. leftover valid pixels (edges, creases, small components, cut-off pieces) join adjacent
 ///    patches by priority region growing (a bucket queue over the cost): cost = distance to the
-///    patch plane + a normal-mismatch term; a first pass accepts up to one patch radius and lets a
-///    patch grow to twice the target area, a second up to two radii and three times the area;
-///    growth only crosses depth-connected 4-neighbours, so patches stay contiguous;
+///    patch plane + a normal-mismatch term, accepted up to two patch radii, a patch growing to at
+///    most three times the target area; growth only crosses depth-connected 4-neighbours, so
+///    patches stay contiguous;
 /// 3. what is still left forms new regions, split like the smooth surfaces;
 /// 4. patches below the minimum size are merged into the adjacent patch with the most similar
 ///    normal (edge contraction on the patch graph), or dropped when they have no neighbour.
