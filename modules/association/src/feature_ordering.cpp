@@ -10,16 +10,7 @@
 namespace gasp {
 namespace {
 
-constexpr double kKeyLimit = 4611686018427387904.0;  // 2^62, exactly representable
-
-/// floor(scaled), saturated to +-2^62; NaN gives 2^62 + 1 (after every finite value).
-std::int64_t binOf(double scaled) {
-  if (std::isnan(scaled)) return static_cast<std::int64_t>(kKeyLimit) + 1;
-  const double b = std::floor(scaled);
-  if (b >= kKeyLimit) return static_cast<std::int64_t>(kKeyLimit);
-  if (b <= -kKeyLimit) return -static_cast<std::int64_t>(kKeyLimit);
-  return static_cast<std::int64_t>(b);
-}
+std::int64_t binOf(double scaled) { return detail::floorKey(scaled); }
 
 }  // namespace
 

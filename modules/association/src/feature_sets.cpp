@@ -1,5 +1,7 @@
 #include "gasp/association/feature_sets.h"
 
+#include <tbb/parallel_for.h>
+
 #include <string>
 
 #include "gasp/core/error.h"
@@ -39,10 +41,11 @@ std::vector<std::vector<Feature>> computeFeatureSets(const std::vector<PatchGeom
   validate(params);
   const auto neighbourhoods = findNeighbourhoods(patches, params.neighbourhood);
   std::vector<std::vector<Feature>> sets(patches.size());
-  for (std::size_t mu = 0; mu < patches.size(); ++mu) {
+  // Independent per patch: parallel, and the result does not depend on the thread count.
+  tbb::parallel_for(std::size_t{0}, patches.size(), [&](std::size_t mu) {
     sets[mu] = computeFeatureSet(patches, static_cast<int>(mu), neighbourhoods[mu], params.feature,
                                  params.ordering);
-  }
+  });
   return sets;
 }
 

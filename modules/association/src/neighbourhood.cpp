@@ -1,6 +1,7 @@
 #include "gasp/association/neighbourhood.h"
 
 #include <nanoflann.hpp>
+#include <tbb/parallel_for.h>
 
 #include <cstdint>
 #include <string>
@@ -59,9 +60,11 @@ std::vector<std::vector<int>> findNeighbourhoods(const std::vector<PatchGeometry
   }
 
   const CentroidTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
-  std::vector<std::uint32_t> idx(k + 1);
-  std::vector<double> dist2(k + 1);
-  for (const int mu : cloud.ids) {
+  // Independent queries: parallel (each writes its own neighbourhood).
+  tbb::parallel_for(std::size_t{0}, usable, [&](std::size_t u) {
+    const int mu = cloud.ids[u];
+    std::vector<std::uint32_t> idx(k + 1);
+    std::vector<double> dist2(k + 1);
     const Eigen::Vector3d& q = patches[static_cast<std::size_t>(mu)].centroid;
     const std::size_t found = tree.knnSearch(q.data(), k + 1, idx.data(), dist2.data());
     auto& nb = out[static_cast<std::size_t>(mu)];
@@ -71,7 +74,7 @@ std::vector<std::vector<int>> findNeighbourhoods(const std::vector<PatchGeometry
       const int alpha = cloud.ids[idx[r]];
       if (alpha != mu) nb.push_back(alpha);
     }
-  }
+  });
   return out;
 }
 

@@ -14,6 +14,7 @@
 /// bin border usually only swaps with a neighbour in the sequence, which the restricted
 /// Damerau-Levenshtein distance pays with the transposition cost (0 by default).
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -35,6 +36,22 @@ using FeatureKey = std::array<std::int64_t, 7>;
 
 /// The quantised key of q.
 FeatureKey quantise(const Feature& q, const OrderingParams& params);
+
+namespace detail {
+/// floor(scaled), saturated to +-2^62; NaN gives 2^62 + 1 (after every finite value).
+inline std::int64_t floorKey(double scaled) {
+  constexpr double kKeyLimit = 4611686018427387904.0;  // 2^62, exactly representable
+  if (std::isnan(scaled)) return static_cast<std::int64_t>(kKeyLimit) + 1;
+  const double b = std::floor(scaled);
+  if (b >= kKeyLimit) return static_cast<std::int64_t>(kKeyLimit);
+  if (b <= -kKeyLimit) return -static_cast<std::int64_t>(kKeyLimit);
+  return static_cast<std::int64_t>(b);
+}
+}  // namespace detail
+
+/// One component of the key: floor(value / tol) with the saturation and NaN rule of quantise()
+/// (quantise(q, p)[i] == quantiseComponent(q[i], tol_i)). Non-decreasing in value for tol > 0.
+inline std::int64_t quantiseComponent(double value, double tol) { return detail::floorKey(value / tol); }
 
 /// The tolerant comparator: a < b iff quantise(a) < quantise(b) lexicographically. A strict weak
 /// ordering; a and b are equivalent iff all components share a bin.

@@ -1,11 +1,13 @@
 #pragma once
 /// \file view_association.h Dense patch-to-patch associations between two views (paper III-E,
-/// NOTES item 5): for each patch mu of view A, the C patches of view B whose normalised
-/// feature-set means are nearest (KD-tree) are candidates; the one with the least restricted
-/// Damerau-Levenshtein distance D is the putative partner, accepted when the normalised distance
-/// D_hat = D / (k_S + k_S') is at most lambda. Early termination stops a comparison as soon as
-/// D must exceed lambda (k_S + k_S'). Optionally (default) only mutual best partners are kept.
-/// Parallel over the patches, deterministic.
+/// NOTES item 5): for each patch mu of view A, the C patches of view B nearest under a candidate
+/// key (quantile signatures by default; the paper's KD-tree over feature-set means as an option)
+/// are candidates; the one with the least restricted Damerau-Levenshtein distance D is the
+/// putative partner (ties: lowest patch index), accepted when the normalised distance
+/// D_hat = D / (k_S + k_S') is at most lambda. The distances are computed by the banded, sparse
+/// algorithm of banded_distance.h (exactly osaDistance() with FeatureMatch), each with the bound
+/// min(lambda, best so far) (k_S + k_S'). Optionally (default) only mutual best partners are
+/// kept. Parallel over the patches; the result does not depend on the thread count.
 #include <string>
 #include <vector>
 
@@ -16,17 +18,35 @@
 
 namespace gasp {
 
+/// How the C candidates of a patch are chosen (the edit distance is then computed to each).
+enum class CandidateKey {
+  /// Paper: KD-tree over the feature-set means (each component divided by its match tolerance).
+  kMean,
+  /// Quantile signature: each component's values at 9 evenly spaced ranks, divided by the match
+  /// tolerance, compared with the L1 distance (exhaustive search). Ranks the exact best partner
+  /// higher than the mean (docs/association.md), so fewer candidates are needed.
+  kQuantiles,
+};
+
 struct AssociationParams {
   /// Neighbourhoods, features and ordering. The neighbourhood default here is the k = 30
   /// nearest patches (the paper used full views; docs/association.md has the measurements).
   FeatureSetParams feature_sets = defaultFeatureSets();
   MatchParams match;   ///< r_dev = 0.04 m, theta_dev = 10 deg (paper)
   EditCosts costs;     ///< insert = delete = 1, replace disabled, transposition 0 (paper)
-  int candidates = 75;   ///< C, KD-tree candidates per patch (paper: 75)
+  /// C, candidates per patch, >= 1 (paper: 75, with the mean key). 20 with the quantile key finds
+  /// the exact best partner about as often as 30-40 with the mean, and gives the same precision
+  /// and density as 75 with the mean on 20 TUM and synthetic pairs (docs/association.md) in
+  /// about half the time.
+  int candidates = 20;
   double lambda = 0.5;   ///< gating on D_hat, in [0, 1] (paper: 0.65 - 0.8 before RANSAC)
-  /// Keep (a, b) only when a is also b's best partner in A (B -> A search, twice the matching
-  /// time). Not in the paper; on fr1_xyz 0 -> 10 it lifts precision from 0.26 to 0.63.
+  /// Keep (a, b) only when a is also b's best partner in A (B -> A search over b's own C
+  /// candidates, only for the patches of B chosen by some patch of A). Not in the paper; on
+  /// fr1_xyz 0 -> 10 it lifts precision from 0.26 to 0.63.
   bool mutual_check = true;
+  /// How the C candidates are chosen (paper: kMean). Last member: aggregate initialisation of the
+  /// members before it is unchanged.
+  CandidateKey candidate_key = CandidateKey::kQuantiles;
 
   static FeatureSetParams defaultFeatureSets() {
     FeatureSetParams p;
@@ -47,11 +67,13 @@ struct PatchAssociation {
 struct AssociationStats {
   std::size_t patches_a = 0, patches_b = 0;
   std::size_t with_features_a = 0, with_features_b = 0;  ///< patches with a non-empty Q
-  std::size_t comparisons = 0;        ///< edit distances computed (A patch x candidate)
-  std::size_t cut_early = 0;          ///< of those, stopped by early termination
-  std::size_t comparisons_full = 0;   ///< comparisons a search without KD-tree would make
-  std::size_t gated_out = 0;          ///< best candidate found but D_hat > lambda (both directions)
+  std::size_t comparisons = 0;        ///< edit distances computed (A -> B and mutual check)
+  std::size_t cut_early = 0;          ///< of those, rejected by the bounds or early termination
+  std::size_t comparisons_full = 0;   ///< comparisons an exhaustive search in both directions would make
+  std::size_t gated_out = 0;          ///< patches of A with candidates but none within lambda
   std::size_t not_mutual = 0;         ///< A -> B partners dropped by the mutual check
+  /// Time [ms]: feature sets (associateViews only); "tree" = preparing both views for the search
+  /// (prepared sets, signatures or KD-tree); matching = both searches.
   double features_ms = 0, tree_ms = 0, matching_ms = 0;
 };
 
