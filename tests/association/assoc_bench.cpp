@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
   std::string dir;
   std::size_t from = 0, to = 0;
   int reps = 5, threads = 2, ref_candidates = 75;
-  bool analyse = false, run_reference = true, micro = false;
+  bool analyse = false, run_reference = true, micro = false, rank_mode = false;
   gasp::AssociationParams p;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
     else if (a == "--key") p.candidate_key = std::string(next()) == "mean" ? gasp::CandidateKey::kMean : gasp::CandidateKey::kQuantiles;
     else if (a == "--analyse") analyse = true;
     else if (a == "--micro") micro = true;
+    else if (a == "--ranks") rank_mode = true;
     else if (a == "--no-reference") run_reference = false;
     else if (a == "--ref-candidates") ref_candidates = std::atoi(next());
     else {
@@ -101,6 +102,36 @@ int main(int argc, char** argv) {
     std::printf("%-10s %8.2f ms wall %8.2f ms cpu  associations %4d  correct %4d  precision %.3f  density %.3f\n",
                 name, ms, cpu, q.associations, q.correct, q.precision(), q.density());
   };
+
+  if (rank_mode) {
+    // How discriminative are the feature sets? For every patch of A with a true partner in B
+    // (isSameSurface under the true pose), the rank of its best true partner among all of B by
+    // exact D_hat (ties counted against it), over every patch of B.
+    const gasp::FeatureMatch match{p.match};
+    gasp::EditDistanceWorkspace ews;
+    std::array<int, 6> hist{};  // rank 1, 2-3, 4-10, 11-20, 21-75, > 75
+    int with_partner = 0;
+    for (std::size_t i = 0; i < qa.size(); ++i) {
+      if (qa[i].empty()) continue;
+      std::vector<double> hat(qb.size(), 2.0);
+      double best_true = 3.0;
+      for (std::size_t j = 0; j < qb.size(); ++j) {
+        if (qb[j].empty()) continue;
+        hat[j] = gasp::osaDistance(qa[i], qb[j], match, p.costs, gasp::kExceedsBound, ews) /
+                 static_cast<double>(qa[i].size() + qb[j].size());
+        if (gasp::isSameSurface(seg_a.patches[i], seg_b.patches[j], T_b_a)) best_true = std::min(best_true, hat[j]);
+      }
+      if (best_true > 2.5) continue;
+      ++with_partner;
+      int rank = 1;
+      for (std::size_t j = 0; j < qb.size(); ++j)
+        if (hat[j] < best_true) ++rank;
+      hist[rank == 1 ? 0 : rank <= 3 ? 1 : rank <= 10 ? 2 : rank <= 20 ? 3 : rank <= 75 ? 4 : 5]++;
+    }
+    std::printf("ranks of the best true partner (%d patches of A with one): 1: %d  2-3: %d  4-10: %d  11-20: %d  21-75: %d  >75: %d\n",
+                with_partner, hist[0], hist[1], hist[2], hist[3], hist[4], hist[5]);
+    return 0;
+  }
 
   if (micro) {
     // Cost of one comparison: every 7th patch of A against every 5th patch of B.

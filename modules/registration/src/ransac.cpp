@@ -6,9 +6,11 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <random>
 
 #include "gasp/core/error.h"
+#include "compatibility_graph.h"
 #include "rigid_fit.h"
 
 namespace gasp {
@@ -75,9 +77,9 @@ Score score(const std::vector<PatchCorrespondence>& c, const Isometry3& T, const
   return sc;
 }
 
-/// Samples needed for `confidence` of one all-inlier sample at inlier ratio e: log(1-p)/log(1-e^3).
-int adaptiveIterations(double inlier_ratio, const RansacParams& params) {
-  const double all_inlier = std::pow(inlier_ratio, 3);
+/// Samples needed for `confidence` of one all-inlier sample when one sample is all-inlier with
+/// probability all_inlier: log(1 - confidence) / log(1 - all_inlier).
+int adaptiveIterations(double all_inlier, const RansacParams& params) {
   if (all_inlier >= 1.0) return 1;
   if (all_inlier <= 0.0) return params.max_iterations;
   const double n = std::ceil(std::log(1.0 - params.confidence) / std::log(1.0 - all_inlier));
@@ -122,8 +124,23 @@ RansacResult ransacPose(const std::vector<PatchCorrespondence>& c, const RansacP
   Score best;
   Isometry3 best_T = Isometry3::Identity();
   int thin = 0, needed = params.max_iterations;
+  std::unique_ptr<detail::CompatibilityGraph> graph;
+  if (params.guided_sampling) {
+    graph = std::make_unique<detail::CompatibilityGraph>(c, params.edge_tolerance_m,
+                                                         params.normal_pair_tolerance_deg * M_PI / 180.0);
+    if (graph->seeds().empty()) {
+      result.reason = "no sample of 3 passed the checks (no correspondence agrees in distances and normal angles "
+                      "with two others)";
+      return result;
+    }
+  }
   for (result.iterations = 0; result.iterations < needed; ++result.iterations) {
-    const Sample s = drawSample(rng, n);
+    Sample s;
+    if (graph && !graph->drawTriangle(rng, s[0], s[1], s[2])) {
+      ++result.rejected_samples;
+      continue;
+    }
+    if (!graph) s = drawSample(rng, n);
     const SampleCheck check = checkSample(c, s, params);
     if (check != SampleCheck::kOk) {
       ++result.rejected_samples;
@@ -135,7 +152,9 @@ RansacResult ransacPose(const std::vector<PatchCorrespondence>& c, const RansacP
     if (sc.betterThan(best)) {
       best = sc;
       best_T = T;
-      needed = std::max(result.iterations + 1, adaptiveIterations(static_cast<double>(best.inliers) / n, params));
+      const double p_all_in = graph ? graph->probabilityAllIn(selectInliers(c, T, params.inlier))
+                                    : std::pow(static_cast<double>(best.inliers) / n, 3);
+      needed = std::max(result.iterations + 1, adaptiveIterations(p_all_in, params));
     }
   }
   if (result.rejected_samples == result.iterations) {

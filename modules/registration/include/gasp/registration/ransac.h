@@ -1,16 +1,26 @@
 #pragma once
 /// \file ransac.h A first T_target_source from patch correspondences by RANSAC over centroids.
 ///
-/// Minimal samples of 3 correspondences; each is first checked for consistency (rigid motions
-/// keep distances and angles): the pairwise centroid distances must agree between the views,
-/// |d_s(i,j) - d_t(i,j)| <= edge_tolerance_m, as must the pairwise normal angles,
+/// Minimal samples of 3 correspondences whose pairs are consistent (rigid motions keep distances
+/// and angles): the pairwise centroid distances agree between the views,
+/// |d_s(i,j) - d_t(i,j)| <= edge_tolerance_m, as do the pairwise normal angles,
 /// |angle(n_si, n_sj) - angle(n_ti, n_tj)| <= normal_pair_tolerance_deg, and the source triangle
-/// must not be thin (its smallest height >= min_triangle_height_m). A passing sample gives T in
-/// closed form (Eigen::umeyama, no scale) and is scored by its inliers (InlierCriterion), ties
-/// broken by the truncated cost sum_i min(d_i^2 / d_max^2, 1) (MSAC). The number of samples
-/// adapts to the best inlier ratio e: N = log(1 - confidence) / log(1 - e^3), capped at
-/// max_iterations. The best model is re-fitted on its inliers (weighted least squares) and the
-/// inliers recounted, twice. Single-threaded and deterministic for a seed.
+/// is not thin (its smallest height >= min_triangle_height_m).
+///
+/// Sampling (`guided_sampling`, default): the consistent pairs are computed once as a
+/// compatibility graph, and samples are drawn from its triangles (i uniform, j uniform among the
+/// partners of i, k uniform among the common partners of i and j), so every sample is
+/// consistent. With few correct associations among many (5 % of 500 on wide fr1_xyz baselines)
+/// uniform triples almost never pass the checks (5 % cubed); guided ones are all-inlier with a
+/// probability of the order of the inlier ratio. The number of samples adapts to the best model:
+/// N = log(1 - confidence) / log(1 - P), P the exact probability that one draw returns three of its
+/// inliers under this sampler; capped at max_iterations. Without guided sampling: uniform triples,
+/// checked, P = e^3 (e = inlier ratio).
+///
+/// A sample gives T in closed form (Eigen::umeyama, no scale) and is scored by its inliers
+/// (InlierCriterion), ties broken by the truncated cost sum_i min(d_i^2 / d_max^2, 1) (MSAC). The
+/// best model is re-fitted on its inliers (weighted least squares) and the inliers recounted,
+/// twice. Single-threaded and deterministic for a seed.
 #include <string>
 #include <vector>
 
@@ -29,6 +39,7 @@ struct RansacParams {
   int max_iterations = 10000;              ///< cap on the samples drawn (rejected ones count)
   double confidence = 0.999;               ///< in (0, 1): probability of one all-inlier sample
   unsigned seed = 1;                       ///< std::mt19937 seed
+  bool guided_sampling = true;             ///< samples from the compatibility graph (see above)
 };
 
 /// Throws gasp::Error naming the first invalid parameter.
