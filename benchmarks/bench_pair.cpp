@@ -38,8 +38,7 @@ Timing runPair(std::size_t i) {
   const auto& p = pairs();
   const auto t0 = std::chrono::steady_clock::now();
   const auto& [da, db] = p.depth[i % p.depth.size()];
-  const auto va = gasp::makeDepthView(da, p.intrinsics);
-  const auto vb = gasp::makeDepthView(db, p.intrinsics);
+  const auto [va, vb] = gasp::makeDepthViews(da, db, p.intrinsics);
   const auto t1 = std::chrono::steady_clock::now();
   const auto r = gasp::registerViews(va, vb);
   const auto t2 = std::chrono::steady_clock::now();

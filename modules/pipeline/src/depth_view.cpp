@@ -1,5 +1,7 @@
 #include "gasp/pipeline/depth_view.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include "gasp/superpixels/depth_superpixels.h"
 
 namespace gasp {
@@ -10,6 +12,14 @@ DepthView makeDepthView(const cv::Mat& depth_m, const CameraIntrinsics& intrinsi
   v.intrinsics = intrinsics;
   v.segmentation = segmentDepthSuperpixels(depth_m, intrinsics, params);
   return v;
+}
+
+std::pair<DepthView, DepthView> makeDepthViews(const cv::Mat& depth_a, const cv::Mat& depth_b,
+                                               const CameraIntrinsics& intrinsics, const SuperpixelParams& params) {
+  std::pair<DepthView, DepthView> views;
+  tbb::parallel_invoke([&] { views.first = makeDepthView(depth_a, intrinsics, params); },
+                       [&] { views.second = makeDepthView(depth_b, intrinsics, params); });
+  return views;
 }
 
 }  // namespace gasp

@@ -3,6 +3,8 @@
 /// its depth-superpixel decomposition (paper III-A).
 #include <opencv2/core.hpp>
 
+#include <utility>
+
 #include "gasp/core/camera_intrinsics.h"
 #include "gasp/superpixels/superpixel_params.h"
 #include "gasp/superpixels/surface_patch.h"
@@ -19,5 +21,12 @@ struct DepthView {
 /// or size). A view without valid depth has no patches; it is not an error here.
 DepthView makeDepthView(const cv::Mat& depth_m, const CameraIntrinsics& intrinsics,
                         const SuperpixelParams& params = {});
+
+/// Two views segmented concurrently (one TBB task each; the segmentation of one frame is
+/// single-threaded): the front-end's first stage on 2 threads. Same results as two
+/// makeDepthView() calls; the first exception is rethrown.
+std::pair<DepthView, DepthView> makeDepthViews(const cv::Mat& depth_a, const cv::Mat& depth_b,
+                                               const CameraIntrinsics& intrinsics,
+                                               const SuperpixelParams& params = {});
 
 }  // namespace gasp

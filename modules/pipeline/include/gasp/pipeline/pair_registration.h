@@ -23,7 +23,7 @@ struct PairParams {
   /// Checked first: a view whose own geometry cannot fix a pose (one plane, parallel planes)
   /// gives no estimate with degenerate = true, whatever the associations.
   ViewDegeneracyParams view_degeneracy;
-  AssociationParams association;    ///< k 30, C 75, lambda 0.5, mutual check
+  AssociationParams association;    ///< k 30, C 20 (quantile key), lambda 0.5, mutual check
   /// RANSAC 0.05 m / 20 deg, Huber 0.02 m; degeneracy ratio 1e-3 instead of the registration
   /// module's 1e-2: a scene's true degeneracy is caught by view_degeneracy first, and the
   /// inliers of a floor-dominated view (fr3_cabinet) reach only 2e-3 - 5e-3 while their
@@ -34,7 +34,7 @@ struct PairParams {
   /// the current pose; the distance gate of round k is max(dense_gates_m[k], last entry).
   int dense_rounds = 3;
   std::vector<double> dense_gates_m{0.10, 0.05, 0.03};
-  ProjectiveTermParams projective;  ///< pixel step 4, normals within 20 deg
+  ProjectiveTermParams projective;  ///< pixel step 8, normals within 20 deg
   /// Degeneracy rule of the dense problem. Its thousands of pixel terms are not independent, so
   /// its absolute standard deviations are optimistic and only the eigenvalue ratio separates a
   /// plane from a scene: a noisy single plane gives ~1e-4 (patch normals jitter by ~1 deg), a desk
