@@ -1,0 +1,108 @@
+#pragma once
+/// \file CSuperpixelMap.h A metric map of GASP surface patches (depth superpixels).
+///
+/// Each inserted mrpt::obs::CObservation3DRangeScan (RGB-D or range-only) is segmented into
+/// patches (SuperpixelParams = the map's creation options) and kept as one view: its depth image
+/// and depth intrinsics (cameraParams), its patches in the depth camera's frame, and
+/// T_map_camera = robotPose * sensorPose (optical frame). Colours come from the intensity image
+/// through cameraParamsIntensity and relativePoseIntensityWRTDepth. Views are kept whole so that
+/// CGaspAligner and the likelihood can run GASP's association on them.
+///
+/// In a CMultiMetricMap ini section (docs/mrpt.md):
+///   superpixelMap_count=1
+///   [<section>_superpixelMap_00_creationOpts]    SuperpixelParams keys, e.g. target_patch_area_m2=0.004
+///   [<section>_superpixelMap_00_likelihoodOpts]  matching keys and sigma_m, max_distance_m
+///   [<section>_superpixelMap_00_renderOpts]      style=discs|points, point_step_px
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/maps/CMetricMap.h>
+
+#include <string>
+#include <vector>
+
+#include "gasp/mrpt/superpixel_map_view.h"
+#include "gasp/pipeline/pair_registration.h"
+
+namespace gasp {
+
+class CSuperpixelMap : public mrpt::maps::CMetricMap {
+  DEFINE_SERIALIZABLE(CSuperpixelMap, gasp)
+
+ public:
+  /// Segmentation of inserted observations (ini section ..._creationOpts).
+  struct TCreationOptions : public mrpt::config::CLoadableOptions {
+    SuperpixelParams superpixels;
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+    void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
+  };
+  /// computeObservationLikelihood / compute3DMatchingRatio (ini section ..._likelihoodOpts).
+  struct TLikelihoodOptions : public mrpt::config::CLoadableOptions {
+    PairParams matching;   ///< association keys of params_io.h (segmentation comes from the map's)
+    double sigma_m = 0.02;  ///< std. dev. of a patch's point-to-plane distance to its partner [m]
+    /// Associated patches whose centroids are further apart than this (after placing the
+    /// observation) count as outliers [m].
+    double max_distance_m = 0.10;
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+    void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
+  };
+  /// getVisualizationInto (ini section ..._renderOpts).
+  struct TRenderOptions : public mrpt::config::CLoadableOptions {
+    enum class Style { discs, points };
+    Style style = Style::discs;  ///< oriented discs of the patches' area, or their pixels as points
+    int point_step_px = 2;       ///< points style: every n-th pixel each way
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+    void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
+  };
+
+  TCreationOptions creationOptions;
+  TLikelihoodOptions likelihoodOptions;
+  TRenderOptions renderOptions;
+
+  CSuperpixelMap() = default;
+
+  /// Inserts a frame (what insertObservation does after converting the scan). Throws
+  /// std::exception (MRPT style) for bad images or inconsistent intrinsics.
+  void insertFrame(const RgbdFrame& frame, const Isometry3& T_map_robot = Isometry3::Identity());
+
+  const std::vector<SuperpixelMapView>& views() const { return views_; }
+  std::size_t patchCount() const;
+  /// All patches in the map frame.
+  std::vector<MapPatch> patchesInMapFrame() const;
+
+  bool isEmpty() const override { return views_.empty(); }
+  std::string asString() const override;
+  void getVisualizationInto(mrpt::opengl::CSetOfObjects& o) const override;
+  /// Writes PREFIX_patches.ply (one vertex per patch: centroid, normal, colour, area),
+  /// PREFIX_patches.txt (a table: view, patch, centroid, normal, area, pixels, planarity, colour)
+  /// and PREFIX_3D.3Dscene (getVisualizationInto, for SceneViewer3D).
+  void saveMetricMapRepresentationToFile(const std::string& prefix) const override;
+  /// Fraction of the patches (of the smaller map) whose GASP association partner lies within
+  /// params.maxDistForCorr once `otherMap` (a CSuperpixelMap) is placed at otherMapPose.
+  /// 0 for other map types.
+  float compute3DMatchingRatio(const mrpt::maps::CMetricMap* otherMap, const mrpt::poses::CPose3D& otherMapPose,
+                               const mrpt::maps::TMatchingRatioParams& params) const override;
+
+  MAP_DEFINITION_START(CSuperpixelMap)
+  TCreationOptions creationOpts;
+  TLikelihoodOptions likelihoodOpts;
+  TRenderOptions renderOpts;
+  MAP_DEFINITION_END(CSuperpixelMap)
+
+ private:
+  void internal_clear() override { views_.clear(); }
+  /// CObservation3DRangeScan: inserted (true). Other observation types: false, as every MRPT map
+  /// does for what it cannot use (CMultiMetricMap offers each observation to every map). A scan
+  /// without range image or with inconsistent intrinsics throws.
+  bool internal_insertObservation(const mrpt::obs::CObservation& obs,
+                                  const std::optional<const mrpt::poses::CPose3D>& robotPose) override;
+  /// log-likelihood of a CObservation3DRangeScan taken from `takenFrom`: its patches are
+  /// associated with the map's (GASP); each contributes -0.5 min((d / sigma_m)^2, 9), d the
+  /// point-to-plane distance to its partner, 9 (3 sigma) for patches without a consistent one;
+  /// the mean over the observation's patches is returned.
+  double internal_computeObservationLikelihood(const mrpt::obs::CObservation& obs,
+                                               const mrpt::poses::CPose3D& takenFrom) const override;
+  bool internal_canComputeObservationLikelihood(const mrpt::obs::CObservation& obs) const override;
+
+  std::vector<SuperpixelMapView> views_;
+};
+
+}  // namespace gasp

@@ -1,0 +1,42 @@
+#pragma once
+/// \file params_io.h GASP's parameters in MRPT's configuration formats: ini sections
+/// (mrpt::config::CConfigFileBase, as CMultiMetricMap and CGaspAligner read them) and YAML
+/// (mrpt::containers::yaml, as ObservationMatcher_GASP reads them). One key table per struct, so
+/// every format uses the same names (docs/mrpt.md lists them with their defaults).
+///
+/// Reading: missing keys keep the value passed in; unknown keys and invalid values throw an MRPT
+/// exception (std::exception) naming the section and the key.
+#include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/containers/yaml.h>
+
+#include <set>
+#include <string>
+
+#include "gasp/pipeline/pair_registration.h"
+#include "gasp/superpixels/superpixel_params.h"
+
+namespace gasp {
+
+/// Segmentation: every field of SuperpixelParams, under its C++ name.
+void readSuperpixelParams(const mrpt::config::CConfigFileBase& source, const std::string& section,
+                          SuperpixelParams& params, const std::set<std::string>& other_allowed_keys = {});
+void writeSuperpixelParams(const SuperpixelParams& params, mrpt::config::CConfigFileBase& target,
+                           const std::string& section);
+
+/// Matching (the pair pipeline): target_patch_area_m2, neighbourhood_k, candidates, lambda,
+/// mutual_check, min_inliers, dense_rounds, refine.
+void readPairParams(const mrpt::config::CConfigFileBase& source, const std::string& section, PairParams& params,
+                    const std::set<std::string>& other_allowed_keys = {});
+void readPairParams(const mrpt::containers::yaml& source, const std::string& who, PairParams& params);
+void writePairParams(const PairParams& params, mrpt::config::CConfigFileBase& target, const std::string& section);
+
+/// One value, strictly parsed; a missing key leaves it unchanged. Throws naming section and key.
+void readValue(const mrpt::config::CConfigFileBase& source, const std::string& section, const std::string& key,
+               double& value);
+void readValue(const mrpt::config::CConfigFileBase& source, const std::string& section, const std::string& key,
+               int& value);
+/// Throws when the section holds a key not in `known`.
+void checkKeys(const mrpt::config::CConfigFileBase& source, const std::string& section,
+               const std::set<std::string>& known);
+
+}  // namespace gasp

@@ -1,0 +1,57 @@
+#include "gasp/mrpt/CSuperpixelMap.h"
+
+#include <mrpt/core/exceptions.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+
+#include <sstream>
+
+#include "gasp/core/error.h"
+#include "gasp/rawlog/observation_conversion.h"
+
+IMPLEMENTS_SERIALIZABLE(CSuperpixelMap, mrpt::maps::CMetricMap, gasp)
+
+namespace gasp {
+
+void CSuperpixelMap::insertFrame(const RgbdFrame& frame, const Isometry3& T_map_robot) {
+  try {
+    views_.push_back(makeMapView(frame, T_map_robot, creationOptions.superpixels));
+  } catch (const Error& e) {
+    THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: cannot insert observation '%s': %s", frame.sensor_label.c_str(),
+                        e.what());
+  }
+}
+
+bool CSuperpixelMap::internal_insertObservation(const mrpt::obs::CObservation& obs,
+                                                const std::optional<const mrpt::poses::CPose3D>& robotPose) {
+  const auto* scan = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&obs);
+  if (!scan) return false;
+  RgbdFrame frame;
+  try {
+    frame = frameFromObservation(*scan, "CObservation3DRangeScan '" + scan->sensorLabel + "'");
+  } catch (const Error& e) {
+    THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());
+  }
+  insertFrame(frame, robotPose ? fromCPose3D(*robotPose) : Isometry3::Identity());
+  return true;
+}
+
+std::size_t CSuperpixelMap::patchCount() const {
+  std::size_t n = 0;
+  for (const auto& v : views_) n += v.view.segmentation.patches.size();
+  return n;
+}
+
+std::vector<MapPatch> CSuperpixelMap::patchesInMapFrame() const {
+  std::vector<MapPatch> out;
+  out.reserve(patchCount());
+  for (std::size_t i = 0; i < views_.size(); ++i) appendMapPatches(views_[i], static_cast<int>(i), out);
+  return out;
+}
+
+std::string CSuperpixelMap::asString() const {
+  std::ostringstream s;
+  s << "gasp::CSuperpixelMap: " << views_.size() << " views, " << patchCount() << " surface patches";
+  return s.str();
+}
+
+}  // namespace gasp

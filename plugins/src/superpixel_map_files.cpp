@@ -1,0 +1,78 @@
+// CSuperpixelMap::saveMetricMapRepresentationToFile: PLY of the patches, a text table, and a
+// .3Dscene of the visualisation for SceneViewer3D.
+#include <mrpt/core/exceptions.h>
+#include <mrpt/opengl/COpenGLScene.h>
+#include <mrpt/opengl/CSetOfObjects.h>
+
+#include <Eigen/Geometry>
+#include <cstdio>
+#include <fstream>
+
+#include "gasp/mrpt/CSuperpixelMap.h"
+
+namespace gasp {
+
+namespace {
+
+std::ofstream openOrThrow(const std::string& path) {
+  std::ofstream f(path);
+  if (!f) THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: cannot write '%s'", path.c_str());
+  f.precision(9);
+  return f;
+}
+
+void writePly(const std::string& path, const std::vector<MapPatch>& patches) {
+  std::ofstream f = openOrThrow(path);
+  f << "ply\nformat ascii 1.0\n"
+       "comment gasp::CSuperpixelMap surface patches in the map frame: centroid [m], unit normal, colour, "
+       "area [m^2], source view and patch\n"
+    << "element vertex " << patches.size() << "\n"
+    << "property float x\nproperty float y\nproperty float z\n"
+       "property float nx\nproperty float ny\nproperty float nz\n"
+       "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+       "property float area\nproperty int view\nproperty int patch\nend_header\n";
+  for (const MapPatch& p : patches) {
+    f << p.centroid.x() << ' ' << p.centroid.y() << ' ' << p.centroid.z() << ' ' << p.normal.x() << ' '
+      << p.normal.y() << ' ' << p.normal.z() << ' ' << int(p.rgb[0]) << ' ' << int(p.rgb[1]) << ' ' << int(p.rgb[2])
+      << ' ' << p.area_m2 << ' ' << p.view << ' ' << p.patch << '\n';
+  }
+  if (!f) THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: error writing '%s'", path.c_str());
+}
+
+void writeTable(const std::string& path, const std::vector<SuperpixelMapView>& views,
+                const std::vector<MapPatch>& patches) {
+  std::ofstream f = openOrThrow(path);
+  f << "# gasp::CSuperpixelMap: " << views.size() << " views, " << patches.size() << " patches (map frame)\n";
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const auto& t = views[i].T_map_camera;
+    const Eigen::Quaterniond q(t.linear());
+    f << "# view " << i << " '" << views[i].sensor_label << "' t=" << views[i].timestamp
+      << " T_map_camera xyz qxqyqzqw: " << t.translation().transpose() << ' ' << q.x() << ' ' << q.y() << ' '
+      << q.z() << ' ' << q.w() << '\n';
+  }
+  f << "# view patch cx cy cz nx ny nz area_m2 pixels planarity r g b\n";
+  for (const MapPatch& p : patches) {
+    const SurfacePatch& s =
+        views[static_cast<std::size_t>(p.view)].view.segmentation.patches[static_cast<std::size_t>(p.patch)];
+    f << p.view << ' ' << p.patch << ' ' << p.centroid.x() << ' ' << p.centroid.y() << ' ' << p.centroid.z() << ' '
+      << p.normal.x() << ' ' << p.normal.y() << ' ' << p.normal.z() << ' ' << p.area_m2 << ' ' << s.pixel_count
+      << ' ' << s.planarity << ' ' << int(p.rgb[0]) << ' ' << int(p.rgb[1]) << ' ' << int(p.rgb[2]) << '\n';
+  }
+  if (!f) THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: error writing '%s'", path.c_str());
+}
+
+}  // namespace
+
+void CSuperpixelMap::saveMetricMapRepresentationToFile(const std::string& prefix) const {
+  const std::vector<MapPatch> patches = patchesInMapFrame();
+  writePly(prefix + "_patches.ply", patches);
+  writeTable(prefix + "_patches.txt", views_, patches);
+  mrpt::opengl::COpenGLScene scene;
+  auto objects = mrpt::opengl::CSetOfObjects::Create();
+  getVisualizationInto(*objects);
+  scene.insert(objects);
+  const std::string scene_path = prefix + "_3D.3Dscene";
+  if (!scene.saveToFile(scene_path)) THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: cannot write '%s'", scene_path.c_str());
+}
+
+}  // namespace gasp

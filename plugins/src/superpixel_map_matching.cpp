@@ -1,0 +1,103 @@
+// CSuperpixelMap::compute3DMatchingRatio and computeObservationLikelihood, both from GASP's
+// patch associations (pose-invariant descriptors) checked against the given pose.
+#include <mrpt/core/exceptions.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+
+#include <algorithm>
+#include <set>
+
+#include "gasp/association/patch_geometry.h"
+#include "gasp/association/view_association.h"
+#include "gasp/core/error.h"
+#include "gasp/mrpt/CSuperpixelMap.h"
+#include "gasp/rawlog/observation_conversion.h"
+
+namespace gasp {
+
+namespace {
+
+/// Cost of an observation patch without a consistent partner: 3 sigma.
+constexpr double kOutlierCost = 9.0;
+
+std::vector<PatchGeometry> geometry(const SuperpixelMapView& v) {
+  return toPatchGeometry(v.view.segmentation.patches);
+}
+
+const SurfacePatch& patchOf(const SuperpixelMapView& v, int i) {
+  return v.view.segmentation.patches[static_cast<std::size_t>(i)];
+}
+
+}  // namespace
+
+float CSuperpixelMap::compute3DMatchingRatio(const mrpt::maps::CMetricMap* otherMap,
+                                             const mrpt::poses::CPose3D& otherMapPose,
+                                             const mrpt::maps::TMatchingRatioParams& params) const {
+  const auto* other = dynamic_cast<const CSuperpixelMap*>(otherMap);
+  if (!other || isEmpty() || other->isEmpty()) return 0.0f;
+  const Isometry3 T_this_other = fromCPose3D(otherMapPose);
+  const double max_d = params.maxDistForCorr;
+  std::set<std::pair<int, int>> matched_this, matched_other;
+  for (std::size_t i = 0; i < views_.size(); ++i) {
+    const auto geom_i = geometry(views_[i]);
+    for (std::size_t j = 0; j < other->views_.size(); ++j) {
+      const auto& vj = other->views_[j];
+      const AssociationResult r = associateViews(geom_i, geometry(vj), likelihoodOptions.matching.association);
+      const Isometry3 T_this_cj = T_this_other * vj.T_map_camera;
+      for (const PatchAssociation& s : r.associations) {
+        const Eigen::Vector3d p = views_[i].T_map_camera * patchOf(views_[i], s.a).centroid;
+        const Eigen::Vector3d q = T_this_cj * patchOf(vj, s.b).centroid;
+        if ((p - q).norm() > max_d) continue;
+        matched_this.emplace(static_cast<int>(i), s.a);
+        matched_other.emplace(static_cast<int>(j), s.b);
+      }
+    }
+  }
+  const std::size_t smaller = std::min(patchCount(), other->patchCount());
+  const std::size_t matched = std::min(matched_this.size(), matched_other.size());
+  return smaller ? static_cast<float>(static_cast<double>(matched) / static_cast<double>(smaller)) : 0.0f;
+}
+
+bool CSuperpixelMap::internal_canComputeObservationLikelihood(const mrpt::obs::CObservation& obs) const {
+  return !isEmpty() && dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&obs) != nullptr;
+}
+
+double CSuperpixelMap::internal_computeObservationLikelihood(const mrpt::obs::CObservation& obs,
+                                                             const mrpt::poses::CPose3D& takenFrom) const {
+  const auto* scan = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&obs);
+  if (!scan) {
+    THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: cannot compute the likelihood of a %s; only "
+                        "mrpt::obs::CObservation3DRangeScan is supported",
+                        obs.GetRuntimeClass()->className);
+  }
+  if (isEmpty()) THROW_EXCEPTION("gasp::CSuperpixelMap: the map is empty; no likelihood can be computed");
+  SuperpixelMapView seen;
+  try {
+    const RgbdFrame frame = frameFromObservation(*scan, "CObservation3DRangeScan '" + scan->sensorLabel + "'");
+    seen = makeMapView(frame, fromCPose3D(takenFrom), creationOptions.superpixels);
+  } catch (const Error& e) {
+    THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());
+  }
+  const auto& patches = seen.view.segmentation.patches;
+  if (patches.empty()) return -0.5 * kOutlierCost;
+  std::vector<double> cost(patches.size(), kOutlierCost);
+  const auto geom_seen = geometry(seen);
+  const double sigma = likelihoodOptions.sigma_m, max_d = likelihoodOptions.max_distance_m;
+  for (const auto& view : views_) {
+    const AssociationResult r = associateViews(geom_seen, geometry(view), likelihoodOptions.matching.association);
+    for (const PatchAssociation& s : r.associations) {
+      const Eigen::Vector3d p = seen.T_map_camera * patchOf(seen, s.a).centroid;
+      const SurfacePatch& m = patchOf(view, s.b);
+      const Eigen::Vector3d q = view.T_map_camera * m.centroid;
+      if ((p - q).norm() > max_d) continue;
+      const Eigen::Vector3d n = view.T_map_camera.linear() * m.normal;
+      const double d = std::abs(n.dot(p - q)) / sigma;
+      double& c = cost[static_cast<std::size_t>(s.a)];
+      c = std::min(c, std::min(d * d, kOutlierCost));
+    }
+  }
+  double sum = 0;
+  for (double c : cost) sum += c;
+  return -0.5 * sum / static_cast<double>(cost.size());
+}
+
+}  // namespace gasp

@@ -1,0 +1,219 @@
+// CSuperpixelMap's versioned serialization. Version 0:
+//   genericMapParams; creation, likelihood and render options as ini text; view count; per view:
+//   timestamp, sensor label, T_map_camera (3x4), depth intrinsics, depth image (float [m]),
+//   label image (run-length coded), patches, adjacency, pixel counts, patch colours.
+// Reading checks every size and range and the view's consistency, so a corrupt stream gives an
+// exception naming the problem and leaves the map unchanged.
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/core/exceptions.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <cstdint>
+
+#include "gasp/core/error.h"
+#include "gasp/mrpt/CSuperpixelMap.h"
+
+namespace gasp {
+
+namespace {
+
+constexpr std::uint32_t kMaxImageSide = 16384;
+constexpr std::uint64_t kMaxImagePixels = 4096ull * 4096ull;
+
+template <class Options>
+std::string optionsText(const Options& o) {
+  mrpt::config::CConfigFileMemory mem;
+  o.saveToConfigFile(mem, "options");
+  return mem.getContent();
+}
+
+template <class Options>
+void optionsFromText(const std::string& text, Options& o) {
+  const mrpt::config::CConfigFileMemory mem(text);
+  o.loadFromConfigFile(mem, "options");
+}
+
+void writeVec(mrpt::serialization::CArchive& out, const Eigen::Vector3d& v) { out << v.x() << v.y() << v.z(); }
+Eigen::Vector3d readVec(mrpt::serialization::CArchive& in) {
+  double x, y, z;
+  in >> x >> y >> z;
+  return {x, y, z};
+}
+
+void readExactly(mrpt::serialization::CArchive& in, float* data, std::size_t n, const char* what) {
+  if (n == 0) return;
+  if (in.ReadBufferFixEndianness(data, n) != n * sizeof(float)) THROW_EXCEPTION_FMT("truncated %s", what);
+}
+
+void writeView(mrpt::serialization::CArchive& out, const SuperpixelMapView& v) {
+  out << v.timestamp << v.sensor_label;
+  const Eigen::Matrix<double, 3, 4> T = v.T_map_camera.matrix().topRows<3>();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) out << T(r, c);
+  const CameraIntrinsics& k = v.view.intrinsics;
+  out << static_cast<std::int32_t>(k.width) << static_cast<std::int32_t>(k.height) << k.fx << k.fy << k.cx << k.cy;
+  for (double d : k.distortion) out << d;
+  // Depth [m], row-major.
+  const cv::Mat depth = v.view.depth_m.isContinuous() ? v.view.depth_m : v.view.depth_m.clone();
+  out.WriteBufferFixEndianness(depth.ptr<float>(0), depth.total());
+  // Labels, run-length coded in row-major order.
+  const SuperpixelSegmentation& seg = v.view.segmentation;
+  std::vector<std::pair<std::int32_t, std::uint32_t>> runs;
+  for (int r = 0; r < seg.labels.rows; ++r) {
+    const int* l = seg.labels.ptr<int>(r);
+    for (int c = 0; c < seg.labels.cols; ++c) {
+      if (!runs.empty() && runs.back().first == l[c])
+        ++runs.back().second;
+      else
+        runs.emplace_back(l[c], 1u);
+    }
+  }
+  out << static_cast<std::uint32_t>(runs.size());
+  for (const auto& [label, length] : runs) out << label << length;
+  out << static_cast<std::uint32_t>(seg.patches.size());
+  for (const SurfacePatch& p : seg.patches) {
+    out << static_cast<std::int32_t>(p.id);
+    writeVec(out, p.centroid);
+    writeVec(out, p.normal);
+    out << p.area_m2 << static_cast<std::int32_t>(p.pixel_count);
+    for (int i = 0; i < 9; ++i) out << p.covariance(i / 3, i % 3);
+    out << p.planarity << static_cast<std::int32_t>(p.bbox.x) << static_cast<std::int32_t>(p.bbox.y)
+        << static_cast<std::int32_t>(p.bbox.width) << static_cast<std::int32_t>(p.bbox.height);
+  }
+  for (const auto& list : seg.adjacency) {
+    out << static_cast<std::uint32_t>(list.size());
+    for (int j : list) out << static_cast<std::int32_t>(j);
+  }
+  out << static_cast<std::uint64_t>(seg.stats.valid_pixels) << static_cast<std::uint64_t>(seg.stats.assigned_pixels)
+      << static_cast<std::uint64_t>(seg.stats.dropped_pixels);
+  out << static_cast<std::uint32_t>(v.patch_rgb.size());
+  for (const Rgb8& c : v.patch_rgb) out << c[0] << c[1] << c[2];
+}
+
+SuperpixelMapView readView(mrpt::serialization::CArchive& in) {
+  SuperpixelMapView v;
+  in >> v.timestamp >> v.sensor_label;
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) in >> T(r, c);
+  v.T_map_camera.matrix() = T;
+  CameraIntrinsics& k = v.view.intrinsics;
+  std::int32_t w, h;
+  in >> w >> h >> k.fx >> k.fy >> k.cx >> k.cy;
+  for (double& d : k.distortion) in >> d;
+  if (w < 1 || h < 1 || static_cast<std::uint32_t>(w) > kMaxImageSide || static_cast<std::uint32_t>(h) > kMaxImageSide ||
+      static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) > kMaxImagePixels)
+    THROW_EXCEPTION_FMT("image size %dx%d out of range", w, h);
+  k.width = w;
+  k.height = h;
+  const std::size_t pixels = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+  v.view.depth_m.create(h, w, CV_32FC1);
+  readExactly(in, v.view.depth_m.ptr<float>(0), pixels, "depth image");
+  SuperpixelSegmentation& seg = v.view.segmentation;
+  seg.labels.create(h, w, CV_32SC1);
+  std::uint32_t num_runs;
+  in >> num_runs;
+  if (num_runs > pixels) THROW_EXCEPTION_FMT("%u label runs for %zu pixels", num_runs, pixels);
+  int* labels = seg.labels.ptr<int>(0);
+  std::size_t filled = 0;
+  for (std::uint32_t i = 0; i < num_runs; ++i) {
+    std::int32_t label;
+    std::uint32_t length;
+    in >> label >> length;
+    if (length == 0 || length > pixels - filled) THROW_EXCEPTION("label runs do not add up to the image size");
+    std::fill(labels + filled, labels + filled + length, label);
+    filled += length;
+  }
+  if (filled != pixels) THROW_EXCEPTION("label runs do not cover the image");
+  std::uint32_t num_patches;
+  in >> num_patches;
+  if (num_patches > pixels) THROW_EXCEPTION_FMT("%u patches for %zu pixels", num_patches, pixels);
+  for (std::uint32_t i = 0; i < num_patches; ++i) {
+    SurfacePatch p;
+    std::int32_t id, count, bx, by, bw, bh;
+    in >> id;
+    p.id = id;
+    p.centroid = readVec(in);
+    p.normal = readVec(in);
+    in >> p.area_m2 >> count;
+    p.pixel_count = count;
+    for (int j = 0; j < 9; ++j) in >> p.covariance(j / 3, j % 3);
+    in >> p.planarity >> bx >> by >> bw >> bh;
+    p.bbox = cv::Rect(bx, by, bw, bh);
+    seg.patches.push_back(p);
+  }
+  seg.adjacency.resize(num_patches);
+  for (auto& list : seg.adjacency) {
+    std::uint32_t n;
+    in >> n;
+    if (n > num_patches) THROW_EXCEPTION_FMT("a patch with %u neighbours among %u patches", n, num_patches);
+    for (std::uint32_t j = 0; j < n; ++j) {
+      std::int32_t id;
+      in >> id;
+      list.push_back(id);
+    }
+  }
+  std::uint64_t valid, assigned, dropped;
+  in >> valid >> assigned >> dropped;
+  seg.stats.valid_pixels = valid;
+  seg.stats.assigned_pixels = assigned;
+  seg.stats.dropped_pixels = dropped;
+  std::uint32_t num_colours;
+  in >> num_colours;
+  if (num_colours != 0 && num_colours != num_patches)
+    THROW_EXCEPTION_FMT("%u patch colours for %u patches", num_colours, num_patches);
+  v.patch_rgb.resize(num_colours);
+  for (Rgb8& c : v.patch_rgb) in >> c[0] >> c[1] >> c[2];
+  try {
+    checkConsistency(v);
+  } catch (const Error& e) {
+    THROW_EXCEPTION(e.what());
+  }
+  return v;
+}
+
+}  // namespace
+
+uint8_t CSuperpixelMap::serializeGetVersion() const { return 0; }
+
+void CSuperpixelMap::serializeTo(mrpt::serialization::CArchive& out) const {
+  out << genericMapParams;
+  out << optionsText(creationOptions) << optionsText(likelihoodOptions) << optionsText(renderOptions);
+  out << static_cast<std::uint32_t>(views_.size());
+  for (const auto& v : views_) writeView(out, v);
+}
+
+void CSuperpixelMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version) {
+  if (version != 0) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
+  try {
+    mrpt::maps::TMapGenericParams generic;
+    in >> generic;
+    std::string creation, likelihood, render;
+    in >> creation >> likelihood >> render;
+    TCreationOptions c;
+    TLikelihoodOptions l;
+    TRenderOptions r;
+    optionsFromText(creation, c);
+    optionsFromText(likelihood, l);
+    optionsFromText(render, r);
+    std::uint32_t num_views;
+    in >> num_views;
+    std::vector<SuperpixelMapView> views;
+    for (std::uint32_t i = 0; i < num_views; ++i) {
+      try {
+        views.push_back(readView(in));
+      } catch (const std::exception& e) {
+        THROW_EXCEPTION_FMT("view %u of %u: %s", i, num_views, e.what());
+      }
+    }
+    genericMapParams = generic;
+    creationOptions = c;
+    likelihoodOptions = l;
+    renderOptions = r;
+    views_ = std::move(views);
+  } catch (const std::exception& e) {
+    THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: corrupt serialized map: %s", mrpt::exception_to_str(e).c_str());
+  }
+}
+
+}  // namespace gasp

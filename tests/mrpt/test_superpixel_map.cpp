@@ -1,0 +1,371 @@
+// gasp::CSuperpixelMap: insertion of real RGB-D and range-only scans (sensorPose and robot pose
+// honoured), serialization, ini creation, visualisation, files, GASP-backed matching ratio and
+// likelihood, and bad input.
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/CMemoryStream.h>
+#include <mrpt/maps/CMultiMetricMap.h>
+#include <mrpt/obs/CObservation2DRangeScan.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/opengl/COpenGLScene.h>
+#include <mrpt/opengl/CPointCloudColoured.h>
+#include <mrpt/opengl/CSetOfObjects.h>
+#include <mrpt/opengl/CSetOfTriangles.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <set>
+
+#include "gasp/mrpt/CSuperpixelMap.h"
+#include "gasp/superpixels/depth_superpixels.h"
+#include "gasp_test_data.h"
+#include "mrpt_test_helpers.h"
+
+using namespace gasp;
+using gasp::test::someMount;
+using gasp::test::tumObservation;
+
+namespace {
+
+Isometry3 someRobotPose() {
+  Isometry3 P = Isometry3::Identity();
+  P.linear() = Eigen::AngleAxisd(-0.7, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  P.translation() = Eigen::Vector3d(1.5, -2.0, 0.1);
+  return P;
+}
+
+std::vector<std::uint8_t> serialize(const mrpt::serialization::CSerializable& o) {
+  mrpt::io::CMemoryStream buf;
+  mrpt::serialization::archiveFrom(buf) << o;
+  const auto* p = static_cast<const std::uint8_t*>(buf.getRawBufferData());
+  return {p, p + buf.getTotalBytesCount()};
+}
+
+mrpt::serialization::CSerializable::Ptr deserialize(const std::vector<std::uint8_t>& bytes) {
+  mrpt::io::CMemoryStream buf;
+  buf.assignMemoryNotOwn(bytes.data(), bytes.size());
+  mrpt::serialization::CSerializable::Ptr o;
+  mrpt::serialization::archiveFrom(buf) >> o;
+  return o;
+}
+
+std::vector<MapPatch> directPatches(const TumDataset& ds, std::size_t i, const Isometry3& T_map_camera) {
+  const RgbdFrame f = frameFromTum(ds, i, false);
+  const auto seg = segmentDepthSuperpixels(f.depth_m, f.depth_intrinsics);
+  SuperpixelMapView v;
+  v.view.segmentation = seg;
+  v.T_map_camera = T_map_camera;
+  std::vector<MapPatch> out;
+  appendMapPatches(v, 0, out);
+  return out;
+}
+
+}  // namespace
+
+TEST(SuperpixelMap, InsertsRgbdAndRangeOnlyScansInTheMapFrame) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const auto ds = TumDataset::open(dir);
+  const Isometry3 S = someMount(), P = someRobotPose();
+  // The patches must be the camera-frame decomposition moved by robot pose * sensorPose.
+  const auto expected = directPatches(ds, 0, P * S);
+  ASSERT_GT(expected.size(), 100u);
+  for (const bool rgb : {true, false}) {
+    CSuperpixelMap map;
+    EXPECT_TRUE(map.isEmpty());
+    const auto obs = tumObservation(ds, 0, rgb, S);
+    ASSERT_TRUE(map.insertObservation(*obs, toCPose3D(P)));
+    ASSERT_EQ(map.views().size(), 1u);
+    const auto patches = map.patchesInMapFrame();
+    ASSERT_EQ(patches.size(), expected.size()) << (rgb ? "rgb-d" : "range-only");
+    for (std::size_t k = 0; k < patches.size(); ++k) {
+      EXPECT_LT((patches[k].centroid - expected[k].centroid).norm(), 1e-4);
+      EXPECT_LT((patches[k].normal - expected[k].normal).norm(), 1e-6);
+    }
+    EXPECT_EQ(map.views()[0].patch_rgb.empty(), !rgb);
+    EXPECT_NE(map.asString().find(std::to_string(patches.size()) + " surface patches"), std::string::npos);
+  }
+}
+
+TEST(SuperpixelMap, TestsRgbdRawlogFromMrptInserts) {
+  const std::string path = "/usr/share/mrpt/datasets/tests_rgbd.rawlog";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not installed (Debian package mrpt-common); skipping";
+  const auto scans = gasp::test::readScans(path);
+  ASSERT_FALSE(scans.empty());
+  const auto& scan = *scans.front();
+  // The premise: the range camera and the intensity camera have different intrinsics here.
+  EXPECT_NE(scan.cameraParams.fx(), scan.cameraParamsIntensity.fx());
+  CSuperpixelMap map;
+  ASSERT_TRUE(map.insertObservation(scan));
+  const std::size_t n = map.patchCount();
+  std::cout << "tests_rgbd.rawlog: " << n << " patches, depth fx " << scan.cameraParams.fx() << " intensity fx "
+            << scan.cameraParamsIntensity.fx() << ", coverage "
+            << map.views()[0].view.segmentation.stats.coverage() << "\n";
+  // A 640x480 indoor frame at the default 40 cm^2 target area: hundreds of patches.
+  EXPECT_GT(n, 50u);
+  EXPECT_LT(n, 5000u);
+  EXPECT_GT(map.views()[0].view.segmentation.stats.coverage(), 0.5);
+  const auto& view = map.views()[0];
+  EXPECT_EQ(view.view.intrinsics.fx, scan.cameraParams.fx());  // the range camera's own intrinsics
+  ASSERT_EQ(view.patch_rgb.size(), n);
+  // Colours come from the intensity image: not all the same.
+  std::set<Rgb8> distinct(view.patch_rgb.begin(), view.patch_rgb.end());
+  EXPECT_GT(distinct.size(), n / 4);
+}
+
+TEST(SuperpixelMap, SerializationRoundTripOfARealFrame) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const auto ds = TumDataset::open(dir);
+  CSuperpixelMap map;
+  map.creationOptions.superpixels.target_patch_area_m2 = 0.005;
+  map.likelihoodOptions.sigma_m = 0.03;
+  map.renderOptions.style = CSuperpixelMap::TRenderOptions::Style::points;
+  map.genericMapParams.enableObservationLikelihood = false;
+  map.insertObservation(*tumObservation(ds, 0, true, someMount()), toCPose3D(someRobotPose()));
+  map.insertObservation(*tumObservation(ds, 5, false, someMount()));
+  const auto bytes = serialize(map);
+  const auto object = deserialize(bytes);
+  const auto copy = std::dynamic_pointer_cast<CSuperpixelMap>(object);
+  ASSERT_TRUE(copy) << "deserialized a " << object->GetRuntimeClass()->className;
+  EXPECT_EQ(copy->creationOptions.superpixels.target_patch_area_m2, 0.005);
+  EXPECT_EQ(copy->likelihoodOptions.sigma_m, 0.03);
+  EXPECT_EQ(copy->renderOptions.style, CSuperpixelMap::TRenderOptions::Style::points);
+  EXPECT_FALSE(copy->genericMapParams.enableObservationLikelihood);
+  ASSERT_EQ(copy->views().size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const auto &a = map.views()[i], &b = copy->views()[i];
+    EXPECT_TRUE(a.T_map_camera.isApprox(b.T_map_camera, 0.0));
+    EXPECT_EQ(a.view.intrinsics, b.view.intrinsics);
+    EXPECT_EQ(cv::norm(a.view.depth_m, b.view.depth_m, cv::NORM_INF), 0.0);
+    EXPECT_EQ(cv::countNonZero(a.view.segmentation.labels != b.view.segmentation.labels), 0);
+    ASSERT_EQ(a.view.segmentation.patches.size(), b.view.segmentation.patches.size());
+    for (std::size_t k = 0; k < a.view.segmentation.patches.size(); ++k) {
+      const auto &p = a.view.segmentation.patches[k], &q = b.view.segmentation.patches[k];
+      EXPECT_EQ(p.centroid, q.centroid);
+      EXPECT_EQ(p.normal, q.normal);
+      EXPECT_EQ(p.area_m2, q.area_m2);
+      EXPECT_EQ(p.covariance, q.covariance);
+      EXPECT_EQ(p.bbox, q.bbox);
+    }
+    EXPECT_EQ(a.view.segmentation.adjacency, b.view.segmentation.adjacency);
+    EXPECT_EQ(a.patch_rgb, b.patch_rgb);
+    EXPECT_EQ(a.view.segmentation.stats.valid_pixels, b.view.segmentation.stats.valid_pixels);
+  }
+  // Serializing the copy gives the same bytes.
+  EXPECT_EQ(serialize(*copy), bytes);
+}
+
+TEST(SuperpixelMap, CorruptSerializedMapGivesAnError) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const auto ds = TumDataset::open(dir);
+  CSuperpixelMap map;
+  map.insertObservation(*tumObservation(ds, 0, true, someMount()));
+  const auto bytes = serialize(map);
+  // Truncated anywhere: an exception, never a crash or a half-read map.
+  for (const double f : {0.001, 0.01, 0.1, 0.5, 0.9, 0.999}) {
+    std::vector<std::uint8_t> cut(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(f * bytes.size()));
+    EXPECT_THROW(deserialize(cut), std::exception) << "truncated at " << f;
+  }
+  // Overwritten bytes: an exception, or (if the damage happens to be harmless, e.g. in a depth
+  // value) a map that is still consistent.
+  std::mt19937 rng(7);
+  int thrown = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    auto bad = bytes;
+    const std::size_t at = 40 + rng() % (bytes.size() - 80);
+    for (std::size_t k = 0; k < 8; ++k) bad[at + k] = 0xFF;
+    try {
+      const auto o = std::dynamic_pointer_cast<CSuperpixelMap>(deserialize(bad));
+      ASSERT_TRUE(o);
+      for (const auto& v : o->views()) EXPECT_NO_THROW(checkConsistency(v));
+    } catch (const std::exception& e) {
+      ++thrown;
+      EXPECT_NE(std::string(e.what()).find("CSuperpixelMap"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_GT(thrown, 0);
+  std::cout << "corruption trials that threw: " << thrown << " of 40\n";
+}
+
+TEST(SuperpixelMap, CreatedFromIniByCMultiMetricMap) {
+  const std::string ini =
+      "[MappingApplication]\n"
+      "superpixelMap_count=1\n"
+      "[MappingApplication_superpixelMap_00_creationOpts]\n"
+      "target_patch_area_m2=0.006\n"
+      "min_patch_pixels=30\n"
+      "enableObservationLikelihood=false\n"
+      "[MappingApplication_superpixelMap_00_likelihoodOpts]\n"
+      "sigma_m=0.05\n"
+      "candidates=30\n"
+      "[MappingApplication_superpixelMap_00_renderOpts]\n"
+      "style=points\n";
+  mrpt::maps::TSetOfMetricMapInitializers init;
+  init.loadFromConfigFile(mrpt::config::CConfigFileMemory(ini), "MappingApplication");
+  ASSERT_EQ(init.size(), 1u);
+  mrpt::maps::CMultiMetricMap multi(init);
+  const auto map = multi.mapByClass<CSuperpixelMap>();
+  ASSERT_TRUE(map);
+  EXPECT_EQ(map->creationOptions.superpixels.target_patch_area_m2, 0.006);
+  EXPECT_EQ(map->creationOptions.superpixels.min_patch_pixels, 30);
+  EXPECT_EQ(map->likelihoodOptions.sigma_m, 0.05);
+  EXPECT_EQ(map->likelihoodOptions.matching.association.candidates, 30);
+  EXPECT_EQ(map->renderOptions.style, CSuperpixelMap::TRenderOptions::Style::points);
+  EXPECT_FALSE(map->genericMapParams.enableObservationLikelihood);
+
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const auto ds = TumDataset::open(dir);
+  mrpt::obs::CSensoryFrame sf;
+  sf.insert(tumObservation(ds, 0, true, someMount()));
+  sf.insert(std::make_shared<mrpt::obs::CObservation2DRangeScan>());  // not for this map: ignored
+  multi.insertObservation(*sf.getObservationByIndex(0));
+  EXPECT_FALSE(map->insertObservation(*sf.getObservationByIndex(1)));
+  EXPECT_EQ(map->views().size(), 1u);
+  EXPECT_GT(map->patchCount(), 50u);
+}
+
+TEST(SuperpixelMap, BadIniParametersAreNamed) {
+  auto load = [](const std::string& body) {
+    mrpt::maps::TSetOfMetricMapInitializers init;
+    init.loadFromConfigFile(mrpt::config::CConfigFileMemory("[M]\nsuperpixelMap_count=1\n" + body), "M");
+  };
+  EXPECT_NO_THROW(load(""));
+  try {
+    load("[M_superpixelMap_00_creationOpts]\ntarget_patch_area=0.004\n");
+    ADD_FAILURE() << "unknown key accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown key 'target_patch_area'"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(load("[M_superpixelMap_00_creationOpts]\ntarget_patch_area_m2=abc\n"), std::exception);
+  EXPECT_THROW(load("[M_superpixelMap_00_creationOpts]\ntarget_patch_area_m2=-1\n"), std::exception);
+  EXPECT_THROW(load("[M_superpixelMap_00_likelihoodOpts]\nlambda=2\n"), std::exception);
+  EXPECT_THROW(load("[M_superpixelMap_00_likelihoodOpts]\nsigma_m=0\n"), std::exception);
+  EXPECT_THROW(load("[M_superpixelMap_00_renderOpts]\nstyle=cubes\n"), std::exception);
+}
+
+TEST(SuperpixelMap, BadObservationsGiveClearErrors) {
+  CSuperpixelMap map;
+  mrpt::obs::CObservation2DRangeScan laser;
+  EXPECT_FALSE(map.insertObservation(laser));  // MRPT's contract: not for this map
+  mrpt::obs::CObservation3DRangeScan no_range;
+  EXPECT_THROW(map.insertObservation(no_range), std::exception);
+
+  RgbdFrame f;
+  f.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(1.5f));
+  f.rgb = cv::Mat(480, 640, CV_8UC3, cv::Scalar(10, 20, 30));
+  f.rgb_intrinsics = f.depth_intrinsics;
+  {
+    auto obs = observationFromFrame(f);
+    obs->cameraParams.ncols = 320;  // range image 640 wide, camera 320: inconsistent
+    try {
+      map.insertObservation(*obs);
+      ADD_FAILURE() << "inconsistent depth intrinsics accepted";
+    } catch (const std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find("640x480"), std::string::npos) << e.what();
+    }
+  }
+  {
+    auto obs = observationFromFrame(f);
+    obs->cameraParamsIntensity.ncols = 1280;
+    try {
+      map.insertObservation(*obs);
+      ADD_FAILURE() << "inconsistent intensity intrinsics accepted";
+    } catch (const std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find("inconsistent intrinsics"), std::string::npos) << e.what();
+    }
+  }
+  {
+    auto obs = observationFromFrame(f);
+    obs->cameraParams.fx(0.0);
+    EXPECT_THROW(map.insertObservation(*obs), std::exception);
+  }
+  EXPECT_TRUE(map.isEmpty());
+  // A frame without valid depth is a valid, empty view.
+  f.depth_m.setTo(0.0f);
+  EXPECT_TRUE(map.insertObservation(*observationFromFrame(f)));
+  EXPECT_EQ(map.patchCount(), 0u);
+  // Likelihood of other observation types: refused clearly.
+  EXPECT_FALSE(map.canComputeObservationLikelihood(laser));
+}
+
+TEST(SuperpixelMap, VisualisationAndFiles) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const auto ds = TumDataset::open(dir);
+  CSuperpixelMap map;
+  map.insertObservation(*tumObservation(ds, 0, true, someMount()));
+  const std::size_t n = map.patchCount();
+  {
+    mrpt::opengl::CSetOfObjects o;
+    map.getVisualizationInto(o);
+    auto tri = o.getByClass<mrpt::opengl::CSetOfTriangles>();
+    ASSERT_TRUE(tri);
+    EXPECT_EQ(tri->getTrianglesCount(), 16 * n);
+  }
+  map.renderOptions.style = CSuperpixelMap::TRenderOptions::Style::points;
+  {
+    mrpt::opengl::CSetOfObjects o;
+    map.getVisualizationInto(o);
+    auto pts = o.getByClass<mrpt::opengl::CPointCloudColoured>();
+    ASSERT_TRUE(pts);
+    EXPECT_GT(pts->size(), 20 * n);
+  }
+  map.renderOptions.style = CSuperpixelMap::TRenderOptions::Style::discs;
+  const std::string prefix = gasp::test::scratchDir() + "/map";
+  map.saveMetricMapRepresentationToFile(prefix);
+  std::ifstream ply(prefix + "_patches.ply");
+  ASSERT_TRUE(ply);
+  std::string line;
+  std::size_t vertices = 0, lines = 0;
+  bool header = true;
+  while (std::getline(ply, line)) {
+    if (header) {
+      if (line.rfind("element vertex ", 0) == 0) vertices = std::stoul(line.substr(15));
+      if (line == "end_header") header = false;
+    } else {
+      ++lines;
+    }
+  }
+  EXPECT_EQ(vertices, n);
+  EXPECT_EQ(lines, n);
+  std::ifstream table(prefix + "_patches.txt");
+  std::size_t rows = 0;
+  while (std::getline(table, line))
+    if (!line.empty() && line[0] != '#') ++rows;
+  EXPECT_EQ(rows, n);
+  mrpt::opengl::COpenGLScene scene;
+  ASSERT_TRUE(scene.loadFromFile(prefix + "_3D.3Dscene"));
+  EXPECT_TRUE(scene.getByClass<mrpt::opengl::CSetOfTriangles>());
+  EXPECT_THROW(map.saveMetricMapRepresentationToFile("/nonexistent/dir/map"), std::exception);
+}
+
+TEST(SuperpixelMap, MatchingRatioAndLikelihoodPreferTheTruePose) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const auto ds = TumDataset::open(dir);
+  const Isometry3 S = someMount();
+  const Isometry3 W0 = *ds.frame(0).T_world_camera, W4 = *ds.frame(4).T_world_camera;
+  // Robot poses in the world such that the cameras are where TUM's ground truth says.
+  const Isometry3 P0 = W0 * S.inverse(), P4 = W4 * S.inverse();
+  CSuperpixelMap m0, m4;
+  m0.insertObservation(*tumObservation(ds, 0, true, S), toCPose3D(P0));
+  m4.insertObservation(*tumObservation(ds, 4, true, S));  // map 4 in its own robot frame
+  Isometry3 off = Isometry3::Identity();
+  off.translation() = Eigen::Vector3d(0.15, 0.0, 0.0);
+  mrpt::maps::TMatchingRatioParams mp;
+  const float right = m0.compute3DMatchingRatio(&m4, toCPose3D(P4), mp);
+  const float wrong = m0.compute3DMatchingRatio(&m4, toCPose3D(off * P4), mp);
+  std::cout << "matching ratio at the true pose " << right << ", 15 cm off " << wrong << "\n";
+  EXPECT_GT(right, 0.05f);
+  EXPECT_GT(right, 2 * wrong);
+  const auto obs4 = tumObservation(ds, 4, false, S);
+  const double ll_right = m0.computeObservationLikelihood(*obs4, toCPose3D(P4));
+  const double ll_wrong = m0.computeObservationLikelihood(*obs4, toCPose3D(off * P4));
+  std::cout << "log-likelihood at the true pose " << ll_right << ", 15 cm off " << ll_wrong << "\n";
+  EXPECT_GT(ll_right, ll_wrong);
+  EXPECT_LE(ll_right, 0.0);
+  EXPECT_GE(ll_wrong, -4.5);
+  mrpt::obs::CObservation2DRangeScan laser;
+  EXPECT_FALSE(m0.canComputeObservationLikelihood(laser));
+  EXPECT_GT(m0.compute3DMatchingRatio(&m0, toCPose3D(Isometry3::Identity()), mp), 0.5f);  // itself
+}
