@@ -7,6 +7,7 @@
 #include <mrpt/maps/TMetricMapTypesRegistry.h>
 #include <mrpt/rtti/CObject.h>
 
+#include "gasp/mrpt/CGaspAligner.h"
 #include "gasp/mrpt/CSuperpixelMap.h"
 #include "gasp/mrpt/ObservationMatcher_GASP.h"
 #include "gasp/mrpt/observation_matcher.h"
@@ -19,4 +20,5 @@ MRPT_INITIALIZER(register_gasp_mrpt_classes) {
   mrpt::rtti::registerClass(CLASS_ID(ObservationMatcher));
   mrpt::rtti::registerClass(CLASS_ID(ObservationMatcher_GASP));
   mrpt::rtti::registerClass(CLASS_ID(CSuperpixelMap));
+  mrpt::rtti::registerClass(CLASS_ID(CGaspAligner));
 }

@@ -10,14 +10,15 @@
 #include <string>
 
 TEST(PluginLoad, RegistersEveryGaspClassByName) {
-  const char* names[] = {"gasp::ObservationMatcher", "gasp::ObservationMatcher_GASP", "gasp::CSuperpixelMap"};
+  const char* names[] = {"gasp::ObservationMatcher", "gasp::ObservationMatcher_GASP", "gasp::CSuperpixelMap",
+                         "gasp::CGaspAligner"};
   for (const char* name : names)
     EXPECT_EQ(mrpt::rtti::findRegisteredClass(name), nullptr)
         << name << " registered before the plugin was loaded: the test links GASP by mistake";
   std::string errors;
   ASSERT_TRUE(mrpt::system::loadPluginModule(GASP_MRPT_PLUGIN, errors)) << errors;
   for (const char* name : names) EXPECT_NE(mrpt::rtti::findRegisteredClass(name), nullptr) << name;
-  for (const char* name : {"gasp::ObservationMatcher_GASP", "gasp::CSuperpixelMap"}) {
+  for (const char* name : {"gasp::ObservationMatcher_GASP", "gasp::CSuperpixelMap", "gasp::CGaspAligner"}) {
     const auto object = mrpt::rtti::classFactory(name);
     ASSERT_TRUE(object) << name;
     EXPECT_STREQ(object->GetRuntimeClass()->className, name);
