@@ -10,6 +10,7 @@ PACKAGES=(
   libmrpt-dev mrpt-apps mrpt-common # rawlogs and observations; rawlog-edit; MRPT's sample RGB-D rawlog
   libceres-dev                      # pose refinement (point-to-plane)
   libnanoflann-dev                  # KD-trees
+  libpcl-dev                        # baselines of the pair benchmark: FPFH, SHOT, colour SHOT
   libtbb-dev                        # parallel loops
   libcli11-dev                      # command-line parsing of the programs
   libgtest-dev libgmock-dev         # tests
