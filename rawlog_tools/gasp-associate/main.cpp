@@ -80,8 +80,7 @@ int main(int argc, char** argv) {
       depth_b = gasp::loadDepth(depth_b_path, depth_scale);
       if (out_path.empty()) out_path = "associations.png";
     }
-    const auto va = gasp::makeDepthView(depth_a, K, params.superpixels);
-    const auto vb = gasp::makeDepthView(depth_b, K, params.superpixels);
+    const auto [va, vb] = gasp::makeDepthViews(depth_a, depth_b, K, params.superpixels);
     const auto r = gasp::registerViews(va, vb, params);
     const auto& s = r.association.stats;
     std::printf("patches_a: %zu\npatches_b: %zu\nassociations: %zu\n", va.segmentation.patches.size(),
@@ -112,7 +111,8 @@ int main(int argc, char** argv) {
       std::printf("no associations: %s\n", r.association.reason.c_str());
       return 3;
     }
-    std::printf("inliers: %d\n", r.pose.num_inliers);
+    std::printf("inliers: %d\none_way_fallback: %s\nguided_support: %d\n", r.pose.num_inliers,
+                r.used_one_way ? "yes" : "no", r.guided_support);
     if (!r.pose.success) {
       std::printf("pose: none (%s)\n", r.pose.reason.c_str());
       return 4;
@@ -124,6 +124,11 @@ int main(int argc, char** argv) {
     std::printf("residual_rms_m: %.4f\ninformation_diag: ", r.pose.rms_residual_m);
     for (int i = 0; i < 6; ++i) std::printf("%.4g%s", r.pose.information(i, i), i < 5 ? " " : " (tx ty tz rx ry rz)\n");
     std::printf("visibility_violations: %.3f\n", r.visibility.violation_ratio);
+    std::printf("verified_associations: %zu\n", r.verified.size());
+    if (T_b_a_true) {
+      const auto q = gasp::evaluateAssociations(r.verified, va.segmentation, vb.segmentation, depth_b, K, *T_b_a_true);
+      std::printf("verified_precision: %.3f\nverified_density: %.3f\n", q.precision(), q.density());
+    }
     if (T_b_a_true) {
       const gasp::Isometry3 E = T_b_a_true->inverse() * T;
       std::printf("pose_error: %.4f m %.3f deg\n", gasp::translationNorm(E), gasp::rotationAngle(E) * 180.0 / M_PI);

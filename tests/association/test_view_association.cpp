@@ -4,6 +4,7 @@
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -237,3 +238,30 @@ TEST(ViewAssociation, PaperSettingsStillWork) {
     for (const auto& s : r.associations) EXPECT_EQ(s.a, s.b);
   }
 }
+
+namespace {
+
+TEST(ViewAssociation, OneWayPartnersAreTheOnesTheMutualCheckDropped) {
+  // associations + one_way (mutual check) = the associations without the mutual check, exactly.
+  const gasp::Isometry3 T = Eigen::Translation3d(0.2, -0.1, 0.1) * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX());
+  for (const double sigma : {0.01, 0.03}) {
+    const auto a = gridScene(21);  // grids: many patches prefer the same partner
+    const auto b = noisyView(a, T, sigma, 23);
+    gasp::AssociationParams p;
+    p.feature_sets.neighbourhood.k = 15;
+    p.lambda = 0.8;
+    const auto qa = gasp::computeFeatureSets(a, p.feature_sets), qb = gasp::computeFeatureSets(b, p.feature_sets);
+    const auto mutual = gasp::associateFeatureSets(qa, qb, p);
+    p.mutual_check = false;
+    const auto one_way = gasp::associateFeatureSets(qa, qb, p);
+    EXPECT_TRUE(one_way.one_way.empty());
+    auto merged = mutual.associations;
+    merged.insert(merged.end(), mutual.one_way.begin(), mutual.one_way.end());
+    std::sort(merged.begin(), merged.end(), [](const auto& x, const auto& y) { return x.a < y.a; });
+    expectSameAssociations(merged, one_way.associations, "sigma " + std::to_string(sigma));
+    EXPECT_EQ(mutual.one_way.size(), mutual.stats.not_mutual);
+    EXPECT_FALSE(mutual.one_way.empty());
+  }
+}
+
+}  // namespace

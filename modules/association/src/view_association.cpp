@@ -367,6 +367,7 @@ AssociationResult associateFeatureSets(const std::vector<std::vector<Feature>>& 
     const int a = static_cast<int>(all_a[k]);
     if (p.mutual_check && b_to_a[static_cast<std::size_t>(o.best)] != a) {
       ++r.stats.not_mutual;
+      r.one_way.push_back({a, o.best, o.best_hat});
       continue;
     }
     r.associations.push_back({a, o.best, o.best_hat});

@@ -1,5 +1,8 @@
 #include "gasp/pipeline/pair_registration.h"
 
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -14,11 +17,11 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::vector<PatchCorrespondence> toCorrespondences(const AssociationResult& r, const SuperpixelSegmentation& a,
-                                                   const SuperpixelSegmentation& b) {
+std::vector<PatchCorrespondence> toCorrespondences(const std::vector<PatchAssociation>& associations,
+                                                   const SuperpixelSegmentation& a, const SuperpixelSegmentation& b) {
   std::vector<PatchCorrespondence> out;
-  out.reserve(r.associations.size());
-  for (const auto& s : r.associations) {
+  out.reserve(associations.size());
+  for (const auto& s : associations) {
     const auto& pa = a.patches[static_cast<std::size_t>(s.a)];
     const auto& pb = b.patches[static_cast<std::size_t>(s.b)];
     // A lower edit distance is more evidence: weight 1 - D_hat in [0, 1].
@@ -49,6 +52,8 @@ void validate(const PairParams& p) {
   validate(p.projective);
   validate(p.dense_degeneracy);
   validate(p.visibility);
+  validate(p.guided);
+  if (p.min_guided_support < 3) throw Error("PairParams: min_guided_support must be >= 3");
   if (!(p.view_degeneracy.min_eigenvalue_ratio >= 0 && p.view_degeneracy.min_eigenvalue_ratio < 1))
     throw Error("PairParams: view_degeneracy.min_eigenvalue_ratio must be in [0, 1)");
   if (p.dense_rounds < 0) throw Error("PairParams: dense_rounds must be >= 0");
@@ -72,27 +77,67 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
     }
   }
   auto t0 = std::chrono::steady_clock::now();
-  r.association = associateViews(toPatchGeometry(source.segmentation.patches),
-                                 toPatchGeometry(target.segmentation.patches), params.association);
+  const auto ga = toPatchGeometry(source.segmentation.patches), gb = toPatchGeometry(target.segmentation.patches);
+  std::vector<std::vector<Feature>> qa, qb;
+  tbb::parallel_invoke([&] { qa = computeFeatureSets(ga, params.association.feature_sets); },
+                       [&] { qb = computeFeatureSets(gb, params.association.feature_sets); });
+  const double features_ms = msSince(t0);
+  r.association = associateFeatureSets(qa, qb, params.association);
+  r.association.stats.features_ms = features_ms;
   r.timings.association_ms = msSince(t0);
-  if (r.association.associations.empty()) {
+  if (r.association.associations.empty() && r.association.one_way.empty()) {
     r.pose.reason = "no associations: " + r.association.reason;
     return r;
   }
-  r.correspondences = toCorrespondences(r.association, source.segmentation, target.segmentation);
 
   PoseEstimationParams pose_params = params.pose;
   pose_params.refine = params.refine;
-  r.pose = estimatePose(r.correspondences, pose_params);
-  r.timings.ransac_ms = r.pose.ransac_ms;
-  r.timings.refine_ms = r.pose.refine_ms;
+  const auto attempt = [&](std::vector<PatchAssociation> used) {
+    r.used = std::move(used);
+    r.correspondences = toCorrespondences(r.used, source.segmentation, target.segmentation);
+    r.pose = estimatePose(r.correspondences, pose_params);
+    r.timings.ransac_ms += r.pose.ransac_ms;
+    r.timings.refine_ms += r.pose.refine_ms;
+  };
   // A pose found by RANSAC whose patch problem is degenerate (few inliers on few planes) goes on
   // to the dense rounds: the pixels of the whole overlap may observe what the patches did not.
   // The dense problem then gives the verdict.
-  const bool pose_found = r.pose.success || (r.pose.degenerate && !r.pose.inliers.empty());
-  if (!pose_found) return r;
+  const auto poseFound = [&] { return r.pose.success || (r.pose.degenerate && !r.pose.inliers.empty()); };
+  if (!r.association.associations.empty()) attempt(r.association.associations);
+  else r.pose.reason = "no mutual associations";
+  if (!poseFound() && params.one_way_fallback && !r.association.one_way.empty()) {
+    const std::string mutual_reason = r.pose.reason;
+    std::vector<PatchAssociation> wider = r.association.associations;
+    wider.insert(wider.end(), r.association.one_way.begin(), r.association.one_way.end());
+    std::sort(wider.begin(), wider.end(), [](const PatchAssociation& x, const PatchAssociation& y) { return x.a < y.a; });
+    attempt(std::move(wider));
+    r.used_one_way = true;
+    if (!poseFound()) r.pose.reason = "mutual associations: " + mutual_reason + "; with one-way partners: " + r.pose.reason;
+  }
+  if (!poseFound()) return r;
+
+  if (params.guided_verification) {
+    t0 = std::chrono::steady_clock::now();
+    auto guided = guidedAssociations(ga, gb, qa, qb, r.pose.T_target_source, params.association, params.guided);
+    r.timings.guided_ms += msSince(t0);
+    r.guided_support = static_cast<int>(guided.size());
+    if (r.guided_support < params.min_guided_support) {
+      r.pose.success = false;
+      r.pose.reason = "guided verification: " + std::to_string(r.guided_support) +
+                      " source patches find a partner that agrees with the RANSAC pose (min_guided_support " +
+                      std::to_string(params.min_guided_support) + ")";
+      return r;
+    }
+    if (params.guided_densify) attempt(std::move(guided));
+    if (!poseFound()) {
+      r.pose.reason = "on the guided associations: " + r.pose.reason;
+      return r;
+    }
+  }
   if (!params.refine || params.dense_rounds == 0) {
     verify(source, target, params, r);
+    if (r.pose.success && params.guided_verification)
+      r.verified = guidedAssociations(ga, gb, qa, qb, r.pose.T_target_source, params.association, params.guided);
     return r;
   }
 
@@ -130,6 +175,11 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
   r.pose = current;
   r.timings.dense_ms = msSince(t0);
   verify(source, target, params, r);
+  if (r.pose.success && params.guided_verification) {
+    t0 = std::chrono::steady_clock::now();
+    r.verified = guidedAssociations(ga, gb, qa, qb, r.pose.T_target_source, params.association, params.guided);
+    r.timings.guided_ms += msSince(t0);
+  }
   return r;
 }
 

@@ -79,6 +79,10 @@ struct AssociationStats {
 
 struct AssociationResult {
   std::vector<PatchAssociation> associations;  ///< sorted by patch of A
+  /// With mutual_check: the A -> B best partners the check dropped (sorted by patch of A), a
+  /// wider, less precise hypothesis set (the pipeline falls back to it when the mutual ones give
+  /// no pose). Empty without mutual_check.
+  std::vector<PatchAssociation> one_way;
   AssociationStats stats;
   std::string reason;  ///< why the result is empty, when it is
 };

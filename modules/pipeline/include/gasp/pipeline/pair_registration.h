@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "gasp/association/guided_association.h"
 #include "gasp/association/view_association.h"
 #include "gasp/pipeline/depth_view.h"
 #include "gasp/pipeline/projective_terms.h"
@@ -34,6 +35,20 @@ struct PairParams {
   /// inliers of a floor-dominated view (fr3_cabinet) reach only 2e-3 - 5e-3 while their
   /// centroid-to-centroid RANSAC fit does fix the in-plane directions.
   PoseEstimationParams pose = defaultPoseParams();
+  /// When RANSAC finds no pose from the mutual associations, try again with the one-way best
+  /// partners added (AssociationResult::one_way): more right associations at wide baselines,
+  /// more wrong ones too, so such a pose must pass the guided verification below.
+  bool one_way_fallback = true;
+  /// Guided verification and densification (guided_association.h): at the RANSAC pose, every
+  /// patch of the source looks for a partner near its mapped centroid whose feature set agrees
+  /// (D_hat <= guided.lambda). Fewer than min_guided_support such associations: no estimate.
+  /// Otherwise they replace the RANSAC correspondences (RANSAC and the patch refinement run
+  /// again on them), so the refinement uses every associated patch, not only the ones the free
+  /// search ranked first.
+  bool guided_verification = true;
+  bool guided_densify = false;
+  GuidedAssociationParams guided;  ///< 0.05 m, 20 deg, lambda 0.8
+  int min_guided_support = 12;
   bool refine = true;               ///< false: RANSAC pose only (no patch or dense refinement)
   /// Dense rounds after the patch refinement (0 = none). Each round re-associates the pixels at
   /// the current pose; the distance gate of round k is max(dense_gates_m[k], last entry).
@@ -67,13 +82,23 @@ void validate(const PairParams& params);
 /// Wall-clock time per stage [ms] (segmentation is timed by the views themselves).
 struct PairTimings {
   double association_ms = 0, ransac_ms = 0, refine_ms = 0, dense_ms = 0;
-  double total() const { return association_ms + ransac_ms + refine_ms + dense_ms; }
+  double guided_ms = 0;  ///< guided verification (association under the pose hypotheses)
+  double total() const { return association_ms + ransac_ms + refine_ms + dense_ms + guided_ms; }
 };
 
 struct PairResult {
   RegistrationResult pose;  ///< pose.success = an estimate is claimed; pose.reason otherwise
   AssociationResult association;
-  std::vector<PatchCorrespondence> correspondences;  ///< one per association, same order
+  /// What RANSAC and the patch refinement ran on: one per entry of `used`, same order.
+  std::vector<PatchCorrespondence> correspondences;
+  /// The associations behind `correspondences`: association.associations, or with the one-way
+  /// fallback those and association.one_way, or after the guided verification the guided ones.
+  std::vector<PatchAssociation> used;
+  bool used_one_way = false;  ///< the one-way fallback was needed
+  /// Guided associations at the final pose (when one was claimed): the dense, verified patch
+  /// associations of the pair (sorted by patch of the source).
+  std::vector<PatchAssociation> verified;
+  int guided_support = 0;  ///< guided associations at the RANSAC pose (0: stage not reached)
   int dense_terms = 0;  ///< dense terms in the last round
   VisibilityCheck visibility;  ///< of the final pose (when one was found)
   PairTimings timings;
