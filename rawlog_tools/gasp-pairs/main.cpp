@@ -1,26 +1,45 @@
-// gasp-pairs: the paper's pair benchmark on a TUM folder.
-//   gasp-pairs --tum DIR [--skips 10,20,30,40] [--starts-every N] [--method gasp,gasp-norefine]
-//              [--csv OUT.csv] [--pairs-csv OUT_pairs.csv] [--max-pairs N]
+// gasp-pairs: the paper's pair benchmark on a TUM folder, GASP beside the feature baselines.
+//   gasp-pairs --tum DIR [--skips 10,20,30,40] [--starts-every N]
+//              [--method gasp,gasp-norefine,fpfh,shot,cshot,sift,dsift] [--csv OUT.csv]
+//              [--pairs-csv OUT_pairs.csv] [--max-pairs N] [--picture I,J [--picture-prefix P] [--pictures-only]]
 // Pairs (i, i + skip) from start frames 0, N, 2N, ... (indices in depth.txt order); for each pair
-// both views are segmented, associated and registered; the relative pose is compared with ground
-// truth. Prints one table row per skip and method (definitions in gasp/eval/pair_protocol.h and
-// docs/evaluation.md); progress goes to stderr. Exit codes: 0 done, 1 bad input, 2 usage error,
-// 4 no pair with ground truth.
+// and method a relative pose is estimated and compared with ground truth. Prints one table row per
+// skip and method (definitions in gasp/eval/pair_protocol.h and docs/evaluation.md); progress goes
+// to stderr. The baselines (fpfh, shot, cshot, sift, dsift; gasp/baselines/) exist when the build
+// has GASP_BUILD_BASELINES. Colour methods (cshot, sift, dsift) are not run on pairs where a frame
+// has no rgb: those rows say "n/a (no rgb)" and count the pairs left out.
+// Time per pair = description of both views (segmentation for GASP; measured once per frame and
+// charged to every pair using it) + association or matching + pose stages; image loading excluded.
+// Exit codes: 0 done, 1 bad input, 2 usage error, 4 no pair with ground truth.
 #include <CLI/CLI.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <set>
 
+#include "gasp/association/association_picture.h"
+#include "gasp/association/association_quality.h"
 #include "gasp/core/error.h"
 #include "gasp/core/tum_dataset.h"
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/eval/pair_protocol.h"
 #include "gasp/pipeline/pair_registration.h"
+#ifdef GASP_HAVE_BASELINES
+#include "gasp/baselines/baseline_registration.h"
+#include "gasp/baselines/match_picture.h"
+#endif
 
 namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
@@ -29,41 +48,166 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+bool isGasp(const std::string& method) { return method == "gasp" || method == "gasp-norefine"; }
+
+std::vector<std::string> knownMethods() {
+  std::vector<std::string> m{"gasp", "gasp-norefine"};
+#ifdef GASP_HAVE_BASELINES
+  for (auto b : gasp::baselines::allMethods()) m.push_back(gasp::baselines::methodName(b));
+#endif
+  return m;
+}
+
+/// One pair, one method: the outcome plus what the pictures need.
+struct MethodRun {
+  bool estimated = false;
+  gasp::Isometry3 T_target_source = gasp::Isometry3::Identity();
+  std::string reason;
+  double ms = 0;
+  std::size_t associations = 0;
+  int inliers = 0;
+  double violation_ratio = 0;
+  std::map<std::string, double> stage_ms;
+};
+
+/// Views and descriptions per frame, kept while later pairs may use them (pairs are visited by
+/// start frame, so frames before the current start are dropped).
+class FrameCache {
+ public:
+  explicit FrameCache(const gasp::TumDataset& ds) : ds_(ds) {}
+
+  struct GaspView {
+    gasp::DepthView view;
+    double ms = 0;
+  };
+  const GaspView& gaspView(std::size_t i, const gasp::SuperpixelParams& params) {
+    auto it = gasp_.find(i);
+    if (it != gasp_.end()) return it->second;
+    const cv::Mat depth = ds_.loadDepth(i);
+    const auto t0 = Clock::now();
+    GaspView v{gasp::makeDepthView(depth, ds_.intrinsics(), params), 0.0};
+    v.ms = msSince(t0);
+    return gasp_.emplace(i, std::move(v)).first->second;
+  }
+
+#ifdef GASP_HAVE_BASELINES
+  const gasp::baselines::RgbdImage& rgbd(std::size_t i) {
+    auto it = rgbd_.find(i);
+    if (it != rgbd_.end()) return it->second;
+    return rgbd_.emplace(i, gasp::baselines::RgbdImage{ds_.loadDepth(i), ds_.loadRgb(i), ds_.intrinsics()})
+        .first->second;
+  }
+  const gasp::baselines::DescribedKeypoints& described(std::size_t i, gasp::baselines::BaselineMethod m,
+                                                       const gasp::baselines::BaselineParams& params) {
+    const auto key = std::make_pair(i, static_cast<int>(m));
+    auto it = described_.find(key);
+    if (it != described_.end()) return it->second;
+    const auto& view = rgbd(i);
+    gasp::baselines::DescribedKeypoints k;
+    switch (m) {
+      case gasp::baselines::BaselineMethod::kFpfh:
+        k = describePointFeatures(view, gasp::baselines::PointFeatureType::kFpfh, params.point);
+        break;
+      case gasp::baselines::BaselineMethod::kShot:
+        k = describePointFeatures(view, gasp::baselines::PointFeatureType::kShot, params.point);
+        break;
+      case gasp::baselines::BaselineMethod::kColourShot:
+        k = describePointFeatures(view, gasp::baselines::PointFeatureType::kColourShot, params.point);
+        break;
+      case gasp::baselines::BaselineMethod::kSift: k = describeSift(view, params.sift); break;
+      case gasp::baselines::BaselineMethod::kDenseSift: k = describeDenseSift(view, params.dense_sift); break;
+    }
+    return described_.emplace(key, std::move(k)).first->second;
+  }
+#endif
+
+  void dropBefore(std::size_t first) {
+    gasp_.erase(gasp_.begin(), gasp_.lower_bound(first));
+#ifdef GASP_HAVE_BASELINES
+    rgbd_.erase(rgbd_.begin(), rgbd_.lower_bound(first));
+    described_.erase(described_.begin(), described_.lower_bound(std::make_pair(first, -1)));
+#endif
+  }
+
+ private:
+  const gasp::TumDataset& ds_;
+  std::map<std::size_t, GaspView> gasp_;
+#ifdef GASP_HAVE_BASELINES
+  std::map<std::size_t, gasp::baselines::RgbdImage> rgbd_;
+  std::map<std::pair<std::size_t, int>, gasp::baselines::DescribedKeypoints> described_;
+#endif
+};
+
+/// The picture of one method on one pair: GASP's association picture (patches in shared
+/// colours), or the baselines' keypoint matches over the rgb images. Lines are green where the
+/// ground truth says correct (GASP: the same surface, association_quality.h; keypoints: the
+/// mapped source keypoint within 5 cm of its partner), red where wrong.
+struct Picture {
+  cv::Mat image;
+  std::size_t shown = 0, correct = 0;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"gasp-pairs: relative-pose benchmark over frame pairs of a TUM RGB-D folder (the GASP paper's protocol)"};
-  std::string tum_dir, intrinsics_arg, csv_path, pairs_csv_path;
+  CLI::App app{"gasp-pairs: relative-pose benchmark over frame pairs of a TUM RGB-D folder (the GASP paper's protocol), "
+               "GASP beside the feature baselines"};
+  std::string tum_dir, intrinsics_arg, csv_path, pairs_csv_path, picture_prefix = "pair_";
   std::vector<std::size_t> skips{10, 20, 30, 40};
   std::vector<std::string> methods{"gasp"};
+  std::vector<std::size_t> picture_pair;
   std::size_t starts_every = 10, max_pairs = 0;
   app.add_option("--tum", tum_dir, "TUM RGB-D folder")->required();
   app.add_option("--skips", skips, "frame skips (in depth.txt order)")->delimiter(',')->capture_default_str();
   app.add_option("--starts-every", starts_every, "start frames 0, N, 2N, ...")->capture_default_str()->check(CLI::PositiveNumber);
-  app.add_option("--method", methods, "gasp (full pipeline) and/or gasp-norefine (RANSAC only)")
-      ->delimiter(',')->check(CLI::IsMember({"gasp", "gasp-norefine"}))->capture_default_str();
+  app.add_option("--method", methods,
+                 "gasp (full pipeline), gasp-norefine (RANSAC only); baselines (when built): fpfh, shot, cshot, sift, dsift")
+      ->delimiter(',')->check(CLI::IsMember(knownMethods()))->capture_default_str();
   app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: the folder's)");
-  app.add_option("--csv", csv_path, "write the table as CSV");
+  app.add_option("--csv", csv_path, "write the table as CSV (rows with scored pairs only)");
   app.add_option("--pairs-csv", pairs_csv_path, "write one line per pair and method");
   app.add_option("--max-pairs", max_pairs, "at most this many pairs per skip (0 = all)");
+  app.add_option("--picture", picture_pair, "also draw the pair I,J for every method (not scored)")
+      ->delimiter(',')->expected(2);
+  app.add_option("--picture-prefix", picture_prefix, "pictures go to PREFIX<method>.png")->capture_default_str();
+  bool pictures_only = false;
+  app.add_flag("--pictures-only", pictures_only, "draw the --picture pair and stop (no benchmark)");
   gasp::PairParams base;
   app.add_option("--k", base.association.feature_sets.neighbourhood.k, "association neighbourhood size (0 = full view)")->capture_default_str();
   app.add_option("--candidates", base.association.candidates, "KD-tree candidates per patch (C)")->capture_default_str();
   app.add_option("--lambda", base.association.lambda, "gating on the normalised edit distance")->capture_default_str();
   app.add_flag("!--no-mutual", base.association.mutual_check, "keep one-way best partners too (no mutual check)");
-  app.add_option("--min-inliers", base.pose.ransac.min_inliers, "RANSAC: fewer inliers give no estimate")->capture_default_str();
+  app.add_option("--min-inliers", base.pose.ransac.min_inliers, "RANSAC: fewer inliers give no estimate (all methods)")->capture_default_str();
   app.add_option("--dense-rounds", base.dense_rounds, "dense projective refinement rounds (0 = none)")->capture_default_str();
   app.add_option("--pixel-step", base.projective.pixel_step, "dense terms: every N-th pixel")->capture_default_str();
+#ifdef GASP_HAVE_BASELINES
+  gasp::baselines::BaselineParams baseline;
+  app.add_option("--ratio", baseline.matching.ratio, "baselines: Lowe's ratio test threshold")->capture_default_str();
+  app.add_flag("!--no-mutual-matches", baseline.matching.mutual, "baselines: no mutual check of descriptor matches");
+  app.add_option("--min-keypoints", baseline.point.min_keypoints, "fpfh/shot/cshot: keypoints per view")->capture_default_str();
+#endif
   double gt_offset = 0.0;
   app.add_option("--gt-offset", gt_offset,
                  "look ground truth up at depth timestamp + OFFSET [s] (nearest within 0.02 s; TUM fr1 depth lags "
                  "the motion capture, -0.02 fits better)")->capture_default_str();
   try {
     app.parse(argc, argv);
+    if (pictures_only && picture_pair.empty()) throw CLI::ValidationError("--pictures-only needs --picture I,J");
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;  // --help: 0; any usage error: 2
   }
+  // Each method once, in the order given.
+  {
+    std::vector<std::string> unique;
+    for (const auto& m : methods)
+      if (std::find(unique.begin(), unique.end(), m) == unique.end()) unique.push_back(m);
+    methods = unique;
+  }
   try {
+#ifdef GASP_HAVE_BASELINES
+    baseline.pose.ransac.min_inliers = base.pose.ransac.min_inliers;  // the same consensus rule for all
+    gasp::baselines::validate(baseline);
+#endif
     gasp::TumDataset::Options opt;
     if (!intrinsics_arg.empty()) opt.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg);
     const auto ds = gasp::TumDataset::open(tum_dir, opt);
@@ -74,15 +218,124 @@ int main(int argc, char** argv) {
       if (!k) return std::nullopt;
       return ds.groundTruth()[*k].T_world_camera;
     };
-    std::vector<gasp::eval::PairOutcome> outcomes;
-    std::map<std::string, std::vector<gasp::eval::PairOutcome>> by_method;
-    std::map<std::string, std::map<std::string, std::vector<double>>> stage_ms;  // method -> stage -> ms
-    std::ofstream pairs_csv;
-    if (!pairs_csv_path.empty()) {
-      pairs_csv.open(pairs_csv_path);
-      if (!pairs_csv) throw gasp::Error("cannot write " + pairs_csv_path);
-      pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,reason\n";
+    auto needsColour = [](const std::string& method) {
+      return method == "cshot" || method == "sift" || method == "dsift";
+    };
+    auto hasRgb = [&](std::size_t i) { return ds.frame(i).rgb_path.has_value(); };
+
+    FrameCache cache(ds);
+    // One method on one pair (i -> j): i is the source, j the target.
+    auto runMethod = [&](const std::string& method, std::size_t i, std::size_t j, Picture* picture,
+                         const std::optional<gasp::Isometry3>& T_gt) {
+      MethodRun run;
+      if (isGasp(method)) {
+        gasp::PairParams params = base;
+        params.refine = method == "gasp";
+        const auto& va = cache.gaspView(i, params.superpixels);
+        const auto& vb = cache.gaspView(j, params.superpixels);
+        const auto t0 = Clock::now();
+        const auto r = gasp::registerViews(va.view, vb.view, params);
+        const double reg_ms = msSince(t0);
+        run.estimated = r.pose.success;
+        run.T_target_source = r.pose.T_target_source;
+        run.reason = r.pose.reason;
+        run.ms = va.ms + vb.ms + reg_ms;
+        run.associations = r.association.associations.size();
+        run.inliers = r.pose.num_inliers;
+        run.violation_ratio = r.visibility.violation_ratio;
+        run.stage_ms = {{"segmentation", va.ms + vb.ms},
+                        {"association", r.timings.association_ms},
+                        {"ransac", r.timings.ransac_ms},
+                        {"refinement+check", reg_ms - r.timings.association_ms - r.timings.ransac_ms}};
+        if (picture) {
+          std::vector<unsigned char> correct;
+          if (T_gt)
+            for (const auto& a : r.association.associations)
+              correct.push_back(gasp::isSameSurface(va.view.segmentation.patches[static_cast<std::size_t>(a.a)],
+                                                    vb.view.segmentation.patches[static_cast<std::size_t>(a.b)], *T_gt));
+          picture->image = gasp::drawAssociations(va.view.depth_m, va.view.segmentation, va.view.intrinsics,
+                                                  vb.view.depth_m, vb.view.segmentation, vb.view.intrinsics,
+                                                  r.association.associations, correct);
+          picture->shown = r.association.associations.size();
+          picture->correct = static_cast<std::size_t>(std::count(correct.begin(), correct.end(), 1));
+        }
+        return run;
+      }
+#ifdef GASP_HAVE_BASELINES
+      const auto m = gasp::baselines::parseMethod(method);
+      const auto& ka = cache.described(i, m, baseline);
+      const auto& kb = cache.described(j, m, baseline);
+      const auto t0 = Clock::now();
+      const auto r = gasp::baselines::registerDescribed(cache.rgbd(i), cache.rgbd(j), ka, kb, baseline);
+      const double reg_ms = msSince(t0);
+      run.estimated = r.pose.success;
+      run.T_target_source = r.pose.T_target_source;
+      run.reason = r.pose.reason;
+      run.ms = ka.describe_ms + kb.describe_ms + reg_ms;
+      run.associations = r.matches.size();
+      run.inliers = r.pose.num_inliers;
+      run.violation_ratio = r.visibility.violation_ratio;
+      run.stage_ms = {{"description", ka.describe_ms + kb.describe_ms},
+                      {"matching", r.timings.match_ms},
+                      {"ransac", r.timings.ransac_ms},
+                      {"check", r.timings.check_ms}};
+      if (picture) {
+        std::vector<cv::Point2f> ma, mb;
+        std::vector<unsigned char> correct;
+        for (std::size_t k = 0; k < r.matches.size(); ++k) {
+          ma.push_back(r.source.pixels[static_cast<std::size_t>(r.matches[k].a)]);
+          mb.push_back(r.target.pixels[static_cast<std::size_t>(r.matches[k].b)]);
+          if (T_gt)
+            correct.push_back((*T_gt * r.correspondences[k].p_source - r.correspondences[k].p_target).norm() <= 0.05);
+        }
+        auto image = [&](std::size_t f) {
+          const auto& v = cache.rgbd(f);
+          if (!v.bgr.empty()) return v.bgr;
+          cv::Mat grey;  // no colour: the depth, scaled to 0..5 m
+          v.depth_m.convertTo(grey, CV_8U, 255.0 / 5.0);
+          return grey;
+        };
+        picture->image = gasp::baselines::drawKeypointMatches(image(i), image(j), r.source.pixels, r.target.pixels, ma,
+                                                              mb, correct);
+        picture->shown = r.matches.size();
+        picture->correct = static_cast<std::size_t>(std::count(correct.begin(), correct.end(), 1));
+      }
+#endif
+      return run;
+    };
+
+    // Pictures of one pair first (not scored).
+    if (!picture_pair.empty()) {
+      const std::size_t i = picture_pair[0], j = picture_pair[1];
+      if (i >= ds.size() || j >= ds.size()) throw gasp::Error("--picture: frame index beyond the folder's frames");
+      std::optional<gasp::Isometry3> T_gt;
+      if (truth(i) && truth(j)) T_gt = gasp::relativePose(*truth(j), *truth(i));
+      for (const auto& method : methods) {
+        if (needsColour(method) && (!hasRgb(i) || !hasRgb(j))) {
+          std::printf("picture %s: n/a (no rgb)\n", method.c_str());
+          continue;
+        }
+        Picture pic;
+        const MethodRun run = runMethod(method, i, j, &pic, T_gt);
+        const std::string path = picture_prefix + method + ".png";
+        if (!cv::imwrite(path, pic.image)) throw gasp::Error("cannot write the picture " + path);
+        std::printf("picture %s: %s, %zu associations/matches, %zu correct by ground truth", method.c_str(),
+                    path.c_str(), pic.shown, pic.correct);
+        if (run.estimated && T_gt) {
+          gasp::eval::PairOutcome o;
+          gasp::eval::scorePose(run.T_target_source, *T_gt, o);
+          std::printf(", pose error %.4f m %.3f deg\n", o.t_err_m, o.r_err_deg);
+        } else {
+          std::printf(", %s\n", run.estimated ? "estimate (no ground truth)" : ("no estimate: " + run.reason).c_str());
+        }
+      }
+      cache.dropBefore(ds.size());
+      if (pictures_only) return 0;
     }
+
+    // All pairs, visited by start frame so that each frame is described once while it is in use.
+    std::vector<std::pair<std::size_t, std::size_t>> all;  // (from, skip)
+    std::map<std::size_t, std::size_t> pairs_per_skip;
     for (const std::size_t skip : skips) {
       auto pairs = gasp::eval::makePairs(ds.size(), skip, starts_every);
       // Only pairs where both frames have ground truth can be scored.
@@ -90,67 +343,88 @@ int main(int argc, char** argv) {
                     return !truth(p.first) || !truth(p.second);
                   }), pairs.end());
       if (max_pairs > 0 && pairs.size() > max_pairs) pairs.resize(max_pairs);
-      std::size_t done = 0;
-      for (const auto& [i, j] : pairs) {
-        for (const auto& method : methods) {
-          const auto t0 = std::chrono::steady_clock::now();
-          gasp::PairParams params = base;
-          params.refine = method == "gasp";
-          const auto va = gasp::makeDepthView(ds.loadDepth(i), ds.intrinsics(), params.superpixels);
-          const auto vb = gasp::makeDepthView(ds.loadDepth(j), ds.intrinsics(), params.superpixels);
-          const double seg_ms = va.segmentation.timings.total() + vb.segmentation.timings.total();
-          const auto r = gasp::registerViews(va, vb, params);
-          gasp::eval::PairOutcome o;
-          o.skip = skip;
-          o.from = i;
-          o.to = j;
-          o.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-          o.estimated = r.pose.success;
-          o.reason = r.pose.reason;
-          if (r.pose.success) {
-            const gasp::Isometry3 T_gt = gasp::relativePose(*truth(j), *truth(i));
-            gasp::eval::scorePose(r.pose.T_target_source, T_gt, o);
-          }
-          auto& st = stage_ms[method];
-          st["segmentation"].push_back(seg_ms);
-          st["association"].push_back(r.timings.association_ms);
-          st["ransac"].push_back(r.timings.ransac_ms);
-          st["refinement"].push_back(r.timings.refine_ms + r.timings.dense_ms);
-          by_method[method].push_back(o);
-          if (pairs_csv) {
-            pairs_csv << skip << ',' << method << ',' << i << ',' << j << ',' << (o.estimated ? 1 : 0) << ','
-                      << o.t_err_m << ',' << o.r_err_deg << ',' << o.ms << ',' << r.association.associations.size() << ','
-                      << r.pose.num_inliers << ',' << r.visibility.violation_ratio << ",\"" << o.reason << "\"\n";
-          }
-        }
-        ++done;
-        std::fprintf(stderr, "\rskip %zu: pair %zu/%zu", skip, done, pairs.size());
-        std::fflush(stderr);
-      }
-      if (!pairs.empty()) std::fprintf(stderr, "\n");
+      pairs_per_skip[skip] = pairs.size();
+      for (const auto& p : pairs) all.emplace_back(p.first, skip);
     }
+    std::stable_sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+
+    std::map<std::string, std::vector<gasp::eval::PairOutcome>> by_method;
+    std::map<std::string, std::map<std::string, std::vector<double>>> stage_ms;  // method -> stage -> ms
+    std::map<std::pair<std::size_t, std::string>, std::size_t> no_rgb;  // (skip, method) -> pairs left out
+    std::ofstream pairs_csv;
+    if (!pairs_csv_path.empty()) {
+      pairs_csv.open(pairs_csv_path);
+      if (!pairs_csv) throw gasp::Error("cannot write " + pairs_csv_path);
+      pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,reason\n";
+    }
+    const auto bench_t0 = Clock::now();
+    std::size_t done = 0;
+    for (const auto& [i, skip] : all) {
+      cache.dropBefore(i);
+      const std::size_t j = i + skip;
+      const gasp::Isometry3 T_gt = gasp::relativePose(*truth(j), *truth(i));
+      for (const auto& method : methods) {
+        if (needsColour(method) && (!hasRgb(i) || !hasRgb(j))) {
+          ++no_rgb[{skip, method}];
+          continue;
+        }
+        const MethodRun run = runMethod(method, i, j, nullptr, T_gt);
+        gasp::eval::PairOutcome o;
+        o.skip = skip;
+        o.from = i;
+        o.to = j;
+        o.ms = run.ms;
+        o.estimated = run.estimated;
+        o.reason = run.reason;
+        if (run.estimated) gasp::eval::scorePose(run.T_target_source, T_gt, o);
+        for (const auto& [stage, ms] : run.stage_ms) stage_ms[method][stage].push_back(ms);
+        by_method[method].push_back(o);
+        if (pairs_csv) {
+          pairs_csv << skip << ',' << method << ',' << i << ',' << j << ',' << (o.estimated ? 1 : 0) << ','
+                    << o.t_err_m << ',' << o.r_err_deg << ',' << o.ms << ',' << run.associations << ',' << run.inliers
+                    << ',' << run.violation_ratio << ",\"" << o.reason << "\"\n";
+        }
+      }
+      ++done;
+      std::fprintf(stderr, "\rpair %zu/%zu (%.0f s)", done, all.size(), msSince(bench_t0) / 1000.0);
+      std::fflush(stderr);
+    }
+    if (!all.empty()) std::fprintf(stderr, "\n");
+
     std::vector<gasp::eval::SkipSummary> rows;
-    for (const std::size_t skip : skips)
-      for (const auto& method : methods) rows.push_back(gasp::eval::summarise(by_method[method], skip, method));
     std::size_t total_pairs = 0;
-    for (const auto& s : rows) total_pairs += s.pairs;
     std::printf("%-6s %-14s %6s %6s %10s %11s %8s %13s %10s\n", "skip", "method", "pairs", "failed", "rmse_t_m",
                 "rmse_r_deg", "fail_%", "within5cm2deg%", "median_ms");
-    for (const auto& s : rows)
-      std::printf("%-6zu %-14s %6zu %6zu %10.4f %11.3f %8.1f %13.1f %10.1f\n", s.skip, s.method.c_str(), s.pairs,
-                  s.failed, s.rmse_t_m, s.rmse_r_deg, s.fail_pct, s.within_pct, s.median_ms);
-    for (const auto& [method, st] : stage_ms) {
+    for (const std::size_t skip : skips)
+      for (const auto& method : methods) {
+        const auto s = gasp::eval::summarise(by_method[method], skip, method);
+        total_pairs += s.pairs;
+        const auto na = no_rgb.find({skip, method});
+        if (s.pairs == 0 && na != no_rgb.end()) {
+          std::printf("%-6zu %-14s n/a (no rgb: %zu pairs left out)\n", skip, method.c_str(), na->second);
+          continue;
+        }
+        rows.push_back(s);
+        std::printf("%-6zu %-14s %6zu %6zu %10.4f %11.3f %8.1f %13.1f %10.1f", s.skip, s.method.c_str(), s.pairs,
+                    s.failed, s.rmse_t_m, s.rmse_r_deg, s.fail_pct, s.within_pct, s.median_ms);
+        if (na != no_rgb.end()) std::printf("  (%zu of %zu pairs without rgb left out)", na->second, pairs_per_skip[skip]);
+        std::printf("\n");
+      }
+    for (const auto& method : methods) {
+      const auto st = stage_ms.find(method);
+      if (st == stage_ms.end()) continue;
       std::printf("median_ms_per_stage %s:", method.c_str());
-      for (const auto& [stage, v] : st) std::printf(" %s %.1f", stage.c_str(), median(v));
+      for (const auto& [stage, v] : st->second) std::printf(" %s %.1f", stage.c_str(), median(v));
       std::printf("\n");
     }
+    std::printf("wall_time_s: %.1f\n", msSince(bench_t0) / 1000.0);
     if (!csv_path.empty()) {
       std::ofstream csv(csv_path);
       if (!csv) throw gasp::Error("cannot write " + csv_path);
       csv << gasp::eval::csvHeader() << '\n';
       for (const auto& s : rows) csv << gasp::eval::csvRow(s) << '\n';
     }
-    if (total_pairs == 0) {
+    if (total_pairs == 0 && picture_pair.empty()) {
       std::fprintf(stderr, "no pair with ground truth for both frames\n");
       return 4;
     }

@@ -16,7 +16,7 @@ struct MatchParams {
   double ratio = 0.8;        ///< Lowe's ratio test threshold, in (0, 1]
   bool mutual = true;        ///< keep a match only if it is the nearest neighbour both ways
   int trees = 4;             ///< FLANN KD-trees
-  int checks = 128;          ///< FLANN leaves visited per query
+  int checks = 32;           ///< FLANN leaves visited per query
   int exact_below = 2000;    ///< exhaustive search when both views have at most this many descriptors
 };
 
