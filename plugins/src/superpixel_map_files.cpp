@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <cstdio>
 #include <fstream>
+#include <iomanip>
 
 #include "gasp/mrpt/CSuperpixelMap.h"
 
@@ -46,8 +47,8 @@ void writeTable(const std::string& path, const std::vector<SuperpixelMapView>& v
   for (std::size_t i = 0; i < views.size(); ++i) {
     const auto& t = views[i].T_map_camera;
     const Eigen::Quaterniond q(t.linear());
-    f << "# view " << i << " '" << views[i].sensor_label << "' t=" << views[i].timestamp
-      << " T_map_camera xyz qxqyqzqw: " << t.translation().transpose() << ' ' << q.x() << ' ' << q.y() << ' '
+    f << "# view " << i << " '" << views[i].sensor_label << "' t=" << std::fixed << std::setprecision(6)
+      << views[i].timestamp << std::defaultfloat << std::setprecision(9) << " T_map_camera xyz qxqyqzqw: " << t.translation().transpose() << ' ' << q.x() << ' ' << q.y() << ' '
       << q.z() << ' ' << q.w() << '\n';
   }
   f << "# view patch cx cy cz nx ny nz area_m2 pixels planarity r g b\n";

@@ -1,4 +1,5 @@
-# cmake -P script: install the build tree, then configure, build and run the consumer project.
+# cmake -P script: install the build tree, then configure, build and run the consumer project
+# (examples/consumer): the core targets, GASP's MRPT layer, and the simplemap tool's usage check.
 file(REMOVE_RECURSE ${WORK_DIR})
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -13,3 +14,37 @@ run(${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${WORK_DIR}/build -DCMAKE_BUIL
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${WORK_DIR}/build/gasp_consumer)
 message("${last_output}")
+run(${WORK_DIR}/build/gasp_consumer_mrpt)
+message("${last_output}")
+# Without arguments the tool prints its usage and exits with 2.
+execute_process(COMMAND ${WORK_DIR}/build/gasp_rawlog_to_simplemap RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "usage:")
+  message(FATAL_ERROR "failed: gasp_rawlog_to_simplemap without arguments gave ${rc}: ${err}")
+endif()
+# MRPT's observations2map builds a superpixel map with the plugin preloaded (docs/mrpt.md).
+find_program(OBSERVATIONS2MAP observations2map)
+if(NOT OBSERVATIONS2MAP)
+  message("observations2map: skipped (not installed; Debian package mrpt-apps)")
+elseif(NOT EXISTS "${DATA_DIR}/tum/fr1_desk9")
+  message("observations2map: skipped (no ${DATA_DIR}/tum/fr1_desk9)")
+else()
+  file(GLOB_RECURSE plugin ${WORK_DIR}/prefix/lib*/libgasp_mrpt.so)
+  run(${WORK_DIR}/prefix/bin/gasp-tum2rawlog ${DATA_DIR}/tum/fr1_desk9 ${WORK_DIR}/desk9.rawlog)
+  run(${WORK_DIR}/build/gasp_rawlog_to_simplemap ${WORK_DIR}/desk9.rawlog ${WORK_DIR}/desk9_groundtruth.txt
+      ${WORK_DIR}/desk9.simplemap 2)
+  file(WRITE ${WORK_DIR}/superpixels.ini "[MappingApplication]\nsuperpixelMap_count=1\n")
+  file(MAKE_DIRECTORY ${WORK_DIR}/o2m)
+  run(${CMAKE_COMMAND} -E env LD_PRELOAD=${plugin} ${OBSERVATIONS2MAP} ${WORK_DIR}/superpixels.ini
+      ${WORK_DIR}/desk9.simplemap ${WORK_DIR}/o2m/desk9)
+  set(ply ${WORK_DIR}/o2m/desk9_gasp__CSuperpixelMap_00_patches.ply)
+  if(NOT EXISTS ${ply})
+    message(FATAL_ERROR "failed (observations2map wrote no ${ply}): ${last_output}")
+  endif()
+  file(STRINGS ${ply} vertex_line REGEX "^element vertex ")
+  string(REGEX REPLACE "element vertex " "" vertices "${vertex_line}")
+  if(NOT vertices GREATER 100)
+    message(FATAL_ERROR "failed (observations2map map has ${vertices} patches)")
+  endif()
+  message("observations2map: ${vertices} patches in ${ply}")
+endif()
+message("install_and_consume: ok")
