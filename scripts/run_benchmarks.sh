@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The side-by-side pair benchmark of docs/benchmarks.md: GASP (with and without refinement) beside
 # FPFH, SHOT, colour SHOT, SIFT and dense SIFT on the same pairs of fr3_cabinet_kf (keyframe skips
-# 1, 2) and fr1_xyz (skips 10, 30, 50, 100 from every 20th frame), then the error-against-skip
+# 1, 2) and fr1_xyz (skips 10, 30, 50, 100 from every 10th frame), then the error-against-skip
 # figure and one association picture per method on fr1_xyz 0 -> 30.
 #   scripts/run_benchmarks.sh [OUT_DIR (default out/benchmarks)]
 # Environment: GASP_DATA_DIR (default ../shared/data), GASP_BENCH_BUILD_DIR (default build/release),
@@ -27,8 +27,8 @@ START=$(date +%s)
 echo "== fr3_cabinet_kf, keyframe skips 1 and 2, every start frame (commit $COMMIT)"
 "$B/gasp-pairs" --tum "$DATA/fr3_cabinet_kf" --skips 1,2 --starts-every 1 --method "$METHODS" \
     --csv "$OUT/cabinet.csv" --pairs-csv "$OUT/cabinet_pairs.csv" | tee "$OUT/cabinet.txt"
-echo "== fr1_xyz, skips 10, 30, 50, 100 from every 20th frame (commit $COMMIT)"
-"$B/gasp-pairs" --tum "$DATA/fr1_xyz" --skips 10,30,50,100 --starts-every 20 --method "$METHODS" \
+echo "== fr1_xyz, skips 10, 30, 50, 100 from every 10th frame (commit $COMMIT)"
+"$B/gasp-pairs" --tum "$DATA/fr1_xyz" --skips 10,30,50,100 --starts-every 10 --method "$METHODS" \
     --csv "$OUT/fr1_xyz.csv" --pairs-csv "$OUT/fr1_xyz_pairs.csv" | tee "$OUT/fr1_xyz.txt"
 echo "== wall time of both runs: $(( $(date +%s) - START )) s"
 echo "== figures"

@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   try {
-    const int panel_w = 330, panel_h = 230, legend_w = 140, row_title = 22;
+    const int panel_w = 330, panel_h = 230, legend_w = 165, row_title = 22;
     const int height = static_cast<int>(csvs.size()) * (panel_h + row_title) + (caption.empty() ? 8 : 30);
     cv::Mat img(height, 3 * panel_w + legend_w, CV_8UC3, cv::Scalar(255, 255, 255));
     for (std::size_t c = 0; c < csvs.size(); ++c) {

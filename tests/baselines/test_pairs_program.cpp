@@ -1,0 +1,94 @@
+// gasp-pairs with the baselines and gasp-pairs-plot, end to end on fr1_desk9 (skipped without the
+// real data): rows per method, the colour methods' "n/a (no rgb)" on a copy without rgb, the
+// pictures, the figure.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "gasp_test_data.h"
+
+namespace {
+
+struct ProgramRun {
+  int exit_code;
+  std::string output;
+};
+
+ProgramRun run(const std::string& program, const std::string& args) {
+  const std::string cmd = std::string(GASP_BIN_DIR) + "/" + program + " " + args + " 2>&1";
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
+  std::string out;
+  char buf[4096];
+  while (std::fgets(buf, sizeof buf, pipe.get())) out += buf;
+  const int status = pclose(pipe.release());
+  return {WEXITSTATUS(status), out};
+}
+
+std::vector<std::string> lines(const std::string& path) {
+  std::ifstream f(path);
+  std::vector<std::string> out;
+  for (std::string l; std::getline(f, l);) out.push_back(l);
+  return out;
+}
+
+}  // namespace
+
+TEST(PairsProgram, BaselinesBesideGaspOnTheSamePairs) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const std::string tmp = gasp::test::scratchDir();
+  const std::string csv = tmp + "/t.csv", pairs = tmp + "/p.csv";
+  const auto r = run("gasp-pairs", "--tum " + dir + " --skips 1,4 --starts-every 4 --method gasp,fpfh,sift --csv " +
+                                       csv + " --pairs-csv " + pairs);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("median_ms_per_stage fpfh: check"), std::string::npos) << r.output;
+  const auto rows = lines(csv);
+  ASSERT_EQ(rows.size(), 1u + 2 * 3) << r.output;  // header + 2 skips x 3 methods
+  // The easy pairs of fr1_desk9 (0->1, 4->5, 0->4, 4->8): every method estimates every pair.
+  for (std::size_t k = 1; k < rows.size(); ++k) EXPECT_NE(rows[k].find(",2,0,"), std::string::npos) << rows[k];
+  EXPECT_EQ(lines(pairs).size(), 1u + 4 * 3);
+
+  // The figure from the table.
+  const std::string png = tmp + "/fig.png";
+  const auto p = run("gasp-pairs-plot", "--csv " + csv + " --out " + png + " --caption test");
+  ASSERT_EQ(p.exit_code, 0) << p.output;
+  EXPECT_FALSE(cv::imread(png).empty());
+  EXPECT_EQ(run("gasp-pairs-plot", "--csv " + pairs + " --out " + png).exit_code, 1);  // not a table
+}
+
+TEST(PairsProgram, ColourMethodsAreNotApplicableWithoutRgb) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const std::string tmp = gasp::test::scratchDir();
+  namespace fs = std::filesystem;
+  const std::string copy = tmp + "/fr1_desk9_depth_only";
+  fs::create_directories(copy);
+  fs::copy(dir + "/depth", copy + "/depth", fs::copy_options::recursive);
+  fs::copy_file(dir + "/depth.txt", copy + "/depth.txt");
+  fs::copy_file(dir + "/groundtruth.txt", copy + "/groundtruth.txt");
+  const auto r = run("gasp-pairs", "--tum " + copy + " --intrinsics fr1 --skips 2 --starts-every 3 --method shot,sift,cshot");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("sift           n/a (no rgb: 3 pairs left out)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("cshot          n/a (no rgb: 3 pairs left out)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("2      shot                3"), std::string::npos) << r.output;
+  // Only colour methods and no rgb: nothing to score.
+  EXPECT_EQ(run("gasp-pairs", "--tum " + copy + " --intrinsics fr1 --skips 2 --method sift").exit_code, 4);
+}
+
+TEST(PairsProgram, OnePicturePerMethod) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const std::string prefix = gasp::test::scratchDir() + "/pic_";
+  const auto r = run("gasp-pairs", "--tum " + dir + " --picture 0,4 --pictures-only --method gasp,shot,dsift --picture-prefix " + prefix);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const std::string m : {"gasp", "shot", "dsift"}) {
+    const cv::Mat pic = cv::imread(prefix + m + ".png");
+    ASSERT_FALSE(pic.empty()) << m;
+    EXPECT_EQ(pic.cols, 2 * 640) << m;
+    EXPECT_NE(r.output.find("picture " + m + ": "), std::string::npos) << r.output;
+  }
+  EXPECT_NE(r.output.find("pose error"), std::string::npos) << r.output;
+  EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --pictures-only").exit_code, 2);
+}
