@@ -2,7 +2,7 @@
 # The side-by-side pair benchmark of docs/benchmarks.md: GASP (with and without refinement) beside
 # FPFH, SHOT, colour SHOT, SIFT and dense SIFT on the same pairs of fr3_cabinet_kf (keyframe skips
 # 1, 2) and fr1_xyz (skips 10, 30, 50, 100 from every 10th frame), then the error-against-skip
-# figure and one association picture per method on fr1_xyz 0 -> 30.
+# figure and one association picture per method on fr1_xyz 0 -> 30 (JPEG, to keep the repository small).
 #   scripts/run_benchmarks.sh [OUT_DIR (default out/benchmarks)]
 # Environment: GASP_DATA_DIR (default ../shared/data), GASP_BENCH_BUILD_DIR (default build/release),
 # GASP_BENCH_NO_BUILD=1 to use an existing build, GASP_BENCH_FIG_DIR (default docs/images).
@@ -35,5 +35,6 @@ echo "== figures"
 "$B/gasp-pairs-plot" --csv "$OUT/cabinet.csv,$OUT/fr1_xyz.csv" \
     --title "fr3_cabinet_kf (skip in keyframes)" --title "fr1_xyz (skip in frames; colour methods: pairs with rgb only)" \
     --out "$FIG/benchmarks_error_vs_skip.png" --caption "scripts/run_benchmarks.sh (commit $COMMIT)"
-"$B/gasp-pairs" --tum "$DATA/fr1_xyz" --picture 0,30 --pictures-only --method "$METHODS" \
-    --picture-prefix "$FIG/benchmarks_fr1_xyz_0_30_" | tee "$OUT/pictures.txt"
+# gasp-norefine has the same associations as gasp: one GASP picture.
+"$B/gasp-pairs" --tum "$DATA/fr1_xyz" --picture 0,30 --pictures-only --method "${METHODS/gasp-norefine,/}" \
+    --picture-prefix "$FIG/benchmarks_fr1_xyz_0_30_" --picture-format jpg | tee "$OUT/pictures.txt"

@@ -1,7 +1,7 @@
 // gasp-pairs: the paper's pair benchmark on a TUM folder, GASP beside the feature baselines.
 //   gasp-pairs --tum DIR [--skips 10,20,30,40] [--starts-every N]
 //              [--method gasp,gasp-norefine,fpfh,shot,cshot,sift,dsift] [--csv OUT.csv]
-//              [--pairs-csv OUT_pairs.csv] [--max-pairs N] [--picture I,J [--picture-prefix P] [--pictures-only]]
+//              [--pairs-csv OUT_pairs.csv] [--max-pairs N] [--picture I,J [--picture-prefix P] [--picture-format png|jpg] [--pictures-only]]
 // Pairs (i, i + skip) from start frames 0, N, 2N, ... (indices in depth.txt order); for each pair
 // and method a relative pose is estimated and compared with ground truth. Prints one table row per
 // skip and method (definitions in gasp/eval/pair_protocol.h and docs/evaluation.md); progress goes
@@ -169,7 +169,10 @@ int main(int argc, char** argv) {
   app.add_option("--max-pairs", max_pairs, "at most this many pairs per skip (0 = all)");
   app.add_option("--picture", picture_pair, "also draw the pair I,J for every method (not scored)")
       ->delimiter(',')->expected(2);
-  app.add_option("--picture-prefix", picture_prefix, "pictures go to PREFIX<method>.png")->capture_default_str();
+  app.add_option("--picture-prefix", picture_prefix, "pictures go to PREFIX<method>.<format>")->capture_default_str();
+  std::string picture_format = "png";
+  app.add_option("--picture-format", picture_format, "png or jpg (smaller files)")
+      ->check(CLI::IsMember({"png", "jpg"}))->capture_default_str();
   bool pictures_only = false;
   app.add_flag("--pictures-only", pictures_only, "draw the --picture pair and stop (no benchmark)");
   gasp::PairParams base;
@@ -317,7 +320,7 @@ int main(int argc, char** argv) {
         }
         Picture pic;
         const MethodRun run = runMethod(method, i, j, &pic, T_gt);
-        const std::string path = picture_prefix + method + ".png";
+        const std::string path = picture_prefix + method + "." + picture_format;
         if (!cv::imwrite(path, pic.image)) throw gasp::Error("cannot write the picture " + path);
         std::printf("picture %s: %s, %zu associations/matches, %zu correct by ground truth", method.c_str(),
                     path.c_str(), pic.shown, pic.correct);
