@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -110,6 +111,7 @@ int main(int argc, char** argv) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(std::max(1, threads)));
   try {
     const auto ds = gasp::TumDataset::open(gasp::bench::dataDir() + "/tum/fr1_xyz");
+    if (ds.size() < 11 || n_pairs < 1) throw std::runtime_error("need --pairs >= 1 and at least 11 frames");
     data().intrinsics = ds.intrinsics();
     const std::size_t step = std::max<std::size_t>(1, (ds.size() - 10) / static_cast<std::size_t>(std::max(1, n_pairs)));
     for (std::size_t i = 0; i + 10 < ds.size() && data().depth.size() < static_cast<std::size_t>(n_pairs); i += step)

@@ -1,6 +1,6 @@
 // Guided association (association under a pose hypothesis): with the true pose a rigid copy is
-// associated patch for patch; a wrong pose gathers almost nothing; gates, one-to-one result,
-// order independence and bad input.
+// associated patch for patch; a wrong pose gathers almost nothing; distance, normal and lambda
+// gates; one-to-one result independent of B's order; bad input.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -71,39 +71,90 @@ TEST(GuidedAssociation, AWrongPoseGathersAlmostNothing) {
   }
 }
 
-TEST(GuidedAssociation, GatesAndOneToOne) {
-  // Every patch of A has two partners in B near its mapped centroid: its exact copy and a copy
-  // shifted by 3 cm with a normal tilted by 15 deg, both with A's feature set (D_hat 0 for both:
-  // the tie goes to the nearer centroid).
+TEST(GuidedAssociation, DistanceAndNormalGates) {
+  // B holds only copies of A's patches shifted by 3 cm and with normals tilted by 15 deg, each
+  // with its original's feature set (D_hat 0): the gates alone decide.
   Views v = rigidCopy(gasp::Isometry3::Identity(), 60);
-  const std::size_t n = v.b.size();
-  for (std::size_t j = 0; j < n; ++j) {
-    gasp::PatchGeometry q = v.b[j];
+  std::vector<gasp::PatchGeometry> shifted;
+  std::vector<std::vector<gasp::Feature>> q_shifted;
+  for (std::size_t i = 0; i < v.a.size(); ++i) {
+    gasp::PatchGeometry q = v.a[i];
     q.centroid += Eigen::Vector3d(0.03, 0, 0);
-    q.normal = (Eigen::AngleAxisd(15.0 * M_PI / 180.0, Eigen::Vector3d::UnitX()) * q.normal).normalized();
-    v.b.push_back(q);
-    v.qb.push_back(v.qb[j]);
+    const Eigen::Vector3d axis = q.normal.unitOrthogonal();  // tilt by exactly 15 deg
+    q.normal = (Eigen::AngleAxisd(15.0 * M_PI / 180.0, axis) * q.normal).normalized();
+    shifted.push_back(q);
+    q_shifted.push_back(v.qa[i]);
   }
+  const gasp::Isometry3 I = gasp::Isometry3::Identity();
+  gasp::GuidedAssociationParams gp;  // 3.5 cm, 20 deg: every shifted copy passes
+  const auto all = gasp::guidedAssociations(v.a, shifted, v.qa, q_shifted, I, v.params, gp);
+  ASSERT_EQ(all.size(), v.a.size());
+  for (const auto& s : all) {
+    EXPECT_EQ(s.a, s.b);
+    EXPECT_EQ(s.distance, 0.0);
+  }
+  gasp::GuidedAssociationParams tight = gp;
+  tight.max_distance_m = 0.02;
+  EXPECT_TRUE(gasp::guidedAssociations(v.a, shifted, v.qa, q_shifted, I, v.params, tight).empty());
+  tight = gp;
+  tight.max_normal_angle_deg = 10.0;
+  EXPECT_TRUE(gasp::guidedAssociations(v.a, shifted, v.qa, q_shifted, I, v.params, tight).empty());
+}
+
+TEST(GuidedAssociation, LambdaGatesTheFeatureSets) {
+  // B = A unmoved, but each patch of B carries the feature set of another patch: only gated by
+  // lambda. lambda 0 keeps nothing; lambda 1 keeps every patch (D_hat <= 1 always).
+  Views v = rigidCopy(gasp::Isometry3::Identity(), 40);
+  auto b = v.b;
+  std::reverse(b.begin(), b.end());  // b[i] = a[i] again
+  auto qb = v.qa;
+  std::rotate(qb.begin(), qb.begin() + 1, qb.end());
+  gasp::GuidedAssociationParams gp;
+  gp.lambda = 0.0;
+  EXPECT_TRUE(gasp::guidedAssociations(v.a, b, v.qa, qb, gasp::Isometry3::Identity(), v.params, gp).empty());
+  gp.lambda = 1.0;
+  const auto g = gasp::guidedAssociations(v.a, b, v.qa, qb, gasp::Isometry3::Identity(), v.params, gp);
+  EXPECT_EQ(g.size(), v.a.size());
+  for (const auto& s : g) EXPECT_GT(s.distance, 0.0);
+}
+
+TEST(GuidedAssociation, OneToOneKeepsTheBestChooser) {
+  // Patch 0 of A has a twin 1 cm away with a worse feature set (patch 5's); both map onto patch
+  // 0 of B. B's patch keeps the better chooser (D_hat 0); the twin gets nothing.
+  Views v = rigidCopy(gasp::Isometry3::Identity(), 40);
+  auto b = v.b;
+  std::reverse(b.begin(), b.end());
+  const auto qb = v.qa;
+  auto a = v.a;
+  auto qa = v.qa;
+  gasp::PatchGeometry twin = a[0];
+  twin.centroid += Eigen::Vector3d(0.01, 0, 0);
+  a.push_back(twin);
+  qa.push_back(v.qa[5]);
   gasp::GuidedAssociationParams gp;
   gp.lambda = 1.0;
-  const auto all = gasp::guidedAssociations(v.a, v.b, v.qa, v.qb, gasp::Isometry3::Identity(), v.params, gp);
-  std::vector<int> used(v.b.size(), 0);
-  for (const auto& s : all) ++used[static_cast<std::size_t>(s.b)];
-  EXPECT_EQ(*std::max_element(used.begin(), used.end()), 1);  // one-to-one
-  EXPECT_EQ(all.size(), v.a.size());
-  // The distance gate below 3 cm, or the angle gate below 15 deg: only exact copies remain.
-  for (const int which : {0, 1}) {
-    gasp::GuidedAssociationParams tight = gp;
-    if (which == 0) tight.max_distance_m = 0.02;
-    else tight.max_normal_angle_deg = 10.0;
-    const auto g = gasp::guidedAssociations(v.a, v.b, v.qa, v.qb, gasp::Isometry3::Identity(), v.params, tight);
-    EXPECT_EQ(g.size(), v.a.size());
-    for (const auto& s : g) EXPECT_LT(static_cast<std::size_t>(s.b), n) << "gate " << which;
+  const auto g = gasp::guidedAssociations(a, b, qa, qb, gasp::Isometry3::Identity(), v.params, gp);
+  std::vector<int> chosen(b.size(), 0);
+  for (const auto& s : g) ++chosen[static_cast<std::size_t>(s.b)];
+  EXPECT_EQ(*std::max_element(chosen.begin(), chosen.end()), 1);
+  bool zero_has_zero = false;
+  for (const auto& s : g) {
+    EXPECT_NE(s.a, 40) << "the twin must lose patch 0 of B";
+    zero_has_zero |= s.a == 0 && s.b == 0 && s.distance == 0.0;
   }
-  // lambda 0: only identical feature sets.
-  gp.lambda = 0.0;
-  for (const auto& s : gasp::guidedAssociations(v.a, v.b, v.qa, v.qb, gasp::Isometry3::Identity(), v.params, gp))
-    EXPECT_EQ(s.distance, 0.0);
+  EXPECT_TRUE(zero_has_zero);
+  // The same associations whatever the order of B's patches (ties are broken by index only
+  // after D_hat and distance).
+  auto b_rev = b;
+  auto qb_rev = qb;
+  std::reverse(b_rev.begin(), b_rev.end());
+  std::reverse(qb_rev.begin(), qb_rev.end());
+  const auto g_rev = gasp::guidedAssociations(a, b_rev, qa, qb_rev, gasp::Isometry3::Identity(), v.params, gp);
+  ASSERT_EQ(g_rev.size(), g.size());
+  for (std::size_t k = 0; k < g.size(); ++k) {
+    EXPECT_EQ(g_rev[k].a, g[k].a);
+    EXPECT_EQ(g_rev[k].b, static_cast<int>(b.size()) - 1 - g[k].b);
+  }
 }
 
 TEST(GuidedAssociation, BadInput) {

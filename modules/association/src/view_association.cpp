@@ -373,7 +373,9 @@ AssociationResult associateFeatureSets(const std::vector<std::vector<Feature>>& 
     r.associations.push_back({a, o.best, o.best_hat});
   }
   r.stats.matching_ms = msSince(t_match);
-  if (r.associations.empty()) r.reason = "no candidate within the gating distance lambda";
+  if (r.associations.empty())
+    r.reason = r.one_way.empty() ? "no candidate within the gating distance lambda"
+                                 : "every best partner was dropped by the mutual check (they are in one_way)";
   return r;
 }
 

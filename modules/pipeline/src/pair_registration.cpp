@@ -103,41 +103,61 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
   // to the dense rounds: the pixels of the whole overlap may observe what the patches did not.
   // The dense problem then gives the verdict.
   const auto poseFound = [&] { return r.pose.success || (r.pose.degenerate && !r.pose.inliers.empty()); };
-  if (!r.association.associations.empty()) attempt(r.association.associations);
-  else r.pose.reason = "no mutual associations";
-  if (!poseFound() && params.one_way_fallback && !r.association.one_way.empty()) {
+  // Guided verification of the pose estimatePose() gave (RANSAC, then the patch refinement): at
+  // least min_guided_support source patches must find a partner there (guided_association.h).
+  // With guided_densify the guided associations then replace the correspondences.
+  std::vector<PatchAssociation> guided_at_pose;
+  const auto verified = [&]() -> bool {
+    if (!poseFound()) return false;
+    if (!params.guided_verification) return true;
+    const auto tg = std::chrono::steady_clock::now();
+    guided_at_pose = guidedAssociations(ga, gb, qa, qb, r.pose.T_target_source, params.association, params.guided);
+    r.timings.guided_ms += msSince(tg);
+    r.guided_support = static_cast<int>(guided_at_pose.size());
+    if (r.guided_support < params.min_guided_support) {
+      r.pose.success = false;
+      r.pose.reason = "guided verification: " + std::to_string(r.guided_support) +
+                      " source patches find a partner that agrees with the pose (min_guided_support " +
+                      std::to_string(params.min_guided_support) + ")";
+      return false;
+    }
+    if (!params.guided_densify) return true;
+    attempt(guided_at_pose);
+    if (poseFound()) return true;
+    r.pose.reason = "on the guided associations: " + r.pose.reason;
+    return false;
+  };
+  bool ok = false;
+  if (!r.association.associations.empty()) {
+    attempt(r.association.associations);
+    ok = verified();
+  } else {
+    r.pose.reason = "no mutual associations";
+  }
+  // The one-way fallback: when the mutual associations give no pose, or one that fails the guided
+  // verification.
+  if (!ok && params.one_way_fallback && !r.association.one_way.empty()) {
     const std::string mutual_reason = r.pose.reason;
     std::vector<PatchAssociation> wider = r.association.associations;
     wider.insert(wider.end(), r.association.one_way.begin(), r.association.one_way.end());
     std::sort(wider.begin(), wider.end(), [](const PatchAssociation& x, const PatchAssociation& y) { return x.a < y.a; });
     attempt(std::move(wider));
     r.used_one_way = true;
-    if (!poseFound()) r.pose.reason = "mutual associations: " + mutual_reason + "; with one-way partners: " + r.pose.reason;
+    ok = verified();
+    if (!ok) r.pose.reason = "mutual associations: " + mutual_reason + "; with one-way partners: " + r.pose.reason;
   }
-  if (!poseFound()) return r;
+  if (!ok) return r;
 
-  if (params.guided_verification) {
-    t0 = std::chrono::steady_clock::now();
-    auto guided = guidedAssociations(ga, gb, qa, qb, r.pose.T_target_source, params.association, params.guided);
-    r.timings.guided_ms += msSince(t0);
-    r.guided_support = static_cast<int>(guided.size());
-    if (r.guided_support < params.min_guided_support) {
-      r.pose.success = false;
-      r.pose.reason = "guided verification: " + std::to_string(r.guided_support) +
-                      " source patches find a partner that agrees with the RANSAC pose (min_guided_support " +
-                      std::to_string(params.min_guided_support) + ")";
-      return r;
-    }
-    if (params.guided_densify) attempt(std::move(guided));
-    if (!poseFound()) {
-      r.pose.reason = "on the guided associations: " + r.pose.reason;
-      return r;
-    }
-  }
   if (!params.refine || params.dense_rounds == 0) {
     verify(source, target, params, r);
-    if (r.pose.success && params.guided_verification)
-      r.verified = guidedAssociations(ga, gb, qa, qb, r.pose.T_target_source, params.association, params.guided);
+    if (r.pose.success && params.guided_verification) {
+      if (params.guided_densify) {  // the pose moved since the verification
+        const auto tg = std::chrono::steady_clock::now();
+        guided_at_pose = guidedAssociations(ga, gb, qa, qb, r.pose.T_target_source, params.association, params.guided);
+        r.timings.guided_ms += msSince(tg);
+      }
+      r.verified = std::move(guided_at_pose);
+    }
     return r;
   }
 

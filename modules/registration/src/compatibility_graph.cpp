@@ -54,6 +54,7 @@ CompatibilityGraph::CompatibilityGraph(const std::vector<PatchCorrespondence>& c
 }
 
 bool CompatibilityGraph::drawTriangle(std::mt19937& rng, int& i, int& j, int& k) const {
+  if (seeds_.empty()) return false;
   i = seeds_[std::uniform_int_distribution<std::size_t>(0, seeds_.size() - 1)(rng)];
   j = selectBit(row(i), words_, std::uniform_int_distribution<int>(0, degree(i) - 1)(rng));
   const std::uint64_t* ri = row(i);

@@ -25,6 +25,7 @@ class CompatibilityGraph {
 
   /// A triangle (i, j, k): i uniform over seeds(), j uniform over N(i), k uniform over
   /// N(i) & N(j). False when N(i) & N(j) is empty (the draw counts as a rejected sample).
+  /// Precondition: seeds() is not empty. Not thread-safe (uses a scratch bitset).
   bool drawTriangle(std::mt19937& rng, int& i, int& j, int& k) const;
 
   /// Probability that one drawTriangle() call returns three members of `members` (node

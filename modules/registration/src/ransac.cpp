@@ -81,9 +81,10 @@ Score score(const std::vector<PatchCorrespondence>& c, const Isometry3& T, const
 /// probability all_inlier: log(1 - confidence) / log(1 - all_inlier).
 int adaptiveIterations(double all_inlier, const RansacParams& params) {
   if (all_inlier >= 1.0) return 1;
-  if (all_inlier <= 0.0) return params.max_iterations;
-  const double n = std::ceil(std::log(1.0 - params.confidence) / std::log(1.0 - all_inlier));
-  return static_cast<int>(std::min<double>(n, params.max_iterations));
+  if (!(all_inlier > 0.0)) return params.max_iterations;
+  const double n = std::ceil(std::log1p(-params.confidence) / std::log1p(-all_inlier));
+  if (!std::isfinite(n) || n >= params.max_iterations) return params.max_iterations;  // P below ~1e-16
+  return std::max(1, static_cast<int>(n));
 }
 
 Sample drawSample(std::mt19937& rng, int n) {
@@ -99,10 +100,13 @@ Sample drawSample(std::mt19937& rng, int n) {
 void validate(const RansacParams& params) {
   validate(params.inlier);
   if (!(params.edge_tolerance_m > 0.0)) throw Error("RansacParams.edge_tolerance_m must be positive");
-  if (!(params.normal_pair_tolerance_deg > 0.0)) throw Error("RansacParams.normal_pair_tolerance_deg must be positive");
+  if (!(params.normal_pair_tolerance_deg > 0.0 && params.normal_pair_tolerance_deg <= 180.0))
+    throw Error("RansacParams.normal_pair_tolerance_deg must be in (0, 180]");
   if (!(params.min_triangle_height_m >= 0.0)) throw Error("RansacParams.min_triangle_height_m must be >= 0");
   if (params.min_inliers < 3) throw Error("RansacParams.min_inliers must be >= 3");
   if (params.max_iterations < 1) throw Error("RansacParams.max_iterations must be >= 1");
+  if (params.min_iterations < 0) throw Error("RansacParams.min_iterations must be >= 0");
+  if (params.max_guided_correspondences < 3) throw Error("RansacParams.max_guided_correspondences must be >= 3");
   if (!(params.confidence > 0.0 && params.confidence < 1.0)) throw Error("RansacParams.confidence must be in (0, 1)");
 }
 
@@ -123,9 +127,9 @@ RansacResult ransacPose(const std::vector<PatchCorrespondence>& c, const RansacP
   std::mt19937 rng(params.seed);
   Score best;
   Isometry3 best_T = Isometry3::Identity();
-  int thin = 0, needed = params.max_iterations;
+  int thin = 0, misses = 0, needed = params.max_iterations;
   std::unique_ptr<detail::CompatibilityGraph> graph;
-  if (params.guided_sampling) {
+  if (params.guided_sampling && n <= params.max_guided_correspondences) {
     graph = std::make_unique<detail::CompatibilityGraph>(c, params.edge_tolerance_m,
                                                          params.normal_pair_tolerance_deg * M_PI / 180.0);
     if (graph->seeds().empty()) {
@@ -138,6 +142,7 @@ RansacResult ransacPose(const std::vector<PatchCorrespondence>& c, const RansacP
     Sample s;
     if (graph && !graph->drawTriangle(rng, s[0], s[1], s[2])) {
       ++result.rejected_samples;
+      ++misses;
       continue;
     }
     if (!graph) s = drawSample(rng, n);
@@ -154,11 +159,12 @@ RansacResult ransacPose(const std::vector<PatchCorrespondence>& c, const RansacP
       best_T = T;
       const double p_all_in = graph ? graph->probabilityAllIn(selectInliers(c, T, params.inlier))
                                     : std::pow(static_cast<double>(best.inliers) / n, 3);
-      needed = std::max(result.iterations + 1, adaptiveIterations(p_all_in, params));
+      const int floor = graph ? std::min(params.min_iterations, params.max_iterations) : 0;
+      needed = std::max({result.iterations + 1, floor, adaptiveIterations(p_all_in, params)});
     }
   }
   if (result.rejected_samples == result.iterations) {
-    result.reason = thin == result.iterations
+    result.reason = thin > 0 && thin + misses == result.iterations
                         ? "centroids (nearly) collinear: no sample triangle has a height of min_triangle_height_m"
                         : "no sample of 3 passed the checks (distances or normal angles disagree between the views)";
     return result;

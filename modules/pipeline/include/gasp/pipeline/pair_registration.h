@@ -35,19 +35,20 @@ struct PairParams {
   /// inliers of a floor-dominated view (fr3_cabinet) reach only 2e-3 - 5e-3 while their
   /// centroid-to-centroid RANSAC fit does fix the in-plane directions.
   PoseEstimationParams pose = defaultPoseParams();
-  /// When RANSAC finds no pose from the mutual associations, try again with the one-way best
-  /// partners added (AssociationResult::one_way): more right associations at wide baselines,
-  /// more wrong ones too, so such a pose must pass the guided verification below.
+  /// When the mutual associations give no pose, or one that fails the guided verification, try
+  /// again with the one-way best partners added (AssociationResult::one_way): more right
+  /// associations at wide baselines, more wrong ones too; such a pose is verified the same way.
   bool one_way_fallback = true;
-  /// Guided verification and densification (guided_association.h): at the RANSAC pose, every
-  /// patch of the source looks for a partner near its mapped centroid whose feature set agrees
-  /// (D_hat <= guided.lambda). Fewer than min_guided_support such associations: no estimate.
-  /// Otherwise they replace the RANSAC correspondences (RANSAC and the patch refinement run
-  /// again on them), so the refinement uses every associated patch, not only the ones the free
-  /// search ranked first.
+  /// Guided verification (guided_association.h): at the pose estimatePose() gives (RANSAC and
+  /// the patch refinement), every source patch looks for a target patch near its mapped centroid
+  /// whose feature set agrees (D_hat <= guided.lambda). Fewer than min_guided_support such
+  /// patches: no estimate. The guided associations at the final pose are PairResult::verified.
   bool guided_verification = true;
+  /// Also refine on the guided associations instead of the RANSAC inliers (RANSAC and the patch
+  /// refinement run again on them). Off: measured slightly worse on fr3_cabinet_kf, where the
+  /// floor's many guided associations outweigh the cabinet (docs/pipeline.md).
   bool guided_densify = false;
-  GuidedAssociationParams guided;  ///< 0.05 m, 20 deg, lambda 0.8
+  GuidedAssociationParams guided;  ///< 0.035 m, 20 deg, lambda 0.8
   int min_guided_support = 12;
   bool refine = true;               ///< false: RANSAC pose only (no patch or dense refinement)
   /// Dense rounds after the patch refinement (0 = none). Each round re-associates the pixels at
@@ -92,13 +93,13 @@ struct PairResult {
   /// What RANSAC and the patch refinement ran on: one per entry of `used`, same order.
   std::vector<PatchCorrespondence> correspondences;
   /// The associations behind `correspondences`: association.associations, or with the one-way
-  /// fallback those and association.one_way, or after the guided verification the guided ones.
+  /// fallback those and association.one_way (used_one_way), or with guided_densify the guided ones.
   std::vector<PatchAssociation> used;
   bool used_one_way = false;  ///< the one-way fallback was needed
   /// Guided associations at the final pose (when one was claimed): the dense, verified patch
   /// associations of the pair (sorted by patch of the source).
   std::vector<PatchAssociation> verified;
-  int guided_support = 0;  ///< guided associations at the RANSAC pose (0: stage not reached)
+  int guided_support = -1;  ///< guided associations at the verified pose (-1: stage not reached)
   int dense_terms = 0;  ///< dense terms in the last round
   VisibilityCheck visibility;  ///< of the final pose (when one was found)
   PairTimings timings;

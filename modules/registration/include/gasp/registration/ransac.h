@@ -13,9 +13,13 @@
 /// consistent. With few correct associations among many (5 % of 500 on wide fr1_xyz baselines)
 /// uniform triples almost never pass the checks (5 % cubed); guided ones are all-inlier with a
 /// probability of the order of the inlier ratio. The number of samples adapts to the best model:
-/// N = log(1 - confidence) / log(1 - P), P the exact probability that one draw returns three of its
-/// inliers under this sampler; capped at max_iterations. Without guided sampling: uniform triples,
-/// checked, P = e^3 (e = inlier ratio).
+/// N = log(1 - confidence) / log(1 - P), P the probability that one draw returns three of its
+/// inliers under this sampler (exact for the sampler; thin triangles included), at least
+/// min_iterations (guided sampling only), at most max_iterations. As in standard RANSAC this is a stopping heuristic:
+/// unlike e^3, P does not grow with the inlier count (a small tight clique of wrong matches can
+/// have a larger P than a larger true set among near-miss wrong matches), hence the floor.
+/// Without guided sampling, or above max_guided_correspondences (the graph takes n^2 / 8 bytes):
+/// uniform triples, checked, P = e^3 (e = inlier ratio).
 ///
 /// A sample gives T in closed form (Eigen::umeyama, no scale) and is scored by its inliers
 /// (InlierCriterion), ties broken by the truncated cost sum_i min(d_i^2 / d_max^2, 1) (MSAC). The
@@ -40,6 +44,8 @@ struct RansacParams {
   double confidence = 0.999;               ///< in (0, 1): probability of one all-inlier sample
   unsigned seed = 1;                       ///< std::mt19937 seed
   bool guided_sampling = true;             ///< samples from the compatibility graph (see above)
+  int min_iterations = 200;                ///< guided sampling: samples drawn at least (if max_iterations allows)
+  int max_guided_correspondences = 20000;  ///< above: uniform sampling (graph memory n^2 / 8 bytes: 50 MB)
 };
 
 /// Throws gasp::Error naming the first invalid parameter.
