@@ -7,12 +7,18 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <ostream>
 
 #include "gasp/baselines/baseline_registration.h"
 #include "gasp/core/tum_dataset.h"
 #include "gasp_test_data.h"
 
 namespace gb = gasp::baselines;
+
+namespace gasp::baselines {
+// Readable test names in ctest's list ("GetParam() = fpfh").
+inline void PrintTo(BaselineMethod m, std::ostream* os) { *os << methodName(m); }
+}  // namespace gasp::baselines
 
 namespace {
 
