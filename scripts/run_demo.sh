@@ -46,7 +46,7 @@ else
     set -- $pair
     echo "== ${*:3}: frames $1 -> $2"
     "$BIN/gasp-associate" --tum "$DATA" --from "$1" --to "$2" --out "$OUT/associations_$1_$2.png" \
-      | grep -E "^(patches_a|patches_b|associations|precision|inliers|pose_error|pose:|picture)" || true
+      | grep -E "^(patches_a|patches_b|associations|precision|inliers|verified_associations|verified_precision|pose_error|pose:|picture)" || true
   done
   echo "== the pair benchmark on the synthetic sequence: pairs (i, i+3) and (i, i+6), every 6th frame"
   "$BIN/gasp-pairs" --tum "$DATA" --skips 3,6 --starts-every 6 --method gasp,gasp-norefine \
