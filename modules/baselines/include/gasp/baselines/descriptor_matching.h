@@ -4,8 +4,9 @@
 ///   ratio test   d(a, b) <= ratio * d(a, b2)   (b2 the second nearest; Lowe 2004), and
 ///   mutual check a is also b's nearest neighbour in A (when `mutual`).
 /// Neighbours come from FLANN randomised KD-trees (cv::flann, `trees` trees, `checks` leaves
-/// visited; approximate, seeded so runs repeat) or, for at most exact_below descriptors in B (and
-/// A), from an exhaustive search (cv::BFMatcher).
+/// visited; approximate; FLANN draws its random split dimensions from std::rand, so std::srand(1)
+/// is called before each index is built and runs repeat) or, for at most exact_below descriptors
+/// in B (and A), from an exhaustive search (cv::BFMatcher).
 #include <opencv2/core.hpp>
 
 #include <vector>
