@@ -35,7 +35,10 @@ std::vector<PatchCorrespondence> toCorrespondences(const std::vector<PatchAssoci
 void verify(const DepthView& source, const DepthView& target, const PairParams& params, PairResult& r) {
   if (!r.pose.success) return;
   const auto t0 = std::chrono::steady_clock::now();
-  r.visibility = checkVisibility(source, target, r.pose.T_target_source, params.visibility);
+  VisibilityCheckParams visibility = params.visibility;
+  if (r.used_one_way)  // a pose from the wider, less precise hypothesis set must explain the views better
+    visibility.max_violation_ratio = std::min(visibility.max_violation_ratio, params.one_way_max_violation_ratio);
+  r.visibility = checkVisibility(source, target, r.pose.T_target_source, visibility);
   r.timings.dense_ms += msSince(t0);
   if (!r.visibility.passed) {
     r.pose.success = false;
@@ -53,6 +56,8 @@ void validate(const PairParams& p) {
   validate(p.dense_degeneracy);
   validate(p.visibility);
   validate(p.guided);
+  if (!(p.one_way_max_violation_ratio >= 0.0 && p.one_way_max_violation_ratio <= 1.0))
+    throw Error("PairParams: one_way_max_violation_ratio must be in [0, 1]");
   if (p.min_guided_support < 3) throw Error("PairParams: min_guided_support must be >= 3");
   if (!(p.view_degeneracy.min_eigenvalue_ratio >= 0 && p.view_degeneracy.min_eigenvalue_ratio < 1))
     throw Error("PairParams: view_degeneracy.min_eigenvalue_ratio must be in [0, 1)");
