@@ -3,7 +3,7 @@
 /// ObservationMatcher for mrpt::obs::CObservation3DRangeScan (RGB-D or range-only).
 ///
 /// YAML parameters (all optional; defaults from PairParams, docs/mrpt.md):
-///   target_patch_area_m2: 0.004   neighbourhood_k: 30   candidates: 75   lambda: 0.5
+///   target_patch_area_m2: 0.004   neighbourhood_k: 30   candidates: 20   lambda: 0.7
 ///   mutual_check: true   min_inliers: 8   dense_rounds: 3   refine: true
 #include "gasp/mrpt/observation_matcher.h"
 #include "gasp/pipeline/pair_registration.h"
