@@ -44,6 +44,9 @@ int main(int argc, char** argv) {
   app.add_option("--k", params.association.feature_sets.neighbourhood.k, "neighbourhood size (0 = full view)")->capture_default_str();
   app.add_option("--candidates", params.association.candidates, "KD-tree candidates per patch (C)")->capture_default_str();
   app.add_option("--lambda", params.association.lambda, "gating on the normalised edit distance")->capture_default_str();
+  app.add_option("--distinctiveness", params.association.distinctiveness_ratio,
+                 "ratio test: keep a best partner only when its D_hat < R x the second best (1 = off)")
+      ->capture_default_str();
   double theta_dev_deg = params.association.match.theta_dev_rad * 180.0 / M_PI;
   app.add_option("--r-dev", params.association.match.r_dev_m, "match tolerance of the distance components [m]")->capture_default_str();
   app.add_option("--theta-dev", theta_dev_deg, "match tolerance of the angle components [deg]")->capture_default_str();

@@ -179,6 +179,9 @@ int main(int argc, char** argv) {
   app.add_option("--k", base.association.feature_sets.neighbourhood.k, "association neighbourhood size (0 = full view)")->capture_default_str();
   app.add_option("--candidates", base.association.candidates, "KD-tree candidates per patch (C)")->capture_default_str();
   app.add_option("--lambda", base.association.lambda, "gating on the normalised edit distance")->capture_default_str();
+  app.add_option("--distinctiveness", base.association.distinctiveness_ratio,
+                 "ratio test: keep a best partner only when its D_hat < R x the second best (1 = off)")
+      ->capture_default_str();
   app.add_flag("!--no-mutual", base.association.mutual_check, "keep one-way best partners too (no mutual check)");
   app.add_option("--min-inliers", base.pose.ransac.min_inliers, "RANSAC: fewer inliers give no estimate (all methods)")->capture_default_str();
   app.add_option("--dense-rounds", base.dense_rounds, "dense projective refinement rounds (0 = none)")->capture_default_str();

@@ -265,3 +265,47 @@ TEST(ViewAssociation, OneWayPartnersAreTheOnesTheMutualCheckDropped) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(ViewAssociation, DistinctivenessRatioDropsAmbiguousPartners) {
+  // Grids have exact ties (interior patches with identical neighbourhoods): the ratio test must
+  // drop those, keep only partners clearly better than every other candidate, and be the plain
+  // search at ratio 1.
+  const gasp::Isometry3 T = Eigen::Translation3d(0.1, 0.0, 0.2) * Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitZ());
+  const auto a = gridScene(31);
+  const auto b = noisyView(a, T, 0.01, 33);
+  gasp::AssociationParams p;
+  p.feature_sets.neighbourhood.k = 15;
+  p.lambda = 0.8;
+  p.candidates = 1000;  // every patch a candidate: the second best is exact
+  p.mutual_check = false;
+  const auto qa = gasp::computeFeatureSets(a, p.feature_sets), qb = gasp::computeFeatureSets(b, p.feature_sets);
+  const auto plain = gasp::associateFeatureSets(qa, qb, p);
+  EXPECT_EQ(plain.stats.ambiguous, 0u);
+  p.distinctiveness_ratio = 0.8;
+  const auto strict = gasp::associateFeatureSets(qa, qb, p);
+  EXPECT_GT(strict.stats.ambiguous, 0u);
+  EXPECT_LT(strict.associations.size(), plain.associations.size());
+  const gasp::FeatureMatch match{p.match};
+  for (const auto& s : strict.associations) {
+    // Same partner as the plain search, and every other patch of B within lambda at a D_hat above
+    // the partner's / 0.8.
+    const auto it = std::find_if(plain.associations.begin(), plain.associations.end(),
+                                 [&](const gasp::PatchAssociation& x) { return x.a == s.a; });
+    ASSERT_NE(it, plain.associations.end());
+    EXPECT_EQ(it->b, s.b);
+    for (std::size_t j = 0; j < qb.size(); ++j) {
+      if (static_cast<int>(j) == s.b || qb[j].empty()) continue;
+      const double d = gasp::osaDistance(qa[static_cast<std::size_t>(s.a)], qb[j], match, p.costs) /
+                       static_cast<double>(qa[static_cast<std::size_t>(s.a)].size() + qb[j].size());
+      if (d <= p.lambda) {
+        EXPECT_GT(0.8 * d, s.distance * (1 - 1e-12)) << "patch " << s.a << " vs " << j;
+      }
+    }
+  }
+  p.distinctiveness_ratio = 0.0;
+  EXPECT_THROW(gasp::associateFeatureSets(qa, qb, p), gasp::Error);
+}
+
+}  // namespace

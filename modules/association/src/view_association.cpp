@@ -113,6 +113,8 @@ void validate(const AssociationParams& p) {
   validate(p.costs);
   if (p.candidates < 1) throw Error("association: candidates (C) must be >= 1");
   if (!(p.lambda >= 0.0 && p.lambda <= 1.0)) throw Error("association: lambda must be in [0, 1]");
+  if (!(p.distinctiveness_ratio > 0.0 && p.distinctiveness_ratio <= 1.0))
+    throw Error("association: distinctiveness_ratio must be in (0, 1]");
 }
 
 namespace {
@@ -197,6 +199,8 @@ std::size_t findCandidates(const SearchIndex& from, std::size_t i, const SearchI
 struct SearchOutcome {
   int best = -1;
   double best_hat = std::numeric_limits<double>::infinity();
+  double second_hat = std::numeric_limits<double>::infinity();  ///< with the ratio test only
+  bool ambiguous = false;  ///< the best failed the distinctiveness ratio (best is then -1)
   std::size_t found = 0, cut = 0;
 };
 
@@ -218,21 +222,31 @@ SearchOutcome searchBest(const SearchIndex& from, std::size_t i, const SearchInd
   if (qi.empty() || to.points() == 0) return out;
   const std::size_t C = std::min<std::size_t>(static_cast<std::size_t>(p.candidates), to.points());
   out.found = findCandidates(from, i, to, p, C, scratch);
+  const bool ratio_test = p.distinctiveness_ratio < 1.0;
   for (std::size_t c = 0; c < out.found; ++c) {
     const int j = static_cast<int>(to.point_to_patch[scratch.idx[c]]);
     const PreparedFeatureSet& qj = to.sets[static_cast<std::size_t>(j)];
     const double denom = static_cast<double>(qi.size() + qj.size());
-    const double d = featureSetDistance(qi, qj, p.match, p.costs, tieSafeBound(std::min(p.lambda, out.best_hat), denom),
-                                        scratch.distance);
+    // With the ratio test the second best must be known too: bound by it instead of the best.
+    const double limit = std::min(p.lambda, ratio_test ? out.second_hat : out.best_hat);
+    const double d = featureSetDistance(qi, qj, p.match, p.costs, tieSafeBound(limit, denom), scratch.distance);
     if (d == kExceedsBound) {
       ++out.cut;
       continue;
     }
     const double hat = d / denom;
-    if (hat <= p.lambda && better(hat, j, out.best_hat, out.best)) {
+    if (hat > p.lambda) continue;
+    if (better(hat, j, out.best_hat, out.best)) {
+      out.second_hat = out.best_hat;
       out.best_hat = hat;
       out.best = j;
+    } else if (hat < out.second_hat) {
+      out.second_hat = hat;
     }
+  }
+  if (ratio_test && out.best >= 0 && !(out.best_hat < p.distinctiveness_ratio * out.second_hat)) {
+    out.best = -1;
+    out.ambiguous = true;
   }
   return out;
 }
@@ -330,7 +344,8 @@ AssociationResult associateFeatureSets(const std::vector<std::vector<Feature>>& 
   for (const auto& o : a_to_b) {
     r.stats.comparisons += o.found;
     r.stats.cut_early += o.cut;
-    r.stats.gated_out += o.best < 0 && o.found > 0;
+    r.stats.gated_out += o.best < 0 && o.found > 0 && !o.ambiguous;
+    r.stats.ambiguous += o.ambiguous;
   }
 
   // Mutual check (B -> A) only for the patches of B chosen by some patch of A.

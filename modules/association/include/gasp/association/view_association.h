@@ -47,6 +47,10 @@ struct AssociationParams {
   /// How the C candidates are chosen (paper: kMean). Last member: aggregate initialisation of the
   /// members before it is unchanged.
   CandidateKey candidate_key = CandidateKey::kQuantiles;
+  /// Distinctiveness (Lowe's ratio test on D_hat, not in the paper): a patch's best partner is
+  /// kept only when its D_hat is below distinctiveness_ratio times the second best D_hat among
+  /// its candidates (exact ties are never distinct). 1 = off (default; the paper's rule).
+  double distinctiveness_ratio = 1.0;
 
   static FeatureSetParams defaultFeatureSets() {
     FeatureSetParams p;
@@ -72,6 +76,7 @@ struct AssociationStats {
   std::size_t comparisons_full = 0;   ///< comparisons an exhaustive search in both directions would make
   std::size_t gated_out = 0;          ///< patches of A with candidates but none within lambda
   std::size_t not_mutual = 0;         ///< A -> B partners dropped by the mutual check
+  std::size_t ambiguous = 0;          ///< best partners dropped by the distinctiveness ratio
   /// Time [ms]: feature sets (associateViews only); "tree" = preparing both views for the search
   /// (prepared sets, signatures or KD-tree); matching = both searches.
   double features_ms = 0, tree_ms = 0, matching_ms = 0;
