@@ -152,6 +152,34 @@ TEST(BadInput, InvalidParametersThrow) {
   params = PairParams{};
   params.visibility.max_violation_ratio = 2.0;
   EXPECT_THROW(registerViews(p.a, p.b, params), Error);
+  params = PairParams{};
+  params.min_guided_support = 2;
+  EXPECT_THROW(registerViews(p.a, p.b, params), Error);
+  params = PairParams{};
+  params.one_way_max_violation_ratio = -0.1;
+  EXPECT_THROW(registerViews(p.a, p.b, params), Error);
+  params = PairParams{};
+  params.guided.max_distance_m = 0.0;
+  EXPECT_THROW(registerViews(p.a, p.b, params), Error);
+  params = PairParams{};
+  params.guided.lambda = 1.5;
+  EXPECT_THROW(registerViews(p.a, p.b, params), Error);
+}
+
+TEST(GuidedVerification, DensifyRefinesOnTheGuidedAssociations) {
+  // guided_densify: RANSAC and the patch refinement run again on the guided associations, which
+  // are then what `used` holds; the pose stays within the synthetic tolerance.
+  const Pair p = makePair("room", 3, 9);
+  PairParams params;
+  params.guided_densify = true;
+  const PairResult r = registerViews(p.a, p.b, params);
+  ASSERT_TRUE(r.pose.success) << r.pose.reason;
+  EXPECT_EQ(static_cast<int>(r.used.size()), r.guided_support);
+  EXPECT_GT(r.used.size(), r.association.associations.size());
+  EXPECT_EQ(r.correspondences.size(), r.used.size());
+  const Isometry3 E = p.T_b_a.inverse() * r.pose.T_target_source;
+  EXPECT_LT(translationNorm(E), 0.02);
+  EXPECT_LT(rotationAngle(E) * 180.0 / M_PI, 1.0);
 }
 
 TEST(Determinism, SameInputSamePose) {
