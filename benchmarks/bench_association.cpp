@@ -27,13 +27,8 @@ struct ViewPair {
   std::vector<gasp::PatchGeometry> a, b;
 };
 
-struct Data {
-  std::vector<std::pair<cv::Mat, cv::Mat>> depth;
-  gasp::CameraIntrinsics intrinsics;
-};
-
-Data& data() {
-  static Data d;
+gasp::bench::DepthPairs& data() {
+  static gasp::bench::DepthPairs d;
   return d;
 }
 
@@ -110,12 +105,7 @@ int main(int argc, char** argv) {
   }
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(std::max(1, threads)));
   try {
-    const auto ds = gasp::TumDataset::open(gasp::bench::dataDir() + "/tum/fr1_xyz");
-    if (ds.size() < 11 || n_pairs < 1) throw std::runtime_error("need --pairs >= 1 and at least 11 frames");
-    data().intrinsics = ds.intrinsics();
-    const std::size_t step = std::max<std::size_t>(1, (ds.size() - 10) / static_cast<std::size_t>(std::max(1, n_pairs)));
-    for (std::size_t i = 0; i + 10 < ds.size() && data().depth.size() < static_cast<std::size_t>(n_pairs); i += step)
-      data().depth.emplace_back(ds.loadDepth(i), ds.loadDepth(i + 10));
+    data() = gasp::bench::loadFr1XyzPairs(n_pairs);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s (set GASP_DATA_DIR to the folder holding tum/fr1_xyz)\n", e.what());
     return 1;

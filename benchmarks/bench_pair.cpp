@@ -20,13 +20,8 @@
 
 namespace {
 
-struct Pairs {
-  std::vector<std::pair<cv::Mat, cv::Mat>> depth;
-  gasp::CameraIntrinsics intrinsics;
-};
-
-Pairs& pairs() {
-  static Pairs p;
+gasp::bench::DepthPairs& pairs() {
+  static gasp::bench::DepthPairs p;
   return p;
 }
 
@@ -78,14 +73,8 @@ int main(int argc, char** argv) {
     args.push_back(argv[a]);
   }
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(std::max(1, threads)));
-  const std::string dir = gasp::bench::dataDir() + "/tum/fr1_xyz";
   try {
-    const auto ds = gasp::TumDataset::open(dir);
-    auto& p = pairs();
-    p.intrinsics = ds.intrinsics();
-    const std::size_t step = std::max<std::size_t>(1, (ds.size() - 10) / static_cast<std::size_t>(std::max(1, n_pairs)));
-    for (std::size_t i = 0; i + 10 < ds.size() && p.depth.size() < static_cast<std::size_t>(n_pairs); i += step)
-      p.depth.emplace_back(ds.loadDepth(i), ds.loadDepth(i + 10));
+    pairs() = gasp::bench::loadFr1XyzPairs(n_pairs);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s (set GASP_DATA_DIR to the folder holding tum/fr1_xyz)\n", e.what());
     return 1;

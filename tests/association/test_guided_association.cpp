@@ -16,19 +16,7 @@
 namespace {
 
 using gasp::test::moved;
-
-std::vector<gasp::PatchGeometry> scatter(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<gasp::PatchGeometry> out;
-  for (int i = 0; i < n; ++i) {
-    gasp::PatchGeometry p;
-    p.centroid = Eigen::Vector3d(1.5 * u(rng), u(rng), 2.0 + u(rng));
-    p.normal = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
-    out.push_back(p);
-  }
-  return out;
-}
+using gasp::test::randomPatches;
 
 struct Views {
   std::vector<gasp::PatchGeometry> a, b;
@@ -39,7 +27,7 @@ struct Views {
 Views rigidCopy(const gasp::Isometry3& T_b_a, int n = 100) {
   Views v;
   v.params.feature_sets.neighbourhood.k = 15;
-  v.a = scatter(n, 5);
+  v.a = randomPatches(n, 5);
   v.b = moved(v.a, T_b_a);
   std::reverse(v.b.begin(), v.b.end());  // patch i of A is patch n-1-i of B
   v.qa = gasp::computeFeatureSets(v.a, v.params.feature_sets);

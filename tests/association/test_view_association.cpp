@@ -17,20 +17,7 @@
 namespace {
 
 using gasp::test::moved;
-
-/// n patches scattered in a 3 x 2 x 2 m box with random unit normals (fixed seed).
-std::vector<gasp::PatchGeometry> randomPatches(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<gasp::PatchGeometry> out;
-  for (int i = 0; i < n; ++i) {
-    gasp::PatchGeometry p;
-    p.centroid = Eigen::Vector3d(1.5 * u(rng), u(rng), 2.0 + u(rng));
-    p.normal = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
-    out.push_back(p);
-  }
-  return out;
-}
+using gasp::test::randomPatches;
 
 /// b = a moved by T, with centroid noise (sigma_m) and normal noise, some patches dropped and some
 /// random ones added: distances are neither all zero nor all large, and ties occur.

@@ -11,22 +11,14 @@
 #include <memory>
 
 #include "gasp_test_data.h"
+#include "program_run.h"
 
 namespace {
 
-struct ProgramRun {
-  int exit_code;
-  std::string output;
-};
+using gasp::test::ProgramRun;
 
 ProgramRun run(const std::string& program, const std::string& args) {
-  const std::string cmd = std::string(GASP_BIN_DIR) + "/" + program + " " + args + " 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-  std::string out;
-  char buf[4096];
-  while (std::fgets(buf, sizeof buf, pipe.get())) out += buf;
-  const int status = pclose(pipe.release());
-  return {WEXITSTATUS(status), out};
+  return gasp::test::runProgram(program, args);
 }
 
 std::vector<std::string> lines(const std::string& path) {

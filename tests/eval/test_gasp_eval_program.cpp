@@ -8,23 +8,11 @@
 
 #include "gasp/core/tum_trajectory.h"
 #include "gasp_test_data.h"
+#include "program_run.h"
 
 namespace {
 
-struct Run {
-  int exit_code;
-  std::string output;  // stdout and stderr
-};
-
-Run run(const std::string& args) {
-  const std::string cmd = std::string(GASP_BIN_DIR) + "/gasp-eval " + args + " 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-  std::string out;
-  std::array<char, 512> buf{};
-  while (fgets(buf.data(), buf.size(), pipe.get())) out += buf.data();
-  const int status = pclose(pipe.release());
-  return {WEXITSTATUS(status), out};
-}
+gasp::test::ProgramRun run(const std::string& args) { return gasp::test::runProgram("gasp-eval", args); }
 
 void writeLine(const std::string& path, int n, double dx) {
   gasp::Trajectory t;

@@ -13,22 +13,14 @@
 #include <algorithm>
 
 #include "gasp_test_data.h"
+#include "program_run.h"
 
 namespace {
 
-struct ProgramRun {
-  int exit_code;
-  std::string output;
-};
+using gasp::test::ProgramRun;
 
 ProgramRun run(const std::string& program, const std::string& args) {
-  const std::string cmd = std::string(GASP_BIN_DIR) + "/" + program + " " + args + " 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-  std::string out;
-  std::array<char, 512> buf{};
-  while (fgets(buf.data(), buf.size(), pipe.get())) out += buf.data();
-  const int status = pclose(pipe.release());
-  return {WEXITSTATUS(status), out};
+  return gasp::test::runProgram(program, args);
 }
 
 double number(const std::string& text, const std::string& key) {

@@ -75,6 +75,20 @@ void collect(const SurfaceCloud& s, const pcl::Indices& keypoints, const pcl::Po
   }
 }
 
+/// Runs a PCL feature estimator on the keypoints of the surface cloud and collects the result.
+template <typename Estimator, typename Descriptor, std::size_t N>
+void describe(Estimator& est, const SurfaceCloud& s, const pcl::IndicesPtr& keypoints, double radius_m,
+              const float (Descriptor::*field)[N], const CameraIntrinsics& K, DescribedKeypoints& out) {
+  est.setInputCloud(s.points);
+  est.setIndices(keypoints);
+  est.setInputNormals(s.normals);
+  est.setSearchMethod(s.tree);
+  est.setRadiusSearch(radius_m);
+  pcl::PointCloud<Descriptor> desc;
+  est.compute(desc);
+  collect(s, *keypoints, desc, field, K, out);
+}
+
 }  // namespace
 
 void validate(const PointFeatureParams& p) {
@@ -101,38 +115,17 @@ DescribedKeypoints describePointFeatures(const RgbdImage& view, PointFeatureType
   switch (type) {
     case PointFeatureType::kFpfh: {
       pcl::FPFHEstimationOMP<SurfacePoint, pcl::Normal, pcl::FPFHSignature33> est(threads);
-      est.setInputCloud(s.points);
-      est.setIndices(keypoints);
-      est.setInputNormals(s.normals);
-      est.setSearchMethod(s.tree);
-      est.setRadiusSearch(params.fpfh_radius_m);
-      pcl::PointCloud<pcl::FPFHSignature33> desc;
-      est.compute(desc);
-      collect(s, *keypoints, desc, &pcl::FPFHSignature33::histogram, view.intrinsics, out);
+      describe(est, s, keypoints, params.fpfh_radius_m, &pcl::FPFHSignature33::histogram, view.intrinsics, out);
       break;
     }
     case PointFeatureType::kShot: {
       pcl::SHOTEstimationOMP<SurfacePoint, pcl::Normal, pcl::SHOT352> est(threads);
-      est.setInputCloud(s.points);
-      est.setIndices(keypoints);
-      est.setInputNormals(s.normals);
-      est.setSearchMethod(s.tree);
-      est.setRadiusSearch(params.shot_radius_m);
-      pcl::PointCloud<pcl::SHOT352> desc;
-      est.compute(desc);
-      collect(s, *keypoints, desc, &pcl::SHOT352::descriptor, view.intrinsics, out);
+      describe(est, s, keypoints, params.shot_radius_m, &pcl::SHOT352::descriptor, view.intrinsics, out);
       break;
     }
     case PointFeatureType::kColourShot: {
       pcl::SHOTColorEstimationOMP<SurfacePoint, pcl::Normal, pcl::SHOT1344> est(true, true, threads);
-      est.setInputCloud(s.points);
-      est.setIndices(keypoints);
-      est.setInputNormals(s.normals);
-      est.setSearchMethod(s.tree);
-      est.setRadiusSearch(params.shot_radius_m);
-      pcl::PointCloud<pcl::SHOT1344> desc;
-      est.compute(desc);
-      collect(s, *keypoints, desc, &pcl::SHOT1344::descriptor, view.intrinsics, out);
+      describe(est, s, keypoints, params.shot_radius_m, &pcl::SHOT1344::descriptor, view.intrinsics, out);
       break;
     }
   }
