@@ -39,6 +39,8 @@ int main(int argc, char** argv) {
   da->needs(db);
   db->needs(da);
   app.add_option("--depth-scale", depth_scale, "raw depth units per metre (with --depth-a/-b)")->capture_default_str();
+  bool no_undistort = false;
+  app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored");
   app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: the folder's; ros for PNGs)");
   app.add_option("--out", out_path, "association picture (default: associations_I_J.png, or associations.png for PNGs)");
   app.add_option("--k", params.association.feature_sets.neighbourhood.k, "neighbourhood size (0 = full view)")->capture_default_str();
@@ -69,6 +71,7 @@ int main(int argc, char** argv) {
     if (!tum_dir.empty()) {
       gasp::TumDataset::Options opt;
       if (!intrinsics_arg.empty()) opt.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg);
+      opt.undistort = !no_undistort;
       const auto ds = gasp::TumDataset::open(tum_dir, opt);
       depth_a = ds.loadDepth(from);
       depth_b = ds.loadDepth(to);
@@ -79,8 +82,11 @@ int main(int argc, char** argv) {
       if (out_path.empty()) out_path = "associations_" + std::to_string(from) + "_" + std::to_string(to) + ".png";
     } else {
       K = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg.empty() ? "ros" : intrinsics_arg);
-      depth_a = gasp::loadDepth(depth_a_path, depth_scale);
-      depth_b = gasp::loadDepth(depth_b_path, depth_scale);
+      if (no_undistort) K.distortion.fill(0.0);
+      const gasp::Undistortion undistortion(K);
+      depth_a = undistortion.applyToDepth(gasp::loadDepth(depth_a_path, depth_scale));
+      depth_b = undistortion.applyToDepth(gasp::loadDepth(depth_b_path, depth_scale));
+      K = undistortion.pinhole();
       if (out_path.empty()) out_path = "associations.png";
     }
     const auto [va, vb] = gasp::makeDepthViews(depth_a, depth_b, K, params.superpixels);

@@ -79,6 +79,8 @@ int main(int argc, char** argv) {
   auto* depth_opt = app.add_option("--depth", depth_path, "one 16-bit depth PNG");
   auto* tum_opt = app.add_option("--tum", tum_dir, "a TUM RGB-D folder: every frame is segmented");
   depth_opt->excludes(tum_opt);
+  bool no_undistort = false;
+  app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored");
   app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: ros for --depth; the folder's for --tum)");
   app.add_option("--depth-scale", depth_scale, "raw depth units per metre")->capture_default_str();
   app.add_option("--area-cm2", area_cm2, "target patch area [cm^2] (default from SuperpixelParams)");
@@ -100,8 +102,11 @@ int main(int argc, char** argv) {
     gasp::SuperpixelParams params;
     if (area_cm2 > 0) params.target_patch_area_m2 = area_cm2 * 1e-4;
     if (!depth_path.empty()) {
-      const auto k = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg.empty() ? "ros" : intrinsics_arg);
-      const cv::Mat depth = gasp::loadDepth(depth_path, depth_scale, k.width, k.height);
+      auto k = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg.empty() ? "ros" : intrinsics_arg);
+      if (no_undistort) k.distortion.fill(0.0);
+      const gasp::Undistortion undistortion(k);
+      const cv::Mat depth = undistortion.applyToDepth(gasp::loadDepth(depth_path, depth_scale, k.width, k.height));
+      k = undistortion.pinhole();
       const auto seg = gasp::segmentDepthSuperpixels(depth, k, params);
       report(seg);
       writePicture(out, depth, seg);
@@ -110,6 +115,7 @@ int main(int argc, char** argv) {
     }
     gasp::TumDataset::Options opt;
     if (!intrinsics_arg.empty()) opt.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg);
+    opt.undistort = !no_undistort;
     opt.depth_units_per_metre = depth_scale;
     const auto ds = gasp::TumDataset::open(tum_dir, opt);
     if (pair_skip > 0) return measurePairs(ds, params, static_cast<std::size_t>(pair_skip), static_cast<std::size_t>(every));

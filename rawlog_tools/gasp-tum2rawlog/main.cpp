@@ -27,6 +27,8 @@ int main(int argc, char** argv) {
   app.add_option("--format", format, "1: actions + sensory frames, 2: observations (default)")
       ->check(CLI::IsMember({1, 2}));
   app.add_flag("--no-rgb", no_rgb, "do not store the rgb images");
+  bool no_undistort = false;
+  app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored");
   app.add_option("--max-frames", max_frames, "convert at most N frames (0 = all)");
   app.add_flag("--external", external, "store depth and rgb in OUT_Images/ (MRPT external storage)");
   CLI11_PARSE(app, argc, argv);
@@ -37,6 +39,7 @@ int main(int argc, char** argv) {
     options.writer.format = gasp::rawlogFormatFromNumber(format);
     options.writer.external_storage = external;
     options.with_rgb = !no_rgb;
+    options.undistort = !no_undistort;
     options.max_frames = max_frames;
     const auto s = gasp::convertTumToRawlog(tum_dir, out_rawlog, options);
 

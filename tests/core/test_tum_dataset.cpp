@@ -12,6 +12,10 @@ TEST(TumDataset, ReadsFr1Desk9WithGroundTruthAndRgb) {
   ASSERT_EQ(ds.size(), 9u);
   EXPECT_EQ(ds.countWithGroundTruth(), 9u);
   EXPECT_DOUBLE_EQ(ds.intrinsics().fx, 517.3);  // guessed from "fr1_" in the folder name
+  // fr1's lens distortion: the images are resampled to the pinhole camera.
+  EXPECT_TRUE(ds.undistorts());
+  EXPECT_FALSE(gasp::hasLensDistortion(ds.intrinsics()));
+  EXPECT_TRUE(gasp::hasLensDistortion(ds.calibratedIntrinsics()));
   for (std::size_t i = 0; i < ds.size(); ++i) {
     EXPECT_TRUE(ds.frame(i).rgb_path.has_value());
     if (i > 0) {
@@ -35,6 +39,7 @@ TEST(TumDataset, ReadsFr3CabinetKeyframes) {
   ASSERT_EQ(ds.size(), 30u);
   EXPECT_EQ(ds.countWithGroundTruth(), 30u);
   EXPECT_DOUBLE_EQ(ds.intrinsics().fx, 535.4);
+  EXPECT_FALSE(ds.undistorts());  // fr3 has no lens distortion
   EXPECT_EQ(ds.loadRgb(3).type(), CV_8UC3);  // JPEG rgb
   const cv::Mat d = ds.loadDepth(29);
   EXPECT_GT(gasp::countValidDepth(d), 100000u);
@@ -48,6 +53,24 @@ TEST(TumDataset, ExplicitIntrinsicsOverrideAndGroundTruthWindow) {
   const auto ds = gasp::TumDataset::open(dir, opt);
   EXPECT_EQ(ds.intrinsicsSource(), "option");
   EXPECT_LT(ds.countWithGroundTruth(), 9u);
+}
+
+TEST(TumDataset, UndistortionCanBeTurnedOff) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  gasp::TumDataset::Options opt;
+  opt.undistort = false;
+  const auto raw = gasp::TumDataset::open(dir, opt);
+  const auto undistorted = gasp::TumDataset::open(dir);
+  EXPECT_FALSE(raw.undistorts());
+  EXPECT_FALSE(gasp::hasLensDistortion(raw.intrinsics()));  // ignored, as documented
+  const cv::Mat a = raw.loadDepthRaw(0), b = undistorted.loadDepthRaw(0);
+  ASSERT_EQ(a.type(), CV_16UC1);
+  ASSERT_EQ(b.type(), CV_16UC1);
+  EXPECT_GT(cv::norm(a, b, cv::NORM_L1), 0.0);  // resampled
+  // The centre moves little (distortion grows with the radius); the corners move by pixels.
+  const cv::Rect centre(300, 220, 40, 40);
+  EXPECT_GT(cv::countNonZero(a(centre) == b(centre)), 1000);
+  EXPECT_EQ(raw.loadRgb(0).size(), undistorted.loadRgb(0).size());
 }
 
 TEST(TumDataset, MissingAndMalformedInputs) {

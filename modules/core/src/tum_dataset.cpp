@@ -66,6 +66,9 @@ TumDataset TumDataset::open(const std::string& dir, const Options& options) {
     ds.intrinsics_source_ = "preset ros (default; pass intrinsics to override)";
   }
   ds.intrinsics_.validate();
+  CameraIntrinsics resampled = ds.intrinsics_;
+  if (!options.undistort) resampled.distortion.fill(0.0);  // images used as stored
+  ds.undistortion_ = std::make_shared<const Undistortion>(resampled);
 
   const fs::path depth_list = root / "depth.txt";
   if (!fs::exists(depth_list)) throw Error("TUM folder '" + dir + "' has no depth.txt");
@@ -111,7 +114,7 @@ std::size_t TumDataset::countWithGroundTruth() const {
 }
 
 cv::Mat TumDataset::loadDepthRaw(std::size_t i) const {
-  return gasp::loadDepthRaw(frame(i).depth_path, intrinsics_.width, intrinsics_.height);
+  return undistortion_->applyToDepth(gasp::loadDepthRaw(frame(i).depth_path, intrinsics_.width, intrinsics_.height));
 }
 
 cv::Mat TumDataset::loadDepth(std::size_t i) const {
@@ -123,7 +126,10 @@ cv::Mat TumDataset::loadRgb(std::size_t i) const {
   if (!f.rgb_path) return {};
   cv::Mat img = cv::imread(*f.rgb_path, cv::IMREAD_COLOR);
   if (img.empty()) throw Error("rgb image '" + *f.rgb_path + "' is missing or unreadable");
-  return img;
+  if (img.cols != intrinsics_.width || img.rows != intrinsics_.height)
+    throw Error("rgb image '" + *f.rgb_path + "' is " + std::to_string(img.cols) + "x" + std::to_string(img.rows) +
+                ", the depth images are " + std::to_string(intrinsics_.width) + "x" + std::to_string(intrinsics_.height));
+  return undistortion_->applyToImage(img);
 }
 
 }  // namespace gasp

@@ -42,6 +42,7 @@ TumToRawlogSummary convertTumToRawlog(const std::string& tum_dir, const std::str
                                       const TumToRawlogOptions& options) {
   TumDataset::Options ds_options;
   ds_options.intrinsics = options.intrinsics;
+  ds_options.undistort = options.undistort;
   const TumDataset dataset = TumDataset::open(tum_dir, ds_options);
   if (dataset.size() == 0) throw Error("TUM folder '" + tum_dir + "': depth.txt lists no frames");
 

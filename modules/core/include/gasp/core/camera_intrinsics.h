@@ -7,14 +7,15 @@
 namespace gasp {
 
 /// Pinhole model of a depth camera (optical frame: x right, y down, z forward; metres, pixels).
-/// The distortion coefficients are carried along for completeness (OpenCV order k1 k2 p1 p2 k3);
-/// GASP back-projects without undistortion, as is usual for TUM and Kinect depth.
+/// The distortion coefficients (OpenCV order k1 k2 p1 p2 k3) are not applied by unproject() /
+/// project(): images are resampled to the pinhole camera first (undistortion.h; TumDataset does
+/// it when the coefficients are non-zero).
 struct CameraIntrinsics {
   int width = 640;   ///< image width [px]
   int height = 480;  ///< image height [px]
   double fx = 525.0, fy = 525.0;  ///< focal lengths [px]
   double cx = 319.5, cy = 239.5;  ///< principal point [px]
-  std::array<double, 5> distortion{};  ///< k1 k2 p1 p2 k3 (not applied)
+  std::array<double, 5> distortion{};  ///< k1 k2 p1 p2 k3 (see undistortion.h)
 
   /// 3D point in the camera frame of pixel (u, v) at the given depth [m].
   Eigen::Vector3d unproject(double u, double v, double depth) const {

@@ -1,6 +1,7 @@
 #pragma once
 /// \file tum_dataset.h Reader for a TUM RGB-D folder (depth.txt, rgb.txt, groundtruth.txt).
 #include <opencv2/core.hpp>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -8,6 +9,7 @@
 #include "gasp/core/camera_intrinsics.h"
 #include "gasp/core/depth_image.h"
 #include "gasp/core/tum_trajectory.h"
+#include "gasp/core/undistortion.h"
 
 namespace gasp {
 
@@ -31,6 +33,10 @@ class TumDataset {
     std::optional<CameraIntrinsics> intrinsics;
     double max_dt = 0.02;  ///< rgb and ground-truth association tolerance [s] (TUM: 0.02)
     double depth_units_per_metre = kTumDepthUnitsPerMetre;
+    /// Resample depth and rgb to the pinhole camera when the intrinsics carry lens distortion
+    /// (the fr1 and fr2 presets do; undistortion.h says why). Off: images as stored, and the
+    /// distortion is ignored.
+    bool undistort = true;
   };
 
   /// Opens DIR: depth.txt is required, rgb.txt and groundtruth.txt optional. Throws gasp::Error
@@ -39,7 +45,12 @@ class TumDataset {
   static TumDataset open(const std::string& dir) { return open(dir, Options{}); }
 
   const std::string& directory() const { return dir_; }
-  const CameraIntrinsics& intrinsics() const { return intrinsics_; }
+  /// The intrinsics of the images load*() returns: pinhole (no distortion) when undistorting.
+  const CameraIntrinsics& intrinsics() const { return undistortion_->pinhole(); }
+  /// The intrinsics as chosen (option, file or preset), with their distortion coefficients.
+  const CameraIntrinsics& calibratedIntrinsics() const { return intrinsics_; }
+  /// True when load*() resample the images (Options::undistort and the intrinsics have distortion).
+  bool undistorts() const { return undistortion_->active(); }
   /// Where the intrinsics came from: "option", "DIR/intrinsics.txt", "preset fr1 (folder name)"...
   const std::string& intrinsicsSource() const { return intrinsics_source_; }
   double depthUnitsPerMetre() const { return options_.depth_units_per_metre; }
@@ -52,15 +63,17 @@ class TumDataset {
   /// Number of depth frames that have a ground-truth pose.
   std::size_t countWithGroundTruth() const;
 
-  cv::Mat loadDepthRaw(std::size_t i) const;  ///< uint16 as stored; size checked
-  cv::Mat loadDepth(std::size_t i) const;     ///< metres, CV_32FC1
-  cv::Mat loadRgb(std::size_t i) const;       ///< BGR 8-bit; empty when the frame has no rgb
+  cv::Mat loadDepthRaw(std::size_t i) const;  ///< uint16 units as stored (undistorted); size checked
+  cv::Mat loadDepth(std::size_t i) const;     ///< metres, CV_32FC1 (undistorted)
+  cv::Mat loadRgb(std::size_t i) const;       ///< BGR 8-bit (undistorted); empty when the frame has no rgb
 
  private:
+  TumDataset() = default;  // open() builds one
   std::string dir_;
   Options options_;
   CameraIntrinsics intrinsics_;
   std::string intrinsics_source_;
+  std::shared_ptr<const Undistortion> undistortion_;  ///< shared by copies (immutable maps)
   std::vector<TumFrame> frames_;
   Trajectory ground_truth_;
 };

@@ -16,6 +16,9 @@ struct TumToRawlogOptions {
   std::optional<CameraIntrinsics> intrinsics;
   RawlogWriterOptions writer;          ///< format, external storage, compression
   bool with_rgb = true;                ///< store the associated rgb image when there is one
+  /// TumDataset::Options::undistort: images resampled to the pinhole camera, whose intrinsics
+  /// (no distortion) the observations then carry.
+  bool undistort = true;
   std::size_t max_frames = 0;          ///< 0 = all depth frames
   std::string sensor_label = "RGBD";   ///< sensorLabel of the observations
 };
