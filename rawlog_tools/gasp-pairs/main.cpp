@@ -67,6 +67,10 @@ struct MethodRun {
   std::size_t associations = 0;
   int inliers = 0;
   double violation_ratio = 0;
+  int consistent = 0, occluded = 0, violations = 0;  ///< visibility check samples, both directions
+  double occluded_ratio = 0;                          ///< visibility check, the worse direction
+  int one_way = 0;          ///< GASP: the pose came from the one-way fallback
+  int guided_support = -1;  ///< GASP: guided associations under the pose (-1: not reached)
   std::map<std::string, double> stage_ms;
 };
 
@@ -163,6 +167,8 @@ int main(int argc, char** argv) {
   app.add_option("--method", methods,
                  "gasp (full pipeline), gasp-norefine (RANSAC only); baselines (when built): fpfh, shot, cshot, sift, dsift")
       ->delimiter(',')->check(CLI::IsMember(knownMethods()))->capture_default_str();
+  bool no_undistort = false;
+  app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored");
   app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: the folder's)");
   app.add_option("--csv", csv_path, "write the table as CSV (rows with scored pairs only)");
   app.add_option("--pairs-csv", pairs_csv_path, "write one line per pair and method");
@@ -216,6 +222,7 @@ int main(int argc, char** argv) {
 #endif
     gasp::TumDataset::Options opt;
     if (!intrinsics_arg.empty()) opt.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg);
+    opt.undistort = !no_undistort;
     const auto ds = gasp::TumDataset::open(tum_dir, opt);
     // Ground truth of frame i: the frame's own association (offset 0) or a look-up at t + offset.
     auto truth = [&](std::size_t i) -> std::optional<gasp::Isometry3> {
@@ -249,6 +256,11 @@ int main(int argc, char** argv) {
         run.associations = r.association.associations.size();
         run.inliers = r.pose.num_inliers;
         run.violation_ratio = r.visibility.violation_ratio;
+        run.consistent = r.visibility.consistent, run.occluded = r.visibility.occluded;
+        run.violations = r.visibility.violations;
+        run.occluded_ratio = r.visibility.occluded_ratio;
+        run.one_way = r.used_one_way ? 1 : 0;
+        run.guided_support = r.guided_support;
         run.stage_ms = {{"segmentation", va.ms + vb.ms},
                         {"association", r.timings.association_ms},
                         {"ransac", r.timings.ransac_ms},
@@ -281,6 +293,9 @@ int main(int argc, char** argv) {
       run.associations = r.matches.size();
       run.inliers = r.pose.num_inliers;
       run.violation_ratio = r.visibility.violation_ratio;
+      run.consistent = r.visibility.consistent, run.occluded = r.visibility.occluded;
+      run.violations = r.visibility.violations;
+      run.occluded_ratio = r.visibility.occluded_ratio;
       run.stage_ms = {{"description", ka.describe_ms + kb.describe_ms},
                       {"matching", r.timings.match_ms},
                       {"ransac", r.timings.ransac_ms},
@@ -361,7 +376,7 @@ int main(int argc, char** argv) {
     if (!pairs_csv_path.empty()) {
       pairs_csv.open(pairs_csv_path);
       if (!pairs_csv) throw gasp::Error("cannot write " + pairs_csv_path);
-      pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,reason\n";
+      pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,occluded_ratio,consistent,occluded,violations,one_way,guided_support,reason\n";
     }
     const auto bench_t0 = Clock::now();
     std::size_t done = 0;
@@ -388,7 +403,8 @@ int main(int argc, char** argv) {
         if (pairs_csv) {
           pairs_csv << skip << ',' << method << ',' << i << ',' << j << ',' << (o.estimated ? 1 : 0) << ','
                     << o.t_err_m << ',' << o.r_err_deg << ',' << o.ms << ',' << run.associations << ',' << run.inliers
-                    << ',' << run.violation_ratio << ",\"" << o.reason << "\"\n";
+                    << ',' << run.violation_ratio << ',' << run.occluded_ratio << ',' << run.consistent << ',' << run.occluded << ','
+                    << run.violations << ',' << run.one_way << ',' << run.guided_support << ",\"" << o.reason << "\"\n";
         }
       }
       ++done;

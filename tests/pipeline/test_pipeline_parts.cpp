@@ -81,4 +81,27 @@ TEST(VisibilityCheck, TruePosePassesAPoseInFreeSpaceFails) {
   EXPECT_FALSE(checkVisibility(a, a, T).passed);
 }
 
+TEST(VisibilityCheck, APoseThatHidesAViewBehindTheOtherFails) {
+  // b sees the wall on its left 40 % and a near surface (1 m) on the rest: at the identity 60 % of
+  // a's samples land behind b's surfaces. The violation limit is lifted so that only the occluded
+  // share decides.
+  const DepthView a = wallView(2.0);
+  DepthView b = wallView(2.0);
+  b.depth_m(cv::Rect(256, 0, 384, 480)).setTo(1.0f);
+  VisibilityCheckParams p;
+  p.max_violation_ratio = 1.0;
+  p.max_occluded_ratio = 1.0;
+  const auto loose = checkVisibility(a, b, Isometry3::Identity(), p);
+  EXPECT_TRUE(loose.passed) << loose.reason;
+  EXPECT_NEAR(loose.occluded_ratio, 0.6, 0.02);
+  p.max_occluded_ratio = 0.5;
+  const auto strict = checkVisibility(a, b, Isometry3::Identity(), p);
+  EXPECT_FALSE(strict.passed);
+  EXPECT_NE(strict.reason.find("behind"), std::string::npos) << strict.reason;
+  // The true pose of one view against itself has nothing occluded.
+  EXPECT_EQ(checkVisibility(a, a, Isometry3::Identity()).occluded_ratio, 0.0);
+  p.max_occluded_ratio = 1.5;
+  EXPECT_THROW(checkVisibility(a, b, Isometry3::Identity(), p), Error);
+}
+
 }  // namespace

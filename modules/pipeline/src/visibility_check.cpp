@@ -14,6 +14,8 @@ void validate(const VisibilityCheckParams& p) {
     throw Error("VisibilityCheckParams: gate_m must be > 0 and gate_per_m2 >= 0, both finite");
   if (!(p.max_violation_ratio >= 0 && p.max_violation_ratio <= 1))
     throw Error("VisibilityCheckParams: max_violation_ratio must be in [0, 1]");
+  if (!(p.max_occluded_ratio >= 0 && p.max_occluded_ratio <= 1))
+    throw Error("VisibilityCheckParams: max_occluded_ratio must be in [0, 1]");
   if (p.min_consistent < 0) throw Error("VisibilityCheckParams: min_consistent must be >= 0");
 }
 
@@ -24,6 +26,10 @@ struct Counts {
   double ratio() const {
     const int n = consistent + violations;
     return n ? static_cast<double>(violations) / n : 0.0;
+  }
+  double occludedRatio() const {
+    const int n = consistent + occluded + violations;
+    return n ? static_cast<double>(occluded) / n : 0.0;
   }
 };
 
@@ -65,6 +71,7 @@ VisibilityCheck checkVisibility(const DepthView& source, const DepthView& target
   out.occluded = st.occluded + ts.occluded;
   out.violations = st.violations + ts.violations;
   out.violation_ratio = std::max(st.ratio(), ts.ratio());
+  out.occluded_ratio = std::max(st.occludedRatio(), ts.occludedRatio());
   char buf[200];
   if (std::min(st.consistent, ts.consistent) < p.min_consistent) {
     std::snprintf(buf, sizeof buf, "visibility check: only %d consistent samples (at least %d needed): the views barely overlap at this pose",
@@ -75,6 +82,12 @@ VisibilityCheck checkVisibility(const DepthView& source, const DepthView& target
   if (out.violation_ratio > p.max_violation_ratio) {
     std::snprintf(buf, sizeof buf, "visibility check: %.0f%% of the overlapping samples lie in space the other view saw as empty (at most %.0f%%)",
                   100.0 * out.violation_ratio, 100.0 * p.max_violation_ratio);
+    out.reason = buf;
+    return out;
+  }
+  if (out.occluded_ratio > p.max_occluded_ratio) {
+    std::snprintf(buf, sizeof buf, "visibility check: %.0f%% of the samples lie behind the other view's surfaces (at most %.0f%%): the pose hides one view behind the other",
+                  100.0 * out.occluded_ratio, 100.0 * p.max_occluded_ratio);
     out.reason = buf;
     return out;
   }
