@@ -183,6 +183,8 @@ int main(int argc, char** argv) {
   app.add_flag("--pictures-only", pictures_only, "draw the --picture pair and stop (no benchmark)");
   gasp::PairParams base;
   app.add_option("--k", base.association.feature_sets.neighbourhood.k, "association neighbourhood size (0 = full view)")->capture_default_str();
+  double area_cm2 = base.superpixels.target_patch_area_m2 * 1e4;
+  app.add_option("--area-cm2", area_cm2, "GASP: target patch area [cm^2]")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--candidates", base.association.candidates, "KD-tree candidates per patch (C)")->capture_default_str();
   app.add_option("--lambda", base.association.lambda, "gating on the normalised edit distance")->capture_default_str();
   app.add_option("--distinctiveness", base.association.distinctiveness_ratio,
@@ -217,6 +219,7 @@ int main(int argc, char** argv) {
   }
   try {
 #ifdef GASP_HAVE_BASELINES
+    base.superpixels.target_patch_area_m2 = area_cm2 * 1e-4;
     baseline.pose.ransac.min_inliers = base.pose.ransac.min_inliers;  // the same consensus rule for all
     gasp::baselines::validate(baseline);
 #endif
