@@ -2,7 +2,8 @@
 //   build/release/bin/bench_superpixels [--frames N] [google benchmark flags]
 // Google Benchmark times the whole decomposition on one thread (one frame per iteration, cycling
 // through the frames) and a pair of frames segmented at once on two threads, one frame each (the
-// pair pipeline's case; wall time). Afterwards a table gives the median time of each stage over
+// pair pipeline's case; wall time), and the lens undistortion of one fr1 depth frame (done when a
+// frame is loaded, before segmentation). Afterwards a table gives the median time of each stage over
 // the frames, one thread, and the median wall time of a pair on two threads.
 #include <benchmark/benchmark.h>
 
@@ -22,6 +23,7 @@ namespace {
 struct Frames {
   std::vector<cv::Mat> depth;
   gasp::CameraIntrinsics intrinsics;
+  gasp::CameraIntrinsics calibrated;  ///< with fr1's distortion coefficients
 };
 
 Frames& frames() {
@@ -62,6 +64,16 @@ void BM_SegmentPairTwoThreads(benchmark::State& state) {
 }
 BENCHMARK(BM_SegmentPairTwoThreads)->Unit(benchmark::kMillisecond)->MinTime(2.0)->UseRealTime();
 
+void BM_UndistortFr1Depth(benchmark::State& state) {
+  const gasp::Undistortion undistortion(frames().calibrated);  // maps built once, as in TumDataset
+  const cv::Mat& depth = frames().depth.front();
+  for (auto _ : state) {
+    const cv::Mat out = undistortion.applyToDepth(depth);
+    benchmark::DoNotOptimize(out.data);
+  }
+}
+BENCHMARK(BM_UndistortFr1Depth)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v.empty() ? 0.0 : v[v.size() / 2];
@@ -78,6 +90,7 @@ int main(int argc, char** argv) {
     const auto ds = gasp::TumDataset::open(dir);
     auto& f = frames();
     f.intrinsics = ds.intrinsics();
+    f.calibrated = ds.calibratedIntrinsics();
     const std::size_t step = std::max<std::size_t>(1, ds.size() / static_cast<std::size_t>(n_frames));
     for (std::size_t i = 0; i < ds.size() && f.depth.size() < static_cast<std::size_t>(n_frames); i += step)
       f.depth.push_back(ds.loadDepth(i));

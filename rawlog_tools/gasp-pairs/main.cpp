@@ -192,6 +192,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("!--no-mutual", base.association.mutual_check, "keep one-way best partners too (no mutual check)");
   app.add_option("--min-inliers", base.pose.ransac.min_inliers, "RANSAC: fewer inliers give no estimate (all methods)")->capture_default_str();
+  app.add_option("--one-way-max-violation", base.one_way_max_violation_ratio,
+                 "GASP: visibility check violation limit for poses from the one-way fallback")->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  app.add_option("--max-occluded", base.visibility.max_occluded_ratio,
+                 "visibility check: limit on the share of samples behind the other view's surfaces (GASP)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
   app.add_option("--dense-rounds", base.dense_rounds, "dense projective refinement rounds (0 = none)")->capture_default_str();
   app.add_option("--pixel-step", base.projective.pixel_step, "dense terms: every N-th pixel")->capture_default_str();
 #ifdef GASP_HAVE_BASELINES
