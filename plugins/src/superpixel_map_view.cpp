@@ -13,7 +13,8 @@ namespace {
 std::string sizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
 
 /// Mean colour of each patch's pixels (every 2nd pixel each way) seen by the intensity camera.
-std::vector<Rgb8> patchColours(const RgbdFrame& frame, const SuperpixelSegmentation& seg) {
+std::vector<Rgb8> patchColours(const RgbdFrame& frame, const DepthView& view) {
+  const SuperpixelSegmentation& seg = view.segmentation;
   const CameraIntrinsics& k_rgb = frame.rgb_intrinsics;
   k_rgb.validate();
   if (frame.rgb.cols != k_rgb.width || frame.rgb.rows != k_rgb.height) {
@@ -25,10 +26,10 @@ std::vector<Rgb8> patchColours(const RgbdFrame& frame, const SuperpixelSegmentat
   std::vector<Eigen::Vector3d> sum(n, Eigen::Vector3d::Zero());
   std::vector<int> count(n, 0);
   const Isometry3 T_rgb_depth = frame.T_depth_rgb.inverse();
-  const CameraIntrinsics& k = frame.depth_intrinsics;
+  const CameraIntrinsics& k = view.intrinsics;  // the view's (undistorted) depth, as its labels
   for (int v = 0; v < seg.labels.rows; v += 2) {
     const int* label = seg.labels.ptr<int>(v);
-    const float* depth = frame.depth_m.ptr<float>(v);
+    const float* depth = view.depth_m.ptr<float>(v);
     for (int u = 0; u < seg.labels.cols; u += 2) {
       if (label[u] < 0) continue;
       const Eigen::Vector3d p_rgb = T_rgb_depth * k.unproject(u, v, depth[u]);
@@ -71,7 +72,7 @@ SuperpixelMapView makeMapView(const RgbdFrame& frame, const Isometry3& T_map_rob
   SuperpixelMapView v;
   v.view = makeDepthView(frame.depth_m, frame.depth_intrinsics, params);
   v.T_map_camera = T_map_robot * frame.T_robot_camera;
-  if (frame.hasRgb()) v.patch_rgb = patchColours(frame, v.view.segmentation);
+  if (frame.hasRgb()) v.patch_rgb = patchColours(frame, v.view);
   v.timestamp = frame.timestamp;
   v.sensor_label = frame.sensor_label;
   return v;

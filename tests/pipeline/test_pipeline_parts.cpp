@@ -4,6 +4,8 @@
 #include <Eigen/Geometry>
 
 #include "gasp/core/error.h"
+#include "gasp/core/undistortion.h"
+#include "gasp/pipeline/depth_view.h"
 #include "gasp/pipeline/projective_terms.h"
 #include "gasp/pipeline/view_degeneracy.h"
 #include "gasp/pipeline/visibility_check.h"
@@ -105,3 +107,25 @@ TEST(VisibilityCheck, APoseThatHidesAViewBehindTheOtherFails) {
 }
 
 }  // namespace
+
+TEST(DepthViewUndistortion, ADistortedCameraGivesAPinholeView) {
+  // A fronto-parallel wall at 2 m through fr1's lens (depth as the distorted camera stores it is
+  // still 2 m everywhere: depth along the optical axis of a fronto-parallel plane). The view holds
+  // the resampled depth and the pinhole intrinsics; a camera without distortion is left alone.
+  const auto k = CameraIntrinsics::tumFreiburg1();
+  cv::Mat depth(k.height, k.width, CV_32FC1, cv::Scalar(2.0f));
+  depth(cv::Rect(0, 0, 40, 40)).setTo(1.0f);  // a corner object: moves under undistortion
+  const DepthView v = makeDepthView(depth, k);
+  for (double c : v.intrinsics.distortion) EXPECT_EQ(c, 0.0);
+  EXPECT_EQ(v.intrinsics.fx, k.fx);
+  const cv::Mat expected = Undistortion(k).applyToDepth(depth);
+  EXPECT_EQ(cv::norm(v.depth_m, expected, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(v.depth_m, depth, cv::NORM_INF), 0.0);
+  EXPECT_FALSE(v.segmentation.patches.empty());
+  const auto k3 = CameraIntrinsics::tumFreiburg3();
+  cv::Mat depth3(k3.height, k3.width, CV_32FC1, cv::Scalar(2.0f));
+  const DepthView v3 = makeDepthView(depth3, k3);
+  EXPECT_EQ(v3.depth_m.data, depth3.data);  // not resampled
+  // The shared maps are reused for equal intrinsics.
+  EXPECT_EQ(sharedUndistortion(k).get(), sharedUndistortion(k).get());
+}

@@ -68,7 +68,7 @@ TumDataset TumDataset::open(const std::string& dir, const Options& options) {
   ds.intrinsics_.validate();
   CameraIntrinsics resampled = ds.intrinsics_;
   if (!options.undistort) resampled.distortion.fill(0.0);  // images used as stored
-  ds.undistortion_ = std::make_shared<const Undistortion>(resampled);
+  ds.undistortion_ = sharedUndistortion(resampled);
 
   const fs::path depth_list = root / "depth.txt";
   if (!fs::exists(depth_list)) throw Error("TUM folder '" + dir + "' has no depth.txt");

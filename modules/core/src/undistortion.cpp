@@ -3,6 +3,10 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <deque>
+#include <mutex>
+#include <utility>
+
 #include "gasp/core/error.h"
 
 namespace gasp {
@@ -34,6 +38,22 @@ void checkSize(const cv::Mat& image, const CameraIntrinsics& k, const char* what
 }
 
 }  // namespace
+
+std::shared_ptr<const Undistortion> sharedUndistortion(const CameraIntrinsics& k) {
+  static std::mutex mutex;
+  static std::deque<std::pair<CameraIntrinsics, std::shared_ptr<const Undistortion>>> cache;
+  constexpr std::size_t kCapacity = 4;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& [key, value] : cache)
+      if (key == k) return value;
+  }
+  auto made = std::make_shared<const Undistortion>(k);  // outside the lock: may throw, takes ms
+  const std::lock_guard<std::mutex> lock(mutex);
+  cache.emplace_front(k, made);
+  if (cache.size() > kCapacity) cache.pop_back();
+  return made;
+}
 
 cv::Mat Undistortion::applyToDepth(const cv::Mat& depth) const {
   if (depth.type() != CV_16UC1 && depth.type() != CV_32FC1)

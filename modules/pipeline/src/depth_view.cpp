@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_invoke.h>
 
+#include "gasp/core/undistortion.h"
 #include "gasp/superpixels/depth_superpixels.h"
 
 namespace gasp {
@@ -10,7 +11,12 @@ DepthView makeDepthView(const cv::Mat& depth_m, const CameraIntrinsics& intrinsi
   DepthView v;
   v.depth_m = depth_m;
   v.intrinsics = intrinsics;
-  v.segmentation = segmentDepthSuperpixels(depth_m, intrinsics, params);
+  if (hasLensDistortion(intrinsics)) {
+    const auto undistortion = sharedUndistortion(intrinsics);
+    v.depth_m = undistortion->applyToDepth(depth_m);
+    v.intrinsics = undistortion->pinhole();
+  }
+  v.segmentation = segmentDepthSuperpixels(v.depth_m, v.intrinsics, params);
   return v;
 }
 

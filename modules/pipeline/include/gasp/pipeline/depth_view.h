@@ -12,13 +12,16 @@
 namespace gasp {
 
 struct DepthView {
-  cv::Mat depth_m;  ///< CV_32FC1 [m], 0 or NaN = no data
-  CameraIntrinsics intrinsics;
+  cv::Mat depth_m;  ///< CV_32FC1 [m], 0 or NaN = no data; pinhole (undistorted, see makeDepthView)
+  CameraIntrinsics intrinsics;  ///< pinhole: no distortion coefficients
   SuperpixelSegmentation segmentation;
 };
 
 /// Segments `depth_m` (see segmentDepthSuperpixels(); throws gasp::Error for a wrong image type
-/// or size). A view without valid depth has no patches; it is not an error here.
+/// or size). A view without valid depth has no patches; it is not an error here. When the
+/// intrinsics carry lens distortion the depth is first resampled to the pinhole camera
+/// (undistortion.h), and the view holds that depth and the pinhole intrinsics; TumDataset's images
+/// are already resampled, MRPT observations with plumb_bob coefficients are resampled here.
 DepthView makeDepthView(const cv::Mat& depth_m, const CameraIntrinsics& intrinsics,
                         const SuperpixelParams& params = {});
 
