@@ -39,6 +39,9 @@ int main(int argc, char** argv) {
   da->needs(db);
   db->needs(da);
   app.add_option("--depth-scale", depth_scale, "raw depth units per metre (with --depth-a/-b)")->capture_default_str();
+  double gt_offset = 0.0;
+  app.add_option("--gt-offset", gt_offset,
+                 "with --tum: look ground truth up at depth timestamp + OFFSET [s] (as gasp-pairs)")->capture_default_str();
   bool no_undistort = false;
   app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored");
   app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: the folder's; ros for PNGs)");
@@ -76,9 +79,8 @@ int main(int argc, char** argv) {
       depth_a = ds.loadDepth(from);
       depth_b = ds.loadDepth(to);
       K = ds.intrinsics();
-      const auto& fa = ds.frame(from);
-      const auto& fb = ds.frame(to);
-      if (fa.T_world_camera && fb.T_world_camera) T_b_a_true = gasp::relativePose(*fb.T_world_camera, *fa.T_world_camera);
+      const auto ga = ds.groundTruthOf(from, gt_offset), gb = ds.groundTruthOf(to, gt_offset);
+      if (ga && gb) T_b_a_true = gasp::relativePose(*gb, *ga);
       if (out_path.empty()) out_path = "associations_" + std::to_string(from) + "_" + std::to_string(to) + ".png";
     } else {
       K = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg.empty() ? "ros" : intrinsics_arg);

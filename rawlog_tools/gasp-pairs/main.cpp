@@ -222,8 +222,8 @@ int main(int argc, char** argv) {
     methods = unique;
   }
   try {
-#ifdef GASP_HAVE_BASELINES
     base.superpixels.target_patch_area_m2 = area_cm2 * 1e-4;
+#ifdef GASP_HAVE_BASELINES
     baseline.pose.ransac.min_inliers = base.pose.ransac.min_inliers;  // the same consensus rule for all
     gasp::baselines::validate(baseline);
 #endif
@@ -232,12 +232,7 @@ int main(int argc, char** argv) {
     opt.undistort = !no_undistort;
     const auto ds = gasp::TumDataset::open(tum_dir, opt);
     // Ground truth of frame i: the frame's own association (offset 0) or a look-up at t + offset.
-    auto truth = [&](std::size_t i) -> std::optional<gasp::Isometry3> {
-      if (gt_offset == 0.0) return ds.frame(i).T_world_camera;
-      const auto k = gasp::findNearest(ds.groundTruth(), ds.frame(i).timestamp + gt_offset, 0.02);
-      if (!k) return std::nullopt;
-      return ds.groundTruth()[*k].T_world_camera;
-    };
+    auto truth = [&](std::size_t i) { return ds.groundTruthOf(i, gt_offset); };
     auto needsColour = [](const std::string& method) {
       return method == "cshot" || method == "sift" || method == "dsift";
     };

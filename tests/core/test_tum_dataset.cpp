@@ -31,6 +31,14 @@ TEST(TumDataset, ReadsFr1Desk9WithGroundTruthAndRgb) {
   const auto T_0_1 = gasp::relativePose(*ds.frame(0).T_world_camera, *ds.frame(1).T_world_camera);
   EXPECT_LT(T_0_1.translation().norm(), 0.05);
   EXPECT_THROW(ds.frame(9), gasp::Error);
+  // Ground truth at an offset: offset 0 is the frame's own; 30 ms earlier is another mocap sample
+  // (100 Hz), close by; far outside the trajectory there is none.
+  EXPECT_TRUE(ds.groundTruthOf(2)->isApprox(*ds.frame(2).T_world_camera));
+  const auto earlier = ds.groundTruthOf(2, -0.03);
+  ASSERT_TRUE(earlier.has_value());
+  EXPECT_FALSE(earlier->isApprox(*ds.frame(2).T_world_camera));
+  EXPECT_LT(gasp::relativePose(*earlier, *ds.frame(2).T_world_camera).translation().norm(), 0.05);
+  EXPECT_FALSE(ds.groundTruthOf(2, -1e6).has_value());
 }
 
 TEST(TumDataset, ReadsFr3CabinetKeyframes) {

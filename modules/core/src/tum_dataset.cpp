@@ -108,6 +108,14 @@ const TumFrame& TumDataset::frame(std::size_t i) const {
   return frames_[i];
 }
 
+std::optional<Isometry3> TumDataset::groundTruthOf(std::size_t i, double offset_s) const {
+  const TumFrame& f = frame(i);
+  if (offset_s == 0.0) return f.T_world_camera;
+  const auto k = findNearest(ground_truth_, f.timestamp + offset_s, options_.max_dt);
+  if (!k) return std::nullopt;
+  return ground_truth_[*k].T_world_camera;
+}
+
 std::size_t TumDataset::countWithGroundTruth() const {
   return static_cast<std::size_t>(std::count_if(
       frames_.begin(), frames_.end(), [](const TumFrame& f) { return f.T_world_camera.has_value(); }));

@@ -60,6 +60,10 @@ class TumDataset {
   const std::vector<TumFrame>& frames() const { return frames_; }
   /// The whole groundtruth.txt (empty when absent).
   const Trajectory& groundTruth() const { return ground_truth_; }
+  /// Ground truth of frame i looked up at its depth timestamp + offset_s (nearest within
+  /// Options::max_dt); offset 0 gives frame(i).T_world_camera. TUM fr1's depth lags its motion
+  /// capture (docs/pipeline.md): a negative offset fits it better.
+  std::optional<Isometry3> groundTruthOf(std::size_t i, double offset_s = 0.0) const;
   /// Number of depth frames that have a ground-truth pose.
   std::size_t countWithGroundTruth() const;
 
