@@ -196,6 +196,8 @@ int main(int argc, char** argv) {
                  "GASP: visibility check violation limit for poses from the one-way fallback")->capture_default_str()->check(CLI::Range(0.0, 1.0));
   app.add_option("--max-occluded", base.visibility.max_occluded_ratio,
                  "visibility check: limit on the share of samples behind the other view's surfaces (GASP)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  app.add_flag("--edge-terms", base.edge_terms, "GASP: point-to-line terms along occluding edges in the dense rounds");
+  app.add_option("--edge-weight", base.edges.weight, "GASP: weight of an edge term")->capture_default_str();
   app.add_option("--dense-rounds", base.dense_rounds, "dense projective refinement rounds (0 = none)")->capture_default_str();
   app.add_option("--pixel-step", base.projective.pixel_step, "dense terms: every N-th pixel")->capture_default_str();
 #ifdef GASP_HAVE_BASELINES

@@ -1,5 +1,7 @@
 #include "gasp/pipeline/pair_registration.h"
 
+#include <memory>
+
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
@@ -53,6 +55,7 @@ void validate(const PairParams& p) {
   validate(p.association);
   validate(p.pose);
   validate(p.projective);
+  validate(p.edges);
   validate(p.dense_degeneracy);
   validate(p.visibility);
   validate(p.guided);
@@ -171,11 +174,22 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
   std::vector<PatchCorrespondence> inliers;
   for (int i : r.pose.inliers) inliers.push_back(r.correspondences[static_cast<std::size_t>(i)]);
   RegistrationResult current = r.pose;
+  // Edge terms: both views' edges found once per pair (the target's in a KD-tree).
+  EdgePoints source_edges;
+  std::unique_ptr<EdgeTargets> edge_targets;
+  if (params.edge_terms) {
+    tbb::parallel_invoke([&] { source_edges = findEdgePoints(source, params.edges); },
+                         [&] { edge_targets = std::make_unique<EdgeTargets>(target, params.edges); });
+  }
   for (int round = 0; round < params.dense_rounds; ++round) {
     ProjectiveTermParams proj = params.projective;
     const std::size_t g = std::min<std::size_t>(static_cast<std::size_t>(round), params.dense_gates_m.size() - 1);
     proj.max_distance_m = params.dense_gates_m[g];
-    const auto terms = projectiveTerms(source, target, current.T_target_source, proj);
+    auto terms = projectiveTerms(source, target, current.T_target_source, proj);
+    if (edge_targets) {
+      const auto more = edge_targets->terms(source_edges, current.T_target_source, proj.max_distance_m);
+      terms.insert(terms.end(), more.begin(), more.end());
+    }
     r.dense_terms = static_cast<int>(terms.size());
     RefinementParams refinement = params.pose.refinement;
     refinement.degeneracy = params.dense_degeneracy;

@@ -12,6 +12,7 @@
 #include "gasp/association/guided_association.h"
 #include "gasp/association/view_association.h"
 #include "gasp/pipeline/depth_view.h"
+#include "gasp/pipeline/edge_terms.h"
 #include "gasp/pipeline/projective_terms.h"
 #include "gasp/pipeline/view_degeneracy.h"
 #include "gasp/pipeline/visibility_check.h"
@@ -61,6 +62,10 @@ struct PairParams {
   int dense_rounds = 3;
   std::vector<double> dense_gates_m{0.10, 0.05, 0.03};
   ProjectiveTermParams projective;  ///< pixel step 8, normals within 20 deg
+  /// Point-to-line terms along occluding edges in the dense rounds (edge_terms.h), gated like the
+  /// pixel terms (edges.max_distance_m is replaced by the round's gate).
+  bool edge_terms = true;
+  EdgeTermParams edges;
   /// Degeneracy rule of the dense problem. Its thousands of pixel terms are not independent, so
   /// its absolute standard deviations are optimistic and only the eigenvalue ratio separates a
   /// plane from a scene: a noisy single plane gives ~1e-4 (patch normals jitter by ~1 deg), a desk

@@ -1,0 +1,141 @@
+#include "gasp/pipeline/edge_terms.h"
+
+#include <nanoflann.hpp>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "gasp/core/depth_image.h"
+#include "gasp/core/error.h"
+
+namespace gasp {
+
+namespace {
+
+struct PointCloud3 {
+  const std::vector<Eigen::Vector3d>* points = nullptr;
+  std::size_t kdtree_get_point_count() const { return points->size(); }
+  double kdtree_get_pt(std::size_t i, std::size_t d) const { return (*points)[i][static_cast<Eigen::Index>(d)]; }
+  template <class BBox>
+  bool kdtree_get_bbox(BBox&) const { return false; }
+};
+using EdgeTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud3>, PointCloud3,
+                                                     3, std::uint32_t>;
+
+}  // namespace
+
+void validate(const EdgeTermParams& p) {
+  if (!(p.min_jump_m > 0) || !std::isfinite(p.min_jump_m) || !(p.jump_per_m2 >= 0) || !std::isfinite(p.jump_per_m2))
+    throw Error("EdgeTermParams: min_jump_m must be > 0 and jump_per_m2 >= 0, both finite");
+  if (p.pixel_step < 1) throw Error("EdgeTermParams: pixel_step must be >= 1");
+  if (p.line_neighbours < 3) throw Error("EdgeTermParams: line_neighbours must be >= 3");
+  if (!(p.max_distance_m > 0) || !std::isfinite(p.max_distance_m))
+    throw Error("EdgeTermParams: max_distance_m must be finite and > 0");
+  if (!(p.weight >= 0) || !std::isfinite(p.weight)) throw Error("EdgeTermParams: weight must be finite and >= 0");
+}
+
+namespace {
+
+/// Edge pixels among those with (u + v) % step == 0.
+EdgePoints edgePixels(const DepthView& view, const EdgeTermParams& p, int step) {
+  EdgePoints e;
+  const cv::Mat& d = view.depth_m;
+  if (d.empty()) return e;
+  const int w = d.cols, h = d.rows;
+  for (int v = 0; v < h; ++v) {
+    const float* row = d.ptr<float>(v);
+    for (int u = ((step - v % step) % step); u < w; u += step) {
+      const float z = row[u];
+      if (!isValidDepth(z)) continue;
+      const float far = z + static_cast<float>(p.min_jump_m + p.jump_per_m2 * z * z);
+      auto deeper = [&](int uu, int vv) {
+        if (uu < 0 || vv < 0 || uu >= w || vv >= h) return false;
+        const float zn = d.ptr<float>(vv)[uu];
+        return isValidDepth(zn) && zn > far;
+      };
+      if (deeper(u + 1, v) || deeper(u - 1, v) || deeper(u, v + 1) || deeper(u, v - 1) || deeper(u + 2, v) ||
+          deeper(u - 2, v) || deeper(u, v + 2) || deeper(u, v - 2)) {
+        e.points.push_back(view.intrinsics.unproject(u, v, z));
+        e.pixels.emplace_back(u, v);
+      }
+    }
+  }
+  return e;
+}
+
+}  // namespace
+
+EdgePoints findEdgePoints(const DepthView& view, const EdgeTermParams& p) {
+  validate(p);
+  return edgePixels(view, p, p.pixel_step);
+}
+
+struct EdgeTargets::Index {
+  std::vector<Eigen::Vector3d> points;   ///< target edge points with a line direction
+  std::vector<Eigen::Vector3d> n1, n2;   ///< unit normals of the local edge line
+  PointCloud3 cloud;
+  std::unique_ptr<EdgeTree> tree;
+};
+
+EdgeTargets::EdgeTargets(const DepthView& target, const EdgeTermParams& p) : index_(std::make_unique<Index>()), params_(p) {
+  validate(p);
+  const EdgePoints et = edgePixels(target, p, 2);  // every other edge pixel: the nearest is within 1-2 px
+  const std::size_t k = static_cast<std::size_t>(p.line_neighbours);
+  if (et.points.size() < k) return;
+  // Line directions from the k nearest edge points of each one (a tree over all edge points).
+  PointCloud3 all{&et.points};
+  EdgeTree all_tree(3, all, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  all_tree.buildIndex();
+  std::vector<std::uint32_t> index(k);
+  std::vector<double> sq(k);
+  for (const Eigen::Vector3d& x0 : et.points) {
+    if (all_tree.knnSearch(x0.data(), k, index.data(), sq.data()) < k) continue;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (std::size_t j = 0; j < k; ++j) mean += et.points[index[j]];
+    mean /= static_cast<double>(k);
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (std::size_t j = 0; j < k; ++j) {
+      const Eigen::Vector3d x = et.points[index[j]] - mean;
+      cov += x * x.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(cov);
+    const Eigen::Vector3d ev = eig.eigenvalues();
+    if (!(ev[2] > 4.0 * ev[1])) continue;  // no dominant direction
+    index_->points.push_back(x0);
+    index_->n1.push_back(eig.eigenvectors().col(0).normalized());
+    index_->n2.push_back(eig.eigenvectors().col(1).normalized());
+  }
+  if (index_->points.empty()) return;
+  index_->cloud.points = &index_->points;
+  index_->tree = std::make_unique<EdgeTree>(3, index_->cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  index_->tree->buildIndex();
+}
+
+EdgeTargets::~EdgeTargets() = default;
+
+std::size_t EdgeTargets::size() const { return index_->points.size(); }
+
+std::vector<PointToPlane> EdgeTargets::terms(const EdgePoints& source, const Isometry3& T_target_source,
+                                             double max_distance_m) const {
+  std::vector<PointToPlane> out;
+  if (!index_->tree || !T_target_source.matrix().allFinite() || !(max_distance_m > 0)) return out;
+  const double max_d2 = max_distance_m * max_distance_m;
+  for (std::size_t i = 0; i < source.points.size(); ++i) {
+    const Eigen::Vector3d q = T_target_source * source.points[i];
+    std::uint32_t j = 0;
+    double d2 = 0.0;
+    if (index_->tree->knnSearch(q.data(), 1, &j, &d2) < 1 || d2 > max_d2) continue;
+    out.push_back(PointToPlane{source.points[i], index_->points[j], index_->n1[j], params_.weight});
+    out.push_back(PointToPlane{source.points[i], index_->points[j], index_->n2[j], params_.weight});
+  }
+  return out;
+}
+
+std::vector<PointToPlane> edgeTerms(const DepthView& source, const DepthView& target, const Isometry3& T_target_source,
+                                    const EdgeTermParams& p) {
+  const EdgeTargets targets(target, p);
+  return targets.terms(findEdgePoints(source, p), T_target_source, p.max_distance_m);
+}
+
+}  // namespace gasp
