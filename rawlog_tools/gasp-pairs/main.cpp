@@ -195,8 +195,8 @@ int main(int argc, char** argv) {
   app.add_option("--one-way-max-violation", base.one_way_max_violation_ratio,
                  "GASP: visibility check violation limit for poses from the one-way fallback")->capture_default_str()->check(CLI::Range(0.0, 1.0));
   app.add_option("--max-occluded", base.visibility.max_occluded_ratio,
-                 "visibility check: limit on the share of samples behind the other view's surfaces (GASP)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
-  app.add_flag("--edge-terms", base.edge_terms, "GASP: point-to-line terms along occluding edges in the dense rounds");
+                 "visibility check: limit on the share of samples behind the other view's surfaces (all methods)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  app.add_flag("!--no-edge-terms", base.edge_terms, "GASP: no point-to-line terms along occluding edges in the dense rounds");
   app.add_option("--edge-weight", base.edges.weight, "GASP: weight of an edge term")->capture_default_str();
   app.add_option("--dense-rounds", base.dense_rounds, "dense projective refinement rounds (0 = none)")->capture_default_str();
   app.add_option("--pixel-step", base.projective.pixel_step, "dense terms: every N-th pixel")->capture_default_str();
@@ -227,6 +227,7 @@ int main(int argc, char** argv) {
     base.superpixels.target_patch_area_m2 = area_cm2 * 1e-4;
 #ifdef GASP_HAVE_BASELINES
     baseline.pose.ransac.min_inliers = base.pose.ransac.min_inliers;  // the same consensus rule for all
+    baseline.visibility = base.visibility;  // and the same free-space check
     gasp::baselines::validate(baseline);
 #endif
     gasp::TumDataset::Options opt;
