@@ -5,6 +5,7 @@
 #include <string>
 
 #include "gasp/core/error.h"
+#include "gasp/core/undistortion.h"
 
 namespace gasp {
 
@@ -15,13 +16,20 @@ std::string sizeText(int w, int h) { return std::to_string(w) + "x" + std::to_st
 /// Mean colour of each patch's pixels (every 2nd pixel each way) seen by the intensity camera.
 std::vector<Rgb8> patchColours(const RgbdFrame& frame, const DepthView& view) {
   const SuperpixelSegmentation& seg = view.segmentation;
-  const CameraIntrinsics& k_rgb = frame.rgb_intrinsics;
+  CameraIntrinsics k_rgb = frame.rgb_intrinsics;
   k_rgb.validate();
   if (frame.rgb.cols != k_rgb.width || frame.rgb.rows != k_rgb.height) {
     throw Error("inconsistent intrinsics: the intensity image is " + sizeText(frame.rgb.cols, frame.rgb.rows) +
                 " but the intensity camera (cameraParamsIntensity) is " + sizeText(k_rgb.width, k_rgb.height));
   }
   if (frame.rgb.type() != CV_8UC3) throw Error("intensity image: expected 8-bit BGR");
+  // The depth view is pinhole (makeDepthView resampled it); so is the colour image looked up here.
+  cv::Mat image = frame.rgb;
+  if (hasLensDistortion(k_rgb)) {
+    const auto undistortion = sharedUndistortion(k_rgb);
+    image = undistortion->applyToImage(image);
+    k_rgb = undistortion->pinhole();
+  }
   const std::size_t n = seg.patches.size();
   std::vector<Eigen::Vector3d> sum(n, Eigen::Vector3d::Zero());
   std::vector<int> count(n, 0);
@@ -36,8 +44,8 @@ std::vector<Rgb8> patchColours(const RgbdFrame& frame, const DepthView& view) {
       double ur = 0, vr = 0;
       if (!k_rgb.project(p_rgb, ur, vr)) continue;
       const int iu = static_cast<int>(std::lround(ur)), iv = static_cast<int>(std::lround(vr));
-      if (iu < 0 || iv < 0 || iu >= frame.rgb.cols || iv >= frame.rgb.rows) continue;
-      const cv::Vec3b bgr = frame.rgb.at<cv::Vec3b>(iv, iu);
+      if (iu < 0 || iv < 0 || iu >= image.cols || iv >= image.rows) continue;
+      const cv::Vec3b bgr = image.at<cv::Vec3b>(iv, iu);
       sum[static_cast<std::size_t>(label[u])] += Eigen::Vector3d(bgr[2], bgr[1], bgr[0]);
       ++count[static_cast<std::size_t>(label[u])];
     }

@@ -78,7 +78,9 @@ TEST(TumDataset, UndistortionCanBeTurnedOff) {
   // The centre moves little (distortion grows with the radius); the corners move by pixels.
   const cv::Rect centre(300, 220, 40, 40);
   EXPECT_GT(cv::countNonZero(a(centre) == b(centre)), 1000);
-  EXPECT_EQ(raw.loadRgb(0).size(), undistorted.loadRgb(0).size());
+  const cv::Mat rgb_raw = raw.loadRgb(0), rgb = undistorted.loadRgb(0);
+  ASSERT_EQ(rgb_raw.size(), rgb.size());
+  EXPECT_GT(cv::norm(rgb_raw(cv::Rect(0, 0, 80, 80)), rgb(cv::Rect(0, 0, 80, 80)), cv::NORM_L1), 0.0);  // resampled too
 }
 
 TEST(TumDataset, MissingAndMalformedInputs) {

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <cmath>
 #include <limits>
@@ -90,12 +91,25 @@ TEST(Undistortion, NearestNeighbourKeepsDepthValuesAndRawUnits) {
   ASSERT_EQ(out.type(), CV_16UC1);
   for (auto it = out.begin<std::uint16_t>(); it != out.end<std::uint16_t>(); ++it)
     ASSERT_TRUE(*it == 0 || *it == 5000 || *it == 10000) << *it;
-  // Colour: same size and type, bilinear.
+  // Colour: same size and type, and moved like the depth: a marker near a corner, drawn in both,
+  // lands on the same pixels (a registered RGB-D pair stays registered).
   cv::Mat bgr(k.height, k.width, CV_8UC3, cv::Scalar(10, 20, 30));
-  const cv::Mat col = gasp::Undistortion(k).applyToImage(bgr);
+  cv::Mat marked(k.height, k.width, CV_16UC1, cv::Scalar(5000));
+  const cv::Rect marker(40, 40, 30, 30);
+  bgr(marker).setTo(cv::Scalar(0, 0, 255));
+  marked(marker).setTo(7000);
+  const gasp::Undistortion u(k);
+  const cv::Mat col = u.applyToImage(bgr), dep = u.applyToDepth(marked);
   EXPECT_EQ(col.type(), CV_8UC3);
-  EXPECT_EQ(col.at<cv::Vec3b>(k.height / 2, k.width / 2), cv::Vec3b(10, 20, 30));
-  EXPECT_TRUE(gasp::Undistortion(k).applyToImage(cv::Mat()).empty());
+  cv::Mat red, near;
+  cv::inRange(col, cv::Scalar(0, 0, 200), cv::Scalar(60, 60, 255), red);
+  near = dep == 7000;
+  const cv::Rect red_box = cv::boundingRect(red), depth_box = cv::boundingRect(near);
+  EXPECT_NE(depth_box, marker);  // the lens moved it (pixels near a corner move most)
+  EXPECT_LE(std::abs(red_box.x - depth_box.x), 1);
+  EXPECT_LE(std::abs(red_box.y - depth_box.y), 1);
+  EXPECT_LE(std::abs(red_box.width - depth_box.width), 2);
+  EXPECT_TRUE(u.applyToImage(cv::Mat()).empty());
 }
 
 TEST(Undistortion, BadInput) {

@@ -19,7 +19,9 @@
 #include <random>
 #include <set>
 
+#include "gasp/core/undistortion.h"
 #include "gasp/mrpt/CSuperpixelMap.h"
+#include "gasp/mrpt/superpixel_map_view.h"
 #include "gasp/superpixels/depth_superpixels.h"
 #include "gasp_test_data.h"
 #include "mrpt_test_helpers.h"
@@ -368,4 +370,49 @@ TEST(SuperpixelMap, MatchingRatioAndLikelihoodPreferTheTruePose) {
   mrpt::obs::CObservation2DRangeScan laser;
   EXPECT_FALSE(m0.canComputeObservationLikelihood(laser));
   EXPECT_GT(m0.compute3DMatchingRatio(&m0, toCPose3D(Isometry3::Identity()), mp), 0.5f);  // itself
+}
+
+TEST(SuperpixelMapView, ColoursOfADistortedRegisteredFrameComeFromTheSamePixels) {
+  // A registered RGB-D frame whose cameras both carry fr1's lens distortion: the view's depth is
+  // resampled to the pinhole camera (makeDepthView), so the colour image must be too, or the
+  // colours come from pixels several px away at the corners. The colour image encodes each
+  // pixel's position (R = u / 2.5, G = v / 2.5), so a patch's colour says where it was looked up.
+  const auto k = CameraIntrinsics::tumFreiburg1();
+  RgbdFrame f;
+  f.depth_intrinsics = f.rgb_intrinsics = k;
+  f.depth_m = cv::Mat(k.height, k.width, CV_32FC1, cv::Scalar(1.5f));
+  f.depth_m(cv::Rect(200, 150, 200, 150)).setTo(1.2f);  // a box in front, so there are edges
+  f.rgb = cv::Mat(k.height, k.width, CV_8UC3);
+  for (int v = 0; v < k.height; ++v)
+    for (int u = 0; u < k.width; ++u)
+      f.rgb.at<cv::Vec3b>(v, u) = cv::Vec3b(0, static_cast<std::uint8_t>(v / 2.5), static_cast<std::uint8_t>(u / 2.5));
+  const SuperpixelMapView view = makeMapView(f, Isometry3::Identity(), SuperpixelParams{});
+  for (double c : view.view.intrinsics.distortion) EXPECT_EQ(c, 0.0);
+  const auto& seg = view.view.segmentation;
+  ASSERT_EQ(view.patch_rgb.size(), seg.patches.size());
+  // Expected: the mean over each patch's pixels (every 2nd, as sampled) of the resampled image;
+  // the colour as stored at the same pixels is the wrong answer.
+  const cv::Mat undistorted = Undistortion(k).applyToImage(f.rgb);
+  std::vector<Eigen::Vector3d> right(seg.patches.size(), Eigen::Vector3d::Zero()), wrong = right;
+  std::vector<int> count(seg.patches.size(), 0);
+  for (int v = 0; v < seg.labels.rows; v += 2)
+    for (int u = 0; u < seg.labels.cols; u += 2) {
+      const int l = seg.labels.at<int>(v, u);
+      if (l < 0) continue;
+      const cv::Vec3b a = undistorted.at<cv::Vec3b>(v, u), b = f.rgb.at<cv::Vec3b>(v, u);
+      right[static_cast<std::size_t>(l)] += Eigen::Vector3d(a[2], a[1], a[0]);
+      wrong[static_cast<std::size_t>(l)] += Eigen::Vector3d(b[2], b[1], b[0]);
+      ++count[static_cast<std::size_t>(l)];
+    }
+  int checked = 0, distinct = 0;
+  for (std::size_t i = 0; i < seg.patches.size(); ++i) {
+    if (count[i] < 20) continue;
+    const Eigen::Vector3d got(view.patch_rgb[i][0], view.patch_rgb[i][1], view.patch_rgb[i][2]);
+    const Eigen::Vector3d r = right[i] / count[i], w = wrong[i] / count[i];
+    EXPECT_LT((got - r).cwiseAbs().maxCoeff(), 1.01) << "patch " << i;
+    ++checked;
+    distinct += (r - w).cwiseAbs().maxCoeff() > 3.0;  // corners: the lens moves pixels by > 7 px
+  }
+  EXPECT_GT(checked, 100);
+  EXPECT_GT(distinct, 10);  // the test can tell the two lookups apart
 }

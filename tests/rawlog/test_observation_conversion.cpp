@@ -151,7 +151,8 @@ TEST(ObservationConversion, DepthWithoutRawIsQuantisedAtTumUnits) {
   EXPECT_TRUE(g.rgb.empty());
 }
 
-// GASP back-projects without undistortion (camera_intrinsics.h). MRPT 2.5's unprojectInto() builds
+// gasp::backProject() applies the pinhole model only (images are resampled before: makeDepthView,
+// undistortion.h). MRPT 2.5's unprojectInto() builds
 // its look-up table from cameraParams including the distortion model, so with TUM fr1/fr2
 // intrinsics (plumb_bob) MRPT's point clouds are undistorted and differ from GASP's at the borders.
 TEST(FrameConvention, MrptUnprojectionWithDistortionDiffersFromGasp) {

@@ -1,6 +1,6 @@
 #pragma once
 /// \file surface_params.h The downsampled surface every baseline takes 3D points and normals from:
-/// the view's valid depth pixels back-projected (no undistortion, as GASP), reduced by a voxel grid
+/// the view's valid depth pixels back-projected (pinhole, on images already undistorted as GASP's), reduced by a voxel grid
 /// (pcl::VoxelGrid, centroid per voxel; colour averaged), normals by PCA over a radius
 /// (pcl::NormalEstimationOMP) oriented towards the camera. FPFH / SHOT use it as their search
 /// surface; SIFT keypoints take the normal of the nearest surface point.
