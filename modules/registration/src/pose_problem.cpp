@@ -108,9 +108,9 @@ ceres::Solver::Summary PoseProblem::solve() {
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_QR;
   options.max_num_iterations = params_.max_iterations;
-  options.function_tolerance = 1e-12;
+  options.function_tolerance = 1e-10;
   options.gradient_tolerance = 1e-14;
-  options.parameter_tolerance = 1e-12;
+  options.parameter_tolerance = 1e-9;
   options.num_threads = 1;
   options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;

@@ -23,10 +23,10 @@ struct EdgeTermParams {
   double jump_per_m2 = 0.02;  ///< [1/m]
   /// Edge pixels used: those with (u + v) % pixel_step == 0 (>= 1), about every pixel_step-th
   /// pixel along an edge; the target keeps every other edge pixel.
-  int pixel_step = 6;
+  int pixel_step = 12;
   int line_neighbours = 8;    ///< target edge points fitted for the local edge direction (>= 3)
   double max_distance_m = 0.05;  ///< gate on the distance to the nearest target edge point [m]
-  double weight = 1.0;           ///< of each term, against the point-to-plane terms' 1
+  double weight = 2.0;           ///< of each term, against the point-to-plane terms' 1
 };
 
 /// Throws gasp::Error for a parameter out of range.
