@@ -9,7 +9,7 @@
 /// Why: the TUM freiburg1 depth images are registered to the colour camera, whose calibration has
 /// strong radial distortion (k1 0.26, k2 -0.95, k3 1.16). Measured on fr1_xyz (docs/pipeline.md,
 /// "Lens distortion"), undistorting with these coefficients lowers the pair benchmark's
-/// translation RMSE by 15-20 % and its rotation RMSE by 5-7 %; applying them with the opposite
+/// translation RMSE by 13-20 % and its rotation RMSE by up to 7 %; applying them with the opposite
 /// sign makes both worse, so the depth images do carry that distortion.
 #include <opencv2/core.hpp>
 

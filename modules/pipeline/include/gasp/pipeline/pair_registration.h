@@ -42,8 +42,8 @@ struct PairParams {
   bool one_way_fallback = true;
   /// The visibility check's violation limit for a pose found with the one-way fallback (the
   /// lower of this and visibility.max_violation_ratio). On the pair benchmark every right
-  /// estimate stays below 0.17, and a fallback pose 1.9 m / 39 deg off (fr1_xyz 650 -> 700)
-  /// had 0.29 (docs/pipeline.md).
+  /// estimate stays below 0.17, and a fallback pose 1.0 m / 105 deg off (fr1_xyz 430 -> 530)
+  /// has 0.16 (docs/pipeline.md).
   double one_way_max_violation_ratio = 0.15;
   /// Guided verification (guided_association.h): at the pose estimatePose() gives (RANSAC and
   /// the patch refinement), every source patch looks for a target patch near its mapped centroid

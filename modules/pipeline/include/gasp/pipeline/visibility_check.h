@@ -10,7 +10,7 @@
 /// violations are at most max_violation_ratio of (consistent + violations) in both directions and
 /// occluded samples at most max_occluded_ratio of all samples that land on the other view's depth,
 /// in both directions: a pose that puts most of a view behind the other view's surfaces (a
-/// flipped alignment of a desk plane, fr1_xyz 650 -> 700: 66 % occluded) contradicts nothing but
+/// flipped alignment of a desk plane, fr1_xyz 650 -> 700: 79 % occluded) contradicts nothing but
 /// explains nothing either; right poses on the pair benchmark reach at most 27 % (fr1_xyz, pairs
 /// from every 10th frame) and 10 % (fr3_cabinet_kf).
 /// Trade-off (docs/pipeline.md): an object that appears between the views also violates one
