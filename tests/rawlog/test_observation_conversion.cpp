@@ -1,6 +1,8 @@
 // RgbdFrame <-> CObservation3DRangeScan, and the MRPT / optical frame convention checked against
 // MRPT's own unprojection.
 #include <gtest/gtest.h>
+
+#include <opencv2/calib3d.hpp>
 #include <mrpt/core/Clock.h>
 #include <mrpt/opengl/CPointCloud.h>
 #include <mrpt/poses/CPose3D.h>
@@ -116,6 +118,39 @@ TEST(ObservationConversion, RangesAlongRaysBecomeDepth) {
   EXPECT_FALSE(g.hasRawDepth());
   EXPECT_LT(cv::norm(g.depth_m, expected, cv::NORM_INF), 1e-5);
   EXPECT_LT(cv::norm(g.depth_m, f.depth_m, cv::NORM_INF), 1e-3);  // mm quantisation
+}
+
+TEST(ObservationConversion, RangesAlongDistortedRaysBecomeDepth) {
+  // A camera with fr1's lens: the range of pixel (u, v) runs along its undistorted ray. A plane
+  // at depth 2 m gives ranges 2 |ray|; the conversion must give 2 m back at every pixel (pinhole
+  // rays would be wrong by centimetres at the corners).
+  gasp::RgbdFrame f = gasp::test::syntheticFrame(2.0, 640, 480);
+  f.depth_intrinsics = gasp::CameraIntrinsics::tumFreiburg1();
+  f.depth_m.setTo(2.0f);
+  f.depth_raw = cv::Mat();
+  f.rgb = cv::Mat();
+  auto obs = gasp::observationFromFrame(f);
+  obs->range_is_depth = false;
+  obs->rangeUnits = 0.0001f;  // 0.1 mm
+  const auto& K = f.depth_intrinsics;
+  std::vector<cv::Point2f> pixels, rays;
+  for (int v = 0; v < K.height; ++v)
+    for (int u = 0; u < K.width; ++u) pixels.emplace_back(static_cast<float>(u), static_cast<float>(v));
+  cv::undistortPoints(pixels, rays, cv::Matx33d(K.fx, 0, K.cx, 0, K.fy, K.cy, 0, 0, 1),
+                      cv::Mat(1, 5, CV_64F, const_cast<double*>(K.distortion.data())));
+  double worst_pinhole = 0.0;
+  for (int v = 0; v < K.height; ++v)
+    for (int u = 0; u < K.width; ++u) {
+      const cv::Point2f& r = rays[static_cast<std::size_t>(v) * K.width + u];
+      const double range = 2.0 * std::sqrt(1.0 + r.x * r.x + r.y * r.y);
+      obs->rangeImage(v, u) = static_cast<std::uint16_t>(std::lround(range * 10000.0));
+      const double kx = (u - K.cx) / K.fx, ky = (v - K.cy) / K.fy;
+      worst_pinhole = std::max(worst_pinhole, std::abs(range / std::sqrt(1.0 + kx * kx + ky * ky) - 2.0));
+    }
+  const gasp::RgbdFrame g = gasp::frameFromObservation(*obs);
+  EXPECT_EQ(g.depth_intrinsics, K);  // the coefficients are carried
+  EXPECT_LT(cv::norm(g.depth_m, f.depth_m, cv::NORM_INF), 1e-3);
+  EXPECT_GT(worst_pinhole, 0.01);  // what pinhole rays would have given
 }
 
 TEST(ObservationConversion, BadInputsThrow) {

@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <string>
 
 #include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
+#include "gasp/core/undistortion.h"
 #include "gasp/rawlog/frame_convention.h"
 
 namespace gasp {
@@ -27,15 +29,29 @@ cv::Mat rangeImageToMat(const mrpt::math::CMatrix_u16& range) {
   return raw;
 }
 
-/// Ranges along each pixel's ray [m] to depth along the optical axis [m].
+/// Ranges along each pixel's ray [m] to depth along the optical axis [m]. With lens distortion
+/// the ray of pixel (u, v) is the undistorted one (cv::undistortPoints), as MRPT's unprojection
+/// has it; the depth image stays on the camera's own (distorted) pixel grid.
 cv::Mat rangesToDepth(const cv::Mat& raw, double metres_per_unit, const CameraIntrinsics& K) {
   cv::Mat depth(raw.size(), CV_32FC1);
+  std::vector<cv::Point2f> rays;
+  if (hasLensDistortion(K)) {
+    std::vector<cv::Point2f> pixels;
+    pixels.reserve(raw.total());
+    for (int v = 0; v < raw.rows; ++v)
+      for (int u = 0; u < raw.cols; ++u) pixels.emplace_back(static_cast<float>(u), static_cast<float>(v));
+    const cv::Matx33d Km(K.fx, 0.0, K.cx, 0.0, K.fy, K.cy, 0.0, 0.0, 1.0);
+    cv::undistortPoints(pixels, rays, Km, cv::Mat(1, 5, CV_64F, const_cast<double*>(K.distortion.data())));
+  }
   for (int v = 0; v < raw.rows; ++v) {
     const auto* in = raw.ptr<std::uint16_t>(v);
     auto* out = depth.ptr<float>(v);
-    const double ky = (v - K.cy) / K.fy;
     for (int u = 0; u < raw.cols; ++u) {
-      const double kx = (u - K.cx) / K.fx;
+      double kx = (u - K.cx) / K.fx, ky = (v - K.cy) / K.fy;
+      if (!rays.empty()) {
+        const cv::Point2f& r = rays[static_cast<std::size_t>(v) * raw.cols + u];
+        kx = r.x, ky = r.y;
+      }
       out[u] = static_cast<float>(in[u] * metres_per_unit / std::sqrt(1.0 + kx * kx + ky * ky));
     }
   }
