@@ -198,6 +198,8 @@ int main(int argc, char** argv) {
                  "visibility check: limit on the share of samples behind the other view's surfaces (all methods)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
   app.add_flag("!--no-edge-terms", base.edge_terms, "GASP: no point-to-line terms along occluding edges in the dense rounds");
   app.add_option("--edge-weight", base.edges.weight, "GASP: weight of an edge term")->capture_default_str();
+  app.add_option("--wide-edge-gates", base.wide_edge_gate_factor,
+                 "GASP: concurrent second refinement with edge gates this many times wider (0 = none)")->capture_default_str()->check(CLI::NonNegativeNumber);
   app.add_option("--edge-step", base.edges.pixel_step, "GASP: source edge pixels with (u + v) % N == 0")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--dense-rounds", base.dense_rounds, "dense projective refinement rounds (0 = none)")->capture_default_str();
   app.add_option("--pixel-step", base.projective.pixel_step, "dense terms: every N-th pixel")->capture_default_str();

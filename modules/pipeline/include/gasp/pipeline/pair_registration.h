@@ -66,6 +66,13 @@ struct PairParams {
   /// pixel terms (edges.max_distance_m is replaced by the round's gate).
   bool edge_terms = true;
   EdgeTermParams edges;
+  /// With edge terms, a second refinement from the same patch pose whose edge gates are this many
+  /// times the pixel gates runs concurrently (0 = none); the pose with the larger share of
+  /// consistent samples in the visibility check is kept. Slides larger than the pixel gates (the
+  /// cabinet's 8 -> 10, 13 cm) leave the edges unpaired in the first; wide edge gates alone pair
+  /// wrong edges in clutter (fr1_xyz 620 -> 650 went 13 deg off), the selection keeps the right one
+  /// (docs/pipeline.md, "Edge terms").
+  double wide_edge_gate_factor = 3.0;
   /// Degeneracy rule of the dense problem. Its thousands of pixel terms are not independent, so
   /// its absolute standard deviations are optimistic and only the eigenvalue ratio separates a
   /// plane from a scene: a noisy single plane gives ~1e-4 (patch normals jitter by ~1 deg), a desk
@@ -112,6 +119,7 @@ struct PairResult {
   int guided_support = -1;  ///< guided associations at the verified pose (-1: stage not reached)
   int dense_terms = 0;  ///< dense terms in the last round
   VisibilityCheck visibility;  ///< of the final pose (when one was found)
+  bool wide_edge_pose = false;  ///< the final pose came from the wide-edge-gate refinement
   PairTimings timings;
 };
 
