@@ -1,7 +1,5 @@
 #include "gasp/pipeline/pair_registration.h"
 
-#include <memory>
-
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
@@ -9,6 +7,7 @@
 #include <cmath>
 
 #include "gasp/core/error.h"
+#include "dense_refinement.h"
 #include "gasp/superpixels/depth_superpixels.h"
 
 namespace gasp {
@@ -175,77 +174,10 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
   t0 = std::chrono::steady_clock::now();
   std::vector<PatchCorrespondence> inliers;
   for (int i : r.pose.inliers) inliers.push_back(r.correspondences[static_cast<std::size_t>(i)]);
-  RegistrationResult current = r.pose;
-  // Edge terms: both views' edges found once per pair (the target's in a KD-tree).
-  EdgePoints source_edges;
-  std::unique_ptr<EdgeTargets> edge_targets;
-  if (params.edge_terms) {
-    tbb::parallel_invoke([&] { source_edges = findEdgePoints(source, params.edges); },
-                         [&] { edge_targets = std::make_unique<EdgeTargets>(target, params.edges); });
-  }
-  const RegistrationResult start = current;
-  // One refinement: dense_rounds rounds from the patch pose; edge gates edge_gate_factor times the
-  // pixel gates. Returns the pose and the last round's term count.
-  auto runRounds = [&](double edge_gate_factor, int& dense_terms) {
-    RegistrationResult pose = start;
-    for (int round = 0; round < params.dense_rounds; ++round) {
-      ProjectiveTermParams proj = params.projective;
-      const std::size_t g = std::min<std::size_t>(static_cast<std::size_t>(round), params.dense_gates_m.size() - 1);
-      proj.max_distance_m = params.dense_gates_m[g];
-      auto terms = projectiveTerms(source, target, pose.T_target_source, proj);
-      if (edge_targets) {
-        const auto more = edge_targets->terms(source_edges, pose.T_target_source, edge_gate_factor * proj.max_distance_m);
-        terms.insert(terms.end(), more.begin(), more.end());
-      }
-      dense_terms = static_cast<int>(terms.size());
-      RefinementParams refinement = params.pose.refinement;
-      refinement.degeneracy = params.dense_degeneracy;
-      RegistrationResult next = refinePose(inliers, pose.T_target_source, refinement, terms);
-      if (!next.success) {
-        // The dense problem may be degenerate or fail where the patch problem was not: then no
-        // pose is claimed (never a silently weaker one).
-        next.inliers = r.pose.inliers;
-        next.num_inliers = r.pose.num_inliers;
-        next.ransac_iterations = r.pose.ransac_iterations;
-        next.reason = "dense refinement: " + next.reason;
-        pose = next;
-        break;
-      }
-      pose = next;
-    }
-    return pose;
-  };
-  // With edges, a second refinement with wider edge gates runs concurrently (a slide larger than
-  // the pixel gates leaves the edges of the first unpaired); the pose whose views agree more --
-  // the larger share of consistent samples in the visibility check -- is kept.
-  RegistrationResult wide;
-  int terms_normal = 0, terms_wide = 0;
-  const bool second = edge_targets && params.wide_edge_gate_factor > 0.0;
-  if (second) {
-    tbb::parallel_invoke([&] { current = runRounds(1.0, terms_normal); },
-                         [&] { wide = runRounds(params.wide_edge_gate_factor, terms_wide); });
-  } else {
-    current = runRounds(1.0, terms_normal);
-  }
-  r.dense_terms = terms_normal;
-  if (second && current.success && wide.success) {
-    auto consistentShare = [&](const Isometry3& T) {
-      const VisibilityCheck c = checkVisibility(source, target, T, params.visibility);
-      const int n = c.consistent + c.occluded + c.violations;
-      return n ? static_cast<double>(c.consistent) / n : 0.0;
-    };
-    if (consistentShare(wide.T_target_source) > consistentShare(current.T_target_source)) {
-      current = wide;
-      r.dense_terms = terms_wide;
-      r.wide_edge_pose = true;
-    }
-  }
-  current.inliers = r.pose.inliers;
-  current.num_inliers = r.pose.num_inliers;
-  current.ransac_iterations = r.pose.ransac_iterations;
-  current.ransac_ms = r.pose.ransac_ms;
-  current.refine_ms = r.pose.refine_ms;
-  r.pose = current;
+  const detail::DenseOutcome dense = detail::refineDense(source, target, r.pose, inliers, params);
+  r.pose = dense.pose;
+  r.dense_terms = dense.dense_terms;
+  r.wide_edge_pose = dense.wide_edge_pose;
   r.timings.dense_ms = msSince(t0);
   verify(source, target, params, r);
   if (r.pose.success && params.guided_verification) {

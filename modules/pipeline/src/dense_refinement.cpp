@@ -1,0 +1,93 @@
+#include "dense_refinement.h"
+
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
+#include <memory>
+
+#include "gasp/pipeline/edge_terms.h"
+#include "gasp/pipeline/projective_terms.h"
+#include "gasp/pipeline/visibility_check.h"
+#include "gasp/registration/refinement.h"
+
+namespace gasp::detail {
+
+namespace {
+
+/// Share of the visibility check's samples, both directions, that are consistent.
+double consistentShare(const DepthView& source, const DepthView& target, const Isometry3& T,
+                       const VisibilityCheckParams& params) {
+  const VisibilityCheck c = checkVisibility(source, target, T, params);
+  const int n = c.consistent + c.occluded + c.violations;
+  return n ? static_cast<double>(c.consistent) / n : 0.0;
+}
+
+}  // namespace
+
+DenseOutcome refineDense(const DepthView& source, const DepthView& target, const RegistrationResult& patch_pose,
+                         const std::vector<PatchCorrespondence>& inliers, const PairParams& params) {
+  // Edge terms: both views' edges found once per pair (the target's in a KD-tree).
+  EdgePoints source_edges;
+  std::unique_ptr<EdgeTargets> edge_targets;
+  if (params.edge_terms) {
+    tbb::parallel_invoke([&] { source_edges = findEdgePoints(source, params.edges); },
+                         [&] { edge_targets = std::make_unique<EdgeTargets>(target, params.edges); });
+  }
+  // One refinement: dense_rounds rounds from the patch pose, edge gates edge_gate_factor times the
+  // pixel gates. Sets the last round's term count.
+  auto refine = [&](double edge_gate_factor, int& dense_terms) {
+    RegistrationResult pose = patch_pose;
+    for (int round = 0; round < params.dense_rounds; ++round) {
+      ProjectiveTermParams proj = params.projective;
+      const std::size_t g = std::min<std::size_t>(static_cast<std::size_t>(round), params.dense_gates_m.size() - 1);
+      proj.max_distance_m = params.dense_gates_m[g];
+      auto terms = projectiveTerms(source, target, pose.T_target_source, proj);
+      if (edge_targets) {
+        const auto more = edge_targets->terms(source_edges, pose.T_target_source, edge_gate_factor * proj.max_distance_m);
+        terms.insert(terms.end(), more.begin(), more.end());
+      }
+      dense_terms = static_cast<int>(terms.size());
+      RefinementParams refinement = params.pose.refinement;
+      refinement.degeneracy = params.dense_degeneracy;
+      RegistrationResult next = refinePose(inliers, pose.T_target_source, refinement, terms);
+      if (!next.success) {
+        // The dense problem may be degenerate or fail where the patch problem was not: then no
+        // pose is claimed (never a silently weaker one).
+        next.reason = "dense refinement: " + next.reason;
+        pose = next;
+        break;
+      }
+      pose = next;
+    }
+    return pose;
+  };
+
+  DenseOutcome out;
+  // With edges, a second refinement with wider edge gates runs concurrently (a slide larger than
+  // the pixel gates leaves the edges of the first unpaired); the pose whose views agree more --
+  // the larger share of consistent samples in the visibility check -- is kept.
+  RegistrationResult wide;
+  int terms_wide = 0;
+  const bool second = edge_targets && params.wide_edge_gate_factor > 0.0;
+  if (second) {
+    tbb::parallel_invoke([&] { out.pose = refine(1.0, out.dense_terms); },
+                         [&] { wide = refine(params.wide_edge_gate_factor, terms_wide); });
+  } else {
+    out.pose = refine(1.0, out.dense_terms);
+  }
+  if (second && out.pose.success && wide.success &&
+      consistentShare(source, target, wide.T_target_source, params.visibility) >
+          consistentShare(source, target, out.pose.T_target_source, params.visibility)) {
+    out.pose = wide;
+    out.dense_terms = terms_wide;
+    out.wide_edge_pose = true;
+  }
+  out.pose.inliers = patch_pose.inliers;
+  out.pose.num_inliers = patch_pose.num_inliers;
+  out.pose.ransac_iterations = patch_pose.ransac_iterations;
+  out.pose.ransac_ms = patch_pose.ransac_ms;
+  out.pose.refine_ms = patch_pose.refine_ms;
+  return out;
+}
+
+}  // namespace gasp::detail

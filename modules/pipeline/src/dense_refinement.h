@@ -1,0 +1,24 @@
+#pragma once
+// The pair pipeline's last refinement (docs/pipeline.md, step 4): dense point-to-plane terms from
+// the patches' pixels and point-to-line terms along occluding edges, re-associated over
+// PairParams::dense_rounds rounds with shrinking gates, from the patch pose; with edge terms a
+// second refinement with wider edge gates runs concurrently and the pose whose views agree more
+// (visibility_check.h) is kept.
+#include <vector>
+
+#include "gasp/pipeline/pair_registration.h"
+
+namespace gasp::detail {
+
+struct DenseOutcome {
+  RegistrationResult pose;     ///< success false (with the reason) when the dense problem failed
+  int dense_terms = 0;         ///< terms of the last round of the kept refinement
+  bool wide_edge_pose = false; ///< the kept pose is the wide-edge-gate one
+};
+
+/// `patch_pose` (RANSAC + patch refinement) is the start; its inlier correspondences `inliers`
+/// stay in every round's problem. The outcome carries patch_pose's inlier bookkeeping.
+DenseOutcome refineDense(const DepthView& source, const DepthView& target, const RegistrationResult& patch_pose,
+                         const std::vector<PatchCorrespondence>& inliers, const PairParams& params);
+
+}  // namespace gasp::detail
