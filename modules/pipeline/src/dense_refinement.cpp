@@ -75,12 +75,16 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
   } else {
     out.pose = refine(1.0, out.dense_terms);
   }
-  if (second && out.pose.success && wide.success &&
-      consistentShare(source, target, wide.T_target_source, params.visibility) >
-          consistentShare(source, target, out.pose.T_target_source, params.visibility)) {
-    out.pose = wide;
-    out.dense_terms = terms_wide;
-    out.wide_edge_pose = true;
+  if (second && out.pose.success && wide.success) {
+    double share_normal = 0.0, share_wide = 0.0;
+    tbb::parallel_invoke(
+        [&] { share_normal = consistentShare(source, target, out.pose.T_target_source, params.visibility); },
+        [&] { share_wide = consistentShare(source, target, wide.T_target_source, params.visibility); });
+    if (share_wide > share_normal) {
+      out.pose = wide;
+      out.dense_terms = terms_wide;
+      out.wide_edge_pose = true;
+    }
   }
   out.pose.inliers = patch_pose.inliers;
   out.pose.num_inliers = patch_pose.num_inliers;
