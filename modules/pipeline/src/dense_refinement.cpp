@@ -62,20 +62,31 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
     return pose;
   };
 
+  // The patch pose's inlier bookkeeping goes with whichever pose is returned.
+  const auto finish = [&](DenseOutcome& o) {
+    o.pose.inliers = patch_pose.inliers;
+    o.pose.num_inliers = patch_pose.num_inliers;
+    o.pose.ransac_iterations = patch_pose.ransac_iterations;
+    o.pose.ransac_ms = patch_pose.ransac_ms;
+    o.pose.refine_ms = patch_pose.refine_ms;
+    return o;
+  };
   DenseOutcome out;
-  // With edges, a second refinement with wider edge gates runs concurrently (a slide larger than
-  // the pixel gates leaves the edges of the first unpaired); the pose whose views agree more --
-  // the larger share of consistent samples in the visibility check -- is kept.
-  RegistrationResult wide;
+  out.pose = refine(1.0, out.dense_terms);
+  // A slide larger than the pixel gates leaves most source edge points without a target edge
+  // within the last gate: then a second refinement with wider edge gates is run, and the pose
+  // whose views agree more -- the larger share of consistent samples in the visibility check --
+  // is kept. (Wide edge gates alone pair wrong edges in clutter.)
+  if (!out.pose.success || !edge_targets || params.wide_edge_gate_factor <= 0.0 || source_edges.points.empty())
+    return finish(out);
+  const double paired =
+      0.5 * static_cast<double>(edge_targets->terms(source_edges, out.pose.T_target_source, params.dense_gates_m.back()).size()) /
+      static_cast<double>(source_edges.points.size());
+  out.edge_paired_share = paired;
+  if (paired >= params.wide_edge_min_paired_share) return finish(out);
   int terms_wide = 0;
-  const bool second = edge_targets && params.wide_edge_gate_factor > 0.0;
-  if (second) {
-    tbb::parallel_invoke([&] { out.pose = refine(1.0, out.dense_terms); },
-                         [&] { wide = refine(params.wide_edge_gate_factor, terms_wide); });
-  } else {
-    out.pose = refine(1.0, out.dense_terms);
-  }
-  if (second && out.pose.success && wide.success) {
+  const RegistrationResult wide = refine(params.wide_edge_gate_factor, terms_wide);
+  if (wide.success) {
     double share_normal = 0.0, share_wide = 0.0;
     tbb::parallel_invoke(
         [&] { share_normal = consistentShare(source, target, out.pose.T_target_source, params.visibility); },
@@ -86,12 +97,8 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
       out.wide_edge_pose = true;
     }
   }
-  out.pose.inliers = patch_pose.inliers;
-  out.pose.num_inliers = patch_pose.num_inliers;
-  out.pose.ransac_iterations = patch_pose.ransac_iterations;
-  out.pose.ransac_ms = patch_pose.ransac_ms;
-  out.pose.refine_ms = patch_pose.refine_ms;
-  return out;
+  return finish(out);
 }
+
 
 }  // namespace gasp::detail

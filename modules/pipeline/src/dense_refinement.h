@@ -1,9 +1,9 @@
 #pragma once
 // The pair pipeline's last refinement (docs/pipeline.md, step 4): dense point-to-plane terms from
 // the patches' pixels and point-to-line terms along occluding edges, re-associated over
-// PairParams::dense_rounds rounds with shrinking gates, from the patch pose; with edge terms a
-// second refinement with wider edge gates runs concurrently and the pose whose views agree more
-// (visibility_check.h) is kept.
+// PairParams::dense_rounds rounds with shrinking gates, from the patch pose; with edge terms, when
+// most source edge points find no target edge at the final pose, a second refinement with wider
+// edge gates runs and the pose whose views agree more (visibility_check.h) is kept.
 #include <vector>
 
 #include "gasp/pipeline/pair_registration.h"
@@ -14,6 +14,7 @@ struct DenseOutcome {
   RegistrationResult pose;     ///< success false (with the reason) when the dense problem failed
   int dense_terms = 0;         ///< terms of the last round of the kept refinement
   bool wide_edge_pose = false; ///< the kept pose is the wide-edge-gate one
+  double edge_paired_share = -1.0;  ///< source edge points with a target edge at the last gate (-1: not measured)
 };
 
 /// `patch_pose` (RANSAC + patch refinement) is the start; its inlier correspondences `inliers`

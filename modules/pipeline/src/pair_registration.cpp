@@ -57,6 +57,8 @@ void validate(const PairParams& p) {
   validate(p.edges);
   if (!(p.wide_edge_gate_factor >= 0.0) || !std::isfinite(p.wide_edge_gate_factor))
     throw Error("PairParams: wide_edge_gate_factor must be finite and >= 0");
+  if (!(p.wide_edge_min_paired_share >= 0.0 && p.wide_edge_min_paired_share <= 1.0))
+    throw Error("PairParams: wide_edge_min_paired_share must be in [0, 1]");
   validate(p.dense_degeneracy);
   validate(p.visibility);
   validate(p.guided);

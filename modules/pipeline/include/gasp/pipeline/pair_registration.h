@@ -66,13 +66,15 @@ struct PairParams {
   /// pixel terms (edges.max_distance_m is replaced by the round's gate).
   bool edge_terms = true;
   EdgeTermParams edges;
-  /// With edge terms, a second refinement from the same patch pose whose edge gates are this many
-  /// times the pixel gates runs concurrently (0 = none); the pose with the larger share of
-  /// consistent samples in the visibility check is kept. Slides larger than the pixel gates (the
-  /// cabinet's 8 -> 10, 13 cm) leave the edges unpaired in the first; wide edge gates alone pair
-  /// wrong edges in clutter (fr1_xyz 620 -> 650 went 13 deg off), the selection keeps the right one
-  /// (docs/pipeline.md, "Edge terms").
+  /// With edge terms: when fewer than wide_edge_min_paired_share of the source edge points have
+  /// a target edge within the last gate at the refined pose, a second refinement from the same
+  /// patch pose runs with edge gates wide_edge_gate_factor times the pixel gates (0 = never), and
+  /// the pose with the larger share of consistent samples in the visibility check is kept. Slides
+  /// larger than the pixel gates (the cabinet's 8 -> 10, 13 cm) leave the edges unpaired; wide
+  /// edge gates alone pair wrong edges in clutter (fr1_xyz 620 -> 650 went 13 deg off), the
+  /// selection keeps the right pose (docs/pipeline.md, "Edge terms").
   double wide_edge_gate_factor = 3.0;
+  double wide_edge_min_paired_share = 0.6;  ///< in [0, 1]; slid cabinet pairs: 0-0.54
   /// Degeneracy rule of the dense problem. Its thousands of pixel terms are not independent, so
   /// its absolute standard deviations are optimistic and only the eigenvalue ratio separates a
   /// plane from a scene: a noisy single plane gives ~1e-4 (patch normals jitter by ~1 deg), a desk
