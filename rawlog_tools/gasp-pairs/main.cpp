@@ -21,6 +21,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "gasp/association/association_picture.h"
@@ -30,6 +31,7 @@
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/eval/pair_protocol.h"
 #include "gasp/pipeline/pair_registration.h"
+#include "gasp/pipeline/visibility_check.h"
 #ifdef GASP_HAVE_BASELINES
 #include "gasp/baselines/baseline_registration.h"
 #include "gasp/baselines/match_picture.h"
@@ -58,6 +60,23 @@ std::vector<std::string> knownMethods() {
   return m;
 }
 
+/// Share of the depth samples of both views that a pose maps onto the other view's measured
+/// surface within a tight gate (1 cm + 0.5 cm/m^2 z^2; the visibility check's classes,
+/// visibility_check.h, every 4th pixel): consistent / (consistent + occluded + violations). A
+/// diagnostic for the pairs CSV: where the estimate and the ground truth disagree, the pose the
+/// depth agrees with more is the likelier one (the ground truth has its own errors: TUM fr1's
+/// depth lags its motion capture).
+double dataAgreement(const gasp::DepthView& source, const gasp::DepthView& target, const gasp::Isometry3& T) {
+  gasp::VisibilityCheckParams p;
+  p.pixel_step = 4;
+  p.gate_m = 0.01;
+  p.gate_per_m2 = 0.005;
+  p.min_consistent = 1;
+  const auto c = gasp::checkVisibility(source, target, T, p);
+  const int all = c.consistent + c.occluded + c.violations;
+  return all > 0 ? static_cast<double>(c.consistent) / all : 0.0;
+}
+
 /// One pair, one method: the outcome plus what the pictures need.
 struct MethodRun {
   bool estimated = false;
@@ -71,6 +90,11 @@ struct MethodRun {
   double occluded_ratio = 0;                          ///< visibility check, the worse direction
   int one_way = 0;          ///< GASP: the pose came from the one-way fallback
   int guided_support = -1;  ///< GASP: guided associations under the pose (-1: not reached)
+  /// GASP with ground truth: free and verified associations scored (association_quality.h).
+  std::optional<gasp::AssociationQuality> free_quality, verified_quality;
+  /// GASP with ground truth: how well each pose explains the depth (dataAgreement), the estimate's
+  /// and the ground truth's, so a disagreement between them can be told apart.
+  std::optional<double> agreement_estimate, agreement_truth;
   std::map<std::string, double> stage_ms;
 };
 
@@ -269,6 +293,16 @@ int main(int argc, char** argv) {
         run.occluded_ratio = r.visibility.occluded_ratio;
         run.one_way = r.used_one_way ? 1 : 0;
         run.guided_support = r.guided_support;
+        if (T_gt) {
+          const auto& sa = va.view.segmentation;
+          const auto& sb = vb.view.segmentation;
+          run.free_quality = gasp::evaluateAssociations(r.association.associations, sa, sb, vb.view.depth_m,
+                                                        vb.view.intrinsics, *T_gt);
+          run.verified_quality =
+              gasp::evaluateAssociations(r.verified, sa, sb, vb.view.depth_m, vb.view.intrinsics, *T_gt);
+          run.agreement_truth = dataAgreement(va.view, vb.view, *T_gt);
+          if (r.pose.success) run.agreement_estimate = dataAgreement(va.view, vb.view, r.pose.T_target_source);
+        }
         run.stage_ms = {{"segmentation", va.ms + vb.ms},
                         {"association", r.timings.association_ms},
                         {"ransac", r.timings.ransac_ms},
@@ -384,7 +418,8 @@ int main(int argc, char** argv) {
     if (!pairs_csv_path.empty()) {
       pairs_csv.open(pairs_csv_path);
       if (!pairs_csv) throw gasp::Error("cannot write " + pairs_csv_path);
-      pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,occluded_ratio,consistent,occluded,violations,one_way,guided_support,reason\n";
+      pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,occluded_ratio,consistent,occluded,violations,one_way,guided_support,"
+                    "precision,verified,verified_precision,verified_density,agreement,agreement_truth,tx,ty,tz,qx,qy,qz,qw,reason\n";
     }
     const auto bench_t0 = Clock::now();
     std::size_t done = 0;
@@ -412,7 +447,26 @@ int main(int argc, char** argv) {
           pairs_csv << skip << ',' << method << ',' << i << ',' << j << ',' << (o.estimated ? 1 : 0) << ','
                     << o.t_err_m << ',' << o.r_err_deg << ',' << o.ms << ',' << run.associations << ',' << run.inliers
                     << ',' << run.violation_ratio << ',' << run.occluded_ratio << ',' << run.consistent << ',' << run.occluded << ','
-                    << run.violations << ',' << run.one_way << ',' << run.guided_support << ",\"" << o.reason << "\"\n";
+                    << run.violations << ',' << run.one_way << ',' << run.guided_support << ',';
+          const auto& fq = run.free_quality;
+          const auto& vq = run.verified_quality;
+          if (fq) pairs_csv << fq->precision();
+          pairs_csv << ',';
+          if (vq) pairs_csv << vq->associations << ',' << vq->precision() << ',' << vq->density();
+          else pairs_csv << ",,";
+          pairs_csv << ',';
+          if (run.agreement_estimate) pairs_csv << *run.agreement_estimate;
+          pairs_csv << ',';
+          if (run.agreement_truth) pairs_csv << *run.agreement_truth;
+          if (run.estimated) {
+            const Eigen::Quaterniond q(run.T_target_source.linear());
+            const auto& t = run.T_target_source.translation();
+            pairs_csv << ',' << t.x() << ',' << t.y() << ',' << t.z() << ',' << q.x() << ',' << q.y() << ',' << q.z()
+                      << ',' << q.w();
+          } else {
+            pairs_csv << ",,,,,,,";
+          }
+          pairs_csv << ",\"" << o.reason << "\"\n";
         }
       }
       ++done;

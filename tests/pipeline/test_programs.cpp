@@ -9,9 +9,12 @@
 #include <fstream>
 #include <memory>
 #include <regex>
+#include <sstream>
 #include <vector>
 #include <algorithm>
 
+#include "gasp/core/pose.h"
+#include "gasp/core/tum_dataset.h"
 #include "gasp_test_data.h"
 #include "program_run.h"
 
@@ -85,4 +88,63 @@ TEST(GaspPairsProgram, TableAndCsvOnARealFolder) {
   EXPECT_EQ(rows, 4);  // 2 skips x 2 methods
   EXPECT_EQ(run("gasp-pairs", "--tum /nonexistent").exit_code, 1);
   EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 100").exit_code, 4);  // no pair
+}
+
+// The per-pair CSV: one row per pair with the estimated pose, whose error against the ground truth
+// is the row's own t_err_m / r_err_deg, and the free and verified associations scored.
+TEST(GaspPairsProgram, PairsCsvHasThePoseAndTheAssociationQuality) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const std::string pairs = gasp::test::scratchDir() + "/pairs.csv";
+  const ProgramRun r = run("gasp-pairs", "--tum " + dir + " --skips 1,4 --starts-every 4 --method gasp --pairs-csv " + pairs);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream f(pairs);
+  std::string line;
+  std::getline(f, line);
+  auto split = [](const std::string& s) {
+    std::vector<std::string> out;
+    std::string cell;
+    std::istringstream in(s);
+    while (std::getline(in, cell, ',')) out.push_back(cell);
+    return out;
+  };
+  const auto header = split(line);
+  auto col = [&](const std::string& name) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    EXPECT_NE(it, header.end()) << name;
+    return static_cast<std::size_t>(it - header.begin());
+  };
+  const auto ds = gasp::TumDataset::open(dir);
+  int rows = 0;
+  while (std::getline(f, line)) {
+    ++rows;
+    const auto c = split(line);
+    ASSERT_GE(c.size(), header.size() - 1) << line;  // the reason may be empty
+    const std::size_t from = std::stoul(c[col("from")]), to = std::stoul(c[col("to")]);
+    ASSERT_EQ(c[col("estimated")], "1") << line;  // fr1_desk9's pairs are easy
+    const Eigen::Quaterniond q(std::stod(c[col("qw")]), std::stod(c[col("qx")]), std::stod(c[col("qy")]),
+                               std::stod(c[col("qz")]));
+    EXPECT_NEAR(q.norm(), 1.0, 1e-4) << line;
+    gasp::Isometry3 T = gasp::Isometry3::Identity();
+    T.linear() = q.normalized().toRotationMatrix();
+    T.translation() = Eigen::Vector3d(std::stod(c[col("tx")]), std::stod(c[col("ty")]), std::stod(c[col("tz")]));
+    const gasp::Isometry3 T_true = gasp::relativePose(*ds.groundTruthOf(to), *ds.groundTruthOf(from));
+    const gasp::Isometry3 E = T_true.inverse() * T;
+    EXPECT_NEAR(gasp::translationNorm(E), std::stod(c[col("t_err_m")]), 2e-4) << line;
+    EXPECT_NEAR(gasp::rotationAngle(E) * 180.0 / M_PI, std::stod(c[col("r_err_deg")]), 0.02) << line;
+    const double precision = std::stod(c[col("precision")]);
+    const double verified_precision = std::stod(c[col("verified_precision")]);
+    EXPECT_GE(precision, 0.0);
+    EXPECT_LE(precision, 1.0);
+    EXPECT_GT(std::stoi(c[col("verified")]), 20) << line;
+    EXPECT_GT(verified_precision, 0.5) << line;  // close frames with a pose within a few mm
+    EXPECT_LE(verified_precision, 1.0);
+    EXPECT_GT(std::stod(c[col("verified_density")]), 0.3) << line;
+    // The share of depth samples each pose puts on the other view's surface (tight gate): the
+    // estimate's is high on these easy pairs; the ground truth's is a share too.
+    EXPECT_GT(std::stod(c[col("agreement")]), 0.9) << line;
+    const double agreement_truth = std::stod(c[col("agreement_truth")]);
+    EXPECT_GT(agreement_truth, 0.0) << line;
+    EXPECT_LE(agreement_truth, 1.0) << line;
+  }
+  EXPECT_EQ(rows, 4);  // 0->1, 4->5, 0->4, 4->8
 }
