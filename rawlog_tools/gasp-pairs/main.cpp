@@ -223,8 +223,8 @@ int main(int argc, char** argv) {
   app.add_flag("!--no-edge-terms", base.edge_terms, "GASP: no point-to-line terms along occluding edges in the dense rounds");
   app.add_option("--edge-weight", base.edges.weight, "GASP: weight of an edge term")->capture_default_str();
   app.add_option("--wide-edge-gates", base.wide_edge_gate_factor,
-                 "GASP: concurrent second refinement with edge gates this many times wider (0 = none)")->capture_default_str()->check(CLI::NonNegativeNumber);
-  app.add_option("--edge-step", base.edges.pixel_step, "GASP: source edge pixels with (u + v) % N == 0")->capture_default_str()->check(CLI::PositiveNumber);
+                 "GASP: second refinement, when few edge points are paired, with edge gates this many times wider (0 = none, else >= 1)")->capture_default_str()->check(CLI::NonNegativeNumber);
+  app.add_option("--edge-step", base.edges.pixel_step, "GASP: one source edge pixel per (N/2)^2 image block")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--dense-rounds", base.dense_rounds, "dense projective refinement rounds (0 = none)")->capture_default_str();
   app.add_option("--pixel-step", base.projective.pixel_step, "dense terms: every N-th pixel")->capture_default_str();
 #ifdef GASP_HAVE_BASELINES

@@ -6,7 +6,11 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
 #include <cstdio>
+#include <functional>
+#include <limits>
+#include <vector>
 
 #include "gasp/core/error.h"
 #include "gasp/pipeline/edge_terms.h"
@@ -111,4 +115,80 @@ TEST(EdgeTerms, PinTheSlideThatPlaneTermsLeaveFree) {
   ASSERT_TRUE(with_edges.success) << with_edges.reason;
   std::printf("with edges: %.4f m off\n", (with_edges.T_target_source.translation() - T_true.translation()).norm());
   EXPECT_LT((with_edges.T_target_source.translation() - T_true.translation()).norm(), 0.01);
+}
+
+namespace {
+
+/// A diamond (a square turned 45 deg in the image, half-diagonal `r` px, centred at (cu, cv)) at
+/// 1.6 m in front of a plane at 2 m: its outline runs along both image diagonals.
+DepthView diamondView(double cu, double cv, double r) {
+  DepthView v;
+  v.intrinsics = CameraIntrinsics::rosDefault();
+  v.depth_m = cv::Mat(480, 640, CV_32FC1);
+  for (int row = 0; row < 480; ++row)
+    for (int c = 0; c < 640; ++c)
+      v.depth_m.at<float>(row, c) = std::abs(c - cu) + std::abs(row - cv) <= r ? 1.6f : 2.0f;
+  return v;
+}
+
+}  // namespace
+
+TEST(EdgeTerms, SamplingDoesNotDependOnTheEdgeDirection) {
+  // The diamond's outline (4 sides of r * sqrt(2) px) against an axis-aligned square of the same
+  // perimeter: about as many edge points per pixel of outline, at every sub-block offset (a rule
+  // on (u + v) alone kept all or none of an anti-diagonal side).
+  const EdgeTermParams p{};
+  const double r = 100.0;
+  const double perimeter = 4.0 * r * std::sqrt(2.0);
+  DepthView square;
+  square.intrinsics = CameraIntrinsics::rosDefault();
+  square.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(2.0f));
+  const int side = static_cast<int>(std::lround(perimeter / 4.0));
+  square.depth_m(cv::Rect(200, 100, side, side)).setTo(1.6f);
+  const double per_px_square = static_cast<double>(findEdgePoints(square, p).points.size()) / perimeter;
+  ASSERT_GT(per_px_square, 0.05);
+  for (int shift = 0; shift < p.pixel_step; ++shift) {
+    const double n = static_cast<double>(findEdgePoints(diamondView(320 + shift, 240, r), p).points.size());
+    EXPECT_GT(n / perimeter, 0.6 * per_px_square) << "shift " << shift;
+    EXPECT_LT(n / perimeter, 2.0 * per_px_square) << "shift " << shift;
+  }
+}
+
+TEST(EdgeTerms, BadInputGivesNoTermsOrAClearError) {
+  EdgeTermParams p;
+  // All-invalid depth: no edge points, no targets, no terms.
+  DepthView empty;
+  empty.intrinsics = CameraIntrinsics::rosDefault();
+  empty.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
+  EXPECT_TRUE(findEdgePoints(empty, p).points.empty());
+  const EdgeTargets none(empty, p);
+  EXPECT_EQ(none.size(), 0u);
+  const DepthView slab = slabView(Eigen::Vector3d::Zero());
+  EXPECT_TRUE(none.terms(findEdgePoints(slab, p), Isometry3::Identity(), 0.1).empty());
+  // Fewer target edge points than line_neighbours: no direction, no targets.
+  DepthView speck = empty;
+  speck.depth_m.setTo(2.0f);
+  speck.depth_m.at<float>(240, 320) = 1.0f;
+  EXPECT_EQ(EdgeTargets(speck, p).size(), 0u);
+  // A non-finite pose gives no terms.
+  const EdgeTargets targets(slab, p);
+  Isometry3 bad = Isometry3::Identity();
+  bad.translation().x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(targets.terms(findEdgePoints(slab, p), bad, 0.1).empty());
+  // Depth of the wrong type: a clear error, not a read past the rows.
+  DepthView raw = slab;
+  raw.depth_m = cv::Mat(480, 640, CV_16UC1, cv::Scalar(8000));
+  EXPECT_THROW(findEdgePoints(raw, p), Error);
+  EXPECT_THROW(EdgeTargets(raw, p), Error);
+  // Invalid parameters name themselves.
+  for (auto broken : std::vector<std::function<void(EdgeTermParams&)>>{
+           [](EdgeTermParams& q) { q.line_neighbours = 2; },
+           [](EdgeTermParams& q) { q.min_jump_m = std::numeric_limits<double>::quiet_NaN(); },
+           [](EdgeTermParams& q) { q.jump_per_m2 = -1.0; },
+           [](EdgeTermParams& q) { q.weight = -1.0; },
+           [](EdgeTermParams& q) { q.max_distance_m = 0.0; }}) {
+    EdgeTermParams q;
+    broken(q);
+    EXPECT_THROW(validate(q), Error);
+  }
 }

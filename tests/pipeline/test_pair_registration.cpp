@@ -164,6 +164,15 @@ TEST(BadInput, InvalidParametersThrow) {
   params = PairParams{};
   params.guided.lambda = 1.5;
   EXPECT_THROW(registerViews(p.a, p.b, params), Error);
+  params = PairParams{};
+  params.wide_edge_gate_factor = 0.5;  // "wider" gates narrower than the pixel gates
+  EXPECT_THROW(registerViews(p.a, p.b, params), Error);
+  params = PairParams{};
+  params.wide_edge_min_paired_share = 1.5;
+  EXPECT_THROW(registerViews(p.a, p.b, params), Error);
+  params = PairParams{};
+  params.edges.line_neighbours = 2;
+  EXPECT_THROW(registerViews(p.a, p.b, params), Error);
 }
 
 TEST(GuidedVerification, DensifyRefinesOnTheGuidedAssociations) {

@@ -15,9 +15,7 @@ namespace gasp::detail {
 namespace {
 
 /// Share of the visibility check's samples, both directions, that are consistent.
-double consistentShare(const DepthView& source, const DepthView& target, const Isometry3& T,
-                       const VisibilityCheckParams& params) {
-  const VisibilityCheck c = checkVisibility(source, target, T, params);
+double consistentShare(const VisibilityCheck& c) {
   const int n = c.consistent + c.occluded + c.violations;
   return n ? static_cast<double>(c.consistent) / n : 0.0;
 }
@@ -25,7 +23,8 @@ double consistentShare(const DepthView& source, const DepthView& target, const I
 }  // namespace
 
 DenseOutcome refineDense(const DepthView& source, const DepthView& target, const RegistrationResult& patch_pose,
-                         const std::vector<PatchCorrespondence>& inliers, const PairParams& params) {
+                         const std::vector<PatchCorrespondence>& inliers, const PairParams& params,
+                         const VisibilityCheckParams& visibility) {
   // Edge terms: both views' edges found once per pair (the target's in a KD-tree).
   EdgePoints source_edges;
   std::unique_ptr<EdgeTargets> edge_targets;
@@ -35,12 +34,14 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
   }
   // One refinement: dense_rounds rounds from the patch pose, edge gates edge_gate_factor times the
   // pixel gates. Sets the last round's term count.
+  const auto gateOfRound = [&](int round) {
+    return params.dense_gates_m[std::min<std::size_t>(static_cast<std::size_t>(round), params.dense_gates_m.size() - 1)];
+  };
   auto refine = [&](double edge_gate_factor, int& dense_terms) {
     RegistrationResult pose = patch_pose;
     for (int round = 0; round < params.dense_rounds; ++round) {
       ProjectiveTermParams proj = params.projective;
-      const std::size_t g = std::min<std::size_t>(static_cast<std::size_t>(round), params.dense_gates_m.size() - 1);
-      proj.max_distance_m = params.dense_gates_m[g];
+      proj.max_distance_m = gateOfRound(round);
       auto terms = projectiveTerms(source, target, pose.T_target_source, proj);
       if (edge_targets) {
         const auto more = edge_targets->terms(source_edges, pose.T_target_source, edge_gate_factor * proj.max_distance_m);
@@ -75,27 +76,33 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
   out.pose = refine(1.0, out.dense_terms);
   // A slide larger than the pixel gates leaves most source edge points without a target edge
   // within the last gate: then a second refinement with wider edge gates is run, and the pose
-  // whose views agree more -- the larger share of consistent samples in the visibility check --
-  // is kept. (Wide edge gates alone pair wrong edges in clutter.)
-  if (!out.pose.success || !edge_targets || params.wide_edge_gate_factor <= 0.0 || source_edges.points.empty())
+  // that passes the visibility check (with the caller's parameters) is kept; when both or
+  // neither pass, the one whose views agree more -- the larger share of consistent samples.
+  // (Wide edge gates alone pair wrong edges in clutter.) Nothing to widen without target edges
+  // with a direction or with weightless edge terms.
+  if (!out.pose.success || !edge_targets || edge_targets->size() == 0 || params.edges.weight <= 0.0 ||
+      params.wide_edge_gate_factor <= 0.0 || source_edges.points.empty() || params.dense_rounds == 0)
     return finish(out);
-  const double paired =
-      0.5 * static_cast<double>(edge_targets->terms(source_edges, out.pose.T_target_source, params.dense_gates_m.back()).size()) /
-      static_cast<double>(source_edges.points.size());
+  const double last_gate = gateOfRound(params.dense_rounds - 1);
+  const double paired = 0.5 * static_cast<double>(edge_targets->terms(source_edges, out.pose.T_target_source, last_gate).size()) /
+                        static_cast<double>(source_edges.points.size());
   out.edge_paired_share = paired;
   if (paired >= params.wide_edge_min_paired_share) return finish(out);
   int terms_wide = 0;
   const RegistrationResult wide = refine(params.wide_edge_gate_factor, terms_wide);
   if (wide.success) {
-    double share_normal = 0.0, share_wide = 0.0;
-    tbb::parallel_invoke(
-        [&] { share_normal = consistentShare(source, target, out.pose.T_target_source, params.visibility); },
-        [&] { share_wide = consistentShare(source, target, wide.T_target_source, params.visibility); });
-    if (share_wide > share_normal) {
+    VisibilityCheck check_normal, check_wide;
+    tbb::parallel_invoke([&] { check_normal = checkVisibility(source, target, out.pose.T_target_source, visibility); },
+                         [&] { check_wide = checkVisibility(source, target, wide.T_target_source, visibility); });
+    const bool take_wide = check_wide.passed != check_normal.passed
+                               ? check_wide.passed
+                               : consistentShare(check_wide) > consistentShare(check_normal);
+    if (take_wide) {
       out.pose = wide;
       out.dense_terms = terms_wide;
       out.wide_edge_pose = true;
     }
+    out.check = take_wide ? check_wide : check_normal;
   }
   return finish(out);
 }

@@ -3,6 +3,7 @@
 #include <nanoflann.hpp>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 
 #include "gasp/core/depth_image.h"
@@ -36,15 +37,19 @@ void validate(const EdgeTermParams& p) {
 
 namespace {
 
-/// Edge pixels among those with (u + v) % step == 0.
-EdgePoints edgePixels(const DepthView& view, const EdgeTermParams& p, int step) {
+/// Edge pixels among those with (u + v) % 2 == 0. The edge condition marks a band two pixels wide
+/// on the near side of a jump (neighbours 1 and 2 steps away), which holds pixels of both
+/// parities whatever the edge's direction, so this checkerboard keeps about every other pixel
+/// along any edge.
+EdgePoints checkerboardEdgePixels(const DepthView& view, const EdgeTermParams& p) {
   EdgePoints e;
   const cv::Mat& d = view.depth_m;
   if (d.empty()) return e;
+  if (d.type() != CV_32FC1) throw Error("edge terms: the view's depth must be CV_32FC1 [m]");
   const int w = d.cols, h = d.rows;
   for (int v = 0; v < h; ++v) {
     const float* row = d.ptr<float>(v);
-    for (int u = ((step - v % step) % step); u < w; u += step) {
+    for (int u = v % 2; u < w; u += 2) {
       const float z = row[u];
       if (!isValidDepth(z)) continue;
       const float far = z + static_cast<float>(p.min_jump_m + p.jump_per_m2 * z * z);
@@ -63,11 +68,40 @@ EdgePoints edgePixels(const DepthView& view, const EdgeTermParams& p, int step) 
   return e;
 }
 
+/// One edge pixel per step x step image block: the one nearest the block's centre (ties: the
+/// first in raster order). About one per step pixels along an edge of any direction (up to
+/// sqrt(2) more on diagonals), where a rule on u + v alone keeps all or none of an anti-diagonal
+/// edge.
+EdgePoints thinToBlocks(const EdgePoints& all, int step, int width, int height) {
+  if (step <= 1) return all;
+  const int bw = (width + step - 1) / step, bh = (height + step - 1) / step;
+  std::vector<int> chosen(static_cast<std::size_t>(bw) * static_cast<std::size_t>(bh), -1);
+  std::vector<int> best_d2(chosen.size(), 0);
+  const int c = step - 1;  // twice the centre offset within a block
+  for (std::size_t i = 0; i < all.pixels.size(); ++i) {
+    const int u = all.pixels[i].x(), v = all.pixels[i].y();
+    const std::size_t b = static_cast<std::size_t>(v / step) * static_cast<std::size_t>(bw) + static_cast<std::size_t>(u / step);
+    const int du = 2 * (u % step) - c, dv = 2 * (v % step) - c;
+    const int d2 = du * du + dv * dv;
+    if (chosen[b] < 0 || d2 < best_d2[b]) {
+      chosen[b] = static_cast<int>(i);
+      best_d2[b] = d2;
+    }
+  }
+  EdgePoints e;
+  for (int i : chosen)
+    if (i >= 0) {
+      e.points.push_back(all.points[static_cast<std::size_t>(i)]);
+      e.pixels.push_back(all.pixels[static_cast<std::size_t>(i)]);
+    }
+  return e;
+}
+
 }  // namespace
 
 EdgePoints findEdgePoints(const DepthView& view, const EdgeTermParams& p) {
   validate(p);
-  return edgePixels(view, p, p.pixel_step);
+  return thinToBlocks(checkerboardEdgePixels(view, p), std::max(1, p.pixel_step / 2), view.depth_m.cols, view.depth_m.rows);
 }
 
 struct EdgeTargets::Index {
@@ -79,7 +113,7 @@ struct EdgeTargets::Index {
 
 EdgeTargets::EdgeTargets(const DepthView& target, const EdgeTermParams& p) : index_(std::make_unique<Index>()), params_(p) {
   validate(p);
-  const EdgePoints et = edgePixels(target, p, 2);  // every other edge pixel: the nearest is within 1-2 px
+  const EdgePoints et = checkerboardEdgePixels(target, p);  // the nearest edge pixel is within 1-2 px
   const std::size_t k = static_cast<std::size_t>(p.line_neighbours);
   if (et.points.size() < k) return;
   // Line directions from the k nearest edge points of each one (a tree over all edge points).

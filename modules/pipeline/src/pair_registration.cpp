@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <cmath>
 
 #include "gasp/core/error.h"
@@ -32,14 +33,22 @@ std::vector<PatchCorrespondence> toCorrespondences(const std::vector<PatchAssoci
   return out;
 }
 
+/// The visibility check's parameters for a pose: a pose from the wider, less precise one-way
+/// hypothesis set must explain the views better.
+VisibilityCheckParams visibilityParams(const PairParams& params, bool used_one_way) {
+  VisibilityCheckParams visibility = params.visibility;
+  if (used_one_way)
+    visibility.max_violation_ratio = std::min(visibility.max_violation_ratio, params.one_way_max_violation_ratio);
+  return visibility;
+}
+
 /// The free-space check of a claimed pose (visibility_check.h): a failure withdraws the claim.
-void verify(const DepthView& source, const DepthView& target, const PairParams& params, PairResult& r) {
+/// `done`: the check of this pose with these parameters, when already run.
+void verify(const DepthView& source, const DepthView& target, const PairParams& params, PairResult& r,
+            const std::optional<VisibilityCheck>& done = std::nullopt) {
   if (!r.pose.success) return;
   const auto t0 = std::chrono::steady_clock::now();
-  VisibilityCheckParams visibility = params.visibility;
-  if (r.used_one_way)  // a pose from the wider, less precise hypothesis set must explain the views better
-    visibility.max_violation_ratio = std::min(visibility.max_violation_ratio, params.one_way_max_violation_ratio);
-  r.visibility = checkVisibility(source, target, r.pose.T_target_source, visibility);
+  r.visibility = done ? *done : checkVisibility(source, target, r.pose.T_target_source, visibilityParams(params, r.used_one_way));
   r.timings.dense_ms += msSince(t0);
   if (!r.visibility.passed) {
     r.pose.success = false;
@@ -55,8 +64,8 @@ void validate(const PairParams& p) {
   validate(p.pose);
   validate(p.projective);
   validate(p.edges);
-  if (!(p.wide_edge_gate_factor >= 0.0) || !std::isfinite(p.wide_edge_gate_factor))
-    throw Error("PairParams: wide_edge_gate_factor must be finite and >= 0");
+  if (!(p.wide_edge_gate_factor == 0.0 || p.wide_edge_gate_factor >= 1.0) || !std::isfinite(p.wide_edge_gate_factor))
+    throw Error("PairParams: wide_edge_gate_factor must be 0 (off) or finite and >= 1");
   if (!(p.wide_edge_min_paired_share >= 0.0 && p.wide_edge_min_paired_share <= 1.0))
     throw Error("PairParams: wide_edge_min_paired_share must be in [0, 1]");
   validate(p.dense_degeneracy);
@@ -176,12 +185,14 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
   t0 = std::chrono::steady_clock::now();
   std::vector<PatchCorrespondence> inliers;
   for (int i : r.pose.inliers) inliers.push_back(r.correspondences[static_cast<std::size_t>(i)]);
-  const detail::DenseOutcome dense = detail::refineDense(source, target, r.pose, inliers, params);
+  const detail::DenseOutcome dense =
+      detail::refineDense(source, target, r.pose, inliers, params, visibilityParams(params, r.used_one_way));
   r.pose = dense.pose;
   r.dense_terms = dense.dense_terms;
   r.wide_edge_pose = dense.wide_edge_pose;
+  r.edge_paired_share = dense.edge_paired_share;
   r.timings.dense_ms = msSince(t0);
-  verify(source, target, params, r);
+  verify(source, target, params, r, dense.check);
   if (r.pose.success && params.guided_verification) {
     t0 = std::chrono::steady_clock::now();
     r.verified = guidedAssociations(ga, gb, qa, qb, r.pose.T_target_source, params.association, params.guided);

@@ -21,8 +21,9 @@ struct EdgeTermParams {
   /// least min_jump_m + jump_per_m2 * z^2 further away (the foreground side of a depth jump).
   double min_jump_m = 0.05;
   double jump_per_m2 = 0.02;  ///< [1/m]
-  /// Edge pixels used: those with (u + v) % pixel_step == 0 (>= 1), about every pixel_step-th
-  /// pixel along an edge; the target keeps every other edge pixel.
+  /// Source edge pixels used: one per block of (pixel_step / 2)^2 pixels (pixel_step >= 1), about
+  /// two per pixel_step pixels along an edge of any direction (up to sqrt(2) more on diagonals);
+  /// the target keeps every other edge pixel (those with (u + v) even).
   int pixel_step = 12;
   int line_neighbours = 8;    ///< target edge points fitted for the local edge direction (>= 3)
   double max_distance_m = 0.05;  ///< gate on the distance to the nearest target edge point [m]
@@ -32,8 +33,9 @@ struct EdgeTermParams {
 /// Throws gasp::Error for a parameter out of range.
 void validate(const EdgeTermParams& params);
 
-/// Edge pixels of a view among those with (u + v) % pixel_step == 0, as 3D points [m] (camera
-/// frame) with their pixel coordinates.
+/// Edge pixels of a view, one per (pixel_step / 2)^2 block (the one nearest the block's centre
+/// among the edge pixels with (u + v) even), as 3D points [m] (camera frame) with their
+/// pixel coordinates, in block raster order. The view's depth must be CV_32FC1 (gasp::Error).
 struct EdgePoints {
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector2i> pixels;

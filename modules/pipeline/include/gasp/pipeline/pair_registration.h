@@ -58,7 +58,7 @@ struct PairParams {
   int min_guided_support = 12;
   bool refine = true;               ///< false: RANSAC pose only (no patch or dense refinement)
   /// Dense rounds after the patch refinement (0 = none). Each round re-associates the pixels at
-  /// the current pose; the distance gate of round k is max(dense_gates_m[k], last entry).
+  /// the current pose; the distance gate of round k is dense_gates_m[min(k, size - 1)] [m].
   int dense_rounds = 3;
   std::vector<double> dense_gates_m{0.10, 0.05, 0.03};
   ProjectiveTermParams projective;  ///< pixel step 8, normals within 20 deg
@@ -68,8 +68,9 @@ struct PairParams {
   EdgeTermParams edges;
   /// With edge terms: when fewer than wide_edge_min_paired_share of the source edge points have
   /// a target edge within the last gate at the refined pose, a second refinement from the same
-  /// patch pose runs with edge gates wide_edge_gate_factor times the pixel gates (0 = never), and
-  /// the pose with the larger share of consistent samples in the visibility check is kept. Slides
+  /// patch pose runs with edge gates wide_edge_gate_factor (>= 1) times the pixel gates (0 = never),
+  /// and the pose that passes the visibility check is kept; when both or neither pass, the one
+  /// with the larger share of consistent samples. Slides
   /// larger than the pixel gates (the cabinet's 8 -> 10, 13 cm) leave the edges unpaired; wide
   /// edge gates alone pair wrong edges in clutter (fr1_xyz 620 -> 650 went 13 deg off), the
   /// selection keeps the right pose (docs/pipeline.md, "Edge terms").
@@ -122,6 +123,9 @@ struct PairResult {
   int dense_terms = 0;  ///< dense terms in the last round
   VisibilityCheck visibility;  ///< of the final pose (when one was found)
   bool wide_edge_pose = false;  ///< the final pose came from the wide-edge-gate refinement
+  /// Share of the source edge points with a target edge within the last gate at the first dense
+  /// refinement's pose (-1: not measured -- no edge terms, no dense rounds or no pose).
+  double edge_paired_share = -1.0;
   PairTimings timings;
 };
 
