@@ -12,6 +12,7 @@
 #include <limits>
 #include <vector>
 
+#include "../../modules/pipeline/src/dense_refinement.h"
 #include "gasp/core/error.h"
 #include "gasp/pipeline/edge_terms.h"
 #include "gasp/pipeline/projective_terms.h"
@@ -190,5 +191,31 @@ TEST(EdgeTerms, BadInputGivesNoTermsOrAClearError) {
     EdgeTermParams q;
     broken(q);
     EXPECT_THROW(validate(q), Error);
+  }
+}
+
+TEST(EdgeTerms, WideEdgeGatesRescueASlideBeyondThePixelGates) {
+  // The slab scene slid 12 cm along its planes: beyond the last pixel gate (0.10 m in the first
+  // round), so no edge pairs and the planes alone leave the slide free -- the first refinement is
+  // degenerate. The second refinement with 3x wider edge gates pairs the slab's outline.
+  const Eigen::Vector3d slide(0.12, 0.0, 0.0);
+  const DepthView target = slabView(Eigen::Vector3d::Zero());
+  const DepthView source = slabView(slide);
+  RegistrationResult start;
+  start.success = true;
+  start.T_target_source = Isometry3::Identity();
+  PairParams params;
+  const auto visibility = params.visibility;
+  const detail::DenseOutcome wide = detail::refineDense(source, target, start, {}, params, visibility);
+  ASSERT_TRUE(wide.pose.success) << wide.pose.reason;
+  EXPECT_TRUE(wide.wide_edge_pose);
+  std::printf("wide edge gates: %.4f m off\n", (wide.pose.T_target_source.translation() - slide).norm());
+  EXPECT_LT((wide.pose.T_target_source.translation() - slide).norm(), 0.01);
+  params.wide_edge_gate_factor = 0.0;  // without the second refinement: no pose, or a slid one
+  const detail::DenseOutcome narrow = detail::refineDense(source, target, start, {}, params, visibility);
+  EXPECT_FALSE(narrow.wide_edge_pose);
+  std::printf("without: %s\n", narrow.pose.success ? "a pose" : narrow.pose.reason.c_str());
+  if (narrow.pose.success) {
+    EXPECT_GT((narrow.pose.T_target_source.translation() - slide).norm(), 0.05);
   }
 }

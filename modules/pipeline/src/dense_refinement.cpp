@@ -75,35 +75,45 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
   DenseOutcome out;
   out.pose = refine(1.0, out.dense_terms);
   // A slide larger than the pixel gates leaves most source edge points without a target edge
-  // within the last gate: then a second refinement with wider edge gates is run, and the pose
-  // that passes the visibility check (with the caller's parameters) is kept; when both or
+  // within the last gate -- or, where the planes alone cannot pin the slide, leaves the first
+  // refinement degenerate. Then a second refinement with wider edge gates is run: when the first
+  // failed, its pose is taken (the final visibility check still judges it); otherwise the pose
+  // that passes the visibility check (with the caller's parameters) is kept, and when both or
   // neither pass, the one whose views agree more -- the larger share of consistent samples.
   // (Wide edge gates alone pair wrong edges in clutter.) Nothing to widen without target edges
   // with a direction or with weightless edge terms.
-  if (!out.pose.success || !edge_targets || edge_targets->size() == 0 || params.edges.weight <= 0.0 ||
-      params.wide_edge_gate_factor <= 0.0 || source_edges.points.empty() || params.dense_rounds == 0)
+  if (!edge_targets || edge_targets->size() == 0 || params.edges.weight <= 0.0 || params.wide_edge_gate_factor <= 0.0 ||
+      source_edges.points.empty() || params.dense_rounds == 0)
     return finish(out);
-  const double last_gate = gateOfRound(params.dense_rounds - 1);
-  const double paired = 0.5 * static_cast<double>(edge_targets->terms(source_edges, out.pose.T_target_source, last_gate).size()) /
-                        static_cast<double>(source_edges.points.size());
-  out.edge_paired_share = paired;
-  if (paired >= params.wide_edge_min_paired_share) return finish(out);
+  if (out.pose.success) {
+    const double last_gate = gateOfRound(params.dense_rounds - 1);
+    const double paired =
+        0.5 * static_cast<double>(edge_targets->terms(source_edges, out.pose.T_target_source, last_gate).size()) /
+        static_cast<double>(source_edges.points.size());
+    out.edge_paired_share = paired;
+    if (paired >= params.wide_edge_min_paired_share) return finish(out);
+  }
   int terms_wide = 0;
   const RegistrationResult wide = refine(params.wide_edge_gate_factor, terms_wide);
-  if (wide.success) {
-    VisibilityCheck check_normal, check_wide;
-    tbb::parallel_invoke([&] { check_normal = checkVisibility(source, target, out.pose.T_target_source, visibility); },
-                         [&] { check_wide = checkVisibility(source, target, wide.T_target_source, visibility); });
-    const bool take_wide = check_wide.passed != check_normal.passed
-                               ? check_wide.passed
-                               : consistentShare(check_wide) > consistentShare(check_normal);
-    if (take_wide) {
-      out.pose = wide;
-      out.dense_terms = terms_wide;
-      out.wide_edge_pose = true;
-    }
-    out.check = take_wide ? check_wide : check_normal;
+  if (!wide.success) return finish(out);
+  if (!out.pose.success) {
+    out.pose = wide;
+    out.dense_terms = terms_wide;
+    out.wide_edge_pose = true;
+    return finish(out);
   }
+  VisibilityCheck check_normal, check_wide;
+  tbb::parallel_invoke([&] { check_normal = checkVisibility(source, target, out.pose.T_target_source, visibility); },
+                       [&] { check_wide = checkVisibility(source, target, wide.T_target_source, visibility); });
+  const bool take_wide = check_wide.passed != check_normal.passed
+                             ? check_wide.passed
+                             : consistentShare(check_wide) > consistentShare(check_normal);
+  if (take_wide) {
+    out.pose = wide;
+    out.dense_terms = terms_wide;
+    out.wide_edge_pose = true;
+  }
+  out.check = take_wide ? check_wide : check_normal;
   return finish(out);
 }
 
