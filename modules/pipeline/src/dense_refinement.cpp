@@ -3,8 +3,10 @@
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
+#include "gasp/core/depth_image.h"
 #include "gasp/pipeline/edge_terms.h"
 #include "gasp/pipeline/projective_terms.h"
 #include "gasp/pipeline/visibility_check.h"
@@ -18,6 +20,20 @@ namespace {
 double consistentShare(const VisibilityCheck& c) {
   const int n = c.consistent + c.occluded + c.violations;
   return n ? static_cast<double>(c.consistent) / n : 0.0;
+}
+
+/// Source edge points that T maps in front of the target camera onto a pixel with valid depth.
+int edgePointsInView(const EdgePoints& source, const DepthView& target, const Isometry3& T_target_source) {
+  int n = 0;
+  const cv::Mat& d = target.depth_m;
+  for (const Eigen::Vector3d& p : source.points) {
+    double u = 0, v = 0;
+    if (!target.intrinsics.project(T_target_source * p, u, v)) continue;
+    const int iu = static_cast<int>(std::lround(u)), iv = static_cast<int>(std::lround(v));
+    if (iu < 0 || iv < 0 || iu >= d.cols || iv >= d.rows) continue;
+    n += isValidDepth(d.at<float>(iv, iu)) ? 1 : 0;
+  }
+  return n;
 }
 
 }  // namespace
@@ -86,12 +102,16 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
       source_edges.points.empty() || params.dense_rounds == 0)
     return finish(out);
   if (out.pose.success) {
+    // Of the source edge points that land on the target's depth: points outside its view can
+    // have no partner, and a partial overlap alone must not call the second refinement.
+    const int in_view = edgePointsInView(source_edges, target, out.pose.T_target_source);
+    if (in_view == 0) return finish(out);
     const double last_gate = gateOfRound(params.dense_rounds - 1);
     const double paired =
         0.5 * static_cast<double>(edge_targets->terms(source_edges, out.pose.T_target_source, last_gate).size()) /
-        static_cast<double>(source_edges.points.size());
-    out.edge_paired_share = paired;
-    if (paired >= params.wide_edge_min_paired_share) return finish(out);
+        static_cast<double>(in_view);
+    out.edge_paired_share = std::min(1.0, paired);
+    if (out.edge_paired_share >= params.wide_edge_min_paired_share) return finish(out);
   }
   int terms_wide = 0;
   const RegistrationResult wide = refine(params.wide_edge_gate_factor, terms_wide);

@@ -66,8 +66,9 @@ struct PairParams {
   /// pixel terms (edges.max_distance_m is replaced by the round's gate).
   bool edge_terms = true;
   EdgeTermParams edges;
-  /// With edge terms: when fewer than wide_edge_min_paired_share of the source edge points have
-  /// a target edge within the last gate at the refined pose, a second refinement from the same
+  /// With edge terms: when fewer than wide_edge_min_paired_share of the source edge points that
+  /// land on the target's depth have a target edge within the last gate at the refined pose (or
+  /// when that refinement failed), a second refinement from the same
   /// patch pose runs with edge gates wide_edge_gate_factor (>= 1) times the pixel gates (0 = never),
   /// and the pose that passes the visibility check is kept; when both or neither pass, the one
   /// with the larger share of consistent samples. Slides
@@ -123,7 +124,7 @@ struct PairResult {
   int dense_terms = 0;  ///< dense terms in the last round
   VisibilityCheck visibility;  ///< of the final pose (when one was found)
   bool wide_edge_pose = false;  ///< the final pose came from the wide-edge-gate refinement
-  /// Share of the source edge points with a target edge within the last gate at the first dense
+  /// Share of the source edge points on the target's depth with a target edge within the last gate at the first dense
   /// refinement's pose (-1: not measured -- no edge terms, no dense rounds or no pose).
   double edge_paired_share = -1.0;
   PairTimings timings;
