@@ -72,9 +72,7 @@ double dataAgreement(const gasp::DepthView& source, const gasp::DepthView& targe
   p.gate_m = 0.01;
   p.gate_per_m2 = 0.005;
   p.min_consistent = 1;
-  const auto c = gasp::checkVisibility(source, target, T, p);
-  const int all = c.consistent + c.occluded + c.violations;
-  return all > 0 ? static_cast<double>(c.consistent) / all : 0.0;
+  return gasp::checkVisibility(source, target, T, p).consistentShare();
 }
 
 /// One pair, one method: the outcome plus what the pictures need.

@@ -63,18 +63,13 @@ TEST(RealPairs, AWrongFallbackPoseIsDeclined) {
   EXPECT_GT(translationNorm(p.T_b_a.inverse() * w.pose.T_target_source), 0.5);
 }
 
-}  // namespace
-
-namespace {
-
 TEST(RealPairs, WideEdgeGatesStopTheCabinetSlide) {
   // fr3_cabinet_kf keyframes 8 -> 10 (about 40 frames): views of the floor and the cabinet top.
   // The patch pose is ~13 cm off along the cabinet top; pixel terms cannot move it and edge terms
   // within the pixel gates find no partner (paired share below wide_edge_min_paired_share). The
   // second refinement with wider edge gates does, and its pose is the one whose views agree more.
-  const auto dir = test::sharedDataPath("tum/fr3_cabinet_kf");
-  if (!dir) GTEST_SKIP() << "real data not found (../shared/data/tum/fr3_cabinet_kf or $GASP_DATA_DIR)";
-  const RealPair p = load(*dir, 8, 10);
+  GASP_REQUIRE_DATA(dir, "tum/fr3_cabinet_kf");
+  const RealPair p = load(dir, 8, 10);
   const PairResult r = registerViews(p.a, p.b);
   ASSERT_TRUE(r.pose.success) << r.pose.reason;
   EXPECT_TRUE(r.wide_edge_pose);

@@ -16,12 +16,6 @@ namespace gasp::detail {
 
 namespace {
 
-/// Share of the visibility check's samples, both directions, that are consistent.
-double consistentShare(const VisibilityCheck& c) {
-  const int n = c.consistent + c.occluded + c.violations;
-  return n ? static_cast<double>(c.consistent) / n : 0.0;
-}
-
 /// Source edge points that T maps in front of the target camera onto a pixel with valid depth.
 int edgePointsInView(const EdgePoints& source, const DepthView& target, const Isometry3& T_target_source) {
   int n = 0;
@@ -127,7 +121,7 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
                        [&] { check_wide = checkVisibility(source, target, wide.T_target_source, visibility); });
   const bool take_wide = check_wide.passed != check_normal.passed
                              ? check_wide.passed
-                             : consistentShare(check_wide) > consistentShare(check_normal);
+                             : check_wide.consistentShare() > check_normal.consistentShare();
   if (take_wide) {
     out.pose = wide;
     out.dense_terms = terms_wide;

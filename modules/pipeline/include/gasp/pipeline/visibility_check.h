@@ -41,6 +41,11 @@ struct VisibilityCheck {
   double violation_ratio = 0.0;  ///< the worse direction
   double occluded_ratio = 0.0;   ///< occluded / (consistent + occluded + violations), the worse direction
   std::string reason;            ///< why it failed
+  /// consistent / (consistent + occluded + violations), both directions (0 without samples).
+  double consistentShare() const {
+    const int n = consistent + occluded + violations;
+    return n > 0 ? static_cast<double>(consistent) / n : 0.0;
+  }
 };
 
 /// Both directions (source into target, target into source).
