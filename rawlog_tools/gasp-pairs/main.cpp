@@ -417,7 +417,8 @@ int main(int argc, char** argv) {
       pairs_csv.open(pairs_csv_path);
       if (!pairs_csv) throw gasp::Error("cannot write " + pairs_csv_path);
       pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,occluded_ratio,consistent,occluded,violations,one_way,guided_support,"
-                    "precision,verified,verified_precision,verified_density,agreement,agreement_truth,tx,ty,tz,qx,qy,qz,qw,reason\n";
+                    "precision,verified,verified_precision,verified_density,agreement,agreement_truth,tx,ty,tz,qx,qy,qz,qw,"
+                    "motion_t_m,motion_r_deg,reason\n";
     }
     const auto bench_t0 = Clock::now();
     std::size_t done = 0;
@@ -464,6 +465,8 @@ int main(int argc, char** argv) {
           } else {
             pairs_csv << ",,,,,,,";
           }
+          // The true motion of the pair (how far apart the views are).
+          pairs_csv << ',' << gasp::translationNorm(T_gt) << ',' << gasp::rotationAngle(T_gt) * 180.0 / M_PI;
           pairs_csv << ",\"" << o.reason << "\"\n";
         }
       }

@@ -145,6 +145,9 @@ TEST(GaspPairsProgram, PairsCsvHasThePoseAndTheAssociationQuality) {
     const double agreement_truth = std::stod(c[col("agreement_truth")]);
     EXPECT_GT(agreement_truth, 0.0) << line;
     EXPECT_LE(agreement_truth, 1.0) << line;
+    // The pair's true motion: fr1_desk9 moves a few cm and degrees between these frames.
+    EXPECT_NEAR(std::stod(c[col("motion_t_m")]), gasp::translationNorm(T_true), 1e-4) << line;
+    EXPECT_NEAR(std::stod(c[col("motion_r_deg")]), gasp::rotationAngle(T_true) * 180.0 / M_PI, 0.01) << line;
   }
   EXPECT_EQ(rows, 4);  // 0->1, 4->5, 0->4, 4->8
 }
