@@ -57,14 +57,25 @@ def main():
     if len(sys.argv) < 2:
         sys.exit(__doc__)
     method = sys.argv[2] if len(sys.argv) > 2 else "gasp"
-    with open(sys.argv[1], newline="") as f:
-        rows = [r for r in csv.DictReader(f) if r["method"] == method]
+    path = sys.argv[1]
+    try:
+        with open(path, newline="") as f:
+            reader = csv.DictReader(f)
+            needed = {"skip", "method", "from", "to", "estimated", "t_err_m", "r_err_deg", "precision",
+                      "verified_precision", "verified_density", "agreement", "agreement_truth"}
+            missing = sorted(needed - set(reader.fieldnames or []))
+            if missing:
+                sys.exit("error: %s: not a gasp-pairs --pairs-csv file with the association columns (missing: %s)"
+                         % (path, ", ".join(missing)))
+            rows = [r for r in reader if r["method"] == method]
+    except OSError as e:
+        sys.exit("error: cannot read %s: %s" % (path, e.strerror))
     by_skip = {}
     for row in rows:
         if row["estimated"] == "1" and row.get("verified_precision", "") != "":
             by_skip.setdefault(int(row["skip"]), []).append(row)
     if not by_skip:
-        sys.exit("no estimated pairs of method %s with association columns" % method)
+        sys.exit("error: %s: no estimated pair of method %s with association scores (they exist for GASP methods only)" % (path, method))
     print("| skip | pairs with an estimate | free precision: median | verified precision: median / mean "
           "| pairs >= 0.8 / >= 0.9 | verified density: median | pose error: median t [m] / r [deg] |")
     print("|---|---|---|---|---|---|---|")
