@@ -13,6 +13,10 @@
    motion among the pairs with one.
 4. Loop closure of the estimates: for every i with estimates i -> i+s, i+s -> i+2s and i -> i+2s
    (skips s and 2s both in the file), the motion left by (i -> i+2s)^-1 (i+s -> i+2s) (i -> i+s).
+5. With gasp-pairs --polish-reference: an independent check by PCL's GICP, run from the reference
+   pose and from the estimate. Per skip: how far GICP moves the reference and the estimate
+   (median), how far apart the two GICP results end (median), and the RMSE of the estimate against
+   the reference and against the GICP-polished reference.
 Python standard library only."""
 import csv
 import math
@@ -136,6 +140,23 @@ def main():
             print("| %d, %d | %d | %.4f / %.4f | %.2f / %.2f | %.4f / %.2f |" % (
                 s, 2 * s, len(ls), statistics.median(l[2] for l in ls), max(l[2] for l in ls),
                 statistics.median(l[3] for l in ls), max(l[3] for l in ls), ls[0][2], ls[0][3]))
+    polished = [r for r in rows if r["estimated"] == "1" and r.get("est_vs_ref_icp_r_deg", "") != ""]
+    if polished:
+        rms = lambda v: math.sqrt(sum(x * x for x in v) / len(v))
+        print()
+        print("| skip | pairs | GICP moves the reference: median t [m] / r [deg] | GICP moves the estimate: median t / r "
+              "| GICP from each: apart, median t / r | estimate vs reference: RMSE t / r | estimate vs GICP-polished "
+              "reference: RMSE t / r |")
+        print("|---|---|---|---|---|---|---|")
+        for skip in sorted({int(r["skip"]) for r in polished}):
+            rs = [r for r in polished if int(r["skip"]) == skip]
+            col = lambda name: [float(r[name]) for r in rs if r.get(name, "") != ""]
+            print("| %d | %d | %.4f / %.2f | %.4f / %.2f | %.4f / %.2f | %.4f / %.2f | %.4f / %.2f |" % (
+                skip, len(rs), statistics.median(col("ref_icp_t_m")), statistics.median(col("ref_icp_r_deg")),
+                statistics.median(col("est_icp_t_m")), statistics.median(col("est_icp_r_deg")),
+                statistics.median(col("icp_est_vs_ref_icp_t_m")), statistics.median(col("icp_est_vs_ref_icp_r_deg")),
+                rms(col("t_err_m")), rms(col("r_err_deg")),
+                rms(col("est_vs_ref_icp_t_m")), rms(col("est_vs_ref_icp_r_deg"))))
 
 
 if __name__ == "__main__":

@@ -34,6 +34,7 @@
 #include "gasp/pipeline/visibility_check.h"
 #ifdef GASP_HAVE_BASELINES
 #include "gasp/baselines/baseline_registration.h"
+#include "gasp/baselines/icp_polish.h"
 #include "gasp/baselines/match_picture.h"
 #endif
 
@@ -230,6 +231,10 @@ int main(int argc, char** argv) {
   app.add_option("--ratio", baseline.matching.ratio, "baselines: Lowe's ratio test threshold")->capture_default_str();
   app.add_flag("!--no-mutual-matches", baseline.matching.mutual, "baselines: no mutual check of descriptor matches");
   app.add_option("--min-keypoints", baseline.point.min_keypoints, "fpfh/shot/cshot: keypoints per view")->capture_default_str();
+  bool polish_reference = false;
+  app.add_flag("--polish-reference", polish_reference,
+               "--pairs-csv: also run PCL's GICP from the reference pose and from each estimate (an independent "
+               "check of the reference; columns ref_icp_*, est_vs_ref_icp_*, est_icp_*)");
 #endif
   double gt_offset = 0.0;
   app.add_option("--gt-offset", gt_offset,
@@ -418,7 +423,8 @@ int main(int argc, char** argv) {
       if (!pairs_csv) throw gasp::Error("cannot write " + pairs_csv_path);
       pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,occluded_ratio,consistent,occluded,violations,one_way,guided_support,"
                     "precision,verified,verified_precision,verified_density,agreement,agreement_truth,tx,ty,tz,qx,qy,qz,qw,"
-                    "motion_t_m,motion_r_deg,reason\n";
+                    "motion_t_m,motion_r_deg,ref_icp_t_m,ref_icp_r_deg,est_vs_ref_icp_t_m,est_vs_ref_icp_r_deg,"
+                    "est_icp_t_m,est_icp_r_deg,icp_est_vs_ref_icp_t_m,icp_est_vs_ref_icp_r_deg,reason\n";
     }
     const auto bench_t0 = Clock::now();
     std::size_t done = 0;
@@ -426,6 +432,28 @@ int main(int argc, char** argv) {
       cache.dropBefore(i);
       const std::size_t j = i + skip;
       const gasp::Isometry3 T_gt = gasp::relativePose(*truth(j), *truth(i));
+      // The reference polished by GICP (once per pair): how far the depth pulls it, and where to.
+      std::optional<gasp::Isometry3> T_ref_icp;
+#ifdef GASP_HAVE_BASELINES
+      auto polish = [&](const gasp::Isometry3& T_init) -> std::optional<gasp::Isometry3> {
+        // The views GASP registers (undistorted where the intrinsics have distortion).
+        const auto& va = cache.gaspView(i, base.superpixels).view;
+        const auto& vb = cache.gaspView(j, base.superpixels).view;
+        const auto r = gasp::baselines::polishPose(va.depth_m, vb.depth_m, va.intrinsics, T_init);
+        if (!r.success) return std::nullopt;
+        return r.T_target_source;
+      };
+      if (polish_reference && pairs_csv) T_ref_icp = polish(T_gt);
+#else
+      auto polish = [](const gasp::Isometry3&) -> std::optional<gasp::Isometry3> { return std::nullopt; };
+      const bool polish_reference = false;
+#endif
+      // Translation [m] and rotation [deg] of A^-1 B, or two empty CSV fields.
+      auto difference = [](const std::optional<gasp::Isometry3>& A, const std::optional<gasp::Isometry3>& B) {
+        if (!A || !B) return std::string(",");
+        const gasp::Isometry3 E = A->inverse() * *B;
+        return std::to_string(gasp::translationNorm(E)) + ',' + std::to_string(gasp::rotationAngle(E) * 180.0 / M_PI);
+      };
       for (const auto& method : methods) {
         if (needsColour(method) && (!hasRgb(i) || !hasRgb(j))) {
           ++no_rgb[{skip, method}];
@@ -467,6 +495,11 @@ int main(int argc, char** argv) {
           }
           // The true motion of the pair (how far apart the views are).
           pairs_csv << ',' << gasp::translationNorm(T_gt) << ',' << gasp::rotationAngle(T_gt) * 180.0 / M_PI;
+          std::optional<gasp::Isometry3> T_est;
+          if (run.estimated) T_est = run.T_target_source;
+          const auto T_est_icp = T_est && polish_reference ? polish(*T_est) : std::nullopt;
+          pairs_csv << ',' << difference(T_gt, T_ref_icp) << ',' << difference(T_est, T_ref_icp) << ','
+                    << difference(T_est, T_est_icp) << ',' << difference(T_est_icp, T_ref_icp);
           pairs_csv << ",\"" << o.reason << "\"\n";
         }
       }

@@ -5,10 +5,14 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "gasp_test_data.h"
 #include "program_run.h"
@@ -83,4 +87,50 @@ TEST(PairsProgram, OnePicturePerMethod) {
   }
   EXPECT_NE(r.output.find("pose error"), std::string::npos) << r.output;
   EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --pictures-only").exit_code, 2);
+}
+
+TEST(PairsProgram, PolishReferenceFillsTheGicpColumns) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const std::string pairs = gasp::test::scratchDir() + "/polish.csv";
+  const auto r = run("gasp-pairs", "--tum " + dir + " --skips 4 --starts-every 4 --method gasp --polish-reference --pairs-csv " + pairs);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto rows = lines(pairs);
+  ASSERT_EQ(rows.size(), 3u);  // header, 0 -> 4, 4 -> 8
+  auto split = [](const std::string& s) {
+    std::vector<std::string> out(1);
+    bool quoted = false;
+    for (char c : s) {
+      if (c == '"') quoted = !quoted;
+      else if (c == ',' && !quoted) out.emplace_back();
+      else out.back() += c;
+    }
+    return out;
+  };
+  const auto header = split(rows[0]);
+  auto column = [&](const std::string& name) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    EXPECT_NE(it, header.end()) << name;
+    return static_cast<std::size_t>(it - header.begin());
+  };
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const auto c = split(rows[k]);
+    ASSERT_EQ(c.size(), header.size()) << rows[k];
+    ASSERT_EQ(c[column("estimated")], "1") << rows[k];
+    for (const std::string name : {"ref_icp_t_m", "ref_icp_r_deg", "est_vs_ref_icp_t_m", "est_vs_ref_icp_r_deg",
+                                   "est_icp_t_m", "est_icp_r_deg", "icp_est_vs_ref_icp_t_m", "icp_est_vs_ref_icp_r_deg"}) {
+      const std::string& v = c[column(name)];
+      ASSERT_FALSE(v.empty()) << name << ": " << rows[k];
+      EXPECT_TRUE(std::isfinite(std::stod(v)) && std::stod(v) >= 0.0) << name << ": " << v;
+    }
+    // Consecutive-ish fr1_desk frames: GICP from the estimate and from the reference end close.
+    EXPECT_LT(std::stod(c[column("icp_est_vs_ref_icp_r_deg")]), 1.0) << rows[k];
+    EXPECT_LT(std::stod(c[column("icp_est_vs_ref_icp_t_m")]), 0.03) << rows[k];
+  }
+  // Without the flag the columns are there and empty.
+  const auto plain = run("gasp-pairs", "--tum " + dir + " --skips 4 --starts-every 4 --method gasp --max-pairs 1 --pairs-csv " + pairs);
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  const auto rows2 = lines(pairs);
+  ASSERT_EQ(rows2.size(), 2u);
+  const auto c = split(rows2[1]);
+  EXPECT_TRUE(c[column("ref_icp_r_deg")].empty()) << rows2[1];
 }
