@@ -16,7 +16,8 @@
 5. With gasp-pairs --polish-reference: an independent check by PCL's GICP, run from the reference
    pose and from the estimate. Per skip: how far GICP moves the reference and the estimate
    (median), how far apart the two GICP results end (median), and the RMSE of the estimate against
-   the reference and against the GICP-polished reference.
+   the reference and against the GICP-polished reference; the verified associations' precision
+   against each.
 Python standard library only."""
 import csv
 import math
@@ -146,17 +147,20 @@ def main():
         print()
         print("| skip | pairs | GICP moves the reference: median t [m] / r [deg] | GICP moves the estimate: median t / r "
               "| GICP from each: apart, median t / r | estimate vs reference: RMSE t / r | estimate vs GICP-polished "
-              "reference: RMSE t / r |")
-        print("|---|---|---|---|---|---|---|")
+              "reference: RMSE t / r | verified precision, median: against the reference / the polished one |")
+        print("|---|---|---|---|---|---|---|---|")
         for skip in sorted({int(r["skip"]) for r in polished}):
             rs = [r for r in polished if int(r["skip"]) == skip]
             col = lambda name: [float(r[name]) for r in rs if r.get(name, "") != ""]
-            print("| %d | %d | %.4f / %.2f | %.4f / %.2f | %.4f / %.2f | %.4f / %.2f | %.4f / %.2f |" % (
+            vp_icp = col("verified_precision_ref_icp")
+            print("| %d | %d | %.4f / %.2f | %.4f / %.2f | %.4f / %.2f | %.4f / %.2f | %.4f / %.2f | %.3f / %s |" % (
                 skip, len(rs), statistics.median(col("ref_icp_t_m")), statistics.median(col("ref_icp_r_deg")),
                 statistics.median(col("est_icp_t_m")), statistics.median(col("est_icp_r_deg")),
                 statistics.median(col("icp_est_vs_ref_icp_t_m")), statistics.median(col("icp_est_vs_ref_icp_r_deg")),
                 rms(col("t_err_m")), rms(col("r_err_deg")),
-                rms(col("est_vs_ref_icp_t_m")), rms(col("est_vs_ref_icp_r_deg"))))
+                rms(col("est_vs_ref_icp_t_m")), rms(col("est_vs_ref_icp_r_deg")),
+                statistics.median(col("verified_precision")),
+                "%.3f" % statistics.median(vp_icp) if vp_icp else "-"))
 
 
 if __name__ == "__main__":
