@@ -5,40 +5,14 @@
 #include <cmath>
 
 #include "gasp/core/error.h"
+#include "plane_residuals.h"
 
 namespace gasp::detail {
 namespace {
 
-template <typename T>
-using Vec3 = Eigen::Matrix<T, 3, 1>;
-
-/// r = n . (R p + t - q): a source point against a target plane (forward and dense terms).
-struct TargetPlaneResidual {
-  Eigen::Vector3d p, q, n;
-  template <typename T>
-  bool operator()(const T* quaternion, const T* translation, T* r) const {
-    const Eigen::Map<const Eigen::Quaternion<T>> R(quaternion);
-    const Eigen::Map<const Vec3<T>> t(translation);
-    r[0] = n.cast<T>().dot(R * p.cast<T>() + t - q.cast<T>());
-    return true;
-  }
-};
-
-/// r = n_s . (R^T (p_t - t) - p_s): a target point, mapped back, against a source plane.
-struct SourcePlaneResidual {
-  Eigen::Vector3d p_s, n_s, p_t;
-  template <typename T>
-  bool operator()(const T* quaternion, const T* translation, T* r) const {
-    const Eigen::Map<const Eigen::Quaternion<T>> R(quaternion);
-    const Eigen::Map<const Vec3<T>> t(translation);
-    r[0] = n_s.cast<T>().dot(R.conjugate() * (p_t.cast<T>() - t) - p_s.cast<T>());
-    return true;
-  }
-};
-
-template <typename Functor>
-std::unique_ptr<ceres::CostFunction> autodiff(Functor f) {
-  return std::make_unique<ceres::AutoDiffCostFunction<Functor, 1, 4, 3>>(std::make_unique<Functor>(f).release());
+template <typename Cost, typename Residual>
+std::unique_ptr<ceres::CostFunction> analytic(const Residual& r) {
+  return std::make_unique<Cost>(r);
 }
 
 std::unique_ptr<ceres::LossFunction> makeLoss(const RefinementParams& params) {
@@ -94,13 +68,13 @@ void PoseProblem::addPatch(const PatchCorrespondence& c) {
   // Both directions measure nearly the same error (n_t ~ R n_s): half weight each, so that a
   // patch pair counts as one measurement in the information.
   const double w = params_.bidirectional ? 0.5 * c.weight : c.weight;
-  add(autodiff(TargetPlaneResidual{c.p_source, c.p_target, c.n_target}), w, {c.p_source, true, w});
+  add(analytic<TargetPlaneCost>(TargetPlaneResidual{c.p_source, c.p_target, c.n_target}), w, {c.p_source, true, w});
   if (params_.bidirectional)
-    add(autodiff(SourcePlaneResidual{c.p_source, c.n_source, c.p_target}), w, {c.p_target, false, w});
+    add(analytic<SourcePlaneCost>(SourcePlaneResidual{c.p_source, c.n_source, c.p_target}), w, {c.p_target, false, w});
 }
 
 void PoseProblem::addDense(const PointToPlane& term) {
-  add(autodiff(TargetPlaneResidual{term.p_source, term.q_target, term.n_target}), term.weight,
+  add(analytic<TargetPlaneCost>(TargetPlaneResidual{term.p_source, term.q_target, term.n_target}), term.weight,
       {term.p_source, true, term.weight});
 }
 
