@@ -27,9 +27,8 @@ RealPair load(const std::string& dir, std::size_t i, std::size_t j) {
 }
 
 TEST(RealPairs, OneWayFallbackFindsTheWideBaselinePose) {
-  const auto dir = test::sharedDataPath("tum/fr1_xyz");
-  if (!dir) GTEST_SKIP() << "real data not found (../shared/data/tum/fr1_xyz or $GASP_DATA_DIR)";
-  const RealPair p = load(*dir, 400, 430);
+  GASP_REQUIRE_DATA(dir, "tum/fr1_xyz");
+  const RealPair p = load(dir, 400, 430);
   const PairResult r = registerViews(p.a, p.b);
   ASSERT_TRUE(r.pose.success) << r.pose.reason;
   EXPECT_TRUE(r.used_one_way);
@@ -44,9 +43,8 @@ TEST(RealPairs, OneWayFallbackFindsTheWideBaselinePose) {
 }
 
 TEST(RealPairs, AWrongFallbackPoseIsDeclined) {
-  const auto dir = test::sharedDataPath("tum/fr1_xyz");
-  if (!dir) GTEST_SKIP() << "real data not found (../shared/data/tum/fr1_xyz or $GASP_DATA_DIR)";
-  const RealPair p = load(*dir, 650, 700);
+  GASP_REQUIRE_DATA(dir, "tum/fr1_xyz");
+  const RealPair p = load(dir, 650, 700);
   const PairResult r = registerViews(p.a, p.b);
   if (r.pose.success) {  // a claimed pose must then be right
     const Isometry3 E = p.T_b_a.inverse() * r.pose.T_target_source;
