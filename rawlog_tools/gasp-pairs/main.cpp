@@ -228,12 +228,12 @@ int main(int argc, char** argv) {
   app.add_option("--edge-step", base.edges.pixel_step, "GASP: one source edge pixel per (N/2)^2 image block")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--dense-rounds", base.dense_rounds, "dense projective refinement rounds (0 = none)")->capture_default_str();
   app.add_option("--pixel-step", base.projective.pixel_step, "dense terms: every N-th pixel")->capture_default_str();
+  bool polish_reference = false;  // --polish-reference (with the baselines only)
 #ifdef GASP_HAVE_BASELINES
   gasp::baselines::BaselineParams baseline;
   app.add_option("--ratio", baseline.matching.ratio, "baselines: Lowe's ratio test threshold")->capture_default_str();
   app.add_flag("!--no-mutual-matches", baseline.matching.mutual, "baselines: no mutual check of descriptor matches");
   app.add_option("--min-keypoints", baseline.point.min_keypoints, "fpfh/shot/cshot: keypoints per view")->capture_default_str();
-  bool polish_reference = false;
   app.add_flag("--polish-reference", polish_reference,
                "--pairs-csv: also run PCL's GICP from the reference pose and from each estimate (an independent "
                "check of the reference; columns ref_icp_*, est_vs_ref_icp_*, est_icp_*)");
@@ -432,6 +432,24 @@ int main(int argc, char** argv) {
                     "motion_t_m,motion_r_deg,ref_icp_t_m,ref_icp_r_deg,est_vs_ref_icp_t_m,est_vs_ref_icp_r_deg,"
                     "est_icp_t_m,est_icp_r_deg,icp_est_vs_ref_icp_t_m,icp_est_vs_ref_icp_r_deg,verified_precision_ref_icp,reason\n";
     }
+    // GICP from T_init between the views GASP registers (undistorted where the intrinsics have
+    // distortion; the depth is the cached one); none without the baselines or when it fails.
+    auto polish = [&]([[maybe_unused]] std::size_t i, [[maybe_unused]] std::size_t j,
+                      [[maybe_unused]] const gasp::Isometry3& T_init) -> std::optional<gasp::Isometry3> {
+#ifdef GASP_HAVE_BASELINES
+      const auto& va = cache.gaspView(i, base.superpixels).view;
+      const auto& vb = cache.gaspView(j, base.superpixels).view;
+      const auto r = gasp::baselines::polishPose(va.depth_m, vb.depth_m, va.intrinsics, T_init);
+      if (r.success) return r.T_target_source;
+#endif
+      return std::nullopt;
+    };
+    // Translation [m] and rotation [deg] of A^-1 B, or two empty CSV fields.
+    auto difference = [](const std::optional<gasp::Isometry3>& A, const std::optional<gasp::Isometry3>& B) {
+      if (!A || !B) return std::string(",");
+      const gasp::Isometry3 E = A->inverse() * *B;
+      return std::to_string(gasp::translationNorm(E)) + ',' + std::to_string(gasp::rotationAngle(E) * 180.0 / M_PI);
+    };
     const auto bench_t0 = Clock::now();
     std::size_t done = 0;
     for (const auto& [i, skip] : all) {
@@ -439,27 +457,8 @@ int main(int argc, char** argv) {
       const std::size_t j = i + skip;
       const gasp::Isometry3 T_gt = gasp::relativePose(*truth(j), *truth(i));
       // The reference polished by GICP (once per pair): how far the depth pulls it, and where to.
-      std::optional<gasp::Isometry3> T_ref_icp;
-#ifdef GASP_HAVE_BASELINES
-      auto polish = [&](const gasp::Isometry3& T_init) -> std::optional<gasp::Isometry3> {
-        // The views GASP registers (undistorted where the intrinsics have distortion).
-        const auto& va = cache.gaspView(i, base.superpixels).view;
-        const auto& vb = cache.gaspView(j, base.superpixels).view;
-        const auto r = gasp::baselines::polishPose(va.depth_m, vb.depth_m, va.intrinsics, T_init);
-        if (!r.success) return std::nullopt;
-        return r.T_target_source;
-      };
-      if (polish_reference && pairs_csv) T_ref_icp = polish(T_gt);
-#else
-      auto polish = [](const gasp::Isometry3&) -> std::optional<gasp::Isometry3> { return std::nullopt; };
-      const bool polish_reference = false;
-#endif
-      // Translation [m] and rotation [deg] of A^-1 B, or two empty CSV fields.
-      auto difference = [](const std::optional<gasp::Isometry3>& A, const std::optional<gasp::Isometry3>& B) {
-        if (!A || !B) return std::string(",");
-        const gasp::Isometry3 E = A->inverse() * *B;
-        return std::to_string(gasp::translationNorm(E)) + ',' + std::to_string(gasp::rotationAngle(E) * 180.0 / M_PI);
-      };
+      const std::optional<gasp::Isometry3> T_ref_icp =
+          polish_reference && pairs_csv ? polish(i, j, T_gt) : std::nullopt;
       for (const auto& method : methods) {
         if (needsColour(method) && (!hasRgb(i) || !hasRgb(j))) {
           ++no_rgb[{skip, method}];
@@ -503,7 +502,7 @@ int main(int argc, char** argv) {
           pairs_csv << ',' << gasp::translationNorm(T_gt) << ',' << gasp::rotationAngle(T_gt) * 180.0 / M_PI;
           std::optional<gasp::Isometry3> T_est;
           if (run.estimated) T_est = run.T_target_source;
-          const auto T_est_icp = T_est && polish_reference ? polish(*T_est) : std::nullopt;
+          const auto T_est_icp = T_est && polish_reference ? polish(i, j, *T_est) : std::nullopt;
           pairs_csv << ',' << difference(T_gt, T_ref_icp) << ',' << difference(T_est, T_ref_icp) << ','
                     << difference(T_est, T_est_icp) << ',' << difference(T_est_icp, T_ref_icp) << ',';
           if (run.verified_quality_polished) pairs_csv << run.verified_quality_polished->precision();

@@ -52,6 +52,12 @@ inline Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
   return m;
 }
 
+/// v rotated by the quaternion (u, w), as Eigen computes it.
+inline Eigen::Vector3d rotate(const Eigen::Vector3d& u, double w, const Eigen::Vector3d& v) {
+  const Eigen::Vector3d uv = 2.0 * u.cross(v);
+  return v + w * uv + u.cross(uv);
+}
+
 /// d(rotate(u, w, v)) / d(u, w) as a 3 x 4 matrix (columns x, y, z, w), rotate = Eigen's formula.
 inline Eigen::Matrix<double, 3, 4> rotationJacobian(const Eigen::Vector3d& u, double w, const Eigen::Vector3d& v) {
   Eigen::Matrix<double, 3, 4> J;
@@ -72,9 +78,7 @@ class TargetPlaneCost final : public ceres::SizedCostFunction<1, 4, 3> {
     const Eigen::Vector3d u(q[0], q[1], q[2]);
     const double w = q[3];
     const Eigen::Vector3d t(parameters[1][0], parameters[1][1], parameters[1][2]);
-    const Eigen::Vector3d uv = 2.0 * u.cross(r_.p);
-    const Eigen::Vector3d Rp = r_.p + w * uv + u.cross(uv);
-    residuals[0] = r_.n.dot(Rp + t - r_.q);
+    residuals[0] = r_.n.dot(plane_residuals::rotate(u, w, r_.p) + t - r_.q);
     if (jacobians) {
       if (jacobians[0]) {
         Eigen::Map<Eigen::Matrix<double, 1, 4>> Jq(jacobians[0]);
@@ -102,9 +106,7 @@ class SourcePlaneCost final : public ceres::SizedCostFunction<1, 4, 3> {
     const double w = q[3];
     const Eigen::Vector3d t(parameters[1][0], parameters[1][1], parameters[1][2]);
     const Eigen::Vector3d v = r_.p_t - t;
-    const Eigen::Vector3d uv = 2.0 * u.cross(v);
-    const Eigen::Vector3d Rv = v + w * uv + u.cross(uv);
-    residuals[0] = r_.n_s.dot(Rv - r_.p_s);
+    residuals[0] = r_.n_s.dot(plane_residuals::rotate(u, w, v) - r_.p_s);
     if (jacobians) {
       if (jacobians[0]) {
         Eigen::Matrix<double, 3, 4> J = plane_residuals::rotationJacobian(u, w, v);

@@ -10,11 +10,6 @@
 namespace gasp::detail {
 namespace {
 
-template <typename Cost, typename Residual>
-std::unique_ptr<ceres::CostFunction> analytic(const Residual& r) {
-  return std::make_unique<Cost>(r);
-}
-
 std::unique_ptr<ceres::LossFunction> makeLoss(const RefinementParams& params) {
   switch (params.loss) {
     case RobustLoss::kHuber: return std::make_unique<ceres::HuberLoss>(params.loss_scale_m);
@@ -30,12 +25,6 @@ ceres::Problem::Options borrowingOptions() {
   options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   return options;
-}
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return m;
 }
 
 }  // namespace
@@ -68,13 +57,14 @@ void PoseProblem::addPatch(const PatchCorrespondence& c) {
   // Both directions measure nearly the same error (n_t ~ R n_s): half weight each, so that a
   // patch pair counts as one measurement in the information.
   const double w = params_.bidirectional ? 0.5 * c.weight : c.weight;
-  add(analytic<TargetPlaneCost>(TargetPlaneResidual{c.p_source, c.p_target, c.n_target}), w, {c.p_source, true, w});
+  add(std::make_unique<TargetPlaneCost>(TargetPlaneResidual{c.p_source, c.p_target, c.n_target}), w, {c.p_source, true, w});
   if (params_.bidirectional)
-    add(analytic<SourcePlaneCost>(SourcePlaneResidual{c.p_source, c.n_source, c.p_target}), w, {c.p_target, false, w});
+    add(std::make_unique<SourcePlaneCost>(SourcePlaneResidual{c.p_source, c.n_source, c.p_target}), w,
+        {c.p_target, false, w});
 }
 
 void PoseProblem::addDense(const PointToPlane& term) {
-  add(analytic<TargetPlaneCost>(TargetPlaneResidual{term.p_source, term.q_target, term.n_target}), term.weight,
+  add(std::make_unique<TargetPlaneCost>(TargetPlaneResidual{term.p_source, term.q_target, term.n_target}), term.weight,
       {term.p_source, true, term.weight});
 }
 
@@ -126,7 +116,7 @@ Matrix6d PoseProblem::information() {
   Matrix6d A = Matrix6d::Zero();
   A.topRightCorner<3, 3>() = 0.5 * Eigen::Matrix3d::Identity();
   A.bottomLeftCorner<3, 3>() = Eigen::Matrix3d::Identity();
-  A.bottomRightCorner<3, 3>() = -skew(Eigen::Map<const Eigen::Vector3d>(t_.data()));
+  A.bottomRightCorner<3, 3>() = -plane_residuals::skew(Eigen::Map<const Eigen::Vector3d>(t_.data()));
   const Matrix6d information = A.transpose() * JtJ * A / (params_.noise_sigma_m * params_.noise_sigma_m);
   return 0.5 * (information + information.transpose());
 }
