@@ -245,6 +245,8 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
     if (pictures_only && picture_pair.empty()) throw CLI::ValidationError("--pictures-only needs --picture I,J");
+    if (polish_reference && pairs_csv_path.empty())
+      throw CLI::ValidationError("--polish-reference writes its columns to the --pairs-csv file: give --pairs-csv");
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;  // --help: 0; any usage error: 2
   }
@@ -458,7 +460,7 @@ int main(int argc, char** argv) {
       const gasp::Isometry3 T_gt = gasp::relativePose(*truth(j), *truth(i));
       // The reference polished by GICP (once per pair): how far the depth pulls it, and where to.
       const std::optional<gasp::Isometry3> T_ref_icp =
-          polish_reference && pairs_csv ? polish(i, j, T_gt) : std::nullopt;
+          polish_reference ? polish(i, j, T_gt) : std::nullopt;
       for (const auto& method : methods) {
         if (needsColour(method) && (!hasRgb(i) || !hasRgb(j))) {
           ++no_rgb[{skip, method}];

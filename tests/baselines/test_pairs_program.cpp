@@ -133,4 +133,8 @@ TEST(PairsProgram, PolishReferenceFillsTheGicpColumns) {
   ASSERT_EQ(rows2.size(), 2u);
   const auto c = split(rows2[1]);
   EXPECT_TRUE(c[column("ref_icp_r_deg")].empty()) << rows2[1];
+  // The flag without a pairs file has nowhere to write: a usage error that says so.
+  const auto alone = run("gasp-pairs", "--tum " + dir + " --skips 4 --method gasp --polish-reference");
+  EXPECT_EQ(alone.exit_code, 2) << alone.output;
+  EXPECT_NE(alone.output.find("--pairs-csv"), std::string::npos) << alone.output;
 }
