@@ -1,5 +1,5 @@
 // Speed of the depth-superpixel decomposition on real 640x480 Kinect frames (fr1_xyz).
-//   build/release/bin/bench_superpixels [--frames N] [google benchmark flags]
+//   build/release/bin/bench_superpixels [--frames N] [--no-crease-borders] [google benchmark flags]
 // Google Benchmark times the whole decomposition on one thread (one frame per iteration, cycling
 // through the frames) and a pair of frames segmented at once on two threads, one frame each (the
 // pair pipeline's case; wall time), and the lens undistortion of one fr1 depth frame (done when a
@@ -31,11 +31,17 @@ Frames& frames() {
   return f;
 }
 
+/// Defaults, or crease_borders off with --no-crease-borders (the cost of that stage, A/B).
+gasp::SuperpixelParams& params() {
+  static gasp::SuperpixelParams p;
+  return p;
+}
+
 void BM_SegmentFr1Xyz(benchmark::State& state) {
   const auto& f = frames();
   std::size_t i = 0, patches = 0;
   for (auto _ : state) {
-    const auto seg = gasp::segmentDepthSuperpixels(f.depth[i % f.depth.size()], f.intrinsics);
+    const auto seg = gasp::segmentDepthSuperpixels(f.depth[i % f.depth.size()], f.intrinsics, params());
     patches += seg.patches.size();
     benchmark::DoNotOptimize(seg.labels.data);
     ++i;
@@ -48,9 +54,9 @@ BENCHMARK(BM_SegmentFr1Xyz)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 std::size_t segmentPair(std::size_t i) {
   const auto& f = frames();
   auto other = std::async(std::launch::async, [&] {
-    return gasp::segmentDepthSuperpixels(f.depth[(i + 1) % f.depth.size()], f.intrinsics).patches.size();
+    return gasp::segmentDepthSuperpixels(f.depth[(i + 1) % f.depth.size()], f.intrinsics, params()).patches.size();
   });
-  const std::size_t n = gasp::segmentDepthSuperpixels(f.depth[i % f.depth.size()], f.intrinsics).patches.size();
+  const std::size_t n = gasp::segmentDepthSuperpixels(f.depth[i % f.depth.size()], f.intrinsics, params()).patches.size();
   return n + other.get();
 }
 
@@ -83,8 +89,10 @@ double median(std::vector<double> v) {
 
 int main(int argc, char** argv) {
   int n_frames = 40;
-  for (int a = 1; a + 1 < argc; ++a)
-    if (std::strcmp(argv[a], "--frames") == 0) n_frames = std::atoi(argv[a + 1]);
+  for (int a = 1; a < argc; ++a) {
+    if (a + 1 < argc && std::strcmp(argv[a], "--frames") == 0) n_frames = std::atoi(argv[a + 1]);
+    if (std::strcmp(argv[a], "--no-crease-borders") == 0) params().crease_borders = false;
+  }
   const std::string dir = gasp::bench::dataDir() + "/tum/fr1_xyz";
   try {
     const auto ds = gasp::TumDataset::open(dir);
@@ -101,6 +109,7 @@ int main(int argc, char** argv) {
   std::vector<char*> args;
   for (int a = 0; a < argc; ++a) {
     if (std::strcmp(argv[a], "--frames") == 0) { ++a; continue; }
+    if (std::strcmp(argv[a], "--no-crease-borders") == 0) continue;
     args.push_back(argv[a]);
   }
   int n_args = static_cast<int>(args.size());
@@ -111,7 +120,7 @@ int main(int argc, char** argv) {
   // Per-stage medians over the frames (one pass each, after the warm-up above).
   std::vector<double> cloud, normals, components, kmeans, cleanup, refine, patches_ms, total, count;
   for (const auto& d : frames().depth) {
-    const auto seg = gasp::segmentDepthSuperpixels(d, frames().intrinsics);
+    const auto seg = gasp::segmentDepthSuperpixels(d, frames().intrinsics, params());
     const auto& t = seg.timings;
     cloud.push_back(t.cloud_ms); normals.push_back(t.normals_ms); components.push_back(t.components_ms);
     kmeans.push_back(t.kmeans_ms); cleanup.push_back(t.cleanup_ms); refine.push_back(t.refine_ms);

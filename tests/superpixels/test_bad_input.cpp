@@ -64,6 +64,16 @@ TEST(SuperpixelsBadInput, InvalidParametersThrow) {
   p = {};
   p.kmeans_coarse_iterations = -1;
   EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
+  p = {};
+  p.crease_band_px = -1;
+  EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
+  p = {};
+  p.crease_min_angle_deg = 0.0;
+  EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
+  p = {};
+  p.plane_noise_abs_m = 0.0;
+  p.plane_noise_rel = 0.0;
+  EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
 }
 
 TEST(SuperpixelsBadInput, SparseSpecklesDoNotHang) {

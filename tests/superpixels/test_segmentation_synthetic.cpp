@@ -40,9 +40,9 @@ TEST(SuperpixelsSynthetic, PatchesAreContiguousAndCoverTheView) {
 
 TEST(SuperpixelsSynthetic, PatchesRespectSurfaceEdges) {
   // A patch lies on one ground-truth surface when at least 90% of its pixels carry that
-  // surface's label. The target is 98% of patches; measured (docs/superpixels.md):
-  // 95-99% depending on the view -- far views (walls at 4 m, Kinect quantisation ~5 cm) fall short
-  // at thin faces and a 2 cm picture relief. This test guards the level reached: 95%.
+  // surface's label. The target is 98% of patches; measured (docs/superpixels.md): 0.970 /
+  // 0.991 / 0.988 on these frames -- frame 0's walls 4-5 m away fall short at a 2 cm picture
+  // relief and faces thinner than a patch. This test guards the level reached.
   for (int index : {0, 30, 59}) {
     const auto f = frameOf("room", index);
     const auto seg = gasp::segmentDepthSuperpixels(f.depth, gasp::CameraIntrinsics::rosDefault());
@@ -60,7 +60,7 @@ TEST(SuperpixelsSynthetic, PatchesRespectSurfaceEdges) {
     }
     const double share = static_cast<double>(on_one_surface) / static_cast<double>(seg.patches.size());
     std::printf("frame %d: %.4f of %zu patches on one surface\n", index, share, seg.patches.size());
-    EXPECT_GE(share, 0.95);
+    EXPECT_GE(share, index == 0 ? 0.965 : 0.98);
   }
 }
 

@@ -52,6 +52,10 @@ void validate(const SuperpixelParams& p) {
   require(p.processing_step_px >= 1 && p.processing_step_px <= 4, "processing_step_px must be in [1, 4]");
   require(p.kmeans_iteration_step_px >= 1, "kmeans_iteration_step_px must be >= 1");
   require(p.kmeans_coarse_iterations >= 0, "kmeans_coarse_iterations must be >= 0");
+  require(p.crease_min_angle_deg > 0 && p.crease_min_angle_deg < 180, "crease_min_angle_deg must be in (0, 180)");
+  require(p.crease_band_px >= 0, "crease_band_px must be >= 0");
+  require(p.plane_noise_abs_m >= 0 && p.plane_noise_rel >= 0 && p.plane_noise_abs_m + p.plane_noise_rel > 0,
+          "plane noise must be >= 0 and not both 0");
 }
 
 SuperpixelSegmentation segmentDepthSuperpixels(const cv::Mat& depth_m, const CameraIntrinsics& k,

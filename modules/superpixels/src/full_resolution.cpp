@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "contiguity.h"
+#include "crease_borders.h"
 #include "leftover_pixels.h"
 #include "pixel_area.h"
 #include "region_growing.h"
@@ -278,6 +279,7 @@ FullResolutionLabels refineToFullResolution(const cv::Mat& grid_labels, int grid
   // Each patch keeps its largest linked piece; pixels cut off (and those on no surface around)
   // join adjacent patches within two patch radii of their plane, as in the clean-up's second
   // pass. There are few, so the patches' area is not limited.
+  if (p.crease_borders) refineCreaseBorders(L, grid_count, models, counts.data(), N, cloud, links, k, p);
   keepLargestPieces(out.labels, links, counts.data(), &unlabelled);
   for (std::size_t c = 0; c < models.size(); ++c) models[c].pixels = counts[c];
   const float radius = static_cast<float>(std::sqrt(p.target_patch_area_m2 / M_PI));

@@ -51,6 +51,17 @@ struct SuperpixelParams {
   int processing_step_px = 2;
   int kmeans_iteration_step_px = 2;  ///< Lloyd iterations assign every n-th pixel each way (the final pass all)
   int kmeans_coarse_iterations = 4;  ///< the first of the kmeans_iterations assign every (2 n)-th pixel
+
+  // ---- Crease borders (src/crease_borders.h; with processing_step_px > 1): border pixels between
+  //      patches of two planar surfaces meeting at more than crease_min_angle_deg move to the patch
+  //      whose plane their ray sees, up to crease_band_px pixels from the border. Surface planes
+  //      are groups of coplanar patches: centroids within plane_noise_abs_m + plane_noise_rel * z^2
+  //      (RMS) of the group's plane.
+  bool crease_borders = true;
+  double crease_min_angle_deg = 30.0;
+  int crease_band_px = 8;
+  double plane_noise_abs_m = 0.005;
+  double plane_noise_rel = 0.003;  ///< [1/m]
 };
 
 }  // namespace gasp
