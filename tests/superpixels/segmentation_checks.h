@@ -2,6 +2,9 @@
 // Checks shared by the superpixel tests.
 #include <opencv2/core.hpp>
 
+#include <algorithm>
+#include <cstdint>
+#include <map>
 #include <queue>
 #include <vector>
 
@@ -37,6 +40,31 @@ inline int countNonContiguousPatches(const SuperpixelSegmentation& seg) {
   int bad = 0;
   for (int c : pieces) bad += c != 1;
   return bad;
+}
+
+/// How well patches keep to ground-truth surfaces (surface_ids: CV_16UC1, one id per pixel).
+struct SurfacePurity {
+  double share_on_one_surface = 0.0;  ///< patches with >= 90% of their pixels on one surface
+  int pixels_off_majority = 0;        ///< pixels on another surface than their patch's majority
+};
+
+inline SurfacePurity surfacePurity(const SuperpixelSegmentation& seg, const cv::Mat& surface_ids) {
+  std::vector<std::map<int, int>> votes(seg.patches.size());
+  for (int v = 0; v < seg.labels.rows; ++v)
+    for (int u = 0; u < seg.labels.cols; ++u) {
+      const int l = seg.labels.at<int>(v, u);
+      if (l >= 0) ++votes[static_cast<std::size_t>(l)][surface_ids.at<std::uint16_t>(v, u)];
+    }
+  SurfacePurity out;
+  int pure = 0;
+  for (std::size_t i = 0; i < votes.size(); ++i) {
+    int best = 0;
+    for (const auto& [surface, n] : votes[i]) best = std::max(best, n);
+    pure += best >= 0.9 * seg.patches[i].pixel_count;
+    out.pixels_off_majority += seg.patches[i].pixel_count - best;
+  }
+  out.share_on_one_surface = votes.empty() ? 0.0 : static_cast<double>(pure) / static_cast<double>(votes.size());
+  return out;
 }
 
 }  // namespace gasp::test

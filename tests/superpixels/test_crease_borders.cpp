@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <map>
 
 #include "gasp/sim/noise_model.h"
 #include "gasp/sim/renderer.h"
@@ -33,13 +32,12 @@ gasp::sim::Scene corner(bool concave) {
   return s;
 }
 
-struct Purity {
-  double share_on_one_surface = 0.0;  ///< patches with >= 90% of their pixels on one surface
-  int pixels_off_majority = 0;        ///< pixels on another surface than their patch's majority
+struct Scored {
+  gasp::test::SurfacePurity purity;
   std::size_t patches = 0;
 };
 
-Purity segmentAndScore(const gasp::sim::Scene& scene, bool crease_borders) {
+Scored segmentAndScore(const gasp::sim::Scene& scene, bool crease_borders) {
   const auto K = gasp::CameraIntrinsics::rosDefault();
   Isometry3 T_world_camera = Isometry3::Identity();  // optical frame: z forward = world x
   T_world_camera.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
@@ -49,23 +47,7 @@ Purity segmentAndScore(const gasp::sim::Scene& scene, bool crease_borders) {
   p.crease_borders = crease_borders;
   const auto seg = gasp::segmentDepthSuperpixels(depth, K, p);
   EXPECT_EQ(gasp::test::countNonContiguousPatches(seg), 0);
-  std::vector<std::map<int, int>> votes(seg.patches.size());
-  for (int v = 0; v < depth.rows; ++v)
-    for (int u = 0; u < depth.cols; ++u) {
-      const int l = seg.labels.at<int>(v, u);
-      if (l >= 0) ++votes[static_cast<std::size_t>(l)][rendered.surface_id.at<std::uint16_t>(v, u)];
-    }
-  Purity out;
-  out.patches = seg.patches.size();
-  int pure = 0;
-  for (std::size_t i = 0; i < votes.size(); ++i) {
-    int best = 0;
-    for (const auto& [surface, n] : votes[i]) best = std::max(best, n);
-    pure += best >= 0.9 * seg.patches[i].pixel_count;
-    out.pixels_off_majority += seg.patches[i].pixel_count - best;
-  }
-  out.share_on_one_surface = static_cast<double>(pure) / static_cast<double>(seg.patches.size());
-  return out;
+  return {gasp::test::surfacePurity(seg, rendered.surface_id), seg.patches.size()};
 }
 
 }  // namespace
@@ -73,13 +55,13 @@ Purity segmentAndScore(const gasp::sim::Scene& scene, bool crease_borders) {
 TEST(CreaseBorders, BordersFollowTheCreaseFourMetresAway) {
   for (bool concave : {true, false}) {
     const auto scene = corner(concave);
-    const Purity off = segmentAndScore(scene, false);
-    const Purity on = segmentAndScore(scene, true);
+    const Scored off = segmentAndScore(scene, false);
+    const Scored on = segmentAndScore(scene, true);
     std::printf("%s crease: %zu patches; on one surface %.3f -> %.3f, pixels off their patch's surface %d -> %d\n",
-                concave ? "concave" : "convex", on.patches, off.share_on_one_surface, on.share_on_one_surface,
-                off.pixels_off_majority, on.pixels_off_majority);
-    EXPECT_GE(on.share_on_one_surface, 0.99);
-    EXPECT_LT(on.pixels_off_majority, off.pixels_off_majority / 2);
+                concave ? "concave" : "convex", on.patches, off.purity.share_on_one_surface,
+                on.purity.share_on_one_surface, off.purity.pixels_off_majority, on.purity.pixels_off_majority);
+    EXPECT_GE(on.purity.share_on_one_surface, 0.99);
+    EXPECT_LT(on.purity.pixels_off_majority, off.purity.pixels_off_majority / 2);
   }
 }
 

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <future>
-#include <map>
 #include <numeric>
 
 #include "gasp/sim/simulation.h"
@@ -46,19 +45,7 @@ TEST(SuperpixelsSynthetic, PatchesRespectSurfaceEdges) {
   for (int index : {0, 30, 59}) {
     const auto f = frameOf("room", index);
     const auto seg = gasp::segmentDepthSuperpixels(f.depth, gasp::CameraIntrinsics::rosDefault());
-    std::vector<std::map<int, int>> votes(seg.patches.size());
-    for (int v = 0; v < f.depth.rows; ++v)
-      for (int u = 0; u < f.depth.cols; ++u) {
-        const int l = seg.labels.at<int>(v, u);
-        if (l >= 0) ++votes[static_cast<std::size_t>(l)][f.labels.at<std::uint16_t>(v, u)];
-      }
-    int on_one_surface = 0;
-    for (std::size_t i = 0; i < votes.size(); ++i) {
-      int best = 0;
-      for (const auto& [surface, count] : votes[i]) best = std::max(best, count);
-      on_one_surface += best >= 0.9 * seg.patches[i].pixel_count;
-    }
-    const double share = static_cast<double>(on_one_surface) / static_cast<double>(seg.patches.size());
+    const double share = gasp::test::surfacePurity(seg, f.labels).share_on_one_surface;
     std::printf("frame %d: %.4f of %zu patches on one surface\n", index, share, seg.patches.size());
     EXPECT_GE(share, index == 0 ? 0.965 : 0.98);
   }

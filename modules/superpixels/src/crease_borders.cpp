@@ -35,8 +35,8 @@ std::vector<std::vector<int>> adjacency(const int* L, int count, const DepthLink
     for (int u = 0; u < w; ++u) {
       const int a = row[u];
       if (a < 0) continue;
-      const std::uint8_t bits = links.bits(v * w + u);
       const int i = v * w + u;
+      const std::uint8_t bits = links.bits(i);
       if (bits & DepthLinks::kRight) {
         const int b = row[u + 1];
         if (b != a && b >= 0) {
@@ -111,11 +111,11 @@ int refineCreaseBorders(int* L, int count, const std::vector<PlaneModel>& models
     s.weight += wl;
     ++s.members;
   }
-  std::vector<SurfacePlane> candidates_planes(n_labels);
+  std::vector<SurfacePlane> group_planes(n_labels);
   for (std::size_t r = 0; r < n_labels; ++r) {
     const Sums& s = sums[r];
     if (s.members < 3 || !(s.normal.norm() > 0.0)) continue;
-    SurfacePlane& sp = candidates_planes[r];
+    SurfacePlane& sp = group_planes[r];
     sp.point = s.point / s.weight;
     sp.normal = s.normal.normalized();
     sp.offset = sp.normal.dot(sp.point);
@@ -125,14 +125,14 @@ int refineCreaseBorders(int* L, int count, const std::vector<PlaneModel>& models
   for (int l = 0; l < count; ++l) {
     if (!interior[static_cast<std::size_t>(l)]) continue;
     const auto r = static_cast<std::size_t>(sets.find(l));
-    const double d = candidates_planes[r].normal.dot(centroid(l)) - candidates_planes[r].offset;
+    const double d = group_planes[r].normal.dot(centroid(l)) - group_planes[r].offset;
     square_sums[r] += pixel_counts[l] * d * d;
   }
   std::vector<SurfacePlane> planes;
   std::vector<int> plane_of_root(n_labels, -1);
   for (std::size_t r = 0; r < n_labels; ++r) {
-    const SurfacePlane& sp = candidates_planes[r];
-    if (sums[r].members < 3 || !(sp.normal.norm() > 0.0)) continue;
+    const SurfacePlane& sp = group_planes[r];
+    if (sp.normal.isZero()) continue;  // not a group of >= 3 patches
     if (std::sqrt(square_sums[r] / sums[r].weight) > tolerance(sp.point.z())) continue;
     plane_of_root[r] = static_cast<int>(planes.size());
     planes.push_back(sp);

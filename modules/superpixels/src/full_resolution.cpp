@@ -276,10 +276,11 @@ FullResolutionLabels refineToFullResolution(const cv::Mat& grid_labels, int grid
                                               reinterpret_cast<const Eigen::Vector3f*>(gn.normals.ptr<float>(0)));
   std::vector<int> counts(static_cast<std::size_t>(grid_count), 0), unlabelled;
   upsample(GL, models, g, gn, core, cloud, links, p, L, N, counts.data(), unlabelled);
+  // Borders along creases follow the planes' intersection (crease_borders.h).
+  if (p.crease_borders) refineCreaseBorders(L, grid_count, models, counts.data(), N, cloud, links, k, p);
   // Each patch keeps its largest linked piece; pixels cut off (and those on no surface around)
   // join adjacent patches within two patch radii of their plane, as in the clean-up's second
   // pass. There are few, so the patches' area is not limited.
-  if (p.crease_borders) refineCreaseBorders(L, grid_count, models, counts.data(), N, cloud, links, k, p);
   keepLargestPieces(out.labels, links, counts.data(), &unlabelled);
   for (std::size_t c = 0; c < models.size(); ++c) models[c].pixels = counts[c];
   const float radius = static_cast<float>(std::sqrt(p.target_patch_area_m2 / M_PI));
