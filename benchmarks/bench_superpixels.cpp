@@ -1,5 +1,5 @@
 // Speed of the depth-superpixel decomposition on real 640x480 Kinect frames (fr1_xyz).
-//   build/release/bin/bench_superpixels [--frames N] [--no-crease-borders] [google benchmark flags]
+//   build/release/bin/bench_superpixels [--frames N] [--no-crease-borders] [--step-borders] [google benchmark flags]
 // Google Benchmark times the whole decomposition on one thread (one frame per iteration, cycling
 // through the frames) and a pair of frames segmented at once on two threads, one frame each (the
 // pair pipeline's case; wall time), and the lens undistortion of one fr1 depth frame (done when a
@@ -31,7 +31,8 @@ Frames& frames() {
   return f;
 }
 
-/// Defaults, or crease_borders off with --no-crease-borders (the cost of that stage, A/B).
+/// Defaults, or crease_borders off with --no-crease-borders, step_borders on with --step-borders
+/// (the cost of those stages, A/B).
 gasp::SuperpixelParams& params() {
   static gasp::SuperpixelParams p;
   return p;
@@ -92,6 +93,7 @@ int main(int argc, char** argv) {
   for (int a = 1; a < argc; ++a) {
     if (a + 1 < argc && std::strcmp(argv[a], "--frames") == 0) n_frames = std::atoi(argv[a + 1]);
     if (std::strcmp(argv[a], "--no-crease-borders") == 0) params().crease_borders = false;
+    if (std::strcmp(argv[a], "--step-borders") == 0) params().step_borders = true;
   }
   const std::string dir = gasp::bench::dataDir() + "/tum/fr1_xyz";
   try {
@@ -109,7 +111,7 @@ int main(int argc, char** argv) {
   std::vector<char*> args;
   for (int a = 0; a < argc; ++a) {
     if (std::strcmp(argv[a], "--frames") == 0) { ++a; continue; }
-    if (std::strcmp(argv[a], "--no-crease-borders") == 0) continue;
+    if (std::strcmp(argv[a], "--no-crease-borders") == 0 || std::strcmp(argv[a], "--step-borders") == 0) continue;
     args.push_back(argv[a]);
   }
   int n_args = static_cast<int>(args.size());

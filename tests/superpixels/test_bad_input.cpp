@@ -1,6 +1,7 @@
 // Bad input gives a clear error or an empty, valid result -- never a crash or a hang.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 #include "gasp/core/error.h"
@@ -74,6 +75,14 @@ TEST(SuperpixelsBadInput, InvalidParametersThrow) {
   p.plane_noise_abs_m = 0.0;
   p.plane_noise_rel = 0.0;
   EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
+  for (double bad : {-1.0, std::nan("")}) {
+    p = {};
+    p.step_min_sigmas = bad;
+    EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
+    p = {};
+    p.step_smoothness = bad;
+    EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
+  }
 }
 
 TEST(SuperpixelsBadInput, SparseSpecklesDoNotHang) {

@@ -39,15 +39,22 @@ TEST(SuperpixelsSynthetic, PatchesAreContiguousAndCoverTheView) {
 
 TEST(SuperpixelsSynthetic, PatchesRespectSurfaceEdges) {
   // A patch lies on one ground-truth surface when at least 90% of its pixels carry that
-  // surface's label. The target is 98% of patches; measured (docs/superpixels.md): 0.970 /
-  // 0.991 / 0.988 on these frames -- frame 0's walls 4-5 m away fall short at a 2 cm picture
-  // relief and faces thinner than a patch. This test guards the level reached.
-  for (int index : {0, 30, 59}) {
-    const auto f = frameOf("room", index);
-    const auto seg = gasp::segmentDepthSuperpixels(f.depth, gasp::CameraIntrinsics::rosDefault());
-    const double share = gasp::test::surfacePurity(seg, f.labels).share_on_one_surface;
-    std::printf("frame %d: %.4f of %zu patches on one surface\n", index, share, seg.patches.size());
-    EXPECT_GE(share, index == 0 ? 0.965 : 0.98);
+  // surface's label. The target is 98% of patches; measured (docs/superpixels.md), frames
+  // 0 / 10 / 20 / 30 / 59: defaults 0.970 / 0.977 / 0.974 / 0.991 / 0.988, with the step borders
+  // (off by default for speed) 0.979 / 0.990 / 0.987 / 0.991 / 0.988 -- frame 0's walls 4-5 m away
+  // fall short at faces thinner than a patch. This test guards the levels reached.
+  for (bool step_borders : {false, true}) {
+    gasp::SuperpixelParams p;
+    p.step_borders = step_borders;
+    for (int index : {0, 10, 20, 30, 59}) {
+      const auto f = frameOf("room", index);
+      const auto seg = gasp::segmentDepthSuperpixels(f.depth, gasp::CameraIntrinsics::rosDefault(), p);
+      const double share = gasp::test::surfacePurity(seg, f.labels).share_on_one_surface;
+      std::printf("step borders %s, frame %d: %.4f of %zu patches on one surface\n", step_borders ? "on" : "off",
+                  index, share, seg.patches.size());
+      const double floor = index == 0 ? (step_borders ? 0.975 : 0.965) : (index < 30 && !step_borders ? 0.97 : 0.98);
+      EXPECT_GE(share, floor) << index;
+    }
   }
 }
 

@@ -56,6 +56,8 @@ void validate(const SuperpixelParams& p) {
   require(p.crease_band_px >= 0, "crease_band_px must be >= 0");
   require(p.plane_noise_abs_m >= 0 && p.plane_noise_rel >= 0 && p.plane_noise_abs_m + p.plane_noise_rel > 0,
           "plane noise must be >= 0 and not both 0");
+  require(p.step_min_sigmas >= 0 && std::isfinite(p.step_min_sigmas), "step_min_sigmas must be >= 0");
+  require(p.step_smoothness >= 0 && std::isfinite(p.step_smoothness), "step_smoothness must be >= 0");
 }
 
 SuperpixelSegmentation segmentDepthSuperpixels(const cv::Mat& depth_m, const CameraIntrinsics& k,

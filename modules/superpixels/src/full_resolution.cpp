@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "contiguity.h"
@@ -11,6 +12,7 @@
 #include "leftover_pixels.h"
 #include "pixel_area.h"
 #include "region_growing.h"
+#include "step_borders.h"
 
 namespace gasp::detail {
 
@@ -277,7 +279,11 @@ FullResolutionLabels refineToFullResolution(const cv::Mat& grid_labels, int grid
   std::vector<int> counts(static_cast<std::size_t>(grid_count), 0), unlabelled;
   upsample(GL, models, g, gn, core, cloud, links, p, L, N, counts.data(), unlabelled);
   // Borders along creases follow the planes' intersection (crease_borders.h).
-  if (p.crease_borders) refineCreaseBorders(L, grid_count, models, counts.data(), N, cloud, links, k, p);
+  if (p.crease_borders) {
+    SurfacePlanes planes = findSurfacePlanes(L, grid_count, models, counts.data(), links, p);
+    refineCreaseBorders(L, grid_count, planes, models, counts.data(), N, cloud, links, k, p);
+    if (p.step_borders) refineStepBorders(L, grid_count, std::move(planes), models, counts.data(), N, cloud, links, p);
+  }
   // Each patch keeps its largest linked piece; pixels cut off (and those on no surface around)
   // join adjacent patches within two patch radii of their plane, as in the clean-up's second
   // pass. There are few, so the patches' area is not limited.

@@ -62,6 +62,15 @@ struct SuperpixelParams {
   int crease_band_px = 8;
   double plane_noise_abs_m = 0.005;
   double plane_noise_rel = 0.003;  ///< [1/m]
+
+  // ---- Step borders (src/step_borders.h; with crease_borders): patches of a surface plane whose
+  //      centroids lie more than step_min_sigmas robust standard deviations off it (and at least
+  //      discontinuity_abs_m) form a level (a picture on a wall); the border between the level and
+  //      the surface is placed by a minimum cut over depth residuals, a linked pair of pixels on
+  //      different sides costing step_smoothness (in units of a pixel's squared-noise cost).
+  bool step_borders = false;  // off by default: +12-20 ms per fr1_xyz frame (docs/superpixels.md)
+  double step_min_sigmas = 6.0;
+  double step_smoothness = 1.0;
 };
 
 }  // namespace gasp

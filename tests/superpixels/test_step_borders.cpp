@@ -1,0 +1,76 @@
+// Step borders (src/step_borders.h): a picture 4 cm in front of a wall 4 m away, where a pixel's
+// depth cannot tell them apart (Kinect noise ~3 cm, disparity levels 4 cm): the patch borders
+// follow the picture's outline.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "gasp/sim/noise_model.h"
+#include "gasp/sim/renderer.h"
+#include "gasp/sim/scene.h"
+#include "gasp/superpixels/depth_superpixels.h"
+#include "segmentation_checks.h"
+
+namespace {
+
+using gasp::Isometry3;
+
+/// A 5 x 3 m wall 4 m in front of the camera, turned 20 deg about the vertical, with (when
+/// `relief` > 0) a 0.8 x 0.6 m picture `relief` metres in front of it.
+gasp::sim::Scene wall(double relief) {
+  gasp::sim::Scene s;
+  const double yaw = 20.0 * M_PI / 180.0;
+  const Eigen::Vector3d along(std::sin(yaw), std::cos(yaw), 0.0);
+  Isometry3 T = Isometry3::Identity();
+  T.linear().col(0) = along;
+  T.linear().col(1) = Eigen::Vector3d::UnitZ();
+  T.linear().col(2) = along.cross(Eigen::Vector3d::UnitZ());  // away from the camera
+  T.translation() = Eigen::Vector3d(4.0, 0.0, 0.0);
+  s.add("wall", gasp::sim::Rectangle{2.5, 1.5}, T);
+  if (relief > 0.0) {
+    Isometry3 P = T;
+    P.translation() = T * Eigen::Vector3d(0.3, 0.2, -relief);
+    s.add("picture", gasp::sim::Rectangle{0.4, 0.3}, P);
+  }
+  return s;
+}
+
+struct Scored {
+  gasp::test::SurfacePurity purity;
+  gasp::SuperpixelSegmentation seg;
+};
+
+Scored segmentAndScore(const gasp::sim::Scene& scene, bool step_borders) {
+  const auto K = gasp::CameraIntrinsics::rosDefault();
+  Isometry3 T_world_camera = Isometry3::Identity();  // optical frame: z forward = world x
+  T_world_camera.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  const auto rendered = gasp::sim::renderFrame(scene, K, T_world_camera);
+  const cv::Mat depth = gasp::sim::sensorDepth(rendered, gasp::sim::KinectNoiseModel{}, K, 7, 0);
+  gasp::SuperpixelParams p;
+  p.step_borders = step_borders;
+  auto seg = gasp::segmentDepthSuperpixels(depth, K, p);
+  EXPECT_EQ(gasp::test::countNonContiguousPatches(seg), 0);
+  return {gasp::test::surfacePurity(seg, rendered.surface_id), std::move(seg)};
+}
+
+}  // namespace
+
+TEST(StepBorders, BordersFollowAPictureFourCentimetresProudFourMetresAway) {
+  const auto scene = wall(0.04);
+  const Scored off = segmentAndScore(scene, false);
+  const Scored on = segmentAndScore(scene, true);
+  std::printf("picture: %zu patches; on one surface %.3f -> %.3f, pixels off their patch's surface %d -> %d\n",
+              on.seg.patches.size(), off.purity.share_on_one_surface, on.purity.share_on_one_surface,
+              off.purity.pixels_off_majority, on.purity.pixels_off_majority);
+  EXPECT_GE(on.purity.share_on_one_surface, 0.98);
+  EXPECT_LT(on.purity.pixels_off_majority, off.purity.pixels_off_majority / 2);
+}
+
+TEST(StepBorders, AWallAloneIsNotCut) {
+  // No step: one surface plane, nothing to cut between -- the labels are those without the stage.
+  const auto scene = wall(0.0);
+  const Scored off = segmentAndScore(scene, false);
+  const Scored on = segmentAndScore(scene, true);
+  EXPECT_EQ(cv::countNonZero(on.seg.labels != off.seg.labels), 0);
+}
