@@ -6,17 +6,22 @@
 // on both sides, so the earlier stages see one smooth surface and k-means cuts it with no regard
 // to the step: the patches along it straddle both levels. No pixel's depth can place the step
 // there (at 4 m the Kinect noise is ~3 cm and a disparity level 4 cm), but many can:
-//  1. Within each surface plane (surface_planes.h), patches whose centroids lie off the plane by
-//     more than step_min_sigmas robust standard deviations of the members' offsets (and at least
-//     discontinuity_abs_m), connected and on one side, at least 3 of them, form a level; its
-//     offset is their median.
-//  2. The pixels of the level's patches and of the patches around it are labelled "level" or
-//     "surface" by a minimum cut (OpenCV's GCGraph): each pixel pays the squared distance of its
-//     depth to either plane in units of the pixel noise (truncated), each linked pair of pixels
-//     labelled apart pays step_smoothness. So the step is placed where the depths of many pixels
-//     along it agree, as a short, straight-ish border.
-//  3. Each patch around the level takes the side most of its pixels are on; pixels on the other
-//     side join, through linked neighbours, a patch of their own side.
+//  1. Within each surface plane (surface_planes.h), connected runs of at least 3 interior
+//     patches whose centroids lie off the plane on one side by more than step_min_sigmas robust
+//     standard deviations of the members' offsets (and at least discontinuity_abs_m) form a
+//     level: a plane of their own, parallel, at the run's median offset.
+//  2. For two parallel planes that touch (patches adjacent, or through patches with no plane,
+//     whose normals the step blurred) and whose depth difference is significant against how
+//     well the planes are known yet below a depth discontinuity, the pixels along their border
+//     (every pixel of a patch with no plane, and those up to 4 px from a border between the two
+//     sides) are labelled by a minimum cut (OpenCV's GCGraph): each pixel pays the squared
+//     distance of its depth to either plane in units of the pixel noise (truncated), each linked
+//     pair of pixels labelled apart pays step_smoothness, the pixels around pull to their
+//     patch's plane. So the step is placed where the depths of many pixels along it agree.
+//  3. Each patch with no plane takes the side most of its pixels are on; pixels on the other side
+//     than their patch join, through linked neighbours, a patch of their own side.
+// Off by default (SuperpixelParams::step_borders): on real desk frames it finds many levels and
+// costs 12-20 ms per frame (docs/superpixels.md).
 // Patches may be left in pieces; the caller keeps each patch's largest piece and regrows the rest.
 #include <vector>
 
