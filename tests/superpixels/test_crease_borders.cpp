@@ -5,11 +5,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "gasp/sim/noise_model.h"
-#include "gasp/sim/renderer.h"
 #include "gasp/sim/scene.h"
 #include "gasp/superpixels/depth_superpixels.h"
-#include "segmentation_checks.h"
+#include "noisy_view.h"
 
 namespace {
 
@@ -32,22 +30,10 @@ gasp::sim::Scene corner(bool concave) {
   return s;
 }
 
-struct Scored {
-  gasp::test::SurfacePurity purity;
-  std::size_t patches = 0;
-};
-
-Scored segmentAndScore(const gasp::sim::Scene& scene, bool crease_borders) {
-  const auto K = gasp::CameraIntrinsics::rosDefault();
-  Isometry3 T_world_camera = Isometry3::Identity();  // optical frame: z forward = world x
-  T_world_camera.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-  const auto rendered = gasp::sim::renderFrame(scene, K, T_world_camera);
-  const cv::Mat depth = gasp::sim::sensorDepth(rendered, gasp::sim::KinectNoiseModel{}, K, 7, 0);
+gasp::test::ScoredSegmentation segmentAndScore(const gasp::sim::Scene& scene, bool crease_borders) {
   gasp::SuperpixelParams p;
   p.crease_borders = crease_borders;
-  const auto seg = gasp::segmentDepthSuperpixels(depth, K, p);
-  EXPECT_EQ(gasp::test::countNonContiguousPatches(seg), 0);
-  return {gasp::test::surfacePurity(seg, rendered.surface_id), seg.patches.size()};
+  return gasp::test::segmentNoisyView(scene, p);
 }
 
 }  // namespace
@@ -55,10 +41,10 @@ Scored segmentAndScore(const gasp::sim::Scene& scene, bool crease_borders) {
 TEST(CreaseBorders, BordersFollowTheCreaseFourMetresAway) {
   for (bool concave : {true, false}) {
     const auto scene = corner(concave);
-    const Scored off = segmentAndScore(scene, false);
-    const Scored on = segmentAndScore(scene, true);
+    const auto off = segmentAndScore(scene, false);
+    const auto on = segmentAndScore(scene, true);
     std::printf("%s crease: %zu patches; on one surface %.3f -> %.3f, pixels off their patch's surface %d -> %d\n",
-                concave ? "concave" : "convex", on.patches, off.purity.share_on_one_surface,
+                concave ? "concave" : "convex", on.seg.patches.size(), off.purity.share_on_one_surface,
                 on.purity.share_on_one_surface, off.purity.pixels_off_majority, on.purity.pixels_off_majority);
     EXPECT_GE(on.purity.share_on_one_surface, 0.99);
     EXPECT_LT(on.purity.pixels_off_majority, off.purity.pixels_off_majority / 2);

@@ -6,11 +6,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "gasp/sim/noise_model.h"
-#include "gasp/sim/renderer.h"
 #include "gasp/sim/scene.h"
 #include "gasp/superpixels/depth_superpixels.h"
-#include "segmentation_checks.h"
+#include "noisy_view.h"
 
 namespace {
 
@@ -36,30 +34,18 @@ gasp::sim::Scene wall(double relief) {
   return s;
 }
 
-struct Scored {
-  gasp::test::SurfacePurity purity;
-  gasp::SuperpixelSegmentation seg;
-};
-
-Scored segmentAndScore(const gasp::sim::Scene& scene, bool step_borders) {
-  const auto K = gasp::CameraIntrinsics::rosDefault();
-  Isometry3 T_world_camera = Isometry3::Identity();  // optical frame: z forward = world x
-  T_world_camera.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-  const auto rendered = gasp::sim::renderFrame(scene, K, T_world_camera);
-  const cv::Mat depth = gasp::sim::sensorDepth(rendered, gasp::sim::KinectNoiseModel{}, K, 7, 0);
+gasp::test::ScoredSegmentation segmentAndScore(const gasp::sim::Scene& scene, bool step_borders) {
   gasp::SuperpixelParams p;
   p.step_borders = step_borders;
-  auto seg = gasp::segmentDepthSuperpixels(depth, K, p);
-  EXPECT_EQ(gasp::test::countNonContiguousPatches(seg), 0);
-  return {gasp::test::surfacePurity(seg, rendered.surface_id), std::move(seg)};
+  return gasp::test::segmentNoisyView(scene, p);
 }
 
 }  // namespace
 
 TEST(StepBorders, BordersFollowAPictureFourCentimetresProudFourMetresAway) {
   const auto scene = wall(0.04);
-  const Scored off = segmentAndScore(scene, false);
-  const Scored on = segmentAndScore(scene, true);
+  const auto off = segmentAndScore(scene, false);
+  const auto on = segmentAndScore(scene, true);
   std::printf("picture: %zu patches; on one surface %.3f -> %.3f, pixels off their patch's surface %d -> %d\n",
               on.seg.patches.size(), off.purity.share_on_one_surface, on.purity.share_on_one_surface,
               off.purity.pixels_off_majority, on.purity.pixels_off_majority);
@@ -70,7 +56,7 @@ TEST(StepBorders, BordersFollowAPictureFourCentimetresProudFourMetresAway) {
 TEST(StepBorders, AWallAloneIsNotCut) {
   // No step: one surface plane, nothing to cut between -- the labels are those without the stage.
   const auto scene = wall(0.0);
-  const Scored off = segmentAndScore(scene, false);
-  const Scored on = segmentAndScore(scene, true);
+  const auto off = segmentAndScore(scene, false);
+  const auto on = segmentAndScore(scene, true);
   EXPECT_EQ(cv::countNonZero(on.seg.labels != off.seg.labels), 0);
 }

@@ -23,6 +23,18 @@ double median(std::vector<double> v) {
   return *mid;
 }
 
+/// Median and robust standard deviation (1.4826 MAD) of a sample.
+struct Spread {
+  double median = 0.0, sigma = 0.0;
+};
+Spread robustSpread(std::vector<double> v) {
+  Spread s;
+  s.median = median(v);
+  for (double& x : v) x = std::abs(x - s.median);
+  s.sigma = 1.4826 * median(std::move(v));
+  return s;
+}
+
 /// Robust standard deviation (1.4826 MAD) of the member patches' centroid offsets from their
 /// plane, per plane: how well the plane is known at the scale of a patch.
 std::vector<double> planeScatter(int count, const SurfacePlanes& sp, const std::vector<PlaneModel>& models) {
@@ -35,21 +47,17 @@ std::vector<double> planeScatter(int count, const SurfacePlanes& sp, const std::
         plane.normal.dot(models[static_cast<std::size_t>(l)].centroid.cast<double>()) - plane.offset);
   }
   std::vector<double> scatter(sp.planes.size(), 0.0);
-  for (std::size_t q = 0; q < offsets.size(); ++q) {
-    auto& d = offsets[q];
-    const double m = median(d);
-    for (double& x : d) x = std::abs(x - m);
-    scatter[q] = 1.4826 * median(d);
-  }
+  for (std::size_t q = 0; q < offsets.size(); ++q) scatter[q] = robustSpread(std::move(offsets[q])).sigma;
   return scatter;
 }
 
 /// Levels inside a surface plane: connected runs of at least 3 of its interior patches whose
 /// centroids lie off it, on one side, by more than step_min_sigmas robust standard deviations of
 /// its members' offsets (and at least discontinuity_abs_m). Each becomes a plane of its own,
-/// parallel to the surface at the run's median offset. Returns the number of levels added.
-int splitLevels(int count, const std::vector<PlaneModel>& models, const SuperpixelParams& p,
-                std::vector<SurfacePlane>& planes, std::vector<int>& plane_of, const SurfacePlanes& sp) {
+/// parallel to the surface at the run's median offset (added to sp.planes, its patches' plane_of).
+void splitLevels(int count, const std::vector<PlaneModel>& models, const SuperpixelParams& p, SurfacePlanes& sp) {
+  auto& planes = sp.planes;
+  auto& plane_of = sp.plane_of;
   const std::size_t n_surfaces = planes.size();
   std::vector<std::vector<int>> members(n_surfaces);
   for (int l = 0; l < count; ++l) {
@@ -59,7 +67,6 @@ int splitLevels(int count, const std::vector<PlaneModel>& models, const Superpix
   std::vector<double> offset_of(static_cast<std::size_t>(count), 0.0);
   std::vector<std::int8_t> side(static_cast<std::size_t>(count), 0);
   std::vector<std::uint8_t> done(static_cast<std::size_t>(count), 0);
-  int added = 0;
   for (std::size_t q = 0; q < n_surfaces; ++q) {
     const auto& list = members[q];
     const SurfacePlane surface = planes[q];
@@ -69,9 +76,9 @@ int splitLevels(int count, const std::vector<PlaneModel>& models, const Superpix
       offset_of[static_cast<std::size_t>(l)] = o;
       d.push_back(o);
     }
-    const double m = median(d);
-    for (double& x : d) x = std::abs(x - m);
-    const double limit = std::max(p.step_min_sigmas * 1.4826 * median(d), p.discontinuity_abs_m);
+    const Spread spread = robustSpread(std::move(d));
+    const double m = spread.median;
+    const double limit = std::max(p.step_min_sigmas * spread.sigma, p.discontinuity_abs_m);
     for (int l : list) {
       const double o = offset_of[static_cast<std::size_t>(l)] - m;
       side[static_cast<std::size_t>(l)] = o > limit ? 1 : (o < -limit ? -1 : 0);
@@ -97,10 +104,8 @@ int splitLevels(int count, const std::vector<PlaneModel>& models, const Superpix
       level.point += (level.offset - surface.offset) * level.normal;
       for (int l : run) plane_of[static_cast<std::size_t>(l)] = static_cast<int>(planes.size());
       planes.push_back(level);
-      ++added;
     }
   }
-  return added;
 }
 
 /// The patches around the border of two parallel surface planes a and b (a < b): patches of either
@@ -184,7 +189,7 @@ int refineStepBorders(int* L, int count, SurfacePlanes sp, const std::vector<Pla
                       int* pixel_counts, int* normal_cell, const OrganizedPointCloud& cloud,
                       const DepthLinks& links, const SuperpixelParams& p) {
   if (sp.planes.empty()) return 0;
-  splitLevels(count, models, p, sp.planes, sp.plane_of, sp);
+  splitLevels(count, models, p, sp);
   if (sp.planes.size() < 2) return 0;
   const auto regions = stepRegions(count, sp, models, pixel_counts, p);
   if (regions.empty()) return 0;
@@ -236,11 +241,12 @@ int refineStepBorders(int* L, int count, SurfacePlanes sp, const std::vector<Pla
     const SurfacePlane& pa = sp.planes[static_cast<std::size_t>(key.first)];
     const SurfacePlane& pb = sp.planes[static_cast<std::size_t>(key.second)];
     for (std::size_t s = 0; s < region.size(); ++s) slot[static_cast<std::size_t>(region[s])] = static_cast<int>(s);
-    side_of.assign(region.size(), -1);
-    for (std::size_t s = 0; s < region.size(); ++s) {
-      const int q = sp.plane_of[static_cast<std::size_t>(region[s])];
-      side_of[s] = q == key.first ? 0 : (q == key.second ? 1 : -1);
-    }
+    const auto sideOfPlane = [&](int l) -> std::int8_t {  // by the patch's plane
+      const int q = sp.plane_of[static_cast<std::size_t>(l)];
+      return q == key.first ? 0 : (q == key.second ? 1 : -1);
+    };
+    side_of.resize(region.size());
+    for (std::size_t s = 0; s < region.size(); ++s) side_of[s] = sideOfPlane(region[s]);
     // Residuals of the region's pixels to both planes, along their rays (depth differences).
     pixels.clear();
     std::vector<double> ra, rb, own;
@@ -258,41 +264,40 @@ int refineStepBorders(int* L, int count, SurfacePlanes sp, const std::vector<Pla
         if (side >= 0) own.push_back(std::abs(side == 0 ? ra.back() : rb.back()));
       }
     const double sigma = 1.4826 * median(own);  // pixel noise, from the pixels of either plane's patches
-    // Only a band is cut: the pixels of patches with no plane and those up to kStepBandPx from
-    // a border between patches of different sides; the rest pull to their patch's plane.
-    {
-      const auto sideAt = [&](int i) { return side_of[static_cast<std::size_t>(slot[static_cast<std::size_t>(L[i])])]; };
-      std::vector<int> dist(pixels.size(), -1), frontier, next;
-      for (std::size_t v = 0; v < pixels.size(); ++v) {
-        const int i = pixels[v];
-        bool seed = sideAt(i) < 0;
-        if (!seed)
-          links.forEachNeighbour(i, [&](int j) { seed |= node[static_cast<std::size_t>(j)] >= 0 && sideAt(j) != sideAt(i); });
-        if (seed) dist[v] = 0, frontier.push_back(static_cast<int>(v));
-      }
-      for (int d = 1; d <= kStepBandPx && !frontier.empty(); ++d) {
-        next.clear();
-        for (int v : frontier)
-          links.forEachNeighbour(pixels[static_cast<std::size_t>(v)], [&](int j) {
-            const int vj = node[static_cast<std::size_t>(j)];
-            if (vj >= 0 && dist[static_cast<std::size_t>(vj)] < 0) dist[static_cast<std::size_t>(vj)] = d, next.push_back(vj);
-          });
-        frontier.swap(next);
-      }
-      std::size_t kept = 0;
-      for (std::size_t v = 0; v < pixels.size(); ++v) {
-        if (dist[v] < 0) {
-          node[static_cast<std::size_t>(pixels[v])] = -1;
-          continue;
+    if (sigma > 0.0) {
+      // Only a band is cut: the pixels of patches with no plane and those up to kStepBandPx from
+      // a border between patches of different sides; the rest pull to their patch's plane.
+      {
+        const auto sideAt = [&](int i) { return side_of[static_cast<std::size_t>(slot[static_cast<std::size_t>(L[i])])]; };
+        std::vector<int> dist(pixels.size(), -1), frontier, next;
+        for (std::size_t v = 0; v < pixels.size(); ++v) {
+          const int i = pixels[v];
+          bool seed = sideAt(i) < 0;
+          if (!seed)
+            links.forEachNeighbour(i, [&](int j) { seed |= node[static_cast<std::size_t>(j)] >= 0 && sideAt(j) != sideAt(i); });
+          if (seed) dist[v] = 0, frontier.push_back(static_cast<int>(v));
         }
-        pixels[kept] = pixels[v], ra[kept] = ra[v], rb[kept] = rb[v];
-        node[static_cast<std::size_t>(pixels[kept])] = static_cast<int>(kept);
-        ++kept;
+        for (int d = 1; d <= kStepBandPx && !frontier.empty(); ++d) {
+          next.clear();
+          for (int v : frontier)
+            links.forEachNeighbour(pixels[static_cast<std::size_t>(v)], [&](int j) {
+              const int vj = node[static_cast<std::size_t>(j)];
+              if (vj >= 0 && dist[static_cast<std::size_t>(vj)] < 0) dist[static_cast<std::size_t>(vj)] = d, next.push_back(vj);
+            });
+          frontier.swap(next);
+        }
+        std::size_t kept = 0;
+        for (std::size_t v = 0; v < pixels.size(); ++v) {
+          if (dist[v] < 0) {
+            node[static_cast<std::size_t>(pixels[v])] = -1;
+            continue;
+          }
+          pixels[kept] = pixels[v], ra[kept] = ra[v], rb[kept] = rb[v];
+          node[static_cast<std::size_t>(pixels[kept])] = static_cast<int>(kept);
+          ++kept;
+        }
+        pixels.resize(kept), ra.resize(kept), rb.resize(kept);
       }
-      pixels.resize(kept), ra.resize(kept), rb.resize(kept);
-    }
-    const bool cut = sigma > 0.0;
-    if (cut) {
       // Minimum cut: source = plane a, sink = plane b (a pixel left on the sink side pays its
       // source weight).
       const double inv = 1.0 / (2.0 * sigma * sigma), cap = 4.5;  // truncated at 3 sigma
@@ -307,10 +312,10 @@ int refineStepBorders(int* L, int count, SurfacePlanes sp, const std::vector<Pla
             if (j > i) graph.addEdges(static_cast<int>(v), vj, p.step_smoothness, p.step_smoothness);
             return;
           }
-          if (L[j] < 0) return;  // a neighbour outside the region pulls to its plane
-          const int q = sp.plane_of[static_cast<std::size_t>(L[j])];
-          if (q == key.first) cost_b += p.step_smoothness;
-          else if (q == key.second) cost_a += p.step_smoothness;
+          if (L[j] < 0) return;  // a neighbour outside the band pulls to its plane
+          const int side = sideOfPlane(L[j]);
+          if (side == 0) cost_b += p.step_smoothness;
+          else if (side == 1) cost_a += p.step_smoothness;
         });
         graph.addTermWeights(static_cast<int>(v), cost_b, cost_a);
       }
@@ -328,9 +333,7 @@ int refineStepBorders(int* L, int count, SurfacePlanes sp, const std::vector<Pla
       const auto sideOfPatch = [&](int l) -> int {
         if (l < 0) return -1;
         const int s = slot[static_cast<std::size_t>(l)];
-        if (s >= 0) return side_of[static_cast<std::size_t>(s)];
-        const int q = sp.plane_of[static_cast<std::size_t>(l)];
-        return q == key.first ? 0 : (q == key.second ? 1 : -1);
+        return s >= 0 ? side_of[static_cast<std::size_t>(s)] : sideOfPlane(l);
       };
       std::vector<std::size_t> pending;
       for (std::size_t v = 0; v < pixels.size(); ++v)

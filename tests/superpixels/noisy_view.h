@@ -1,0 +1,34 @@
+#pragma once
+// A synthetic scene segmented as a Kinect would see it, scored against its surfaces (shared by
+// the crease and step border tests).
+#include <gtest/gtest.h>
+
+#include <utility>
+
+#include "gasp/sim/noise_model.h"
+#include "gasp/sim/renderer.h"
+#include "gasp/sim/scene.h"
+#include "gasp/superpixels/depth_superpixels.h"
+#include "segmentation_checks.h"
+
+namespace gasp::test {
+
+struct ScoredSegmentation {
+  SurfacePurity purity;
+  SuperpixelSegmentation seg;
+};
+
+/// `scene` seen from the world origin along world x (ROS default intrinsics, Kinect noise model,
+/// seed 7), segmented with `p`; expects every patch contiguous.
+inline ScoredSegmentation segmentNoisyView(const sim::Scene& scene, const SuperpixelParams& p) {
+  const auto K = CameraIntrinsics::rosDefault();
+  Isometry3 T_world_camera = Isometry3::Identity();  // optical frame: z forward = world x
+  T_world_camera.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  const auto rendered = sim::renderFrame(scene, K, T_world_camera);
+  const cv::Mat depth = sim::sensorDepth(rendered, sim::KinectNoiseModel{}, K, 7, 0);
+  auto seg = segmentDepthSuperpixels(depth, K, p);
+  EXPECT_EQ(countNonContiguousPatches(seg), 0);
+  return {surfacePurity(seg, rendered.surface_id), std::move(seg)};
+}
+
+}  // namespace gasp::test
