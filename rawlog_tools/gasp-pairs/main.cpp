@@ -210,6 +210,7 @@ int main(int argc, char** argv) {
   app.add_option("--k", base.association.feature_sets.neighbourhood.k, "association neighbourhood size (0 = full view)")->capture_default_str();
   double area_cm2 = base.superpixels.target_patch_area_m2 * 1e4;
   app.add_option("--area-cm2", area_cm2, "GASP: target patch area [cm^2]")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_flag("--step-borders", base.superpixels.step_borders, "GASP: segment with the step borders (SuperpixelParams::step_borders; off by default)");
   app.add_option("--candidates", base.association.candidates, "KD-tree candidates per patch (C)")->capture_default_str();
   app.add_option("--lambda", base.association.lambda, "gating on the normalised edit distance")->capture_default_str();
   app.add_option("--distinctiveness", base.association.distinctiveness_ratio,

@@ -84,6 +84,8 @@ int main(int argc, char** argv) {
   app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: ros for --depth; the folder's for --tum)");
   app.add_option("--depth-scale", depth_scale, "raw depth units per metre")->capture_default_str();
   app.add_option("--area-cm2", area_cm2, "target patch area [cm^2] (default from SuperpixelParams)");
+  bool step_borders = false;
+  app.add_flag("--step-borders", step_borders, "place borders at steps between parallel planes (SuperpixelParams::step_borders; off by default)");
   app.add_option("--every", every, "with --tum: segment every N-th frame")->check(CLI::PositiveNumber)->capture_default_str();
   app.add_option("--pairs", pair_skip, "with --tum: measure patch repeatability on pairs (i, i+SKIP) "
                  "of frames with ground truth, i every --every frames, instead of writing pictures")
@@ -101,6 +103,7 @@ int main(int argc, char** argv) {
   try {
     gasp::SuperpixelParams params;
     if (area_cm2 > 0) params.target_patch_area_m2 = area_cm2 * 1e-4;
+    params.step_borders = step_borders;
     if (!depth_path.empty()) {
       auto k = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg.empty() ? "ros" : intrinsics_arg);
       if (no_undistort) k.distortion.fill(0.0);
