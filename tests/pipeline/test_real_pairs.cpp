@@ -63,7 +63,7 @@ TEST(RealPairs, AWrongFallbackPoseIsDeclined) {
 
 TEST(RealPairs, TheFallbackViolationLimitDeclinesAWrongPose) {
   // 280 -> 310 segmented with the step borders: the mutual associations give no pose, the
-  // one-way ones a pose 0.20 m / 15 deg off with 14 % violations (right fallback poses of the
+  // one-way ones a pose 0.20 m / 14 deg off with 14 % violations (right fallback poses of the
   // benchmark: at most 3.4 %).
   GASP_REQUIRE_DATA(dir, "tum/fr1_xyz");
   SuperpixelParams sp;

@@ -16,6 +16,15 @@ namespace {
 /// 2-5 px off at 4 m (patches of ~9 x 9 px).
 constexpr int kStepBandPx = 4;
 
+/// A patch with no plane in a component touching two parallel planes joins their cut when it is
+/// adjacent to a patch of either plane or when its hops from the two planes through the
+/// component add up to at most this (a bridge up to 3 patches wide): a step blurs the normals
+/// about a normal window to either side. Farther patches with no plane (clutter on a desk) are no
+/// step's blur and only made the cut large: on fr1_xyz, 57k of the 60k pixels cut per frame
+/// before this limit (docs/superpixels.md).
+constexpr int kMaxBridgeHops = 4;
+constexpr int kFar = 1 << 20;
+
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
   const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
@@ -109,8 +118,9 @@ void splitLevels(int count, const std::vector<PlaneModel>& models, const Superpi
 }
 
 /// The patches around the border of two parallel surface planes a and b (a < b): patches of either
-/// plane touching the other's; patches with no plane (their normals are blurred by the step)
-/// connected through each other to both planes and lying on one of them (within plane_noise);
+/// plane touching the other's; patches with no plane (their normals are blurred by the step),
+/// connected through each other to both planes, next to either plane or in a bridge between them
+/// (kMaxBridgeHops), and lying on one of them (within plane_noise);
 /// and the patches of either plane touching those.
 std::map<std::pair<int, int>, std::vector<int>> stepRegions(int count, const SurfacePlanes& sp,
                                                             const std::vector<PlaneModel>& models,
@@ -162,16 +172,42 @@ std::map<std::pair<int, int>, std::vector<int>> stepRegions(int count, const Sur
     const Eigen::Vector3d c = models[static_cast<std::size_t>(l)].centroid.cast<double>();
     return std::abs(plane.normal.dot(c) - plane.offset) <= p.plane_noise_abs_m + p.plane_noise_rel * c.z() * c.z();
   };
+  // Hops from a plane's patches to the patches of component c, through the component (1:
+  // adjacent to a patch of the plane), in `hops` (per label; reset by the caller).
+  std::vector<int> hops_a(static_cast<std::size_t>(count), kFar), hops_b(hops_a), frontier;
+  const auto hopsFrom = [&](int q, std::size_t c, std::vector<int>& hops) {
+    frontier.clear();
+    for (int l : comps[c])
+      for (int m : sp.adjacency[static_cast<std::size_t>(l)])
+        if (planeOf(m) == q) {
+          hops[static_cast<std::size_t>(l)] = 1;
+          frontier.push_back(l);
+          break;
+        }
+    for (std::size_t f = 0; f < frontier.size(); ++f) {
+      const int a = frontier[f];
+      for (int b : sp.adjacency[static_cast<std::size_t>(a)])
+        if (comp[static_cast<std::size_t>(b)] == static_cast<int>(c) && hops[static_cast<std::size_t>(b)] == kFar) {
+          hops[static_cast<std::size_t>(b)] = hops[static_cast<std::size_t>(a)] + 1;
+          frontier.push_back(b);
+        }
+    }
+  };
   for (std::size_t c = 0; c < comps.size(); ++c) {
     const auto& t = touched[c];
     for (std::size_t i = 0; i < t.size(); ++i)
       for (std::size_t j = i + 1; j < t.size(); ++j) {
         if (!parallel(t[i], t[j])) continue;
         auto& region = regions[{t[i], t[j]}];
+        hopsFrom(t[i], c, hops_a);
+        hopsFrom(t[j], c, hops_b);
         for (int l : comps[c]) {
-          if (!onPlane(l, t[i]) && !onPlane(l, t[j])) continue;
+          const std::size_t lu = static_cast<std::size_t>(l);
+          const bool bridge = std::min(hops_a[lu], hops_b[lu]) == 1 || hops_a[lu] + hops_b[lu] <= kMaxBridgeHops;
+          hops_a[lu] = hops_b[lu] = kFar;
+          if (!bridge || (!onPlane(l, t[i]) && !onPlane(l, t[j]))) continue;
           region.push_back(l);
-          for (int m : sp.adjacency[static_cast<std::size_t>(l)])
+          for (int m : sp.adjacency[lu])
             if (planeOf(m) == t[i] || planeOf(m) == t[j]) region.push_back(m);
         }
       }

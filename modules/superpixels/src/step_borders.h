@@ -13,15 +13,15 @@
 //  2. For two parallel planes that touch (patches adjacent, or through patches with no plane,
 //     whose normals the step blurred) and whose depth difference is significant against how
 //     well the planes are known yet below a depth discontinuity, the pixels along their border
-//     (every pixel of a patch with no plane, and those up to 4 px from a border between the two
-//     sides) are labelled by a minimum cut (OpenCV's GCGraph): each pixel pays the squared
+//     (every pixel of a patch with no plane next to either plane or in a bridge up to 3 patches
+//     wide between them, and those up to 4 px from a border between the two sides) are labelled by a minimum cut (OpenCV's GCGraph): each pixel pays the squared
 //     distance of its depth to either plane in units of the pixel noise (truncated), each linked
 //     pair of pixels labelled apart pays step_smoothness, the pixels around pull to their
 //     patch's plane. So the step is placed where the depths of many pixels along it agree.
 //  3. Each patch with no plane takes the side most of its pixels are on; pixels on the other side
 //     than their patch join, through linked neighbours, a patch of their own side.
-// Off by default (SuperpixelParams::step_borders): on real desk frames it finds many levels and
-// costs 12-20 ms per frame (docs/superpixels.md).
+// Off by default (SuperpixelParams::step_borders): +2-3 ms per fr1_xyz frame, and no gain on the
+// real pair benchmarks (docs/superpixels.md).
 // Patches may be left in pieces; the caller keeps each patch's largest piece and regrows the rest.
 #include <vector>
 

@@ -43,8 +43,8 @@ struct PairParams {
   /// The visibility check's violation limit for a pose found with the one-way fallback (the
   /// lower of this and visibility.max_violation_ratio). On the pair benchmark's fr1_xyz pairs
   /// from every 10th frame (skips 10-100) and fr3_cabinet_kf, every right fallback pose stays at
-  /// or below 0.034; wrong fallback poses had 0.144 (280 -> 310 with step borders, 0.20 m /
-  /// 15 deg off), 0.16 (430 -> 530, 1.0 m / 105 deg) and 0.29 (docs/pipeline.md).
+  /// or below 0.034; wrong fallback poses had 0.14 (280 -> 310 with step borders, 0.20 m /
+  /// 14 deg off), 0.16 (430 -> 530, 1.0 m / 105 deg) and 0.29 (docs/pipeline.md).
   double one_way_max_violation_ratio = 0.08;
   /// Guided verification (guided_association.h): at the pose estimatePose() gives (RANSAC and
   /// the patch refinement), every source patch looks for a target patch near its mapped centroid

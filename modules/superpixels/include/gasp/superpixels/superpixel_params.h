@@ -68,7 +68,7 @@ struct SuperpixelParams {
   //      discontinuity_abs_m) form a level (a picture on a wall); the border between the level and
   //      the surface is placed by a minimum cut over depth residuals, a linked pair of pixels on
   //      different sides costing step_smoothness (in units of a pixel's squared-noise cost).
-  bool step_borders = false;  // off by default: +12-20 ms per fr1_xyz frame (docs/superpixels.md)
+  bool step_borders = false;  // off by default: no gain on real pairs (docs/superpixels.md)
   double step_min_sigmas = 6.0;
   double step_smoothness = 1.0;
 };
