@@ -300,40 +300,41 @@ int refineStepBorders(int* L, int count, SurfacePlanes sp, const std::vector<Pla
         if (side >= 0) own.push_back(std::abs(side == 0 ? ra.back() : rb.back()));
       }
     const double sigma = 1.4826 * median(own);  // pixel noise, from the pixels of either plane's patches
-    if (sigma > 0.0) {
-      // Only a band is cut: the pixels of patches with no plane and those up to kStepBandPx from
-      // a border between patches of different sides; the rest pull to their patch's plane.
-      {
-        const auto sideAt = [&](int i) { return side_of[static_cast<std::size_t>(slot[static_cast<std::size_t>(L[i])])]; };
-        std::vector<int> dist(pixels.size(), -1), frontier, next;
-        for (std::size_t v = 0; v < pixels.size(); ++v) {
-          const int i = pixels[v];
-          bool seed = sideAt(i) < 0;
-          if (!seed)
-            links.forEachNeighbour(i, [&](int j) { seed |= node[static_cast<std::size_t>(j)] >= 0 && sideAt(j) != sideAt(i); });
-          if (seed) dist[v] = 0, frontier.push_back(static_cast<int>(v));
-        }
-        for (int d = 1; d <= kStepBandPx && !frontier.empty(); ++d) {
-          next.clear();
-          for (int v : frontier)
-            links.forEachNeighbour(pixels[static_cast<std::size_t>(v)], [&](int j) {
-              const int vj = node[static_cast<std::size_t>(j)];
-              if (vj >= 0 && dist[static_cast<std::size_t>(vj)] < 0) dist[static_cast<std::size_t>(vj)] = d, next.push_back(vj);
-            });
-          frontier.swap(next);
-        }
-        std::size_t kept = 0;
-        for (std::size_t v = 0; v < pixels.size(); ++v) {
-          if (dist[v] < 0) {
-            node[static_cast<std::size_t>(pixels[v])] = -1;
-            continue;
-          }
-          pixels[kept] = pixels[v], ra[kept] = ra[v], rb[kept] = rb[v];
-          node[static_cast<std::size_t>(pixels[kept])] = static_cast<int>(kept);
-          ++kept;
-        }
-        pixels.resize(kept), ra.resize(kept), rb.resize(kept);
+    // Only a band is cut: the pixels of patches with no plane and those up to kStepBandPx from
+    // a border between patches of different sides; the rest pull to their patch's plane.
+    {
+      const auto sideAt = [&](int i) { return side_of[static_cast<std::size_t>(slot[static_cast<std::size_t>(L[i])])]; };
+      std::vector<int> dist(pixels.size(), -1), frontier, next;
+      for (std::size_t v = 0; v < pixels.size(); ++v) {
+        const int i = pixels[v];
+        bool seed = sideAt(i) < 0;
+        if (!seed)
+          links.forEachNeighbour(i, [&](int j) { seed |= node[static_cast<std::size_t>(j)] >= 0 && sideAt(j) != sideAt(i); });
+        if (seed) dist[v] = 0, frontier.push_back(static_cast<int>(v));
       }
+      for (int d = 1; d <= kStepBandPx && !frontier.empty(); ++d) {
+        next.clear();
+        for (int v : frontier)
+          links.forEachNeighbour(pixels[static_cast<std::size_t>(v)], [&](int j) {
+            const int vj = node[static_cast<std::size_t>(j)];
+            if (vj >= 0 && dist[static_cast<std::size_t>(vj)] < 0) dist[static_cast<std::size_t>(vj)] = d, next.push_back(vj);
+          });
+        frontier.swap(next);
+      }
+      std::size_t kept = 0;
+      for (std::size_t v = 0; v < pixels.size(); ++v) {
+        if (dist[v] < 0) {
+          node[static_cast<std::size_t>(pixels[v])] = -1;
+          continue;
+        }
+        pixels[kept] = pixels[v], ra[kept] = ra[v], rb[kept] = rb[v];
+        node[static_cast<std::size_t>(pixels[kept])] = static_cast<int>(kept);
+        ++kept;
+      }
+      pixels.resize(kept), ra.resize(kept), rb.resize(kept);
+    }
+    // Empty when the region's pixels were all moved by an earlier step (no border left).
+    if (sigma > 0.0 && !pixels.empty()) {
       // Minimum cut: source = plane a, sink = plane b (a pixel left on the sink side pays its
       // source weight).
       const double inv = 1.0 / (2.0 * sigma * sigma), cap = 4.5;  // truncated at 3 sigma
