@@ -46,6 +46,8 @@ inline int countNonContiguousPatches(const SuperpixelSegmentation& seg) {
 struct SurfacePurity {
   double share_on_one_surface = 0.0;  ///< patches with >= 90% of their pixels on one surface
   int pixels_off_majority = 0;        ///< pixels on another surface than their patch's majority
+  int patches_on_one_surface = 0;     ///< the count behind share_on_one_surface
+  int patches = 0;
 };
 
 inline SurfacePurity surfacePurity(const SuperpixelSegmentation& seg, const cv::Mat& surface_ids) {
@@ -63,6 +65,8 @@ inline SurfacePurity surfacePurity(const SuperpixelSegmentation& seg, const cv::
     pure += best >= 0.9 * seg.patches[i].pixel_count;
     out.pixels_off_majority += seg.patches[i].pixel_count - best;
   }
+  out.patches_on_one_surface = pure;
+  out.patches = static_cast<int>(votes.size());
   out.share_on_one_surface = votes.empty() ? 0.0 : static_cast<double>(pure) / static_cast<double>(votes.size());
   return out;
 }
