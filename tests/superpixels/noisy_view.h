@@ -13,6 +13,17 @@
 
 namespace gasp::test {
 
+/// Pose of an upright rectangle (sim::Rectangle) at `origin`: its x axis along the horizontal
+/// `along`, y up (world z), z = along x up.
+inline Isometry3 uprightFrame(const Eigen::Vector3d& along, const Eigen::Vector3d& origin) {
+  Isometry3 T = Isometry3::Identity();
+  T.linear().col(0) = along;
+  T.linear().col(1) = Eigen::Vector3d::UnitZ();
+  T.linear().col(2) = along.cross(Eigen::Vector3d::UnitZ());
+  T.translation() = origin;
+  return T;
+}
+
 struct ScoredSegmentation {
   SurfacePurity purity;
   SuperpixelSegmentation seg;

@@ -44,10 +44,13 @@ inline int countNonContiguousPatches(const SuperpixelSegmentation& seg) {
 
 /// How well patches keep to ground-truth surfaces (surface_ids: CV_16UC1, one id per pixel).
 struct SurfacePurity {
-  double share_on_one_surface = 0.0;  ///< patches with >= 90% of their pixels on one surface
-  int pixels_off_majority = 0;        ///< pixels on another surface than their patch's majority
-  int patches_on_one_surface = 0;     ///< the count behind share_on_one_surface
+  int patches_on_one_surface = 0;  ///< patches with >= 90% of their pixels on one surface
   int patches = 0;
+  int pixels_off_majority = 0;  ///< pixels on another surface than their patch's majority
+  /// Share of the patches on one surface (0 without patches).
+  double shareOnOneSurface() const {
+    return patches > 0 ? static_cast<double>(patches_on_one_surface) / static_cast<double>(patches) : 0.0;
+  }
 };
 
 inline SurfacePurity surfacePurity(const SuperpixelSegmentation& seg, const cv::Mat& surface_ids) {
@@ -67,7 +70,6 @@ inline SurfacePurity surfacePurity(const SuperpixelSegmentation& seg, const cv::
   }
   out.patches_on_one_surface = pure;
   out.patches = static_cast<int>(votes.size());
-  out.share_on_one_surface = votes.empty() ? 0.0 : static_cast<double>(pure) / static_cast<double>(votes.size());
   return out;
 }
 

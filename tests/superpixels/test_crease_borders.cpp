@@ -11,8 +11,6 @@
 
 namespace {
 
-using gasp::Isometry3;
-
 /// Two 4 x 3 m walls meeting along a vertical line 4 m in front of the camera, each at 45 deg to
 /// the line of sight: a concave crease (a room's corner) or a convex one (a box's edge).
 gasp::sim::Scene corner(bool concave) {
@@ -20,12 +18,8 @@ gasp::sim::Scene corner(bool concave) {
   const Eigen::Vector3d apex(4.0, 0.0, 0.0);
   for (int side : {-1, 1}) {
     const Eigen::Vector3d along = Eigen::Vector3d(concave ? -1.0 : 1.0, side, 0.0).normalized();
-    Isometry3 T = Isometry3::Identity();
-    T.linear().col(0) = along;
-    T.linear().col(1) = Eigen::Vector3d::UnitZ();
-    T.linear().col(2) = along.cross(Eigen::Vector3d::UnitZ());
-    T.translation() = apex + 2.0 * along;
-    s.add(side < 0 ? "wall_right" : "wall_left", gasp::sim::Rectangle{2.0, 1.5}, T);
+    s.add(side < 0 ? "wall_right" : "wall_left", gasp::sim::Rectangle{2.0, 1.5},
+          gasp::test::uprightFrame(along, apex + 2.0 * along));
   }
   return s;
 }
@@ -44,9 +38,9 @@ TEST(CreaseBorders, BordersFollowTheCreaseFourMetresAway) {
     const auto off = segmentAndScore(scene, false);
     const auto on = segmentAndScore(scene, true);
     std::printf("%s crease: %zu patches; on one surface %.3f -> %.3f, pixels off their patch's surface %d -> %d\n",
-                concave ? "concave" : "convex", on.seg.patches.size(), off.purity.share_on_one_surface,
-                on.purity.share_on_one_surface, off.purity.pixels_off_majority, on.purity.pixels_off_majority);
-    EXPECT_GE(on.purity.share_on_one_surface, 0.99);
+                concave ? "concave" : "convex", on.seg.patches.size(), off.purity.shareOnOneSurface(),
+                on.purity.shareOnOneSurface(), off.purity.pixels_off_majority, on.purity.pixels_off_majority);
+    EXPECT_GE(on.purity.shareOnOneSurface(), 0.99);
     EXPECT_LT(on.purity.pixels_off_majority, off.purity.pixels_off_majority / 2);
   }
 }

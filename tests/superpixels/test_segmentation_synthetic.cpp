@@ -35,26 +35,24 @@ SceneEdges edgesOfScene(const std::string& scene, const gasp::SuperpixelParams& 
   opt.scene = scene;
   const gasp::sim::Simulation sim(opt);
   SceneEdges out;
-  long pure = 0, patches = 0;
-  std::string line;
+  gasp::test::SurfacePurity total;
   for (int index = 0; index < sim.size(); ++index) {
     const auto f = sim.frame(index);
     const auto seg = gasp::segmentDepthSuperpixels(f.depth, gasp::CameraIntrinsics::rosDefault(), p);
     const auto purity = gasp::test::surfacePurity(seg, f.labels);
-    pure += purity.patches_on_one_surface;
-    patches += purity.patches;
-    out.per_frame.push_back(purity.share_on_one_surface);
-    if (purity.patches > 0 && purity.share_on_one_surface < out.worst) {
-      out.worst = purity.share_on_one_surface;
+    total.patches_on_one_surface += purity.patches_on_one_surface;
+    total.patches += purity.patches;
+    out.per_frame.push_back(purity.shareOnOneSurface());
+    if (purity.patches > 0 && purity.shareOnOneSurface() < out.worst) {
+      out.worst = purity.shareOnOneSurface();
       out.worst_frame = index;
     }
-    char share[16];
-    std::snprintf(share, sizeof share, " %.3f", purity.share_on_one_surface);
-    line += share;
   }
-  out.share = patches > 0 ? static_cast<double>(pure) / static_cast<double>(patches) : 0.0;
-  std::printf("%s, %d frames: %.4f of %ld patches on one surface; worst frame %d: %.4f\n  frames 0-%d:%s\n",
-              scene.c_str(), sim.size(), out.share, patches, out.worst_frame, out.worst, sim.size() - 1, line.c_str());
+  out.share = total.shareOnOneSurface();
+  std::printf("%s, %d frames: %.4f of %d patches on one surface; worst frame %d: %.4f\n  frames 0-%d:", scene.c_str(),
+              sim.size(), out.share, total.patches, out.worst_frame, out.worst, sim.size() - 1);
+  for (double share : out.per_frame) std::printf(" %.3f", share);
+  std::printf("\n");
   return out;
 }
 

@@ -20,11 +20,7 @@ gasp::sim::Scene wall(double relief) {
   gasp::sim::Scene s;
   const double yaw = 20.0 * M_PI / 180.0;
   const Eigen::Vector3d along(std::sin(yaw), std::cos(yaw), 0.0);
-  Isometry3 T = Isometry3::Identity();
-  T.linear().col(0) = along;
-  T.linear().col(1) = Eigen::Vector3d::UnitZ();
-  T.linear().col(2) = along.cross(Eigen::Vector3d::UnitZ());  // away from the camera
-  T.translation() = Eigen::Vector3d(4.0, 0.0, 0.0);
+  const Isometry3 T = gasp::test::uprightFrame(along, Eigen::Vector3d(4.0, 0.0, 0.0));  // z away from the camera
   s.add("wall", gasp::sim::Rectangle{2.5, 1.5}, T);
   if (relief > 0.0) {
     Isometry3 P = T;
@@ -47,9 +43,9 @@ TEST(StepBorders, BordersFollowAPictureFourCentimetresProudFourMetresAway) {
   const auto off = segmentAndScore(scene, false);
   const auto on = segmentAndScore(scene, true);
   std::printf("picture: %zu patches; on one surface %.3f -> %.3f, pixels off their patch's surface %d -> %d\n",
-              on.seg.patches.size(), off.purity.share_on_one_surface, on.purity.share_on_one_surface,
+              on.seg.patches.size(), off.purity.shareOnOneSurface(), on.purity.shareOnOneSurface(),
               off.purity.pixels_off_majority, on.purity.pixels_off_majority);
-  EXPECT_GE(on.purity.share_on_one_surface, 0.98);
+  EXPECT_GE(on.purity.shareOnOneSurface(), 0.98);
   EXPECT_LT(on.purity.pixels_off_majority, off.purity.pixels_off_majority / 2);
 }
 
