@@ -69,7 +69,10 @@ mrpt::poses::CPose3DPDF::Ptr CGaspAligner::Align3DPDF(const mrpt::maps::CMetricM
       TGaspAlignmentResult cand;
       cand.view_m1 = static_cast<int>(i);
       cand.view_m2 = static_cast<int>(j);
-      for (const auto& s : r.association.associations) cand.associations.emplace_back(s.b, s.a);
+      // The finer-scale retry's patch indices refer to its own views, not to the maps' patches.
+      cand.finer_scale = r.retry_views != nullptr;
+      if (!cand.finer_scale)
+        for (const auto& s : r.association.associations) cand.associations.emplace_back(s.b, s.a);
       cand.inliers = r.pose.num_inliers;
       cand.degenerate = r.pose.degenerate;
       cand.reason = r.pose.reason;

@@ -52,7 +52,10 @@ MatchConstraint ObservationMatcher_GASP::match(const mrpt::obs::CObservation& a,
   const DepthView vb = makeDepthView(fb.depth_m, fb.depth_intrinsics, params.superpixels);
   // b is the source, a the target: T_target_source = T_ca_cb (camera frames).
   const PairResult r = registerViews(vb, va, params);
-  for (const auto& s : r.association.associations) c.associations.emplace_back(s.b, s.a);
+  // The finer-scale retry's patch indices refer to its own views, not to these views' patches.
+  c.finer_scale = r.retry_views != nullptr;
+  if (!c.finer_scale)
+    for (const auto& s : r.association.associations) c.associations.emplace_back(s.b, s.a);
   c.inliers = r.pose.num_inliers;
   c.degenerate = r.pose.degenerate;
   c.success = r.pose.success;

@@ -50,6 +50,7 @@ void pairFields(P& p, F&& f) {
   f("min_inliers", p.pose.ransac.min_inliers);
   f("dense_rounds", p.dense_rounds);
   f("refine", p.refine);
+  f("retry_area_factor", p.retry_area_factor);
 }
 
 // ---- Strict text parsing (MRPT's read_double() would turn "abc" into 0 silently).

@@ -57,6 +57,9 @@ int main(int argc, char** argv) {
   app.add_option("--theta-dev", theta_dev_deg, "match tolerance of the angle components [deg]")->capture_default_str();
   app.add_flag("!--no-mutual", params.association.mutual_check, "keep one-way best partners too (no mutual check)");
   app.add_flag("!--no-refine", params.refine, "RANSAC pose only (no point-to-plane refinement)");
+  app.add_option("--retry-area-factor", params.retry_area_factor,
+                 "when no estimate is found, segment again with this times the patch area and retry, mutual associations only (0 = never)")
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -93,28 +96,37 @@ int main(int argc, char** argv) {
     }
     const auto [va, vb] = gasp::makeDepthViews(depth_a, depth_b, K, params.superpixels);
     const auto r = gasp::registerViews(va, vb, params);
+    // The views r's patch indices refer to: the finer-scale retry's when it found the estimate.
+    const auto [pva, pvb] = gasp::viewsOf(r, va, vb);
     const auto& s = r.association.stats;
-    std::printf("patches_a: %zu\npatches_b: %zu\nassociations: %zu\n", va.segmentation.patches.size(),
-                vb.segmentation.patches.size(), r.association.associations.size());
+    std::printf("patches_a: %zu\npatches_b: %zu\nassociations: %zu\n", pva->segmentation.patches.size(),
+                pvb->segmentation.patches.size(), r.association.associations.size());
     std::printf("time_ms: segmentation %.1f + %.1f, association %.1f (features %.1f, kd-tree %.1f, matching %.1f), "
                 "ransac %.1f, refinement %.1f, dense+check %.1f\n",
                 va.segmentation.timings.total(), vb.segmentation.timings.total(), r.timings.association_ms,
                 s.features_ms, s.tree_ms, s.matching_ms, r.timings.ransac_ms, r.timings.refine_ms, r.timings.dense_ms);
+    if (r.retry_views)
+      std::printf("finer_scale_retry: yes (the default scale found no estimate; segmented again at %g x the patch "
+                  "area in %.1f ms; the patches, associations, picture and scores here are of those views)\n",
+                  params.retry_area_factor, r.timings.retry_segmentation_ms);
+    else if (r.retried)
+      std::printf("finer_scale_retry: no estimate either\n");
     std::printf("comparisons: %zu of %zu without KD-tree, %zu cut early, %zu gated out, %zu not mutual\n",
                 s.comparisons, s.comparisons_full, s.cut_early, s.gated_out, s.not_mutual);
     std::vector<unsigned char> correct;
     if (T_b_a_true) {
-      const auto q = gasp::evaluateAssociations(r.association.associations, va.segmentation, vb.segmentation,
-                                                depth_b, K, *T_b_a_true);
+      const auto q = gasp::evaluateAssociations(r.association.associations, pva->segmentation, pvb->segmentation,
+                                                pvb->depth_m, pvb->intrinsics, *T_b_a_true);
       for (const auto& a : r.association.associations)
-        correct.push_back(gasp::isSameSurface(va.segmentation.patches[static_cast<std::size_t>(a.a)],
-                                              vb.segmentation.patches[static_cast<std::size_t>(a.b)], *T_b_a_true));
+        correct.push_back(gasp::isSameSurface(pva->segmentation.patches[static_cast<std::size_t>(a.a)],
+                                              pvb->segmentation.patches[static_cast<std::size_t>(a.b)], *T_b_a_true));
       std::printf("correct: %d\nwith_true_partner: %d\nprecision: %.3f\ndensity: %.3f\n", q.correct,
                   q.with_true_partner, q.precision(), q.density());
     } else {
       std::printf("ground truth: not available for both frames\n");
     }
-    const cv::Mat picture = gasp::drawAssociations(depth_a, va.segmentation, K, depth_b, vb.segmentation, K,
+    const cv::Mat picture = gasp::drawAssociations(pva->depth_m, pva->segmentation, pva->intrinsics, pvb->depth_m,
+                                                   pvb->segmentation, pvb->intrinsics,
                                                    r.association.associations, correct);
     if (!cv::imwrite(out_path, picture)) throw gasp::Error("cannot write the picture " + out_path);
     std::printf("picture: %s\n", out_path.c_str());
@@ -137,7 +149,7 @@ int main(int argc, char** argv) {
     std::printf("visibility_violations: %.3f\n", r.visibility.violation_ratio);
     std::printf("verified_associations: %zu\n", r.verified.size());
     if (T_b_a_true) {
-      const auto q = gasp::evaluateAssociations(r.verified, va.segmentation, vb.segmentation, depth_b, K, *T_b_a_true);
+      const auto q = gasp::evaluateAssociations(r.verified, pva->segmentation, pvb->segmentation, pvb->depth_m, pvb->intrinsics, *T_b_a_true);
       std::printf("verified_precision: %.3f\nverified_density: %.3f\n", q.precision(), q.density());
     }
     if (T_b_a_true) {

@@ -6,6 +6,8 @@
 #include <chrono>
 #include <optional>
 #include <cmath>
+#include <cstdio>
+#include <memory>
 
 #include "gasp/core/error.h"
 #include "dense_refinement.h"
@@ -77,13 +79,17 @@ void validate(const PairParams& p) {
   if (!(p.view_degeneracy.min_eigenvalue_ratio >= 0 && p.view_degeneracy.min_eigenvalue_ratio < 1))
     throw Error("PairParams: view_degeneracy.min_eigenvalue_ratio must be in [0, 1)");
   if (p.dense_rounds < 0) throw Error("PairParams: dense_rounds must be >= 0");
+  if (!(p.retry_area_factor == 0.0 || (p.retry_area_factor > 0.0 && p.retry_area_factor < 1.0)))
+    throw Error("PairParams: retry_area_factor must be 0 (off) or in (0, 1)");
   if (p.dense_rounds > 0 && p.dense_gates_m.empty()) throw Error("PairParams: dense_gates_m is empty");
   for (double g : p.dense_gates_m)
     if (!(g > 0) || !std::isfinite(g)) throw Error("PairParams: dense gates must be finite and > 0");
 }
 
-PairResult registerViews(const DepthView& source, const DepthView& target, const PairParams& params) {
-  validate(params);
+namespace {
+
+/// registerViews() at the scale of the views given (no retry).
+PairResult registerAtScale(const DepthView& source, const DepthView& target, const PairParams& params) {
   PairResult r;
   for (const auto* view : {&source, &target}) {
     const auto d = analyseViewGeometry(view->segmentation, params.view_degeneracy);
@@ -198,6 +204,52 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
     r.verified = guidedAssociations(ga, gb, qa, qb, r.pose.T_target_source, params.association, params.guided);
     r.timings.guided_ms += msSince(t0);
   }
+  return r;
+}
+
+}  // namespace
+
+std::pair<const DepthView*, const DepthView*> viewsOf(const PairResult& r, const DepthView& source,
+                                                      const DepthView& target) {
+  if (r.retry_views) return {&r.retry_views->first, &r.retry_views->second};
+  return {&source, &target};
+}
+
+PairResult registerViews(const DepthView& source, const DepthView& target, const PairParams& params) {
+  validate(params);
+  PairResult r = registerAtScale(source, target, params);
+  if (r.pose.success || r.pose.degenerate || params.retry_area_factor == 0.0 || source.depth_m.empty() ||
+      target.depth_m.empty())
+    return r;
+  // Finer-scale retry (PairParams::retry_area_factor): mutual associations only.
+  const auto t0 = std::chrono::steady_clock::now();
+  PairParams fine = params;
+  fine.superpixels.target_patch_area_m2 *= params.retry_area_factor;
+  fine.retry_area_factor = 0.0;
+  fine.one_way_fallback = false;
+  auto views = std::make_shared<std::pair<DepthView, DepthView>>();
+  tbb::parallel_invoke([&] { views->first = makeDepthView(source.depth_m, source.intrinsics, fine.superpixels); },
+                       [&] { views->second = makeDepthView(target.depth_m, target.intrinsics, fine.superpixels); });
+  const double segmentation_ms = msSince(t0);
+  PairResult retry = registerAtScale(views->first, views->second, fine);
+  PairTimings total = r.timings;
+  total.association_ms += retry.timings.association_ms;
+  total.ransac_ms += retry.timings.ransac_ms;
+  total.refine_ms += retry.timings.refine_ms;
+  total.dense_ms += retry.timings.dense_ms;
+  total.guided_ms += retry.timings.guided_ms;
+  total.retry_segmentation_ms = segmentation_ms;
+  if (retry.pose.success) {
+    retry.retried = true;
+    retry.retry_views = std::move(views);
+    retry.timings = total;
+    return retry;
+  }
+  r.retried = true;
+  r.timings = total;
+  char factor[32];
+  std::snprintf(factor, sizeof factor, "%g", params.retry_area_factor);
+  r.pose.reason += std::string("; at ") + factor + "x the patch area: " + retry.pose.reason;
   return r;
 }
 

@@ -35,7 +35,10 @@ struct TGaspAlignmentResult : public mrpt::slam::TMetricMapAlignmentResult {
   bool degenerate = false;  ///< some direction is unobservable
   std::string reason;       ///< why no pose is claimed
   int view_m1 = -1, view_m2 = -1;  ///< the view pair the estimate rests on (or the best failed one)
-  std::vector<std::pair<int, int>> associations;  ///< (patch of view_m1, patch of view_m2)
+  std::vector<std::pair<int, int>> associations;  ///< (patch of view_m1, patch of view_m2); empty when finer_scale
+  /// The pose came from the finer-scale retry (PairParams::retry_area_factor): its patches are not
+  /// the maps' own, so no associations are listed.
+  bool finer_scale = false;
   int inliers = 0;
   /// Information of the pose of m2 in m1 over the left perturbation in m1's frame,
   /// xi = [t; omega] ([m], [rad]); zero when no pose is claimed.

@@ -23,7 +23,10 @@ struct MatchConstraint {
   /// 6x6 information of T_a_b over the left perturbation T_a_b <- Exp(xi) T_a_b, xi = [t; omega]
   /// in a's robot frame ([m], [rad]), from the refinement's Jacobians (docs/registration.md).
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
-  std::vector<std::pair<int, int>> associations;  ///< (patch of a, patch of b)
+  std::vector<std::pair<int, int>> associations;  ///< (patch of a, patch of b); empty when finer_scale
+  /// The pose came from the finer-scale retry (PairParams::retry_area_factor): its patches are not
+  /// those of the default decomposition, so no associations are listed.
+  bool finer_scale = false;
   int inliers = 0;
   double time_ms = 0.0;
   std::string reason;  ///< why there is no estimate

@@ -6,7 +6,9 @@
 /// (projective_terms.h), re-associated at each round with a shrinking distance gate.
 /// The result is what a SLAM system consumes: T_target_source with its information matrix, or
 /// no estimate with the reason (too few associations, no consensus, degenerate geometry).
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gasp/association/guided_association.h"
@@ -86,6 +88,15 @@ struct PairParams {
   /// Last: a pose whose mapped views contradict each other's free space is not claimed
   /// (look-alike structure, repeated objects).
   VisibilityCheckParams visibility;
+  /// Finer-scale retry: when the views give no estimate (and neither is degenerate), both depth
+  /// images are segmented again with superpixels.target_patch_area_m2 times this factor and the
+  /// pair is registered once more, without the one-way fallback (0 = off). A small overlap holds
+  /// too few patches of the default size for a consensus (fr1_xyz 440 -> 490, 540 -> 590: 60 of
+  /// 250-310 patches in the overlap); smaller patches give it more. The one-way partners of small
+  /// patches claimed a wrong pose (200 -> 250, 0.35 m / 23 deg), hence mutual associations only
+  /// (docs/pipeline.md, "Finer-scale retry"). Then PairResult::retry_views holds the views the
+  /// result's patch indices refer to.
+  double retry_area_factor = 0.375;
 
   static AssociationParams defaultAssociation() {
     AssociationParams p;
@@ -106,7 +117,10 @@ void validate(const PairParams& params);
 struct PairTimings {
   double association_ms = 0, ransac_ms = 0, refine_ms = 0, dense_ms = 0;
   double guided_ms = 0;  ///< guided verification (association under the pose hypotheses)
-  double total() const { return association_ms + ransac_ms + refine_ms + dense_ms + guided_ms; }
+  double retry_segmentation_ms = 0;  ///< the finer-scale retry's segmentation of both views (0: no retry)
+  double total() const {
+    return association_ms + ransac_ms + refine_ms + dense_ms + guided_ms + retry_segmentation_ms;
+  }
 };
 
 struct PairResult {
@@ -129,7 +143,19 @@ struct PairResult {
   /// refinement's pose (-1: not measured -- no edge terms, no dense rounds or no pose).
   double edge_paired_share = -1.0;
   PairTimings timings;
+  /// The finer-scale retry ran (PairParams::retry_area_factor): the default scale gave no estimate.
+  bool retried = false;
+  /// Set when the result is the retry's (it found the estimate): the re-segmented source and target
+  /// views, to which association, used, correspondences and verified refer. Null: they refer to
+  /// the views passed in; when the retry found nothing either, the result is the default scale's
+  /// with both reasons. viewsOf() picks the right pair.
+  std::shared_ptr<const std::pair<DepthView, DepthView>> retry_views;
 };
+
+/// The source and target views whose patches r's indices (association, used, verified) refer to:
+/// r.retry_views when set, else the views passed to registerViews().
+std::pair<const DepthView*, const DepthView*> viewsOf(const PairResult& r, const DepthView& source,
+                                                      const DepthView& target);
 
 /// Registers `source` (view A) to `target` (view B): pose.T_target_source maps A's camera frame
 /// into B's. Never throws for data (empty views, NaN, no overlap give pose.success = false with
