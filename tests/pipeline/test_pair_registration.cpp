@@ -244,7 +244,7 @@ TEST(FinerScaleRetry, RunsOnlyWhenTheDefaultScaleGivesNoEstimate) {
 
 TEST(FinerScaleRetry, FindsThePoseWhenThePatchesAreTooLargeForTheOverlap) {
   // Views segmented with 2000 cm^2 patches (a few dozen per view): too few for a consensus. The
-  // retry segments the depth again at retry_area_factor x PairParams::superpixels' area (15 cm^2)
+  // retry segments the depth again at retry_area_factor x PairParams::superpixels' area (12 cm^2)
   // and registers with mutual associations only; the result's indices refer to those views.
   const auto& s = simulation("room");
   const auto K = sim::SimulationOptions{}.intrinsics;
@@ -272,10 +272,11 @@ TEST(FinerScaleRetry, FindsThePoseWhenThePatchesAreTooLargeForTheOverlap) {
   EXPECT_LT(translationNorm(E), 0.02);
   EXPECT_LT(rotationAngle(E) * 180.0 / M_PI, 1.0);
   // The verified associations index the retry's views (more of them than the coarse views have
-  // patches) and are mostly right there: 0.82 measured; the one-radius criterion is tighter for
-  // 15 cm^2 patches than the guided association's 3.5 cm gate.
+  // patches) and are mostly right there: 0.73 measured (0.82 with 15 cm^2 patches); the
+  // one-radius criterion (~2 cm here) is tighter than the guided association's 3.5 cm gate. The
+  // same indices read against the coarse views would point past their few dozen patches.
   ASSERT_GT(r.verified.size(), a.segmentation.patches.size());
   const AssociationQuality q =
       evaluateAssociations(r.verified, va->segmentation, vb->segmentation, vb->depth_m, vb->intrinsics, T_b_a);
-  EXPECT_GE(q.precision(), 0.75);
+  EXPECT_GE(q.precision(), 0.6);
 }

@@ -62,7 +62,7 @@ TEST(RealPairs, OneWayFallbackFindsTheWideBaselinePose) {
 
 TEST(RealPairs, FinerScaleRetryRegistersASmallOverlap) {
   // 540 -> 590 (0.48 m, 8 deg): about 60 of the source's 310 patches lie in the overlap, too few
-  // for a consensus at the default patch size, mutual or one-way. The retry at 0.375 x the area
+  // for a consensus at the default patch size, mutual or one-way. The retry at 0.3 x the area
   // finds the pose with mutual associations.
   GASP_REQUIRE_DATA(dir, "tum/fr1_xyz");
   const RealPair p = load(dir, 540, 590);

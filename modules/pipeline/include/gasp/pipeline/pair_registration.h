@@ -92,11 +92,12 @@ struct PairParams {
   /// images are segmented again with superpixels.target_patch_area_m2 times this factor and the
   /// pair is registered once more, without the one-way fallback (0 = off). A small overlap holds
   /// too few patches of the default size for a consensus (fr1_xyz 440 -> 490, 540 -> 590: 60 of
-  /// 250-310 patches in the overlap); smaller patches give it more. The one-way partners of small
+  /// 250-310 patches in the overlap); smaller patches give it more. 0.3 = 12 cm^2 patches, chosen
+  /// on the fr1_xyz benchmark pairs (docs/pipeline.md: 0.33 and 0.25 claim a poor pose there). The one-way partners of small
   /// patches claimed a wrong pose (200 -> 250, 0.35 m / 23 deg), hence mutual associations only
   /// (docs/pipeline.md, "Finer-scale retry"). Then PairResult::retry_views holds the views the
   /// result's patch indices refer to.
-  double retry_area_factor = 0.375;
+  double retry_area_factor = 0.3;
 
   static AssociationParams defaultAssociation() {
     AssociationParams p;
