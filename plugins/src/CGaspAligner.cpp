@@ -88,7 +88,11 @@ mrpt::poses::CPose3DPDF::Ptr CGaspAligner::Align3DPDF(const mrpt::maps::CMetricM
         }
       }
       cand.success = pdf.has_value();
-      if (cand.success && (!best.success || cand.inliers > best.inliers)) {
+      // Best: a default-scale pose before one from the finer-scale retry (whose smaller patches
+      // give more inliers for the same surface), then the most inliers.
+      const bool better = !best.success || (cand.finer_scale != best.finer_scale ? !cand.finer_scale
+                                                                                : cand.inliers > best.inliers);
+      if (cand.success && better) {
         const int pairs = best.view_pairs;
         best = std::move(cand);
         best.view_pairs = pairs;

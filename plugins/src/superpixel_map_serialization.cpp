@@ -206,6 +206,9 @@ void CSuperpixelMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t ve
         THROW_EXCEPTION_FMT("view %u of %u: %s", i, num_views, e.what());
       }
     }
+    // The views were segmented with the map's creation options (what the finer-scale retry of
+    // registerViews() re-segments with).
+    for (SuperpixelMapView& v : views) v.view.superpixels = c.superpixels;
     genericMapParams = generic;
     creationOptions = c;
     likelihoodOptions = l;

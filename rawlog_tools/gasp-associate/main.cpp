@@ -58,8 +58,9 @@ int main(int argc, char** argv) {
   app.add_flag("!--no-mutual", params.association.mutual_check, "keep one-way best partners too (no mutual check)");
   app.add_flag("!--no-refine", params.refine, "RANSAC pose only (no point-to-plane refinement)");
   app.add_option("--retry-area-factor", params.retry_area_factor,
-                 "when no estimate is found, segment again with this times the patch area and retry, mutual associations only (0 = never)")
-      ->capture_default_str();
+                 "when no estimate is found, segment again with this times the patch area and retry, mutual associations only (0 = never, else in [0.01, 1))")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -110,7 +111,8 @@ int main(int argc, char** argv) {
                   "area in %.1f ms; the patches, associations, picture and scores here are of those views)\n",
                   params.retry_area_factor, r.timings.retry_segmentation_ms);
     else if (r.retried)
-      std::printf("finer_scale_retry: no estimate either\n");
+      std::printf("finer_scale_retry: no estimate either (segmented again at %g x the patch area in %.1f ms)\n",
+                  params.retry_area_factor, r.timings.retry_segmentation_ms);
     std::printf("comparisons: %zu of %zu without KD-tree, %zu cut early, %zu gated out, %zu not mutual\n",
                 s.comparisons, s.comparisons_full, s.cut_early, s.gated_out, s.not_mutual);
     std::vector<unsigned char> correct;
@@ -132,6 +134,7 @@ int main(int argc, char** argv) {
     std::printf("picture: %s\n", out_path.c_str());
     if (r.association.associations.empty()) {
       std::printf("no associations: %s\n", r.association.reason.c_str());
+      std::printf("pose: none (%s)\n", r.pose.reason.c_str());
       return 3;
     }
     std::printf("inliers: %d\none_way_fallback: %s\nguided_support: %d\n", r.pose.num_inliers,

@@ -89,7 +89,7 @@ struct MethodRun {
   double occluded_ratio = 0;                          ///< visibility check, the worse direction
   int one_way = 0;          ///< GASP: the pose came from the one-way fallback
   int guided_support = -1;  ///< GASP: guided associations under the pose (-1: not reached)
-  bool retried = false;     ///< GASP: the estimate came from the finer-scale retry
+  bool finer_scale = false; ///< GASP: the estimate came from the finer-scale retry
   /// GASP with ground truth: free and verified associations scored (association_quality.h).
   std::optional<gasp::AssociationQuality> free_quality, verified_quality;
   /// The verified associations scored against the GICP-polished reference (--polish-reference).
@@ -224,8 +224,9 @@ int main(int argc, char** argv) {
   app.add_option("--max-occluded", base.visibility.max_occluded_ratio,
                  "visibility check: limit on the share of samples behind the other view's surfaces (all methods)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
   app.add_option("--retry-area-factor", base.retry_area_factor,
-                 "GASP: when no estimate is found, segment again with this times the patch area and retry, mutual associations only (0 = never)")
-      ->capture_default_str();
+                 "GASP: when no estimate is found, segment again with this times the patch area and retry, mutual associations only (0 = never, else in [0.01, 1))")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   app.add_flag("!--no-edge-terms", base.edge_terms, "GASP: no point-to-line terms along occluding edges in the dense rounds");
   app.add_option("--edge-weight", base.edges.weight, "GASP: weight of an edge term")->capture_default_str();
   app.add_option("--wide-edge-gates", base.wide_edge_gate_factor,
@@ -306,7 +307,7 @@ int main(int argc, char** argv) {
         run.occluded_ratio = r.visibility.occluded_ratio;
         run.one_way = r.used_one_way ? 1 : 0;
         run.guided_support = r.guided_support;
-        run.retried = r.retry_views != nullptr;
+        run.finer_scale = r.retry_views != nullptr;
         // The views r's patch indices refer to (the finer-scale retry's when it gave the estimate).
         const auto [pva, pvb] = gasp::viewsOf(r, va.view, vb.view);
         if (T_gt) {
@@ -438,7 +439,7 @@ int main(int argc, char** argv) {
     if (!pairs_csv_path.empty()) {
       pairs_csv.open(pairs_csv_path);
       if (!pairs_csv) throw gasp::Error("cannot write " + pairs_csv_path);
-      pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,occluded_ratio,consistent,occluded,violations,one_way,guided_support,retried,"
+      pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,occluded_ratio,consistent,occluded,violations,one_way,guided_support,finer_scale,"
                     "precision,verified,verified_precision,verified_density,agreement,agreement_truth,tx,ty,tz,qx,qy,qz,qw,"
                     "motion_t_m,motion_r_deg,ref_icp_t_m,ref_icp_r_deg,est_vs_ref_icp_t_m,est_vs_ref_icp_r_deg,"
                     "est_icp_t_m,est_icp_r_deg,icp_est_vs_ref_icp_t_m,icp_est_vs_ref_icp_r_deg,verified_precision_ref_icp,reason\n";
@@ -490,7 +491,7 @@ int main(int argc, char** argv) {
           pairs_csv << skip << ',' << method << ',' << i << ',' << j << ',' << (o.estimated ? 1 : 0) << ','
                     << o.t_err_m << ',' << o.r_err_deg << ',' << o.ms << ',' << run.associations << ',' << run.inliers
                     << ',' << run.violation_ratio << ',' << run.occluded_ratio << ',' << run.consistent << ',' << run.occluded << ','
-                    << run.violations << ',' << run.one_way << ',' << run.guided_support << ',' << (run.retried ? 1 : 0)
+                    << run.violations << ',' << run.one_way << ',' << run.guided_support << ',' << (run.finer_scale ? 1 : 0)
                     << ',';
           const auto& fq = run.free_quality;
           const auto& vq = run.verified_quality;

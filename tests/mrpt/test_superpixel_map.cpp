@@ -138,6 +138,10 @@ TEST(SuperpixelMap, SerializationRoundTripOfARealFrame) {
   ASSERT_EQ(copy->views().size(), 2u);
   for (std::size_t i = 0; i < 2; ++i) {
     const auto &a = map.views()[i], &b = copy->views()[i];
+    // The views' segmentation parameters (what the aligner's finer-scale retry re-segments with)
+    // are the map's creation options, before and after the round trip.
+    EXPECT_EQ(a.view.superpixels.target_patch_area_m2, 0.005);
+    EXPECT_EQ(b.view.superpixels.target_patch_area_m2, 0.005);
     EXPECT_TRUE(a.T_map_camera.isApprox(b.T_map_camera, 0.0));
     EXPECT_EQ(a.view.intrinsics, b.view.intrinsics);
     EXPECT_EQ(cv::norm(a.view.depth_m, b.view.depth_m, cv::NORM_INF), 0.0);

@@ -17,6 +17,7 @@ DepthView makeDepthView(const cv::Mat& depth_m, const CameraIntrinsics& intrinsi
     v.intrinsics = undistortion->pinhole();
   }
   v.segmentation = segmentDepthSuperpixels(v.depth_m, v.intrinsics, params);
+  v.superpixels = params;
   return v;
 }
 

@@ -79,8 +79,8 @@ void validate(const PairParams& p) {
   if (!(p.view_degeneracy.min_eigenvalue_ratio >= 0 && p.view_degeneracy.min_eigenvalue_ratio < 1))
     throw Error("PairParams: view_degeneracy.min_eigenvalue_ratio must be in [0, 1)");
   if (p.dense_rounds < 0) throw Error("PairParams: dense_rounds must be >= 0");
-  if (!(p.retry_area_factor == 0.0 || (p.retry_area_factor > 0.0 && p.retry_area_factor < 1.0)))
-    throw Error("PairParams: retry_area_factor must be 0 (off) or in (0, 1)");
+  if (!(p.retry_area_factor == 0.0 || (p.retry_area_factor >= 0.01 && p.retry_area_factor < 1.0)))
+    throw Error("PairParams: retry_area_factor must be 0 (off) or in [0.01, 1)");
   if (p.dense_rounds > 0 && p.dense_gates_m.empty()) throw Error("PairParams: dense_gates_m is empty");
   for (double g : p.dense_gates_m)
     if (!(g > 0) || !std::isfinite(g)) throw Error("PairParams: dense gates must be finite and > 0");
@@ -226,15 +226,29 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
   if (r.pose.success || view_degenerate || params.retry_area_factor == 0.0 || source.depth_m.empty() ||
       target.depth_m.empty())
     return r;
-  // Finer-scale retry (PairParams::retry_area_factor): mutual associations only.
+  // Finer-scale retry (PairParams::retry_area_factor): each view segmented again with its own
+  // parameters at the smaller area; mutual associations only.
+  char factor[32];
+  std::snprintf(factor, sizeof factor, "%g", params.retry_area_factor);
+  const std::string retry_prefix = std::string("; at ") + factor + "x the patch area: ";
   const auto t0 = std::chrono::steady_clock::now();
   PairParams fine = params;
-  fine.superpixels.target_patch_area_m2 *= params.retry_area_factor;
   fine.retry_area_factor = 0.0;
   fine.one_way_fallback = false;
+  const auto finer = [&](const DepthView& v) {
+    SuperpixelParams sp = v.superpixels;
+    sp.target_patch_area_m2 *= params.retry_area_factor;
+    return makeDepthView(v.depth_m, v.intrinsics, sp);
+  };
   auto views = std::make_shared<std::pair<DepthView, DepthView>>();
-  tbb::parallel_invoke([&] { views->first = makeDepthView(source.depth_m, source.intrinsics, fine.superpixels); },
-                       [&] { views->second = makeDepthView(target.depth_m, target.intrinsics, fine.superpixels); });
+  try {
+    tbb::parallel_invoke([&] { views->first = finer(source); }, [&] { views->second = finer(target); });
+  } catch (const std::exception& e) {  // e.g. a depth image that does not match its intrinsics
+    r.retried = true;
+    r.timings.retry_segmentation_ms = msSince(t0);
+    r.pose.reason += retry_prefix + "segmentation failed: " + e.what();
+    return r;
+  }
   const double segmentation_ms = msSince(t0);
   PairResult retry = registerAtScale(views->first, views->second, fine, view_degenerate);
   PairTimings total = r.timings;
@@ -252,9 +266,7 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
   }
   r.retried = true;
   r.timings = total;
-  char factor[32];
-  std::snprintf(factor, sizeof factor, "%g", params.retry_area_factor);
-  r.pose.reason += std::string("; at ") + factor + "x the patch area: " + retry.pose.reason;
+  r.pose.reason += retry_prefix + retry.pose.reason;
   return r;
 }
 

@@ -15,6 +15,9 @@ struct DepthView {
   cv::Mat depth_m;  ///< CV_32FC1 [m], 0 or NaN = no data; pinhole (undistorted, see makeDepthView)
   CameraIntrinsics intrinsics;  ///< pinhole: no distortion coefficients
   SuperpixelSegmentation segmentation;
+  /// The parameters `segmentation` was made with (makeDepthView sets them). The finer-scale retry
+  /// of registerViews() segments the view again with these at a smaller target area.
+  SuperpixelParams superpixels;
 };
 
 /// Segments `depth_m` (see segmentDepthSuperpixels(); throws gasp::Error for a wrong image type

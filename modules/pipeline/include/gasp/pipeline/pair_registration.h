@@ -23,7 +23,9 @@
 namespace gasp {
 
 struct PairParams {
-  SuperpixelParams superpixels;     ///< used by callers that build the views (makeDepthView)
+  /// Used by callers that build the views (makeDepthView). registerViews() itself does not use
+  /// it: the finer-scale retry re-segments each view with its own DepthView::superpixels.
+  SuperpixelParams superpixels;
   /// Checked first: a view whose own geometry cannot fix a pose (one plane, parallel planes)
   /// gives no estimate with degenerate = true, whatever the associations.
   ViewDegeneracyParams view_degeneracy;
@@ -88,9 +90,12 @@ struct PairParams {
   /// Last: a pose whose mapped views contradict each other's free space is not claimed
   /// (look-alike structure, repeated objects).
   VisibilityCheckParams visibility;
-  /// Finer-scale retry: when the views give no estimate (and neither is degenerate), both depth
-  /// images are segmented again with superpixels.target_patch_area_m2 times this factor and the
-  /// pair is registered once more, without the one-way fallback (0 = off). A small overlap holds
+  /// Finer-scale retry: when the views give no estimate (and neither view's geometry is
+  /// degenerate), both depth images are segmented again with their own parameters
+  /// (DepthView::superpixels) at target_patch_area_m2 times this factor and the pair is registered
+  /// once more, without the one-way fallback (0 = off; else in [0.01, 1)). Views without depth
+  /// (depth_m empty) are not retried. The count thresholds (pose.ransac.min_inliers,
+  /// min_guided_support) are not scaled: at 0.3 x the area they ask for less surface. A small overlap holds
   /// too few patches of the default size for a consensus (fr1_xyz 440 -> 490, 540 -> 590: 60 of
   /// 250-310 patches in the overlap); smaller patches give it more. 0.3 = 12 cm^2 patches, chosen
   /// on the fr1_xyz benchmark pairs (docs/pipeline.md: 0.33 and 0.25 claim a poor pose there). The one-way partners of small
