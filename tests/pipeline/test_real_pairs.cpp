@@ -78,16 +78,17 @@ TEST(RealPairs, FinerScaleRetryRegistersASmallOverlap) {
   EXPECT_LT(rotationAngle(E) * 180.0 / M_PI, 2.0);
 }
 
-TEST(RealPairs, FinerScaleRetryOfADegeneratePoseProblem) {
+TEST(RealPairs, NoFinerScaleRetryForADegeneratePoseProblem) {
   // 600 -> 650 (0.50 m / 14 deg, 25 of 596 source patches in the overlap): the default scale's
-  // pose problem is degenerate (dense refinement unobservable), the views are not, so the retry
-  // runs; it finds nothing either and both reasons are given.
+  // pose problem is degenerate (dense refinement unobservable). Finer patches on the same planes
+  // would add inliers, not constraints (retried, RANSAC-only poses on fr3_cabinet_kf went up to
+  // 0.34 m / 19 deg off), so there is no retry: no estimate, degenerate.
   GASP_REQUIRE_DATA(dir, "tum/fr1_xyz");
   const RealPair p = load(dir, 600, 650);
   const PairResult r = registerViews(p.a, p.b);
-  if (expectRightOrDeclined(p, r, "x the patch area: ")) {
-    EXPECT_TRUE(r.retried);
-    EXPECT_NE(r.pose.reason.find("dense refinement"), std::string::npos) << r.pose.reason;
+  if (expectRightOrDeclined(p, r, "unobservable")) {
+    EXPECT_TRUE(r.pose.degenerate);
+    EXPECT_FALSE(r.retried);
   }
 }
 

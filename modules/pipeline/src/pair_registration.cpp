@@ -88,12 +88,9 @@ void validate(const PairParams& p) {
 
 namespace {
 
-/// registerViews() at the scale of the views given (no retry). `view_degenerate`: set when a
-/// view's own geometry cannot fix a pose (then no scale can).
-PairResult registerAtScale(const DepthView& source, const DepthView& target, const PairParams& params,
-                           bool& view_degenerate) {
+/// registerViews() at the scale of the views given (no retry).
+PairResult registerAtScale(const DepthView& source, const DepthView& target, const PairParams& params) {
   PairResult r;
-  view_degenerate = false;
   for (const auto* view : {&source, &target}) {
     const auto d = analyseViewGeometry(view->segmentation, params.view_degeneracy);
     if (d.degenerate) {
@@ -102,7 +99,6 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
       r.pose.unobservable_directions = d.unobservable_directions;
       r.pose.reason = std::string("degenerate scene: the ") + (view == &source ? "source" : "target") +
                       " view's geometry leaves free: " + d.reason;
-      view_degenerate = true;
       return r;
     }
   }
@@ -221,9 +217,10 @@ std::pair<const DepthView*, const DepthView*> viewsOf(const PairResult& r, const
 
 PairResult registerViews(const DepthView& source, const DepthView& target, const PairParams& params) {
   validate(params);
-  bool view_degenerate = false;
-  PairResult r = registerAtScale(source, target, params, view_degenerate);
-  if (r.pose.success || view_degenerate || params.retry_area_factor == 0.0 || source.depth_m.empty() ||
+  PairResult r = registerAtScale(source, target, params);
+  // No retry for a degenerate view (no scale can fix it) nor for a degenerate pose problem: finer
+  // patches on the same few planes add inliers, not constraints (docs/pipeline.md step 6).
+  if (r.pose.success || r.pose.degenerate || params.retry_area_factor == 0.0 || source.depth_m.empty() ||
       target.depth_m.empty())
     return r;
   // Finer-scale retry (PairParams::retry_area_factor): each view segmented again with its own
@@ -250,7 +247,7 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
     return r;
   }
   const double segmentation_ms = msSince(t0);
-  PairResult retry = registerAtScale(views->first, views->second, fine, view_degenerate);
+  PairResult retry = registerAtScale(views->first, views->second, fine);
   PairTimings total = r.timings;
   total.association_ms += retry.timings.association_ms;
   total.ransac_ms += retry.timings.ransac_ms;

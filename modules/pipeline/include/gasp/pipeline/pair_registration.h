@@ -90,8 +90,8 @@ struct PairParams {
   /// Last: a pose whose mapped views contradict each other's free space is not claimed
   /// (look-alike structure, repeated objects).
   VisibilityCheckParams visibility;
-  /// Finer-scale retry: when the views give no estimate (and neither view's geometry is
-  /// degenerate), both depth images are segmented again with their own parameters
+  /// Finer-scale retry: when the views give no estimate and the failure is not a degenerate view
+  /// or pose problem (pose.degenerate), both depth images are segmented again with their own parameters
   /// (DepthView::superpixels) at target_patch_area_m2 times this factor and the pair is registered
   /// once more, without the one-way fallback (0 = off; else in [0.01, 1)). Views without depth
   /// (depth_m empty) are not retried. The count thresholds (pose.ransac.min_inliers,
