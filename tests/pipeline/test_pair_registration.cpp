@@ -64,18 +64,16 @@ TEST_P(SyntheticPair, RecoversTheTruePose) {
   EXPECT_TRUE(r.pose.information.isApprox(r.pose.information.transpose(), 1e-9));
   EXPECT_GT(r.pose.information_eigenvalues.minCoeff(), 0.0);
   EXPECT_TRUE(r.visibility.passed);
-  // The verified (guided) associations at the final pose: many, and at least 95 % the same
-  // surface (issue 4 target for synthetic pairs; measured 0.996-1.000).
-  int correct = 0;
-  for (const auto& v : r.verified)
-    correct += isSameSurface(p.a.segmentation.patches[static_cast<std::size_t>(v.a)],
-                             p.b.segmentation.patches[static_cast<std::size_t>(v.b)], p.T_b_a);
-  std::printf("%s: %zu associations, %zu verified, verified precision %.3f, support %d, one-way %d\n", c.what,
-              r.association.associations.size(), r.verified.size(),
-              r.verified.empty() ? 0.0 : static_cast<double>(correct) / static_cast<double>(r.verified.size()),
+  // The verified (guided) associations at the final pose, scored by association_quality.h's
+  // definition: precision >= 0.95 and density >= 0.5 (issue 4's target for synthetic pairs;
+  // measured 0.996-1.000 and 0.81-0.87 on the room pairs).
+  const AssociationQuality q =
+      evaluateAssociations(r.verified, p.a.segmentation, p.b.segmentation, p.b.depth_m, p.b.intrinsics, p.T_b_a);
+  std::printf("%s: %zu associations, %zu verified, verified precision %.3f, density %.3f, support %d, one-way %d\n",
+              c.what, r.association.associations.size(), r.verified.size(), q.precision(), q.density(),
               r.guided_support, int(r.used_one_way));
-  EXPECT_GE(r.verified.size(), r.association.associations.size() / 2) << c.what;
-  EXPECT_GE(correct, 0.95 * static_cast<double>(r.verified.size())) << c.what;
+  EXPECT_GE(q.precision(), 0.95) << c.what;
+  EXPECT_GE(q.density(), 0.5) << c.what;
 }
 
 // Motions (ground truth): room 3->9 0.59 m / 12 deg; 44->59 180-degree roll; 33->36 an occluder
