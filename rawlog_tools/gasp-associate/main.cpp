@@ -102,8 +102,11 @@ int main(int argc, char** argv) {
     const auto& s = r.association.stats;
     std::printf("patches_a: %zu\npatches_b: %zu\nassociations: %zu\n", pva->segmentation.patches.size(),
                 pvb->segmentation.patches.size(), r.association.associations.size());
-    std::printf("time_ms: segmentation %.1f + %.1f, association %.1f (features %.1f, kd-tree %.1f, matching %.1f), "
+    // With the retry, the stage times are summed over both attempts; the association breakdown is
+    // that of the attempt whose associations are shown.
+    std::printf("time_ms%s: segmentation %.1f + %.1f, association %.1f (features %.1f, kd-tree %.1f, matching %.1f), "
                 "ransac %.1f, refinement %.1f, dense+check %.1f\n",
+                r.retried ? " (both attempts; the breakdown in brackets: the attempt shown)" : "",
                 va.segmentation.timings.total(), vb.segmentation.timings.total(), r.timings.association_ms,
                 s.features_ms, s.tree_ms, s.matching_ms, r.timings.ransac_ms, r.timings.refine_ms, r.timings.dense_ms);
     if (r.retry_views)
