@@ -1,9 +1,15 @@
 #include "gasp/mrpt/CGaspAligner.h"
 
 #include <mrpt/core/exceptions.h>
+#include <mrpt/core/format.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
 #include <chrono>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "gasp/mrpt/CSuperpixelMap.h"
 #include "gasp/mrpt/params_io.h"
@@ -59,51 +65,90 @@ mrpt::poses::CPose3DPDF::Ptr CGaspAligner::Align3DPDF(const mrpt::maps::CMetricM
   std::optional<mrpt::poses::CPose3DPDFGaussian> best_pdf;
   if (map1.isEmpty() || map2.isEmpty()) best.reason = std::string("map ") + (map1.isEmpty() ? "m1" : "m2") + " is empty";
   int best_failed_inliers = -1;
-  for (std::size_t i = 0; i < map1.views().size(); ++i) {
+  // One registration's outcome, kept when it beats the best so far: a default-scale pose before
+  // one from the finer-scale retry (whose smaller patches give more inliers for the same
+  // surface), then the most inliers; without any pose, the most promising failure (its reason is
+  // the informative one).
+  const auto consider = [&](std::size_t i, std::size_t j, const PairResult& r, bool finer_scale,
+                            const std::string& reason_prefix) {
     const SuperpixelMapView& vi = map1.views()[i];
+    const SuperpixelMapView& vj = map2.views()[j];
+    TGaspAlignmentResult cand;
+    cand.view_m1 = static_cast<int>(i);
+    cand.view_m2 = static_cast<int>(j);
+    // The finer-scale views' patch indices are not the maps' patches.
+    cand.finer_scale = finer_scale;
+    if (!finer_scale)
+      for (const auto& s : r.association.associations) cand.associations.emplace_back(s.b, s.a);
+    cand.inliers = r.pose.num_inliers;
+    cand.degenerate = r.pose.degenerate;
+    cand.reason = reason_prefix + r.pose.reason;
+    std::optional<mrpt::poses::CPose3DPDFGaussian> pdf;
+    if (r.pose.success) {
+      const Isometry3 T_m1_m2 = vi.T_map_camera * r.pose.T_target_source * vj.T_map_camera.inverse();
+      cand.information = informationInFrame(r.pose.information, vi.T_map_camera);
+      pdf = poseWithInformation(T_m1_m2, cand.information);
+      if (!pdf) {
+        cand.degenerate = true;
+        cand.reason = "the refinement's information matrix is not positive definite";
+        cand.information.setZero();
+      }
+    }
+    cand.success = pdf.has_value();
+    const bool better = !best.success || (cand.finer_scale != best.finer_scale ? !cand.finer_scale
+                                                                              : cand.inliers > best.inliers);
+    const int pairs = best.view_pairs;
+    if (cand.success && better) {
+      best = std::move(cand);
+      best_pdf = pdf;
+    } else if (!best.success && cand.inliers > best_failed_inliers) {
+      best_failed_inliers = cand.inliers;
+      best = std::move(cand);
+    }
+    best.view_pairs = pairs;
+  };
+
+  // Every view pair at the default scale first (source: m2's view, target: m1's view, so
+  // T_target_source = T_ci_cj). The finer-scale retry (PairParams::retry_area_factor) runs only
+  // when none gives a pose -- a default-scale pose would be preferred anyway -- and then
+  // re-segments each view once instead of once per pair.
+  PairParams default_scale = options.params;
+  default_scale.retry_area_factor = 0.0;
+  std::vector<std::pair<std::size_t, std::size_t>> retry_pairs;
+  for (std::size_t i = 0; i < map1.views().size(); ++i) {
     for (std::size_t j = 0; j < map2.views().size(); ++j) {
-      const SuperpixelMapView& vj = map2.views()[j];
       ++best.view_pairs;
-      // Source: m2's view, target: m1's view, so T_target_source = T_ci_cj.
-      const PairResult r = registerViews(vj.view, vi.view, options.params);
-      TGaspAlignmentResult cand;
-      cand.view_m1 = static_cast<int>(i);
-      cand.view_m2 = static_cast<int>(j);
-      // The finer-scale retry's patch indices refer to its own views, not to the maps' patches.
-      cand.finer_scale = r.retry_views != nullptr;
-      if (!cand.finer_scale)
-        for (const auto& s : r.association.associations) cand.associations.emplace_back(s.b, s.a);
-      cand.inliers = r.pose.num_inliers;
-      cand.degenerate = r.pose.degenerate;
-      cand.reason = r.pose.reason;
-      std::optional<mrpt::poses::CPose3DPDFGaussian> pdf;
-      if (r.pose.success) {
-        const Isometry3 T_m1_m2 = vi.T_map_camera * r.pose.T_target_source * vj.T_map_camera.inverse();
-        cand.information = informationInFrame(r.pose.information, vi.T_map_camera);
-        pdf = poseWithInformation(T_m1_m2, cand.information);
-        if (!pdf) {
-          cand.degenerate = true;
-          cand.reason = "the refinement's information matrix is not positive definite";
-          cand.information.setZero();
-        }
+      const DepthView& source = map2.views()[j].view;
+      const DepthView& target = map1.views()[i].view;
+      const PairResult r = registerViews(source, target, default_scale);
+      if (!r.pose.success && !r.pose.degenerate && !source.depth_m.empty() && !target.depth_m.empty())
+        retry_pairs.emplace_back(i, j);
+      consider(i, j, r, false, "");
+    }
+  }
+  const double factor = options.params.retry_area_factor;
+  if (!best.success && factor > 0.0 && !retry_pairs.empty()) {
+    const std::string prefix = mrpt::format("at %gx the patch area: ", factor);
+    std::map<std::size_t, DepthView> fine1, fine2;
+    std::map<std::size_t, std::string> failed1, failed2;  // views whose second segmentation threw
+    const auto fine = [&](std::map<std::size_t, DepthView>& cache, std::map<std::size_t, std::string>& failed,
+                          const CSuperpixelMap& map, std::size_t k) -> const DepthView* {
+      if (failed.count(k)) return nullptr;
+      auto it = cache.find(k);
+      if (it != cache.end()) return &it->second;
+      try {
+        return &cache.emplace(k, finerScaleView(map.views()[k].view, factor)).first->second;
+      } catch (const std::exception& e) {
+        failed[k] = e.what();
+        return nullptr;
       }
-      cand.success = pdf.has_value();
-      // Best: a default-scale pose before one from the finer-scale retry (whose smaller patches
-      // give more inliers for the same surface), then the most inliers.
-      const bool better = !best.success || (cand.finer_scale != best.finer_scale ? !cand.finer_scale
-                                                                                : cand.inliers > best.inliers);
-      if (cand.success && better) {
-        const int pairs = best.view_pairs;
-        best = std::move(cand);
-        best.view_pairs = pairs;
-        best_pdf = pdf;
-      } else if (!best.success && cand.inliers > best_failed_inliers) {
-        // Keep the most promising failure, so that the reason is the informative one.
-        best_failed_inliers = cand.inliers;
-        const int pairs = best.view_pairs;
-        best = std::move(cand);
-        best.view_pairs = pairs;
-      }
+    };
+    const PairParams finer = finerScaleParams(options.params);
+    for (const auto& [i, j] : retry_pairs) {
+      const DepthView* target = fine(fine1, failed1, map1, i);
+      const DepthView* source = fine(fine2, failed2, map2, j);
+      if (!source || !target) continue;
+      consider(i, j, registerViews(*source, *target, finer), true, prefix);
     }
   }
   if (!best.success && best.reason.empty()) best.reason = "no view pair gave an estimate";

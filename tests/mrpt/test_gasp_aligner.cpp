@@ -172,3 +172,36 @@ TEST(GaspAligner, CreatedByNameThroughTheClassFactory) {
   const auto aligner = std::dynamic_pointer_cast<mrpt::slam::CMetricMapsAlignmentAlgorithm>(object);
   EXPECT_TRUE(aligner);
 }
+
+TEST(GaspAligner, FinerScaleRetryWhenNoViewPairIsFound) {
+  // Maps whose views were segmented with 2000 cm^2 patches: fr1_desk9 0 -> 4 gives too few
+  // correspondences at that scale. The finer-scale retry re-segments each view once with the
+  // map's own creation options at retry_area_factor x the area (600 cm^2) and finds the pose; it
+  // is reported with finer_scale and without associations (its patches are not the maps').
+  // With 500 cm^2 patches the default scale finds it and no retry pose is reported.
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const std::string out = gasp::test::scratchDir();
+  const ConvertedFrames c = convertWithTum2Rawlog(dir, out, false);
+  ASSERT_GE(c.scans.size(), 5u);
+  for (const double area : {0.2, 0.05}) {
+    CSuperpixelMap m1, m2;
+    m1.creationOptions.superpixels.target_patch_area_m2 = area;
+    m2.creationOptions.superpixels.target_patch_area_m2 = area;
+    ASSERT_TRUE(m1.insertObservation(*c.scans[0]));
+    ASSERT_TRUE(m2.insertObservation(*c.scans[4]));
+    CGaspAligner aligner;
+    TGaspAlignmentResult info;
+    aligner.options.params.retry_area_factor = 0.0;
+    const auto none = aligner.Align3DPDF(&m1, &m2, mrpt::poses::CPose3DPDFGaussian(), info);
+    EXPECT_EQ(none == nullptr, area == 0.2) << area << ": " << info.reason;
+    aligner.options.params.retry_area_factor = 0.3;
+    const auto pdf = aligner.Align3DPDF(&m1, &m2, mrpt::poses::CPose3DPDFGaussian(), info);
+    ASSERT_TRUE(pdf) << area << ": " << info.reason;
+    EXPECT_EQ(info.finer_scale, area == 0.2);
+    EXPECT_EQ(info.associations.empty(), area == 0.2);
+    EXPECT_EQ(info.view_pairs, 1);
+    const auto gauss = std::dynamic_pointer_cast<mrpt::poses::CPose3DPDFGaussian>(pdf);
+    ASSERT_TRUE(gauss);
+    expectWithin(truth(c, 0, 4), gauss->mean, area == 0.2 ? "maps, finer-scale retry" : "maps, 500 cm^2");
+  }
+}

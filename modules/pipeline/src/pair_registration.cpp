@@ -209,6 +209,19 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
 
 }  // namespace
 
+DepthView finerScaleView(const DepthView& view, double area_factor) {
+  SuperpixelParams sp = view.superpixels;
+  sp.target_patch_area_m2 *= area_factor;
+  return makeDepthView(view.depth_m, view.intrinsics, sp);
+}
+
+PairParams finerScaleParams(const PairParams& params) {
+  PairParams fine = params;
+  fine.retry_area_factor = 0.0;
+  fine.one_way_fallback = false;
+  return fine;
+}
+
 std::pair<const DepthView*, const DepthView*> viewsOf(const PairResult& r, const DepthView& source,
                                                       const DepthView& target) {
   if (r.retry_views) return {&r.retry_views->first, &r.retry_views->second};
@@ -229,17 +242,12 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
   std::snprintf(factor, sizeof factor, "%g", params.retry_area_factor);
   const std::string retry_prefix = std::string("; at ") + factor + "x the patch area: ";
   const auto t0 = std::chrono::steady_clock::now();
-  PairParams fine = params;
-  fine.retry_area_factor = 0.0;
-  fine.one_way_fallback = false;
-  const auto finer = [&](const DepthView& v) {
-    SuperpixelParams sp = v.superpixels;
-    sp.target_patch_area_m2 *= params.retry_area_factor;
-    return makeDepthView(v.depth_m, v.intrinsics, sp);
-  };
+  const PairParams fine = finerScaleParams(params);
+  const double f = params.retry_area_factor;
   auto views = std::make_shared<std::pair<DepthView, DepthView>>();
   try {
-    tbb::parallel_invoke([&] { views->first = finer(source); }, [&] { views->second = finer(target); });
+    tbb::parallel_invoke([&] { views->first = finerScaleView(source, f); },
+                         [&] { views->second = finerScaleView(target, f); });
   } catch (const std::exception& e) {  // e.g. a depth image that does not match its intrinsics
     r.retried = true;
     r.timings.retry_segmentation_ms = msSince(t0);

@@ -163,6 +163,14 @@ struct PairResult {
 std::pair<const DepthView*, const DepthView*> viewsOf(const PairResult& r, const DepthView& source,
                                                       const DepthView& target);
 
+/// The pieces of the finer-scale retry (PairParams::retry_area_factor), for callers that register
+/// many view pairs and want each view re-segmented once (CGaspAligner): `view` segmented again with
+/// its own parameters (DepthView::superpixels) at area_factor times their target area (throws
+/// gasp::Error for a view whose depth does not match its intrinsics), and the parameters the
+/// retry registers with (no further retry, no one-way fallback).
+DepthView finerScaleView(const DepthView& view, double area_factor);
+PairParams finerScaleParams(const PairParams& params);
+
 /// Registers `source` (view A) to `target` (view B): pose.T_target_source maps A's camera frame
 /// into B's. Never throws for data (empty views, NaN, no overlap give pose.success = false with
 /// pose.reason); throws gasp::Error for invalid parameters.
