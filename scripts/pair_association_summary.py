@@ -9,15 +9,17 @@
 2. How well the estimate and the ground truth explain the depth (the agreement columns: share of
    samples within a tight gate of the other view's surface) and on how many pairs each is the
    better by more than 0.02.
-3. The pairs without an estimate, with their true motion and the reason; the largest true
-   motion among the pairs with one.
+3. The pairs without an estimate, with their true motion and the reason; the pairs the
+   finer-scale retry registered (column finer_scale), with their motion and error; the largest
+   true motion among the pairs with an estimate.
 4. Loop closure of the estimates: for every i with estimates i -> i+s, i+s -> i+2s and i -> i+2s
    (skips s and 2s both in the file), the motion left by (i -> i+2s)^-1 (i+s -> i+2s) (i -> i+s).
 5. With gasp-pairs --polish-reference: an independent check by PCL's GICP, run from the reference
    pose and from the estimate. Per skip: how far GICP moves the reference and the estimate
    (median), how far apart the two GICP results end (median), and the RMSE of the estimate against
    the reference and against the GICP-polished reference; the verified associations' precision
-   against each.
+   against each; and the GICP-polished reference scored like an estimate against the reference
+   (RMSE per skip, every pair GICP ran on): what the reference can certify.
 Python standard library only."""
 import csv
 import math
@@ -112,6 +114,15 @@ def main():
         for r in sorted(failed, key=lambda r: (int(r["skip"]), int(r["from"]))):
             print("| %s | %s -> %s | %.2f / %.1f | %s |" % (r["skip"], r["from"], r["to"], float(r["motion_t_m"]),
                                                         float(r["motion_r_deg"]), r["reason"][:90]))
+    retried = [r for r in rows if r.get("finer_scale", "") == "1"]
+    if retried:
+        print()
+        print("| skip | pair registered by the finer-scale retry | true motion t [m] / r [deg] | error t [m] / r [deg] |")
+        print("|---|---|---|---|")
+        for r in sorted(retried, key=lambda r: (int(r["skip"]), int(r["from"]))):
+            print("| %s | %s -> %s | %.2f / %.1f | %.4f / %.2f |" % (
+                r["skip"], r["from"], r["to"], float(r["motion_t_m"]), float(r["motion_r_deg"]),
+                float(r["t_err_m"]), float(r["r_err_deg"])))
     done = [r for r in rows if r["estimated"] == "1" and r.get("motion_r_deg", "") != ""]
     if done:
         print()
