@@ -90,18 +90,20 @@ struct PairParams {
   /// Last: a pose whose mapped views contradict each other's free space is not claimed
   /// (look-alike structure, repeated objects).
   VisibilityCheckParams visibility;
-  /// Finer-scale retry: when the views give no estimate and the failure is not a degenerate view
-  /// or pose problem (pose.degenerate), both depth images are segmented again with their own parameters
-  /// (DepthView::superpixels) at target_patch_area_m2 times this factor and the pair is registered
-  /// once more, without the one-way fallback (0 = off; else in [0.01, 1)). Views without depth
-  /// (depth_m empty) are not retried. The count thresholds (pose.ransac.min_inliers,
-  /// min_guided_support) are not scaled: at 0.3 x the area they ask for less surface. A small overlap holds
-  /// too few patches of the default size for a consensus (fr1_xyz 440 -> 490, 540 -> 590: 60 of
-  /// 250-310 patches in the overlap); smaller patches give it more. 0.3 = 12 cm^2 patches, chosen
-  /// on the fr1_xyz benchmark pairs (docs/pipeline.md: 0.33 and 0.25 claim a poor pose there). The one-way partners of small
-  /// patches claimed a wrong pose (200 -> 250, 0.35 m / 23 deg), hence mutual associations only
-  /// (docs/pipeline.md, "Finer-scale retry"). Then PairResult::retry_views holds the views the
-  /// result's patch indices refer to.
+  /// Finer-scale retry (0 = off; else in [0.01, 1)): when the views give no estimate and the
+  /// failure is not a degenerate view or pose problem (pose.degenerate), both depth images are
+  /// segmented again with their own parameters (DepthView::superpixels) at this factor times
+  /// their target_patch_area_m2, and the pair is registered once more with the mutual
+  /// associations only and the one-way fallback's visibility limit (one_way_max_violation_ratio).
+  /// Why: a small overlap holds too few patches of the default size for a consensus (fr1_xyz
+  /// 440 -> 490, 540 -> 590: about 60 of 250-310 patches in the overlap); smaller patches give it
+  /// more. 0.3 (12 cm^2 patches) is chosen on the fr1_xyz benchmark pairs (0.33 and 0.25 claim a
+  /// poor pose there). One-way partners of small patches claimed a wrong pose (200 -> 250, 0.35 m /
+  /// 23 deg), and look-alike synthetic boxes wrong poses with 12-23 % violations (right retry
+  /// poses: at most 3.3 %), hence the two restrictions (docs/pipeline.md, "Finer-scale retry").
+  /// Views without depth (depth_m empty) are not retried. The count thresholds
+  /// (pose.ransac.min_inliers, min_guided_support) are not scaled: at 0.3 x the area they ask for
+  /// less surface. PairResult::retry_views holds the views a retry's patch indices refer to.
   double retry_area_factor = 0.3;
 
   static AssociationParams defaultAssociation() {
@@ -167,7 +169,8 @@ std::pair<const DepthView*, const DepthView*> viewsOf(const PairResult& r, const
 /// many view pairs and want each view re-segmented once (CGaspAligner): `view` segmented again with
 /// its own parameters (DepthView::superpixels) at area_factor times their target area (throws
 /// gasp::Error for a view whose depth does not match its intrinsics), and the parameters the
-/// retry registers with (no further retry, no one-way fallback).
+/// retry registers with (no further retry, no one-way fallback, and the one-way fallback's
+/// stricter visibility limit, one_way_max_violation_ratio).
 DepthView finerScaleView(const DepthView& view, double area_factor);
 PairParams finerScaleParams(const PairParams& params);
 
