@@ -152,7 +152,10 @@ int main(int argc, char** argv) {
                 T.translation().y(), T.translation().z(), qt.x(), qt.y(), qt.z(), qt.w());
     std::printf("residual_rms_m: %.4f\ninformation_diag: ", r.pose.rms_residual_m);
     for (int i = 0; i < 6; ++i) std::printf("%.4g%s", r.pose.information(i, i), i < 5 ? " " : " (tx ty tz rx ry rz)\n");
-    std::printf("visibility_violations: %.3f\n", r.visibility.violation_ratio);
+    std::printf("visibility_violations: %.3f\nvisibility_occluded: %.3f\n", r.visibility.violation_ratio,
+                r.visibility.occluded_ratio);
+    std::printf("dense_terms: %d\nedge_paired_share: %.3f\nwide_edge_pose: %s\n", r.dense_terms, r.edge_paired_share,
+                r.wide_edge_pose ? "yes" : "no");
     std::printf("verified_associations: %zu\n", r.verified.size());
     if (T_b_a_true) {
       const auto q = gasp::evaluateAssociations(r.verified, pva->segmentation, pvb->segmentation, pvb->depth_m, pvb->intrinsics, *T_b_a_true);
