@@ -1,7 +1,6 @@
 #include "gasp/mrpt/CGaspAligner.h"
 
 #include <mrpt/core/exceptions.h>
-#include <mrpt/core/format.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
 #include <chrono>
@@ -69,8 +68,7 @@ mrpt::poses::CPose3DPDF::Ptr CGaspAligner::Align3DPDF(const mrpt::maps::CMetricM
   // one from the finer-scale retry (whose smaller patches give more inliers for the same
   // surface), then the most inliers; without any pose, the most promising failure (its reason is
   // the informative one).
-  const auto consider = [&](std::size_t i, std::size_t j, const PairResult& r, bool finer_scale,
-                            const std::string& reason_prefix) {
+  const auto consider = [&](std::size_t i, std::size_t j, const PairResult& r, bool finer_scale) {
     const SuperpixelMapView& vi = map1.views()[i];
     const SuperpixelMapView& vj = map2.views()[j];
     TGaspAlignmentResult cand;
@@ -82,7 +80,7 @@ mrpt::poses::CPose3DPDF::Ptr CGaspAligner::Align3DPDF(const mrpt::maps::CMetricM
       for (const auto& s : r.association.associations) cand.associations.emplace_back(s.b, s.a);
     cand.inliers = r.pose.num_inliers;
     cand.degenerate = r.pose.degenerate;
-    cand.reason = reason_prefix + r.pose.reason;
+    cand.reason = r.pose.reason;
     std::optional<mrpt::poses::CPose3DPDFGaussian> pdf;
     if (r.pose.success) {
       const Isometry3 T_m1_m2 = vi.T_map_camera * r.pose.T_target_source * vj.T_map_camera.inverse();
@@ -121,34 +119,33 @@ mrpt::poses::CPose3DPDF::Ptr CGaspAligner::Align3DPDF(const mrpt::maps::CMetricM
       const DepthView& source = map2.views()[j].view;
       const DepthView& target = map1.views()[i].view;
       const PairResult r = registerViews(source, target, default_scale);
-      if (!r.pose.success && !r.pose.degenerate && !source.depth_m.empty() && !target.depth_m.empty())
-        retry_pairs.emplace_back(i, j);
-      consider(i, j, r, false, "");
+      if (finerScaleRetryApplies(r, source, target)) retry_pairs.emplace_back(i, j);
+      consider(i, j, r, false);
     }
   }
   const double factor = options.params.retry_area_factor;
   if (!best.success && factor > 0.0 && !retry_pairs.empty()) {
-    const std::string prefix = mrpt::format("at %gx the patch area: ", factor);
-    std::map<std::size_t, DepthView> fine1, fine2;
-    std::map<std::size_t, std::string> failed1, failed2;  // views whose second segmentation threw
-    const auto fine = [&](std::map<std::size_t, DepthView>& cache, std::map<std::size_t, std::string>& failed,
-                          const CSuperpixelMap& map, std::size_t k) -> const DepthView* {
-      if (failed.count(k)) return nullptr;
+    // Each view re-segmented at most once; nullopt: its second segmentation threw.
+    std::map<std::size_t, std::optional<DepthView>> fine1, fine2;
+    const auto fine = [&](std::map<std::size_t, std::optional<DepthView>>& cache, const CSuperpixelMap& map,
+                          std::size_t k) -> const std::optional<DepthView>& {
       auto it = cache.find(k);
-      if (it != cache.end()) return &it->second;
+      if (it != cache.end()) return it->second;
+      std::optional<DepthView> v;
       try {
-        return &cache.emplace(k, finerScaleView(map.views()[k].view, factor)).first->second;
-      } catch (const std::exception& e) {
-        failed[k] = e.what();
-        return nullptr;
+        v = finerScaleView(map.views()[k].view, factor);
+      } catch (const std::exception&) {
       }
+      return cache.emplace(k, std::move(v)).first->second;
     };
     const PairParams finer = finerScaleParams(options.params);
     for (const auto& [i, j] : retry_pairs) {
-      const DepthView* target = fine(fine1, failed1, map1, i);
-      const DepthView* source = fine(fine2, failed2, map2, j);
+      const auto& target = fine(fine1, map1, i);
+      const auto& source = fine(fine2, map2, j);
       if (!source || !target) continue;
-      consider(i, j, registerViews(*source, *target, finer), true, prefix);
+      PairResult r = registerViews(*source, *target, finer);
+      r.pose.reason = finerScaleReason(factor, r.pose.reason);
+      consider(i, j, r, true);
     }
   }
   if (!best.success && best.reason.empty()) best.reason = "no view pair gave an estimate";

@@ -31,6 +31,18 @@ double translationError(const RealPair& p, const PairResult& r) {
   return translationNorm(p.T_b_a.inverse() * r.pose.T_target_source);
 }
 
+/// Rotation error of a result's pose against the pair's reference [deg].
+double rotationErrorDeg(const RealPair& p, const PairResult& r) {
+  return rotationAngle(p.T_b_a.inverse() * r.pose.T_target_source) * 180.0 / M_PI;
+}
+
+/// The defaults without the finer-scale retry: what the default scale alone does.
+PairParams defaultScaleOnly() {
+  PairParams params;
+  params.retry_area_factor = 0.0;
+  return params;
+}
+
 /// A claimed pose must be right (within 10 cm); a declined one must give `why` in its reason.
 /// Returns whether the pose was declined.
 bool expectRightOrDeclined(const RealPair& p, const PairResult& r, const char* why) {
@@ -49,14 +61,12 @@ TEST(RealPairs, OneWayFallbackFindsTheWideBaselinePose) {
   ASSERT_TRUE(r.pose.success) << r.pose.reason;
   EXPECT_TRUE(r.used_one_way);
   EXPECT_GE(r.guided_support, PairParams{}.min_guided_support);
-  const Isometry3 E = p.T_b_a.inverse() * r.pose.T_target_source;
-  EXPECT_LT(translationNorm(E), 0.05);
-  EXPECT_LT(rotationAngle(E) * 180.0 / M_PI, 3.0);
+  EXPECT_LT(translationError(p, r), 0.05);
+  EXPECT_LT(rotationErrorDeg(p, r), 3.0);
   // Without the fallback (and the finer-scale retry) the mutual associations alone give no
   // estimate here.
-  PairParams no_fallback;
+  PairParams no_fallback = defaultScaleOnly();
   no_fallback.one_way_fallback = false;
-  no_fallback.retry_area_factor = 0.0;
   EXPECT_FALSE(registerViews(p.a, p.b, no_fallback).pose.success);
 }
 
@@ -66,16 +76,13 @@ TEST(RealPairs, FinerScaleRetryRegistersASmallOverlap) {
   // finds the pose with mutual associations.
   GASP_REQUIRE_DATA(dir, "tum/fr1_xyz");
   const RealPair p = load(dir, 540, 590);
-  PairParams off;
-  off.retry_area_factor = 0.0;
-  EXPECT_FALSE(registerViews(p.a, p.b, off).pose.success);
+  EXPECT_FALSE(registerViews(p.a, p.b, defaultScaleOnly()).pose.success);
   const PairResult r = registerViews(p.a, p.b);
   ASSERT_TRUE(r.pose.success) << r.pose.reason;
   EXPECT_NE(r.retry_views, nullptr);
   EXPECT_FALSE(r.used_one_way);
-  const Isometry3 E = p.T_b_a.inverse() * r.pose.T_target_source;
-  EXPECT_LT(translationNorm(E), 0.05);
-  EXPECT_LT(rotationAngle(E) * 180.0 / M_PI, 2.0);
+  EXPECT_LT(translationError(p, r), 0.05);
+  EXPECT_LT(rotationErrorDeg(p, r), 2.0);
 }
 
 TEST(RealPairs, NoFinerScaleRetryForADegeneratePoseProblem) {
@@ -100,15 +107,14 @@ TEST(RealPairs, FinerScaleRetryClaimsNoWrongPoseOnATinyOverlap) {
   const RealPair p = load(dir, 200, 250);
   const PairResult r = registerViews(p.a, p.b);
   if (!expectRightOrDeclined(p, r, "x the patch area: ")) {
-    EXPECT_LT(rotationAngle(p.T_b_a.inverse() * r.pose.T_target_source) * 180.0 / M_PI, 3.0);
+    EXPECT_LT(rotationErrorDeg(p, r), 3.0);
   }
 }
 
 TEST(RealPairs, AWrongFallbackPoseIsDeclined) {
   GASP_REQUIRE_DATA(dir, "tum/fr1_xyz");
   const RealPair p = load(dir, 650, 700);
-  PairParams no_retry;  // what the default scale does (the finer-scale retry finds nothing either)
-  no_retry.retry_area_factor = 0.0;
+  const PairParams no_retry = defaultScaleOnly();  // the finer-scale retry finds nothing either
   const PairResult r = registerViews(p.a, p.b, no_retry);
   if (expectRightOrDeclined(p, r, "behind")) {
     EXPECT_TRUE(r.used_one_way);
@@ -130,8 +136,7 @@ TEST(RealPairs, TheFallbackViolationLimitDeclinesAWrongPose) {
   sp.step_borders = true;
   const RealPair p = load(dir, 280, 310, sp);
   // The default scale only (the finer-scale retry registers this pair, see below).
-  PairParams no_retry;
-  no_retry.retry_area_factor = 0.0;
+  const PairParams no_retry = defaultScaleOnly();
   EXPECT_TRUE(expectRightOrDeclined(p, registerViews(p.a, p.b, no_retry), "empty"));
   const PairResult retried = registerViews(p.a, p.b);
   EXPECT_TRUE(retried.retried);

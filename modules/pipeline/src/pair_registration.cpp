@@ -227,6 +227,18 @@ PairParams finerScaleParams(const PairParams& params) {
   return fine;
 }
 
+bool finerScaleRetryApplies(const PairResult& r, const DepthView& source, const DepthView& target) {
+  // No retry for a degenerate view (no scale can fix it) nor for a degenerate pose problem: finer
+  // patches on the same few planes add inliers, not constraints (docs/pipeline.md step 6).
+  return !r.pose.success && !r.pose.degenerate && !source.depth_m.empty() && !target.depth_m.empty();
+}
+
+std::string finerScaleReason(double area_factor, const std::string& reason) {
+  char factor[32];
+  std::snprintf(factor, sizeof factor, "%g", area_factor);
+  return std::string("at ") + factor + "x the patch area: " + reason;
+}
+
 std::pair<const DepthView*, const DepthView*> viewsOf(const PairResult& r, const DepthView& source,
                                                       const DepthView& target) {
   if (r.retry_views) return {&r.retry_views->first, &r.retry_views->second};
@@ -236,16 +248,9 @@ std::pair<const DepthView*, const DepthView*> viewsOf(const PairResult& r, const
 PairResult registerViews(const DepthView& source, const DepthView& target, const PairParams& params) {
   validate(params);
   PairResult r = registerAtScale(source, target, params);
-  // No retry for a degenerate view (no scale can fix it) nor for a degenerate pose problem: finer
-  // patches on the same few planes add inliers, not constraints (docs/pipeline.md step 6).
-  if (r.pose.success || r.pose.degenerate || params.retry_area_factor == 0.0 || source.depth_m.empty() ||
-      target.depth_m.empty())
-    return r;
+  if (params.retry_area_factor == 0.0 || !finerScaleRetryApplies(r, source, target)) return r;
   // Finer-scale retry (PairParams::retry_area_factor): each view segmented again with its own
   // parameters at the smaller area; mutual associations only.
-  char factor[32];
-  std::snprintf(factor, sizeof factor, "%g", params.retry_area_factor);
-  const std::string retry_prefix = std::string("; at ") + factor + "x the patch area: ";
   const auto t0 = std::chrono::steady_clock::now();
   const PairParams fine = finerScaleParams(params);
   const double f = params.retry_area_factor;
@@ -256,17 +261,13 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
   } catch (const std::exception& e) {  // e.g. a depth image that does not match its intrinsics
     r.retried = true;
     r.timings.retry_segmentation_ms = msSince(t0);
-    r.pose.reason += retry_prefix + "segmentation failed: " + e.what();
+    r.pose.reason += "; " + finerScaleReason(f, std::string("segmentation failed: ") + e.what());
     return r;
   }
   const double segmentation_ms = msSince(t0);
   PairResult retry = registerAtScale(views->first, views->second, fine);
   PairTimings total = r.timings;
-  total.association_ms += retry.timings.association_ms;
-  total.ransac_ms += retry.timings.ransac_ms;
-  total.refine_ms += retry.timings.refine_ms;
-  total.dense_ms += retry.timings.dense_ms;
-  total.guided_ms += retry.timings.guided_ms;
+  total.addStages(retry.timings);
   total.retry_segmentation_ms = segmentation_ms;
   if (retry.pose.success) {
     retry.retried = true;
@@ -276,7 +277,7 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
   }
   r.retried = true;
   r.timings = total;
-  r.pose.reason += retry_prefix + retry.pose.reason;
+  r.pose.reason += "; " + finerScaleReason(f, retry.pose.reason);
   return r;
 }
 

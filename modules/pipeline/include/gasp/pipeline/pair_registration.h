@@ -129,6 +129,11 @@ struct PairTimings {
   double total() const {
     return association_ms + ransac_ms + refine_ms + dense_ms + guided_ms + retry_segmentation_ms;
   }
+  /// Adds another attempt's stage times (all but retry_segmentation_ms).
+  void addStages(const PairTimings& o) {
+    association_ms += o.association_ms, ransac_ms += o.ransac_ms, refine_ms += o.refine_ms;
+    dense_ms += o.dense_ms, guided_ms += o.guided_ms;
+  }
 };
 
 struct PairResult {
@@ -173,6 +178,11 @@ std::pair<const DepthView*, const DepthView*> viewsOf(const PairResult& r, const
 /// stricter visibility limit, one_way_max_violation_ratio).
 DepthView finerScaleView(const DepthView& view, double area_factor);
 PairParams finerScaleParams(const PairParams& params);
+/// Whether a default-scale result `r` of source -> target is one the retry may still turn into
+/// an estimate: no pose, no degenerate view or pose problem, depth in both views.
+bool finerScaleRetryApplies(const PairResult& r, const DepthView& source, const DepthView& target);
+/// "at 0.3x the patch area: " + reason: how a retry's outcome is named in reasons.
+std::string finerScaleReason(double area_factor, const std::string& reason);
 
 /// Registers `source` (view A) to `target` (view B): pose.T_target_source maps A's camera frame
 /// into B's. Never throws for data (empty views, NaN, no overlap give pose.success = false with
