@@ -125,23 +125,26 @@ mrpt::poses::CPose3DPDF::Ptr CGaspAligner::Align3DPDF(const mrpt::maps::CMetricM
   }
   const double factor = options.params.retry_area_factor;
   if (!best.success && factor > 0.0 && !retry_pairs.empty()) {
-    // Each view re-segmented at most once; nullopt: its second segmentation threw.
+    // Each view re-segmented at most once; nullopt: its second segmentation threw (logged, and
+    // its pairs are not retried).
     std::map<std::size_t, std::optional<DepthView>> fine1, fine2;
     const auto fine = [&](std::map<std::size_t, std::optional<DepthView>>& cache, const CSuperpixelMap& map,
-                          std::size_t k) -> const std::optional<DepthView>& {
+                          const char* name, std::size_t k) -> const std::optional<DepthView>& {
       auto it = cache.find(k);
       if (it != cache.end()) return it->second;
       std::optional<DepthView> v;
       try {
         v = finerScaleView(map.views()[k].view, factor);
-      } catch (const std::exception&) {
+      } catch (const std::exception& e) {
+        logFmt(mrpt::system::LVL_WARN, "%s view %zu: %s", name, k,
+               finerScaleReason(factor, std::string("segmentation failed: ") + e.what()).c_str());
       }
       return cache.emplace(k, std::move(v)).first->second;
     };
     const PairParams finer = finerScaleParams(options.params);
     for (const auto& [i, j] : retry_pairs) {
-      const auto& target = fine(fine1, map1, i);
-      const auto& source = fine(fine2, map2, j);
+      const auto& target = fine(fine1, map1, "m1", i);
+      const auto& source = fine(fine2, map2, "m2", j);
       if (!source || !target) continue;
       PairResult r = registerViews(*source, *target, finer);
       r.pose.reason = finerScaleReason(factor, r.pose.reason);
