@@ -51,6 +51,7 @@ void pairFields(P& p, F&& f) {
   f("dense_rounds", p.dense_rounds);
   f("refine", p.refine);
   f("retry_area_factor", p.retry_area_factor);
+  f("slide_scan", p.slide_scan.enabled);
 }
 
 // ---- Strict text parsing (MRPT's read_double() would turn "abc" into 0 silently).

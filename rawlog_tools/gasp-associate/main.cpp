@@ -57,6 +57,8 @@ int main(int argc, char** argv) {
   app.add_option("--theta-dev", theta_dev_deg, "match tolerance of the angle components [deg]")->capture_default_str();
   app.add_flag("!--no-mutual", params.association.mutual_check, "keep one-way best partners too (no mutual check)");
   app.add_flag("!--no-refine", params.refine, "RANSAC pose only (no point-to-plane refinement)");
+  app.add_flag("!--no-slide-scan", params.slide_scan.enabled,
+               "no slide scan of a pose whose patch problem was degenerate (docs/pipeline.md, \"Slide scan\")");
   app.add_option("--retry-area-factor", params.retry_area_factor,
                  "when no estimate is found, segment again with this times the patch area and retry, mutual associations only (0 = never, else in [0.01, 1))")
       ->capture_default_str()
@@ -156,6 +158,7 @@ int main(int argc, char** argv) {
                 r.visibility.occluded_ratio);
     std::printf("dense_terms: %d\nedge_paired_share: %.3f\nwide_edge_pose: %s\n", r.dense_terms, r.edge_paired_share,
                 r.wide_edge_pose ? "yes" : "no");
+    std::printf("slide_scan: %s\n", r.slide.summary().c_str());
     std::printf("verified_associations: %zu\n", r.verified.size());
     if (T_b_a_true) {
       const auto q = gasp::evaluateAssociations(r.verified, pva->segmentation, pvb->segmentation, pvb->depth_m, pvb->intrinsics, *T_b_a_true);

@@ -61,21 +61,6 @@ std::vector<std::string> knownMethods() {
   return m;
 }
 
-/// Share of the depth samples of both views that a pose maps onto the other view's measured
-/// surface within a tight gate (1 cm + 0.5 cm/m^2 z^2; the visibility check's classes,
-/// visibility_check.h, every 4th pixel): consistent / (consistent + occluded + violations). A
-/// diagnostic for the pairs CSV: where the estimate and the ground truth disagree, the pose the
-/// depth agrees with more is the likelier one (the ground truth has its own errors: TUM fr1's
-/// depth lags its motion capture).
-double dataAgreement(const gasp::DepthView& source, const gasp::DepthView& target, const gasp::Isometry3& T) {
-  gasp::VisibilityCheckParams p;
-  p.pixel_step = 4;
-  p.gate_m = 0.01;
-  p.gate_per_m2 = 0.005;
-  p.min_consistent = 1;
-  return gasp::checkVisibility(source, target, T, p).consistentShare();
-}
-
 /// One pair, one method: the outcome plus what the pictures need.
 struct MethodRun {
   bool estimated = false;
@@ -90,11 +75,12 @@ struct MethodRun {
   int one_way = 0;          ///< GASP: the pose came from the one-way fallback
   int guided_support = -1;  ///< GASP: guided associations under the pose (-1: not reached)
   bool finer_scale = false; ///< GASP: the estimate came from the finer-scale retry
+  bool slide_moved = false; ///< GASP: the slide scan moved the pose (slide_scan.h)
   /// GASP with ground truth: free and verified associations scored (association_quality.h).
   std::optional<gasp::AssociationQuality> free_quality, verified_quality;
   /// The verified associations scored against the GICP-polished reference (--polish-reference).
   std::optional<gasp::AssociationQuality> verified_quality_polished;
-  /// GASP with ground truth: how well each pose explains the depth (dataAgreement), the estimate's
+  /// GASP with ground truth: how well each pose explains the depth (depthAgreement, every 4th pixel), the estimate's
   /// and the ground truth's, so a disagreement between them can be told apart.
   std::optional<double> agreement_estimate, agreement_truth;
   std::map<std::string, double> stage_ms;
@@ -227,6 +213,8 @@ int main(int argc, char** argv) {
                  "GASP: when no estimate is found, segment again with this times the patch area and retry, mutual associations only (0 = never, else in [0.01, 1))")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
+  app.add_flag("!--no-slide-scan", base.slide_scan.enabled,
+               "GASP: no slide scan of poses whose patch problem was degenerate (docs/pipeline.md, \"Slide scan\")");
   app.add_flag("!--no-edge-terms", base.edge_terms, "GASP: no point-to-line terms along occluding edges in the dense rounds");
   app.add_option("--edge-weight", base.edges.weight, "GASP: weight of an edge term")->capture_default_str();
   app.add_option("--wide-edge-gates", base.wide_edge_gate_factor,
@@ -308,6 +296,7 @@ int main(int argc, char** argv) {
         run.one_way = r.used_one_way ? 1 : 0;
         run.guided_support = r.guided_support;
         run.finer_scale = r.retry_views != nullptr;
+        run.slide_moved = r.slide.moved;
         // The views r's patch indices refer to (the finer-scale retry's when it gave the estimate).
         const auto [pva, pvb] = gasp::viewsOf(r, va.view, vb.view);
         if (T_gt) {
@@ -320,8 +309,8 @@ int main(int argc, char** argv) {
           if (T_ref_icp)
             run.verified_quality_polished =
                 gasp::evaluateAssociations(r.verified, sa, sb, pvb->depth_m, pvb->intrinsics, *T_ref_icp);
-          run.agreement_truth = dataAgreement(va.view, vb.view, *T_gt);
-          if (r.pose.success) run.agreement_estimate = dataAgreement(va.view, vb.view, r.pose.T_target_source);
+          run.agreement_truth = gasp::depthAgreement(va.view, vb.view, *T_gt, 4);
+          if (r.pose.success) run.agreement_estimate = gasp::depthAgreement(va.view, vb.view, r.pose.T_target_source, 4);
         }
         run.stage_ms = {{"segmentation", va.ms + vb.ms + r.timings.retry_segmentation_ms},
                         {"association", r.timings.association_ms},
@@ -439,7 +428,7 @@ int main(int argc, char** argv) {
     if (!pairs_csv_path.empty()) {
       pairs_csv.open(pairs_csv_path);
       if (!pairs_csv) throw gasp::Error("cannot write " + pairs_csv_path);
-      pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,occluded_ratio,consistent,occluded,violations,one_way,guided_support,finer_scale,"
+      pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,occluded_ratio,consistent,occluded,violations,one_way,guided_support,finer_scale,slide_moved,"
                     "precision,verified,verified_precision,verified_density,agreement,agreement_truth,tx,ty,tz,qx,qy,qz,qw,"
                     "motion_t_m,motion_r_deg,ref_icp_t_m,ref_icp_r_deg,est_vs_ref_icp_t_m,est_vs_ref_icp_r_deg,"
                     "est_icp_t_m,est_icp_r_deg,icp_est_vs_ref_icp_t_m,icp_est_vs_ref_icp_r_deg,verified_precision_ref_icp,reason\n";
@@ -492,7 +481,7 @@ int main(int argc, char** argv) {
                     << o.t_err_m << ',' << o.r_err_deg << ',' << o.ms << ',' << run.associations << ',' << run.inliers
                     << ',' << run.violation_ratio << ',' << run.occluded_ratio << ',' << run.consistent << ',' << run.occluded << ','
                     << run.violations << ',' << run.one_way << ',' << run.guided_support << ',' << (run.finer_scale ? 1 : 0)
-                    << ',';
+                    << ',' << (run.slide_moved ? 1 : 0) << ',';
           const auto& fq = run.free_quality;
           const auto& vq = run.verified_quality;
           if (fq) pairs_csv << fq->precision();

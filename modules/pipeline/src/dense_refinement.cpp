@@ -11,6 +11,7 @@
 #include "gasp/pipeline/projective_terms.h"
 #include "gasp/pipeline/visibility_check.h"
 #include "gasp/registration/refinement.h"
+#include "slide_scan.h"
 
 namespace gasp::detail {
 
@@ -47,8 +48,9 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
   const auto gateOfRound = [&](int round) {
     return params.dense_gates_m[std::min<std::size_t>(static_cast<std::size_t>(round), params.dense_gates_m.size() - 1)];
   };
-  auto refine = [&](double edge_gate_factor, int& dense_terms) {
+  auto refineFrom = [&](const Isometry3& start, double edge_gate_factor, int& dense_terms) {
     RegistrationResult pose = patch_pose;
+    pose.T_target_source = start;
     for (int round = 0; round < params.dense_rounds; ++round) {
       ProjectiveTermParams proj = params.projective;
       proj.max_distance_m = gateOfRound(round);
@@ -72,6 +74,9 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
     }
     return pose;
   };
+  auto refine = [&](double edge_gate_factor, int& dense_terms) {
+    return refineFrom(patch_pose.T_target_source, edge_gate_factor, dense_terms);
+  };
 
   // The patch pose's inlier bookkeeping goes with whichever pose is returned.
   const auto finish = [&](DenseOutcome& o) {
@@ -84,50 +89,73 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
   };
   DenseOutcome out;
   out.pose = refine(1.0, out.dense_terms);
-  // A slide larger than the pixel gates leaves most source edge points without a target edge
-  // within the last gate -- or, where the planes alone cannot pin the slide, leaves the first
-  // refinement degenerate. Then a second refinement with wider edge gates is run: when the first
-  // failed, its pose is taken (the final visibility check still judges it); otherwise the pose
-  // that passes the visibility check (with the caller's parameters) is kept, and when both or
-  // neither pass, the one whose views agree more -- the larger share of consistent samples.
-  // (Wide edge gates alone pair wrong edges in clutter.) Nothing to widen without target edges
-  // with a direction or with weightless edge terms.
-  if (!edge_targets || edge_targets->size() == 0 || params.edges.weight <= 0.0 || params.wide_edge_gate_factor <= 0.0 ||
-      source_edges.points.empty() || params.dense_rounds == 0)
-    return finish(out);
-  if (out.pose.success) {
-    // Of the source edge points that land on the target's depth: points outside its view can
-    // have no partner, and a partial overlap alone must not call the second refinement.
-    const int in_view = edgePointsInView(source_edges, target, out.pose.T_target_source);
-    if (in_view == 0) return finish(out);
-    const double last_gate = gateOfRound(params.dense_rounds - 1);
-    const double paired =
-        0.5 * static_cast<double>(edge_targets->terms(source_edges, out.pose.T_target_source, last_gate).size()) /
-        static_cast<double>(in_view);
-    out.edge_paired_share = std::min(1.0, paired);
-    if (out.edge_paired_share >= params.wide_edge_min_paired_share) return finish(out);
+  // The wide-edge second refinement and the selection (above).
+  const auto widenEdges = [&] {
+    // A slide larger than the pixel gates leaves most source edge points without a target edge
+    // within the last gate -- or, where the planes alone cannot pin the slide, leaves the first
+    // refinement degenerate. Then a second refinement with wider edge gates is run: when the first
+    // failed, its pose is taken (the final visibility check still judges it); otherwise the pose
+    // that passes the visibility check (with the caller's parameters) is kept, and when both or
+    // neither pass, the one whose views agree more -- the larger share of consistent samples.
+    // (Wide edge gates alone pair wrong edges in clutter.) Nothing to widen without target edges
+    // with a direction or with weightless edge terms.
+    if (!edge_targets || edge_targets->size() == 0 || params.edges.weight <= 0.0 || params.wide_edge_gate_factor <= 0.0 ||
+        source_edges.points.empty() || params.dense_rounds == 0)
+      return;
+    if (out.pose.success) {
+      // Of the source edge points that land on the target's depth: points outside its view can
+      // have no partner, and a partial overlap alone must not call the second refinement.
+      const int in_view = edgePointsInView(source_edges, target, out.pose.T_target_source);
+      if (in_view == 0) return;
+      const double last_gate = gateOfRound(params.dense_rounds - 1);
+      const double paired =
+          0.5 * static_cast<double>(edge_targets->terms(source_edges, out.pose.T_target_source, last_gate).size()) /
+          static_cast<double>(in_view);
+      out.edge_paired_share = std::min(1.0, paired);
+      if (out.edge_paired_share >= params.wide_edge_min_paired_share) return;
+    }
+    int terms_wide = 0;
+    const RegistrationResult wide = refine(params.wide_edge_gate_factor, terms_wide);
+    if (!wide.success) return;
+    if (!out.pose.success) {
+      out.pose = wide;
+      out.dense_terms = terms_wide;
+      out.wide_edge_pose = true;
+      return;
+    }
+    VisibilityCheck check_normal, check_wide;
+    tbb::parallel_invoke([&] { check_normal = checkVisibility(source, target, out.pose.T_target_source, visibility); },
+                         [&] { check_wide = checkVisibility(source, target, wide.T_target_source, visibility); });
+    const bool take_wide = check_wide.passed != check_normal.passed
+                               ? check_wide.passed
+                               : check_wide.consistentShare() > check_normal.consistentShare();
+    if (take_wide) {
+      out.pose = wide;
+      out.dense_terms = terms_wide;
+      out.wide_edge_pose = true;
+    }
+    out.check = take_wide ? check_wide : check_normal;
+  };
+  widenEdges();
+
+  // The slide scan (slide_scan.h): a claimed pose whose patch problem left directions
+  // unobservable is checked for a slide along them.
+  if (params.slide_scan.enabled && out.pose.success && patch_pose.degenerate && params.dense_rounds > 0) {
+    if (!out.check) out.check = checkVisibility(source, target, out.pose.T_target_source, visibility);
+    if (out.check->passed) {
+      int terms = 0;
+      const auto refine_from = [&](const Isometry3& start) { return refineFrom(start, 1.0, terms); };
+      SlideScanOutcome scan =
+          scanSlide(source, target, patch_pose, out.pose.T_target_source, refine_from, params.slide_scan, visibility);
+      out.slide = scan.report;
+      if (scan.report.moved) {
+        out.pose = std::move(scan.pose);
+        out.check = std::move(scan.check);
+        out.dense_terms = terms;
+        out.wide_edge_pose = false;
+      }
+    }
   }
-  int terms_wide = 0;
-  const RegistrationResult wide = refine(params.wide_edge_gate_factor, terms_wide);
-  if (!wide.success) return finish(out);
-  if (!out.pose.success) {
-    out.pose = wide;
-    out.dense_terms = terms_wide;
-    out.wide_edge_pose = true;
-    return finish(out);
-  }
-  VisibilityCheck check_normal, check_wide;
-  tbb::parallel_invoke([&] { check_normal = checkVisibility(source, target, out.pose.T_target_source, visibility); },
-                       [&] { check_wide = checkVisibility(source, target, wide.T_target_source, visibility); });
-  const bool take_wide = check_wide.passed != check_normal.passed
-                             ? check_wide.passed
-                             : check_wide.consistentShare() > check_normal.consistentShare();
-  if (take_wide) {
-    out.pose = wide;
-    out.dense_terms = terms_wide;
-    out.wide_edge_pose = true;
-  }
-  out.check = take_wide ? check_wide : check_normal;
   return finish(out);
 }
 

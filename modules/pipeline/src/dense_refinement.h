@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gasp/pipeline/pair_registration.h"
+#include "gasp/pipeline/slide_scan.h"
 #include "gasp/pipeline/visibility_check.h"
 
 namespace gasp::detail {
@@ -20,6 +21,7 @@ struct DenseOutcome {
   /// The visibility check of the kept pose with the caller's parameters, when the selection
   /// between the two refinements ran it (the caller need not run it again).
   std::optional<VisibilityCheck> check;
+  SlideScanReport slide;  ///< the slide scan of the kept pose (slide_scan.h)
 };
 
 /// `patch_pose` (RANSAC + patch refinement) is the start; its inlier correspondences `inliers`

@@ -71,6 +71,7 @@ void validate(const PairParams& p) {
   if (!(p.wide_edge_min_paired_share >= 0.0 && p.wide_edge_min_paired_share <= 1.0))
     throw Error("PairParams: wide_edge_min_paired_share must be in [0, 1]");
   validate(p.dense_degeneracy);
+  validate(p.slide_scan);
   validate(p.visibility);
   validate(p.guided);
   if (!(p.one_way_max_violation_ratio >= 0.0 && p.one_way_max_violation_ratio <= 1.0))
@@ -197,6 +198,7 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
   r.dense_terms = dense.dense_terms;
   r.wide_edge_pose = dense.wide_edge_pose;
   r.edge_paired_share = dense.edge_paired_share;
+  r.slide = dense.slide;
   r.timings.dense_ms = msSince(t0);
   verify(source, target, params, r, dense.check);
   if (r.pose.success && params.guided_verification) {

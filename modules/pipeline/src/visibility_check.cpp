@@ -95,4 +95,20 @@ VisibilityCheck checkVisibility(const DepthView& source, const DepthView& target
   return out;
 }
 
+VisibilityCheckParams agreementParams(int pixel_step) {
+  VisibilityCheckParams p;
+  p.pixel_step = pixel_step;
+  p.gate_m = 0.01;
+  p.gate_per_m2 = 0.005;
+  p.max_violation_ratio = 1.0;
+  p.max_occluded_ratio = 1.0;
+  p.min_consistent = 0;
+  return p;
+}
+
+double depthAgreement(const DepthView& source, const DepthView& target, const Isometry3& T_target_source,
+                      int pixel_step) {
+  return checkVisibility(source, target, T_target_source, agreementParams(pixel_step)).consistentShare();
+}
+
 }  // namespace gasp

@@ -52,4 +52,15 @@ struct VisibilityCheck {
 VisibilityCheck checkVisibility(const DepthView& source, const DepthView& target, const Isometry3& T_target_source,
                                 const VisibilityCheckParams& params = {});
 
+/// The check's classes with a tight gate, 1 cm + 0.5 cm/m^2 z^2 (about twice the Kinect's noise
+/// at 1-3 m), every `pixel_step`-th pixel and no pass criteria: depthAgreement()'s parameters.
+VisibilityCheckParams agreementParams(int pixel_step = 8);
+
+/// How well a pose explains the depth: consistent / (consistent + occluded + violations) of both
+/// views' samples under agreementParams(pixel_step). The visibility check's gate (3 cm + 2 cm/m^2
+/// z^2, 21 cm at 3 m) tells contradiction from consistency; this one ranks poses near each other
+/// (the slide scan, slide_scan.h; gasp-pairs' `agreement` column). 0 when nothing lands.
+double depthAgreement(const DepthView& source, const DepthView& target, const Isometry3& T_target_source,
+                      int pixel_step = 8);
+
 }  // namespace gasp

@@ -1,0 +1,27 @@
+#pragma once
+// The slide scan's search (gasp/pipeline/slide_scan.h, docs/pipeline.md "Slide scan"): used by
+// the dense refinement on a claimed pose whose patch problem was degenerate.
+#include <functional>
+
+#include "gasp/pipeline/depth_view.h"
+#include "gasp/pipeline/slide_scan.h"
+#include "gasp/pipeline/visibility_check.h"
+#include "gasp/registration/registration_result.h"
+
+namespace gasp::detail {
+
+struct SlideScanOutcome {
+  SlideScanReport report;
+  RegistrationResult pose;  ///< the refined pose from the best offset (when report.moved)
+  VisibilityCheck check;    ///< its visibility check (when report.moved)
+};
+
+/// `claimed`: the pose the dense rounds gave (it passed the visibility check); `patch_pose`: the
+/// patch problem's result, whose unobservable directions, scene centre and radius define the
+/// scan. `refine_from(T)` runs the dense refinement from start T. `visibility`: the parameters of
+/// the caller's final check.
+SlideScanOutcome scanSlide(const DepthView& source, const DepthView& target, const RegistrationResult& patch_pose,
+                           const Isometry3& claimed, const std::function<RegistrationResult(const Isometry3&)>& refine_from,
+                           const SlideScanParams& params, const VisibilityCheckParams& visibility);
+
+}  // namespace gasp::detail
