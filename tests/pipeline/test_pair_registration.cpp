@@ -319,9 +319,16 @@ TEST(FinerScaleRetry, ClaimsNoLookAlikePoseOnRepeatedObjects) {
     }
     PairParams loose;
     loose.one_way_max_violation_ratio = 0.3;
+    loose.slide_scan.enabled = false;  // 3 -> 13's loosened pose slid along a box: the scan moves it right
     const PairResult w = registerViews(p.a, p.b, loose);
     ASSERT_TRUE(w.pose.success) << from << " -> " << to << ": " << w.pose.reason;
     EXPECT_NE(w.retry_views, nullptr);
     EXPECT_GT(translationNorm(p.T_b_a.inverse() * w.pose.T_target_source), 0.1) << from << " -> " << to;
+    loose.slide_scan.enabled = true;
+    const PairResult s = registerViews(p.a, p.b, loose);
+    std::printf("%d -> %d loosened, with the slide scan: %s, %s, %.3f m / %.2f deg off\n", from, to,
+                s.pose.success ? "claimed" : "declined", s.slide.summary().c_str(),
+                translationNorm(p.T_b_a.inverse() * s.pose.T_target_source),
+                rotationAngle(p.T_b_a.inverse() * s.pose.T_target_source) * 180.0 / M_PI);
   }
 }
