@@ -76,6 +76,7 @@ struct MethodRun {
   int guided_support = -1;  ///< GASP: guided associations under the pose (-1: not reached)
   bool finer_scale = false; ///< GASP: the estimate came from the finer-scale retry
   bool slide_moved = false; ///< GASP: the slide scan moved the pose (slide_scan.h)
+  int dense_terms = 0;      ///< GASP: terms of the last dense round (0: no dense rounds ran)
   /// GASP with ground truth: free and verified associations scored (association_quality.h).
   std::optional<gasp::AssociationQuality> free_quality, verified_quality;
   /// The verified associations scored against the GICP-polished reference (--polish-reference).
@@ -297,6 +298,7 @@ int main(int argc, char** argv) {
         run.guided_support = r.guided_support;
         run.finer_scale = r.retry_views != nullptr;
         run.slide_moved = r.slide.moved;
+        run.dense_terms = r.dense_terms;
         // The views r's patch indices refer to (the finer-scale retry's when it gave the estimate).
         const auto [pva, pvb] = gasp::viewsOf(r, va.view, vb.view);
         if (T_gt) {
@@ -428,7 +430,7 @@ int main(int argc, char** argv) {
     if (!pairs_csv_path.empty()) {
       pairs_csv.open(pairs_csv_path);
       if (!pairs_csv) throw gasp::Error("cannot write " + pairs_csv_path);
-      pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,occluded_ratio,consistent,occluded,violations,one_way,guided_support,finer_scale,slide_moved,"
+      pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,occluded_ratio,consistent,occluded,violations,one_way,guided_support,finer_scale,slide_moved,dense_terms,"
                     "precision,verified,verified_precision,verified_density,agreement,agreement_truth,tx,ty,tz,qx,qy,qz,qw,"
                     "motion_t_m,motion_r_deg,ref_icp_t_m,ref_icp_r_deg,est_vs_ref_icp_t_m,est_vs_ref_icp_r_deg,"
                     "est_icp_t_m,est_icp_r_deg,icp_est_vs_ref_icp_t_m,icp_est_vs_ref_icp_r_deg,verified_precision_ref_icp,reason\n";
@@ -481,7 +483,7 @@ int main(int argc, char** argv) {
                     << o.t_err_m << ',' << o.r_err_deg << ',' << o.ms << ',' << run.associations << ',' << run.inliers
                     << ',' << run.violation_ratio << ',' << run.occluded_ratio << ',' << run.consistent << ',' << run.occluded << ','
                     << run.violations << ',' << run.one_way << ',' << run.guided_support << ',' << (run.finer_scale ? 1 : 0)
-                    << ',' << (run.slide_moved ? 1 : 0) << ',';
+                    << ',' << (run.slide_moved ? 1 : 0) << ',' << run.dense_terms << ',';
           const auto& fq = run.free_quality;
           const auto& vq = run.verified_quality;
           if (fq) pairs_csv << fq->precision();

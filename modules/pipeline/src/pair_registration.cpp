@@ -80,6 +80,7 @@ void validate(const PairParams& p) {
   if (!(p.view_degeneracy.min_eigenvalue_ratio >= 0 && p.view_degeneracy.min_eigenvalue_ratio < 1))
     throw Error("PairParams: view_degeneracy.min_eigenvalue_ratio must be in [0, 1)");
   if (p.dense_rounds < 0) throw Error("PairParams: dense_rounds must be >= 0");
+  if (p.min_dense_terms < 0) throw Error("PairParams: min_dense_terms must be >= 0");
   if (!(p.retry_area_factor == 0.0 || (p.retry_area_factor >= 0.01 && p.retry_area_factor < 1.0)))
     throw Error("PairParams: retry_area_factor must be 0 (off) or in [0.01, 1)");
   if (p.dense_rounds > 0 && p.dense_gates_m.empty()) throw Error("PairParams: dense_gates_m is empty");
@@ -200,6 +201,12 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
   r.edge_paired_share = dense.edge_paired_share;
   r.slide = dense.slide;
   r.timings.dense_ms = msSince(t0);
+  if (r.pose.success && r.dense_terms < params.min_dense_terms) {
+    r.pose.success = false;
+    r.pose.reason = "dense refinement: only " + std::to_string(r.dense_terms) +
+                    " pixel and edge terms agree with the pose (min_dense_terms " +
+                    std::to_string(params.min_dense_terms) + "): it puts too little of one view onto the other";
+  }
   verify(source, target, params, r, dense.check);
   if (r.pose.success && params.guided_verification) {
     t0 = std::chrono::steady_clock::now();
