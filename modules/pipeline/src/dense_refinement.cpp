@@ -89,7 +89,7 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
   };
   DenseOutcome out;
   out.pose = refine(1.0, out.dense_terms);
-  // The wide-edge second refinement and the selection (above).
+  // The wide-edge second refinement and the selection between the two refinements.
   const auto widenEdges = [&] {
     // A slide larger than the pixel gates leaves most source edge points without a target edge
     // within the last gate -- or, where the planes alone cannot pin the slide, leaves the first
