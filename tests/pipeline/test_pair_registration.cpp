@@ -14,33 +14,15 @@
 #include "gasp/core/error.h"
 #include "gasp/pipeline/pair_registration.h"
 #include "gasp/sim/simulation.h"
+#include "synthetic_pairs.h"
 
 using namespace gasp;
 
 namespace {
 
-const sim::Simulation& simulation(const std::string& scene) {
-  static std::map<std::string, std::unique_ptr<sim::Simulation>> cache;
-  auto& s = cache[scene];
-  if (!s) {
-    sim::SimulationOptions o;
-    o.scene = scene;
-    s = std::make_unique<sim::Simulation>(o);
-  }
-  return *s;
-}
-
-struct Pair {
-  DepthView a, b;
-  Isometry3 T_b_a;
-};
-
-Pair makePair(const std::string& scene, int i, int j) {
-  const auto& s = simulation(scene);
-  const auto fa = s.frame(i), fb = s.frame(j);
-  const auto K = sim::SimulationOptions{}.intrinsics;
-  return {makeDepthView(fa.depth, K), makeDepthView(fb.depth, K), relativePose(fb.T_world_camera, fa.T_world_camera)};
-}
+using test::makePair;
+using test::Pair;
+using test::simulation;
 
 struct Case {
   const char* scene;
@@ -338,14 +320,7 @@ TEST(DenseSupport, ALookAlikePoseThatExplainsLittleSurfaceIsDeclined) {
   // give no pose; with the one-way partners RANSAC aligns a look-alike (8 inliers) 2.3 m / 90 deg
   // off with 5 % violations, under the fallback's 8 % limit. Its last dense round has 100 terms;
   // right poses of the benchmarks have at least 556 (min_dense_terms 300, docs/pipeline.md).
-  sim::SimulationOptions o;
-  o.scene = "room";
-  o.seed = 3;
-  const sim::Simulation s(o);
-  const auto K = o.intrinsics;
-  const auto fa = s.frame(39), fb = s.frame(54);
-  const DepthView a = makeDepthView(fa.depth, K), b = makeDepthView(fb.depth, K);
-  const Isometry3 T_b_a = relativePose(fb.T_world_camera, fa.T_world_camera);
+  const auto [a, b, T_b_a] = makePair("room", 39, 54, 3);
   PairParams params;
   params.retry_area_factor = 0.0;
   const PairResult r = registerViews(a, b, params);

@@ -3,8 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <map>
-#include <memory>
 #include <string>
 
 #include "gasp/core/error.h"
@@ -12,33 +10,14 @@
 #include "gasp/pipeline/slide_scan.h"
 #include "gasp/pipeline/visibility_check.h"
 #include "gasp/sim/simulation.h"
+#include "synthetic_pairs.h"
 
 using namespace gasp;
 
 namespace {
 
-const sim::Simulation& simulation(const std::string& scene) {
-  static std::map<std::string, std::unique_ptr<sim::Simulation>> cache;
-  auto& s = cache[scene];
-  if (!s) {
-    sim::SimulationOptions o;
-    o.scene = scene;
-    s = std::make_unique<sim::Simulation>(o);
-  }
-  return *s;
-}
-
-struct Pair {
-  DepthView a, b;
-  Isometry3 T_b_a;
-};
-
-Pair makePair(const std::string& scene, int i, int j) {
-  const auto& s = simulation(scene);
-  const auto fa = s.frame(i), fb = s.frame(j);
-  const auto K = sim::SimulationOptions{}.intrinsics;
-  return {makeDepthView(fa.depth, K), makeDepthView(fb.depth, K), relativePose(fb.T_world_camera, fa.T_world_camera)};
-}
+using test::makePair;
+using test::Pair;
 
 double translationError(const Pair& p, const PairResult& r) {
   return translationNorm(p.T_b_a.inverse() * r.pose.T_target_source);
