@@ -156,6 +156,7 @@ int main(int argc, char** argv) {
     for (int i = 0; i < 6; ++i) std::printf("%.4g%s", r.pose.information(i, i), i < 5 ? " " : " (tx ty tz rx ry rz)\n");
     std::printf("visibility_violations: %.3f\nvisibility_occluded: %.3f\n", r.visibility.violation_ratio,
                 r.visibility.occluded_ratio);
+    std::printf("dense_rounds: %d (last step %.1f mm)\n", r.dense_rounds_run, 1000.0 * r.dense_last_step_m);
     std::printf("dense_terms: %d\nedge_paired_share: %.3f\nwide_edge_pose: %s\n", r.dense_terms, r.edge_paired_share,
                 r.wide_edge_pose ? "yes" : "no");
     std::printf("slide_scan: %s\n", r.slide.summary().c_str());

@@ -77,6 +77,7 @@ struct MethodRun {
   bool finer_scale = false; ///< GASP: the estimate came from the finer-scale retry
   bool slide_moved = false; ///< GASP: the slide scan moved the pose (slide_scan.h)
   int dense_terms = 0;      ///< GASP: terms of the last dense round (0: no dense rounds ran)
+  int dense_rounds = 0;     ///< GASP: dense rounds run for the final pose (0: none)
   /// GASP with ground truth: free and verified associations scored (association_quality.h).
   std::optional<gasp::AssociationQuality> free_quality, verified_quality;
   /// The verified associations scored against the GICP-polished reference (--polish-reference).
@@ -222,6 +223,10 @@ int main(int argc, char** argv) {
                  "GASP: second refinement, when few edge points are paired, with edge gates this many times wider (0 = none, else >= 1)")->capture_default_str()->check(CLI::NonNegativeNumber);
   app.add_option("--edge-step", base.edges.pixel_step, "GASP: one source edge pixel per (N/2)^2 image block")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--dense-rounds", base.dense_rounds, "dense projective refinement rounds (0 = none)")->capture_default_str();
+  app.add_option("--dense-max-rounds", base.dense_max_rounds,
+                 "at most this many dense rounds in all: after --dense-rounds, more at the last gate until the pose stops moving (<= --dense-rounds: exactly --dense-rounds)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--pixel-step", base.projective.pixel_step, "dense terms: every N-th pixel")->capture_default_str();
   bool polish_reference = false;  // --polish-reference (with the baselines only)
 #ifdef GASP_HAVE_BASELINES
@@ -299,6 +304,7 @@ int main(int argc, char** argv) {
         run.finer_scale = r.retry_views != nullptr;
         run.slide_moved = r.slide.moved;
         run.dense_terms = r.dense_terms;
+        run.dense_rounds = r.dense_rounds_run;
         // The views r's patch indices refer to (the finer-scale retry's when it gave the estimate).
         const auto [pva, pvb] = gasp::viewsOf(r, va.view, vb.view);
         if (T_gt) {
@@ -430,7 +436,7 @@ int main(int argc, char** argv) {
     if (!pairs_csv_path.empty()) {
       pairs_csv.open(pairs_csv_path);
       if (!pairs_csv) throw gasp::Error("cannot write " + pairs_csv_path);
-      pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,occluded_ratio,consistent,occluded,violations,one_way,guided_support,finer_scale,slide_moved,dense_terms,"
+      pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,occluded_ratio,consistent,occluded,violations,one_way,guided_support,finer_scale,slide_moved,dense_terms,dense_rounds,"
                     "precision,verified,verified_precision,verified_density,agreement,agreement_truth,tx,ty,tz,qx,qy,qz,qw,"
                     "motion_t_m,motion_r_deg,ref_icp_t_m,ref_icp_r_deg,est_vs_ref_icp_t_m,est_vs_ref_icp_r_deg,"
                     "est_icp_t_m,est_icp_r_deg,icp_est_vs_ref_icp_t_m,icp_est_vs_ref_icp_r_deg,verified_precision_ref_icp,reason\n";
@@ -483,7 +489,7 @@ int main(int argc, char** argv) {
                     << o.t_err_m << ',' << o.r_err_deg << ',' << o.ms << ',' << run.associations << ',' << run.inliers
                     << ',' << run.violation_ratio << ',' << run.occluded_ratio << ',' << run.consistent << ',' << run.occluded << ','
                     << run.violations << ',' << run.one_way << ',' << run.guided_support << ',' << (run.finer_scale ? 1 : 0)
-                    << ',' << (run.slide_moved ? 1 : 0) << ',' << run.dense_terms << ',';
+                    << ',' << (run.slide_moved ? 1 : 0) << ',' << run.dense_terms << ',' << run.dense_rounds << ',';
           const auto& fq = run.free_quality;
           const auto& vq = run.verified_quality;
           if (fq) pairs_csv << fq->precision();

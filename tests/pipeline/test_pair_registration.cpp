@@ -305,7 +305,8 @@ TEST(FinerScaleRetry, ClaimsNoLookAlikePoseOnRepeatedObjects) {
     const PairResult w = registerViews(p.a, p.b, loose);
     ASSERT_TRUE(w.pose.success) << from << " -> " << to << ": " << w.pose.reason;
     EXPECT_NE(w.retry_views, nullptr);
-    EXPECT_GT(translationNorm(p.T_b_a.inverse() * w.pose.T_target_source), 0.1) << from << " -> " << to;
+    // Wrong: 33 -> 43 90 deg off, 3 -> 13 9 cm off (the converged dense rounds; 3 rounds: 29 cm).
+    EXPECT_GT(translationNorm(p.T_b_a.inverse() * w.pose.T_target_source), 0.05) << from << " -> " << to;
     loose.slide_scan.enabled = true;
     const PairResult s = registerViews(p.a, p.b, loose);
     std::printf("%d -> %d loosened, with the slide scan: %s, %s, %.3f m / %.2f deg off\n", from, to,

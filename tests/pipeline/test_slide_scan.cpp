@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include "gasp/core/error.h"
 #include "gasp/pipeline/pair_registration.h"
@@ -31,16 +33,18 @@ double rotationErrorDeg(const Pair& p, const PairResult& r) {
 TEST(SlideScan, BringsSlidPosesOnTheSparseSceneToTheTruth) {
   // A wall, a floor, one box, one cylinder, one sphere; motions 0.3-1.0 m, 6-21 deg. The RANSAC
   // inliers lie on the floor and the wall, so the patch problem leaves a rotation about the
-  // vertical with a translation along the wall free; the dense rounds, started there, stopped
-  // 5-21 cm / 1.1-3.4 deg off with under 0.5 % violations (docs/pipeline.md, "Slide scan").
-  for (const auto& [from, to] : {std::pair{3, 13}, std::pair{6, 12}, std::pair{6, 16}, std::pair{9, 24},
-                                 std::pair{12, 18}}) {
+  // vertical with a translation along the wall free. Three dense rounds stopped 5-21 cm /
+  // 1.1-3.4 deg off on all five pairs (docs/pipeline.md, "Slide scan"); the rounds that run until
+  // the pose stops moving (dense_max_rounds) bring 9 -> 24 and 12 -> 18 within 2 cm on their own,
+  // and stop 2.8-5.3 cm off on the other three, which the scan moves to the truth.
+  for (const auto& [from, to, slid_by] :
+       {std::tuple{3, 13, 0.04}, std::tuple{6, 12, 0.02}, std::tuple{6, 16, 0.04}}) {
     const Pair p = makePair("sparse", from, to);
     PairParams off;
     off.slide_scan.enabled = false;
     const PairResult slid = registerViews(p.a, p.b, off);
     ASSERT_TRUE(slid.pose.success) << from << " -> " << to << ": " << slid.pose.reason;
-    EXPECT_GT(translationError(p, slid), 0.04) << from << " -> " << to << ": without the scan the pose slides";
+    EXPECT_GT(translationError(p, slid), slid_by) << from << " -> " << to << ": without the scan the pose slides";
     EXPECT_FALSE(slid.slide.ran);
 
     const PairResult r = registerViews(p.a, p.b);
@@ -51,6 +55,14 @@ TEST(SlideScan, BringsSlidPosesOnTheSparseSceneToTheTruth) {
     EXPECT_GT(r.slide.agreement_after, r.slide.agreement_before + off.slide_scan.min_gain);
     EXPECT_TRUE(r.visibility.passed);
     EXPECT_FALSE(r.wide_edge_pose);
+  }
+  for (const auto& [from, to] : {std::pair{9, 24}, std::pair{12, 18}}) {
+    const Pair p = makePair("sparse", from, to);
+    const PairResult r = registerViews(p.a, p.b);
+    ASSERT_TRUE(r.pose.success) << from << " -> " << to << ": " << r.pose.reason;
+    EXPECT_TRUE(r.slide.ran) << from << " -> " << to;
+    EXPECT_LT(translationError(p, r), 0.02) << from << " -> " << to;
+    EXPECT_LT(rotationErrorDeg(p, r), 1.0) << from << " -> " << to;
   }
 }
 

@@ -43,15 +43,27 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
     tbb::parallel_invoke([&] { source_edges = findEdgePoints(source, params.edges); },
                          [&] { edge_targets = std::make_unique<EdgeTargets>(target, params.edges); });
   }
-  // One refinement: dense_rounds rounds from the patch pose, edge gates edge_gate_factor times the
-  // pixel gates. Sets the last round's term count.
+  // One refinement from `start`: the rounds of dense_gates_m, then more at the last gate until a
+  // round moves the source patches by less than dense_converged_m (RMS) or dense_max_rounds are
+  // run. Edge gates are edge_gate_factor times the pixel gates. Fills `rounds`.
   const auto gateOfRound = [&](int round) {
     return params.dense_gates_m[std::min<std::size_t>(static_cast<std::size_t>(round), params.dense_gates_m.size() - 1)];
   };
-  auto refineFrom = [&](const Isometry3& start, double edge_gate_factor, int& dense_terms) {
+  const int max_rounds = std::max(params.dense_rounds, params.dense_max_rounds);
+  std::vector<Eigen::Vector3d> centroids;  // source patch centroids: a round's step is their RMS displacement
+  for (const auto& p : source.segmentation.patches)
+    if (p.centroid.allFinite()) centroids.push_back(p.centroid);
+  const auto rmsStep = [&](const Isometry3& before, const Isometry3& after) {
+    if (centroids.empty()) return 0.0;
+    double sum2 = 0;
+    for (const auto& c : centroids) sum2 += (after * c - before * c).squaredNorm();
+    return std::sqrt(sum2 / static_cast<double>(centroids.size()));
+  };
+  auto refineFrom = [&](const Isometry3& start, double edge_gate_factor, DenseRounds& rounds) {
+    rounds = DenseRounds{};
     RegistrationResult pose = patch_pose;
     pose.T_target_source = start;
-    for (int round = 0; round < params.dense_rounds; ++round) {
+    for (int round = 0; round < max_rounds; ++round) {
       ProjectiveTermParams proj = params.projective;
       proj.max_distance_m = gateOfRound(round);
       auto terms = projectiveTerms(source, target, pose.T_target_source, proj);
@@ -59,7 +71,8 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
         const auto more = edge_targets->terms(source_edges, pose.T_target_source, edge_gate_factor * proj.max_distance_m);
         terms.insert(terms.end(), more.begin(), more.end());
       }
-      dense_terms = static_cast<int>(terms.size());
+      rounds.terms = static_cast<int>(terms.size());
+      rounds.run = round + 1;
       RefinementParams refinement = params.pose.refinement;
       refinement.degeneracy = params.dense_degeneracy;
       RegistrationResult next = refinePose(inliers, pose.T_target_source, refinement, terms);
@@ -70,12 +83,14 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
         pose = next;
         break;
       }
+      rounds.last_step_m = rmsStep(pose.T_target_source, next.T_target_source);
       pose = next;
+      if (round + 1 >= params.dense_rounds && rounds.last_step_m < params.dense_converged_m) break;
     }
     return pose;
   };
-  auto refine = [&](double edge_gate_factor, int& dense_terms) {
-    return refineFrom(patch_pose.T_target_source, edge_gate_factor, dense_terms);
+  auto refine = [&](double edge_gate_factor, DenseRounds& rounds) {
+    return refineFrom(patch_pose.T_target_source, edge_gate_factor, rounds);
   };
 
   // The patch pose's inlier bookkeeping goes with whichever pose is returned.
@@ -88,7 +103,7 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
     return o;
   };
   DenseOutcome out;
-  out.pose = refine(1.0, out.dense_terms);
+  out.pose = refine(1.0, out.rounds);
   // The wide-edge second refinement and the selection between the two refinements.
   const auto widenEdges = [&] {
     // A slide larger than the pixel gates leaves most source edge points without a target edge
@@ -114,12 +129,12 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
       out.edge_paired_share = std::min(1.0, paired);
       if (out.edge_paired_share >= params.wide_edge_min_paired_share) return;
     }
-    int terms_wide = 0;
-    const RegistrationResult wide = refine(params.wide_edge_gate_factor, terms_wide);
+    DenseRounds rounds_wide;
+    const RegistrationResult wide = refine(params.wide_edge_gate_factor, rounds_wide);
     if (!wide.success) return;
     if (!out.pose.success) {
       out.pose = wide;
-      out.dense_terms = terms_wide;
+      out.rounds = rounds_wide;
       out.wide_edge_pose = true;
       return;
     }
@@ -131,7 +146,7 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
                                : check_wide.consistentShare() > check_normal.consistentShare();
     if (take_wide) {
       out.pose = wide;
-      out.dense_terms = terms_wide;
+      out.rounds = rounds_wide;
       out.wide_edge_pose = true;
     }
     out.check = take_wide ? check_wide : check_normal;
@@ -143,15 +158,15 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
   if (params.slide_scan.enabled && out.pose.success && patch_pose.degenerate && params.dense_rounds > 0) {
     if (!out.check) out.check = checkVisibility(source, target, out.pose.T_target_source, visibility);
     if (out.check->passed) {
-      int terms = 0;
-      const auto refine_from = [&](const Isometry3& start) { return refineFrom(start, 1.0, terms); };
+      DenseRounds rounds_scan;
+      const auto refine_from = [&](const Isometry3& start) { return refineFrom(start, 1.0, rounds_scan); };
       SlideScanOutcome scan =
           scanSlide(source, target, patch_pose, out.pose.T_target_source, refine_from, params.slide_scan, visibility);
       out.slide = scan.report;
       if (scan.report.moved) {
         out.pose = std::move(scan.pose);
         out.check = std::move(scan.check);
-        out.dense_terms = terms;
+        out.rounds = rounds_scan;
         out.wide_edge_pose = false;
       }
     }

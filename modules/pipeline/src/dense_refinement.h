@@ -1,7 +1,8 @@
 #pragma once
 // The pair pipeline's last refinement (docs/pipeline.md, step 4): dense point-to-plane terms from
 // the patches' pixels and point-to-line terms along occluding edges, re-associated over
-// PairParams::dense_rounds rounds with shrinking gates, from the patch pose; with edge terms, when
+// PairParams::dense_rounds rounds with shrinking gates, from the patch pose, then more at the last
+// gate until the pose stops moving (dense_converged_m, dense_max_rounds); with edge terms, when
 // most source edge points find no target edge at the final pose, a second refinement with wider
 // edge gates runs and the pose whose views agree more (visibility_check.h) is kept.
 #include <optional>
@@ -13,9 +14,16 @@
 
 namespace gasp::detail {
 
+/// The rounds of one dense refinement.
+struct DenseRounds {
+  int terms = 0;              ///< terms of the last round
+  int run = 0;                ///< rounds run
+  double last_step_m = -1.0;  ///< RMS displacement of the source patches in the last round (-1: none succeeded)
+};
+
 struct DenseOutcome {
   RegistrationResult pose;     ///< success false (with the reason) when the dense problem failed
-  int dense_terms = 0;         ///< terms of the last round of the kept refinement
+  DenseRounds rounds;          ///< of the kept refinement
   bool wide_edge_pose = false; ///< the kept pose is the wide-edge-gate one
   double edge_paired_share = -1.0;  ///< source edge points with a target edge at the last gate (-1: not measured)
   /// The visibility check of the kept pose with the caller's parameters, when the selection

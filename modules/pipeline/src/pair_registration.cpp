@@ -80,6 +80,9 @@ void validate(const PairParams& p) {
   if (!(p.view_degeneracy.min_eigenvalue_ratio >= 0 && p.view_degeneracy.min_eigenvalue_ratio < 1))
     throw Error("PairParams: view_degeneracy.min_eigenvalue_ratio must be in [0, 1)");
   if (p.dense_rounds < 0) throw Error("PairParams: dense_rounds must be >= 0");
+  if (p.dense_max_rounds < 0) throw Error("PairParams: dense_max_rounds must be >= 0");
+  if (!(p.dense_converged_m >= 0) || !std::isfinite(p.dense_converged_m))
+    throw Error("PairParams: dense_converged_m must be finite and >= 0");
   if (p.min_dense_terms < 0) throw Error("PairParams: min_dense_terms must be >= 0");
   if (!(p.retry_area_factor == 0.0 || (p.retry_area_factor >= 0.01 && p.retry_area_factor < 1.0)))
     throw Error("PairParams: retry_area_factor must be 0 (off) or in [0.01, 1)");
@@ -196,7 +199,9 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
   const detail::DenseOutcome dense =
       detail::refineDense(source, target, r.pose, inliers, params, visibilityParams(params, r.used_one_way));
   r.pose = dense.pose;
-  r.dense_terms = dense.dense_terms;
+  r.dense_terms = dense.rounds.terms;
+  r.dense_rounds_run = dense.rounds.run;
+  r.dense_last_step_m = dense.rounds.last_step_m;
   r.wide_edge_pose = dense.wide_edge_pose;
   r.edge_paired_share = dense.edge_paired_share;
   r.slide = dense.slide;

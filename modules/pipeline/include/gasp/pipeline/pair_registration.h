@@ -67,6 +67,14 @@ struct PairParams {
   /// the current pose; the distance gate of round k is dense_gates_m[min(k, size - 1)] [m].
   int dense_rounds = 3;
   std::vector<double> dense_gates_m{0.10, 0.05, 0.03};
+  /// After the dense_rounds rounds, more rounds at the last gate until one moves the source
+  /// patches by less than dense_converged_m (RMS displacement of their centroids) [m], at most
+  /// dense_max_rounds rounds in all (<= dense_rounds: exactly dense_rounds rounds). Where only
+  /// small objects pin a slide along large planes, each round moves the pose by millimetres to
+  /// centimetres towards the truth: three rounds left four synthetic poses 2-5 cm off
+  /// (docs/pipeline.md, "Converged dense rounds").
+  int dense_max_rounds = 8;
+  double dense_converged_m = 0.002;
   ProjectiveTermParams projective;  ///< pixel step 8, normals within 20 deg
   /// Point-to-line terms along occluding edges in the dense rounds (edge_terms.h), gated like the
   /// pixel terms (edges.max_distance_m is replaced by the round's gate).
@@ -164,6 +172,10 @@ struct PairResult {
   std::vector<PatchAssociation> verified;
   int guided_support = -1;  ///< guided associations at the verified pose (-1: stage not reached)
   int dense_terms = 0;  ///< dense terms in the last round
+  int dense_rounds_run = 0;  ///< dense rounds run for the final pose (0: none)
+  /// RMS displacement of the source patches in the last dense round [m]; below
+  /// PairParams::dense_converged_m the rounds converged (-1: no round succeeded).
+  double dense_last_step_m = -1.0;
   VisibilityCheck visibility;  ///< of the final pose (when one was found)
   bool wide_edge_pose = false;  ///< the final pose came from the wide-edge-gate refinement
   /// Share of the source edge points on the target's depth with a target edge within the last gate at the first dense
