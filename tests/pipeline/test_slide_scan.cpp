@@ -20,13 +20,8 @@ namespace {
 
 using test::makePair;
 using test::Pair;
-
-double translationError(const Pair& p, const PairResult& r) {
-  return translationNorm(p.T_b_a.inverse() * r.pose.T_target_source);
-}
-double rotationErrorDeg(const Pair& p, const PairResult& r) {
-  return rotationAngle(p.T_b_a.inverse() * r.pose.T_target_source) * 180.0 / M_PI;
-}
+using test::rotationErrorDeg;
+using test::translationError;
 
 }  // namespace
 
