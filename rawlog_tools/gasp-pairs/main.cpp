@@ -34,6 +34,7 @@
 #include "gasp/pipeline/visibility_check.h"
 #ifdef GASP_HAVE_BASELINES
 #include "gasp/baselines/baseline_registration.h"
+#include "gasp/baselines/epipolar_rotation.h"
 #include "gasp/baselines/icp_polish.h"
 #include "gasp/baselines/match_picture.h"
 #endif
@@ -229,6 +230,10 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_option("--pixel-step", base.projective.pixel_step, "dense terms: every N-th pixel")->capture_default_str();
   bool polish_reference = false;  // --polish-reference (with the baselines only)
+  bool rgb_rotation_check = false;  // --rgb-rotation-check (with the baselines only)
+#ifdef GASP_HAVE_BASELINES
+  gasp::baselines::EpipolarParams epipolar;
+#endif
 #ifdef GASP_HAVE_BASELINES
   gasp::baselines::BaselineParams baseline;
   app.add_option("--ratio", baseline.matching.ratio, "baselines: Lowe's ratio test threshold")->capture_default_str();
@@ -237,6 +242,12 @@ int main(int argc, char** argv) {
   app.add_flag("--polish-reference", polish_reference,
                "--pairs-csv: also run PCL's GICP from the reference pose and from each estimate (an independent "
                "check of the reference; columns ref_icp_*, est_vs_ref_icp_*, est_icp_*)");
+  app.add_flag("--rgb-rotation-check", rgb_rotation_check,
+               "--pairs-csv: also estimate each pair's rotation from the colour images alone (SIFT, essential "
+               "matrix) and compare it with the reference's and each estimate's (columns rgb_*; pairs with rgb)");
+  app.add_option("--rgb-contrast", epipolar.contrast_threshold,
+                 "--rgb-rotation-check: SIFT contrast threshold (lower finds more features in flat images)")
+      ->capture_default_str();
 #endif
   double gt_offset = 0.0;
   app.add_option("--gt-offset", gt_offset,
@@ -247,6 +258,8 @@ int main(int argc, char** argv) {
     if (pictures_only && picture_pair.empty()) throw CLI::ValidationError("--pictures-only needs --picture I,J");
     if (polish_reference && pairs_csv_path.empty())
       throw CLI::ValidationError("--polish-reference writes its columns to the --pairs-csv file: give --pairs-csv");
+    if (rgb_rotation_check && pairs_csv_path.empty())
+      throw CLI::ValidationError("--rgb-rotation-check writes its columns to the --pairs-csv file: give --pairs-csv");
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;  // --help: 0; any usage error: 2
   }
@@ -263,6 +276,7 @@ int main(int argc, char** argv) {
     baseline.pose.ransac.min_inliers = base.pose.ransac.min_inliers;  // the same consensus rule for all
     baseline.visibility = base.visibility;  // and the same free-space check
     gasp::baselines::validate(baseline);
+    gasp::baselines::validate(epipolar);
 #endif
     gasp::TumDataset::Options opt;
     if (!intrinsics_arg.empty()) opt.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg);
@@ -439,7 +453,8 @@ int main(int argc, char** argv) {
       pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,occluded_ratio,consistent,occluded,violations,one_way,guided_support,finer_scale,slide_moved,dense_terms,dense_rounds,"
                     "precision,verified,verified_precision,verified_density,agreement,agreement_truth,tx,ty,tz,qx,qy,qz,qw,"
                     "motion_t_m,motion_r_deg,ref_icp_t_m,ref_icp_r_deg,est_vs_ref_icp_t_m,est_vs_ref_icp_r_deg,"
-                    "est_icp_t_m,est_icp_r_deg,icp_est_vs_ref_icp_t_m,icp_est_vs_ref_icp_r_deg,verified_precision_ref_icp,reason\n";
+                    "est_icp_t_m,est_icp_r_deg,icp_est_vs_ref_icp_t_m,icp_est_vs_ref_icp_r_deg,verified_precision_ref_icp,"
+                    "rgb_inliers,rgb_parallax_px,rgb_r_vs_ref_deg,rgb_r_vs_est_deg,rgb_r_vs_ref_icp_deg,reason\n";
     }
     // GICP from T_init between the views GASP registers (undistorted where the intrinsics have
     // distortion; the depth is the cached one); none without the baselines or when it fails.
@@ -459,6 +474,50 @@ int main(int argc, char** argv) {
       const gasp::Isometry3 E = A->inverse() * *B;
       return std::to_string(gasp::translationNorm(E)) + ',' + std::to_string(gasp::rotationAngle(E) * 180.0 / M_PI);
     };
+    // The depth-free check (--rgb-rotation-check): the rotation between the two colour images from
+    // their pixels alone, and the reference's short motions between each frame's depth and rgb
+    // stamps, so that poses between the depth frames can be compared with it.
+    struct RgbCheck {
+      std::size_t inliers = 0;
+      double parallax_px = 0.0;
+      std::optional<Eigen::Matrix3d> R_rgb;               // R_target_source from the images
+      std::optional<gasp::Isometry3> T_ref;               // the reference between the rgb stamps
+      std::optional<gasp::Isometry3> T_di_ri, T_rj_dj;    // rgb i -> depth i, depth j -> rgb j
+    };
+    auto poseAt = [&](double t) -> std::optional<gasp::Isometry3> {
+      const auto k = gasp::findNearest(ds.groundTruth(), t + gt_offset, 0.02);
+      if (!k) return std::nullopt;
+      return ds.groundTruth()[*k].T_world_camera;
+    };
+    auto rgbCheck = [&]([[maybe_unused]] std::size_t i, [[maybe_unused]] std::size_t j) {
+      RgbCheck c;
+#ifdef GASP_HAVE_BASELINES
+      if (!hasRgb(i) || !hasRgb(j)) return c;
+      const auto& fi = ds.frame(i);
+      const auto& fj = ds.frame(j);
+      const auto e = gasp::baselines::estimateEpipolarRotation(cache.rgbd(i).bgr, cache.rgbd(j).bgr, ds.intrinsics(), epipolar);
+      c.inliers = e.inliers;
+      c.parallax_px = e.median_parallax_px;
+      if (e.success) c.R_rgb = e.R_target_source;
+      const auto ri = poseAt(*fi.rgb_timestamp), rj = poseAt(*fj.rgb_timestamp);
+      const auto di = poseAt(fi.timestamp), dj = poseAt(fj.timestamp);
+      if (ri && rj) c.T_ref = gasp::relativePose(*rj, *ri);
+      if (ri && di) c.T_di_ri = gasp::relativePose(*di, *ri);
+      if (rj && dj) c.T_rj_dj = gasp::relativePose(*rj, *dj);
+#endif
+      return c;
+    };
+    // The rotation [deg] between the images' rotation and a pose between the rgb stamps, or "".
+    auto rgbAngle = [](const RgbCheck& c, const std::optional<gasp::Isometry3>& T_rgb) {
+      if (!c.R_rgb || !T_rgb) return std::string();
+      const Eigen::AngleAxisd d(c.R_rgb->transpose() * T_rgb->linear());
+      return std::to_string(std::abs(d.angle()) * 180.0 / M_PI);
+    };
+    // A pose between the depth stamps, carried to the rgb stamps by the reference's short motions.
+    auto toRgbStamps = [](const RgbCheck& c, const std::optional<gasp::Isometry3>& T_dj_di) -> std::optional<gasp::Isometry3> {
+      if (!T_dj_di || !c.T_di_ri || !c.T_rj_dj) return std::nullopt;
+      return gasp::Isometry3(*c.T_rj_dj * *T_dj_di * *c.T_di_ri);
+    };
     const auto bench_t0 = Clock::now();
     std::size_t done = 0;
     for (const auto& [i, skip] : all) {
@@ -468,6 +527,7 @@ int main(int argc, char** argv) {
       // The reference polished by GICP (once per pair): how far the depth pulls it, and where to.
       const std::optional<gasp::Isometry3> T_ref_icp =
           polish_reference ? polish(i, j, T_gt) : std::nullopt;
+      const RgbCheck rgb = rgb_rotation_check ? rgbCheck(i, j) : RgbCheck{};
       for (const auto& method : methods) {
         if (needsColour(method) && (!hasRgb(i) || !hasRgb(j))) {
           ++no_rgb[{skip, method}];
@@ -516,6 +576,11 @@ int main(int argc, char** argv) {
           pairs_csv << ',' << difference(T_gt, T_ref_icp) << ',' << difference(T_est, T_ref_icp) << ','
                     << difference(T_est, T_est_icp) << ',' << difference(T_est_icp, T_ref_icp) << ',';
           if (run.verified_quality_polished) pairs_csv << run.verified_quality_polished->precision();
+          pairs_csv << ',';
+          if (rgb_rotation_check && rgb.inliers > 0) pairs_csv << rgb.inliers << ',' << rgb.parallax_px;
+          else pairs_csv << ',';
+          pairs_csv << ',' << rgbAngle(rgb, rgb.T_ref) << ',' << rgbAngle(rgb, toRgbStamps(rgb, T_est)) << ','
+                    << rgbAngle(rgb, toRgbStamps(rgb, T_ref_icp));
           pairs_csv << ",\"" << o.reason << "\"\n";
         }
       }
