@@ -478,6 +478,7 @@ int main(int argc, char** argv) {
     // their pixels alone, and the reference's short motions between each frame's depth and rgb
     // stamps, so that poses between the depth frames can be compared with it.
     struct RgbCheck {
+      bool ran = false;                                   // both frames have rgb
       std::size_t inliers = 0;
       double parallax_px = 0.0;
       std::optional<Eigen::Matrix3d> R_rgb;               // R_target_source from the images
@@ -495,6 +496,7 @@ int main(int argc, char** argv) {
       if (!hasRgb(i) || !hasRgb(j)) return c;
       const auto& fi = ds.frame(i);
       const auto& fj = ds.frame(j);
+      c.ran = true;
       const auto e = gasp::baselines::estimateEpipolarRotation(cache.rgbd(i).bgr, cache.rgbd(j).bgr, ds.intrinsics(), epipolar);
       c.inliers = e.inliers;
       c.parallax_px = e.median_parallax_px;
@@ -577,7 +579,7 @@ int main(int argc, char** argv) {
                     << difference(T_est, T_est_icp) << ',' << difference(T_est_icp, T_ref_icp) << ',';
           if (run.verified_quality_polished) pairs_csv << run.verified_quality_polished->precision();
           pairs_csv << ',';
-          if (rgb_rotation_check && rgb.inliers > 0) pairs_csv << rgb.inliers << ',' << rgb.parallax_px;
+          if (rgb.ran) pairs_csv << rgb.inliers << ',' << rgb.parallax_px;
           else pairs_csv << ',';
           pairs_csv << ',' << rgbAngle(rgb, rgb.T_ref) << ',' << rgbAngle(rgb, toRgbStamps(rgb, T_est)) << ','
                     << rgbAngle(rgb, toRgbStamps(rgb, T_ref_icp));

@@ -1,0 +1,73 @@
+#!/usr/bin/env python3
+"""Summarise gasp-pairs --rgb-rotation-check: whose rotation error is whose.
+
+Usage: scripts/rgb_rotation_check_summary.py PAIRS.csv [METHOD] [CUT_DEG]
+
+PAIRS.csv is a `gasp-pairs --pairs-csv ... --rgb-rotation-check` file. Per skip, over the pairs
+where the colour images gave a rotation and METHOD (default gasp) an estimate, it prints the three
+pairwise rotation differences -- images vs reference (rgb_r_vs_ref_deg), images vs estimate
+(rgb_r_vs_est_deg), estimate vs reference (r_err_deg) -- as medians and RMS, and splits them with
+the three-cornered hat: for three measurements a, b, c of the same rotation with independent
+errors, E|a - b|^2 = s_a^2 + s_b^2, so s_a^2 = (d_ab^2 + d_ac^2 - d_bc^2) / 2. A negative value
+(printed with a minus sign) means the independence assumption or the sample does not hold up.
+Triples with any difference above CUT_DEG (default 3) are left out and counted: a failed
+essential matrix (e.g. motion blur) is not an error of the other two.
+Docs: docs/pipeline.md, "A depth-free check".
+"""
+import csv
+import math
+import statistics
+import sys
+
+
+def signed_sqrt(v):
+    return math.copysign(math.sqrt(abs(v)), v)
+
+
+def main():
+    if len(sys.argv) < 2:
+        sys.exit(__doc__)
+    path = sys.argv[1]
+    method = sys.argv[2] if len(sys.argv) > 2 else "gasp"
+    cut = float(sys.argv[3]) if len(sys.argv) > 3 else 3.0
+    try:
+        with open(path, newline="") as f:
+            reader = csv.DictReader(f)
+            needed = {"skip", "method", "estimated", "r_err_deg", "rgb_inliers", "rgb_r_vs_ref_deg", "rgb_r_vs_est_deg"}
+            missing = sorted(needed - set(reader.fieldnames or []))
+            if missing:
+                sys.exit("error: %s: not a gasp-pairs --pairs-csv file with the rgb_* columns (missing: %s)"
+                         % (path, ", ".join(missing)))
+            rows = [r for r in reader if r["method"] == method]
+    except OSError as e:
+        sys.exit("error: cannot read %s: %s" % (path, e.strerror))
+    skips = sorted({int(r["skip"]) for r in rows})
+    print("| skip | pairs with rgb | images gave a rotation | triples used (all < %g deg) | median images-ref / images-est / est-ref [deg] "
+          "| RMS images-ref / images-est / est-ref [deg] | three-cornered hat: images / estimate / reference [deg] |" % cut)
+    print("|---|---|---|---|---|---|---|")
+    printed = 0
+    for skip in skips:
+        rs = [r for r in rows if int(r["skip"]) == skip]
+        with_rgb = [r for r in rs if r["rgb_inliers"] != ""]
+        rotated = [r for r in rs if r["rgb_r_vs_ref_deg"] != ""]
+        triples = [(float(r["rgb_r_vs_ref_deg"]), float(r["rgb_r_vs_est_deg"]), float(r["r_err_deg"]))
+                   for r in rotated if r["estimated"] == "1" and r["rgb_r_vs_est_deg"] != ""]
+        kept = [t for t in triples if max(t) < cut]
+        if not kept:
+            continue
+        ms = [sum(t[i] ** 2 for t in kept) / len(kept) for i in range(3)]
+        hat_images = (ms[0] + ms[1] - ms[2]) / 2
+        hat_estimate = (ms[1] + ms[2] - ms[0]) / 2
+        hat_reference = (ms[0] + ms[2] - ms[1]) / 2
+        med = [statistics.median(t[i] for t in kept) for i in range(3)]
+        print("| %d | %d | %d | %d of %d | %.2f / %.2f / %.2f | %.2f / %.2f / %.2f | %.2f / %.2f / %.2f |" % (
+            skip, len(with_rgb), len(rotated), len(kept), len(triples), med[0], med[1], med[2],
+            math.sqrt(ms[0]), math.sqrt(ms[1]), math.sqrt(ms[2]),
+            signed_sqrt(hat_images), signed_sqrt(hat_estimate), signed_sqrt(hat_reference)))
+        printed += 1
+    if not printed:
+        sys.exit("error: %s: no pair of method %s with a rotation from the images and an estimate" % (path, method))
+
+
+if __name__ == "__main__":
+    main()
