@@ -185,6 +185,10 @@ int main(int argc, char** argv) {
   bool no_undistort = false;
   app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored");
   app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: the folder's)");
+  double depth_scale = gasp::kTumDepthUnitsPerMetre;
+  app.add_option("--depth-scale", depth_scale, "raw depth units per metre (TUM: 5000; a calibrated depth scale divides it)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   app.add_option("--csv", csv_path, "write the table as CSV (rows with scored pairs only)");
   app.add_option("--pairs-csv", pairs_csv_path, "write one line per pair and method");
   app.add_option("--max-pairs", max_pairs, "at most this many pairs per skip (0 = all)");
@@ -281,6 +285,7 @@ int main(int argc, char** argv) {
     gasp::TumDataset::Options opt;
     if (!intrinsics_arg.empty()) opt.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg);
     opt.undistort = !no_undistort;
+    opt.depth_units_per_metre = depth_scale;
     const auto ds = gasp::TumDataset::open(tum_dir, opt);
     // Ground truth of frame i: the frame's own association (offset 0) or a look-up at t + offset.
     auto truth = [&](std::size_t i) { return ds.groundTruthOf(i, gt_offset); };

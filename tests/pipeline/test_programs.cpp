@@ -88,6 +88,8 @@ TEST(GaspPairsProgram, TableAndCsvOnARealFolder) {
   EXPECT_EQ(rows, 4);  // 2 skips x 2 methods
   EXPECT_EQ(run("gasp-pairs", "--tum /nonexistent").exit_code, 1);
   EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 100").exit_code, 4);  // no pair
+  EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 1 --depth-scale 0").exit_code, 2);  // usage error
+  EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 1 --depth-scale -5000").exit_code, 2);
 }
 
 // The per-pair CSV: one row per pair with the estimated pose, whose error against the ground truth
