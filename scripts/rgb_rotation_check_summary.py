@@ -11,7 +11,8 @@ the three-cornered hat: for three measurements a, b, c of the same rotation with
 errors, E|a - b|^2 = s_a^2 + s_b^2, so s_a^2 = (d_ab^2 + d_ac^2 - d_bc^2) / 2. A negative value
 (printed with a minus sign) means the independence assumption or the sample does not hold up.
 Triples with any difference above CUT_DEG (default 3) are left out and counted: a failed
-essential matrix (e.g. motion blur) is not an error of the other two.
+essential matrix (e.g. motion blur) is not an error of the other two. With --polish-reference
+columns, a second table does the same with the GICP-polished reference in place of the estimate.
 Docs: docs/pipeline.md, "A depth-free check".
 """
 import csv
@@ -67,6 +68,25 @@ def main():
         printed += 1
     if not printed:
         sys.exit("error: %s: no pair of method %s with a rotation from the images and an estimate" % (path, method))
+    # With --polish-reference: the same split with the GICP-polished reference in place of the
+    # estimate (images vs polished: rgb_r_vs_ref_icp_deg; polished vs reference: ref_icp_r_deg).
+    polished = [r for r in rows if r.get("rgb_r_vs_ref_icp_deg", "") != "" and r.get("ref_icp_r_deg", "") != ""
+                and r["rgb_r_vs_ref_deg"] != ""]
+    if not polished:
+        return
+    print()
+    print("| skip | triples used (all < %g deg) | three-cornered hat: images / GICP-polished reference / reference [deg] |" % cut)
+    print("|---|---|---|")
+    for skip in skips:
+        triples = [(float(r["rgb_r_vs_ref_deg"]), float(r["rgb_r_vs_ref_icp_deg"]), float(r["ref_icp_r_deg"]))
+                   for r in polished if int(r["skip"]) == skip]
+        kept = [t for t in triples if max(t) < cut]
+        if not kept:
+            continue
+        ms = [sum(t[i] ** 2 for t in kept) / len(kept) for i in range(3)]
+        print("| %d | %d of %d | %.2f / %.2f / %.2f |" % (
+            skip, len(kept), len(triples), signed_sqrt((ms[0] + ms[1] - ms[2]) / 2),
+            signed_sqrt((ms[1] + ms[2] - ms[0]) / 2), signed_sqrt((ms[0] + ms[2] - ms[1]) / 2)))
 
 
 if __name__ == "__main__":
