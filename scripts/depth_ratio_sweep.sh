@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Sweep the ratio of depth to lateral scale on fr1_xyz and score each value on two halves of the
+# sequence (pairs starting before / from frame 400): a diagnostic of the fr1 sensor's depth
+# calibration (docs/pipeline.md, "A depth-free check"), not a setting GASP uses.
+#
+# For a factor k, the focal lengths are multiplied by k (an intrinsics file with fr1's other
+# values and lens coefficients) and the depth by k (--depth-scale 5000/k): lateral coordinates stay
+# as they are, depths grow by k. The reference is looked up 30 ms earlier (fr1's lag).
+#
+# Usage: scripts/depth_ratio_sweep.sh [BUILD_DIR] [DATA_DIR] [OUT_DIR] [FACTORS...]
+#   defaults: build/ci, ../shared/data/tum/fr1_xyz, a temporary directory, 1.000 1.025 1.050 1.075 1.100
+set -euo pipefail
+build=${1:-build/ci}
+data=${2:-../shared/data/tum/fr1_xyz}
+out=${3:-$(mktemp -d)}
+shift $(( $# < 3 ? $# : 3 ))
+factors=("$@")
+[ ${#factors[@]} -gt 0 ] || factors=(1.000 1.025 1.050 1.075 1.100)
+[ -x "$build/bin/gasp-pairs" ] || { echo "error: $build/bin/gasp-pairs not built" >&2; exit 1; }
+[ -d "$data" ] || { echo "error: no data folder $data" >&2; exit 1; }
+mkdir -p "$out"
+for k in "${factors[@]}"; do
+  python3 - "$k" > "$out/intrinsics_k$k.txt" <<'EOF'
+import sys
+k = float(sys.argv[1])
+print("width: 640\nheight: 480\nfx: %.4f\nfy: %.4f\ncx: 318.6\ncy: 255.3" % (517.3 * k, 516.5 * k))
+print("distortion: 0.2624 -0.9531 -0.0054 0.0026 1.1633")
+EOF
+  ds=$(python3 -c "import sys; print('%.3f' % (5000.0 / float(sys.argv[1])))" "$k")
+  echo "k $k: gasp-pairs --intrinsics $out/intrinsics_k$k.txt --depth-scale $ds" >&2
+  "$build/bin/gasp-pairs" --tum "$data" --skips 10,30,50,100 --starts-every 20 --method gasp --gt-offset -0.03 \
+      --intrinsics "$out/intrinsics_k$k.txt" --depth-scale "$ds" --pairs-csv "$out/pairs_k$k.csv" > "$out/table_k$k.txt" 2>/dev/null
+done
+python3 - "$out" "${factors[@]}" <<'EOF'
+import csv, math, sys
+out, factors = sys.argv[1], sys.argv[2:]
+print("| k | half | estimates | failures | rotation RMSE [deg] (skips 10 / 30 / 50 / 100) | all skips: rotation [deg] / translation [m] RMSE |")
+print("|---|---|---|---|---|---|")
+rms = lambda v: math.sqrt(sum(x * x for x in v) / len(v)) if v else float("nan")
+for k in factors:
+    rows = [r for r in csv.DictReader(open("%s/pairs_k%s.csv" % (out, k))) if r["method"] == "gasp"]
+    for half, keep in (("frames < 400", lambda i: i < 400), ("frames >= 400", lambda i: i >= 400)):
+        rs = [r for r in rows if keep(int(r["from"]))]
+        est = [r for r in rs if r["estimated"] == "1"]
+        per = [rms([float(r["r_err_deg"]) for r in est if r["skip"] == s]) for s in ("10", "30", "50", "100")]
+        print("| %s | %s | %d | %d | %s | %.3f / %.4f |" % (
+            k, half, len(est), len(rs) - len(est), " / ".join("%.2f" % p for p in per),
+            rms([float(r["r_err_deg"]) for r in est]), rms([float(r["t_err_m"]) for r in est])))
+EOF
