@@ -49,6 +49,8 @@ void pairFields(P& p, F&& f) {
   f("mutual_check", p.association.mutual_check);
   f("min_inliers", p.pose.ransac.min_inliers);
   f("dense_rounds", p.dense_rounds);
+  f("dense_max_rounds", p.dense_max_rounds);
+  f("dense_converged_m", p.dense_converged_m);
   f("refine", p.refine);
   f("retry_area_factor", p.retry_area_factor);
   f("slide_scan", p.slide_scan.enabled);

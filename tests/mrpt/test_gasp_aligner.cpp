@@ -160,6 +160,17 @@ TEST(GaspAligner, BadInputGivesClearErrors) {
   // Options from an ini section: unknown keys and invalid values are named.
   EXPECT_NO_THROW(aligner.options.loadFromConfigFile(mrpt::config::CConfigFileMemory("[A]\ncandidates=30\n"), "A"));
   EXPECT_EQ(aligner.options.params.association.candidates, 30);
+  // The converged dense rounds' limits are keys too; invalid values are refused by name.
+  EXPECT_NO_THROW(aligner.options.loadFromConfigFile(
+      mrpt::config::CConfigFileMemory("[A]\ndense_max_rounds=5\ndense_converged_m=0.004\n"), "A"));
+  EXPECT_EQ(aligner.options.params.dense_max_rounds, 5);
+  EXPECT_DOUBLE_EQ(aligner.options.params.dense_converged_m, 0.004);
+  try {
+    aligner.options.loadFromConfigFile(mrpt::config::CConfigFileMemory("[A]\ndense_converged_m=-1\n"), "A");
+    ADD_FAILURE() << "a negative dense_converged_m accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("dense_converged_m"), std::string::npos) << e.what();
+  }
   EXPECT_THROW(aligner.options.loadFromConfigFile(mrpt::config::CConfigFileMemory("[A]\ncandidatez=30\n"), "A"),
                std::exception);
   EXPECT_THROW(aligner.options.loadFromConfigFile(mrpt::config::CConfigFileMemory("[A]\nmin_inliers=x\n"), "A"),

@@ -61,6 +61,10 @@ TEST(ObservationMatcher, ParametersFromYaml) {
   using mrpt::containers::yaml;
   EXPECT_NO_THROW(createObservationMatcher("gasp::ObservationMatcher_GASP",
                                            yaml::FromText("candidates: 20\nmutual_check: false\n")));
+  EXPECT_NO_THROW(createObservationMatcher("gasp::ObservationMatcher_GASP",
+                                           yaml::FromText("dense_max_rounds: 4\ndense_converged_m: 0.001\n")));
+  EXPECT_THROW(createObservationMatcher("gasp::ObservationMatcher_GASP", yaml::FromText("dense_max_rounds: -2\n")),
+               std::exception);
   EXPECT_THROW(createObservationMatcher("gasp::ObservationMatcher_GASP", yaml::FromText("candidatez: 20\n")),
                std::exception);
   EXPECT_THROW(createObservationMatcher("gasp::ObservationMatcher_GASP", yaml::FromText("lambda: 3.0\n")),
