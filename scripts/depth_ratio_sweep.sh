@@ -3,9 +3,11 @@
 # sequence (pairs starting before / from frame 400): a diagnostic of the fr1 sensor's depth
 # calibration (docs/pipeline.md, "A depth-free check"), not a setting GASP uses.
 #
-# For a factor k, the focal lengths are multiplied by k (an intrinsics file with fr1's other
-# values and lens coefficients) and the depth by k (--depth-scale 5000/k): lateral coordinates stay
-# as they are, depths grow by k. The reference is looked up 30 ms earlier (fr1's lag).
+# For a factor k, the focal lengths are multiplied by k and the depth by k (--depth-scale 5000/k):
+# lateral coordinates stay as they are, depths grow by k. The lens coefficients are rescaled with
+# the focal lengths (k1 k^2, k2 k^4, p1 p2 k, k3 k^6), so the undistortion's pixel map is the same
+# for every k. The intrinsics are fr1's (the script is for fr1 sequences; DATA_DIR only says where
+# the folder is). The reference is looked up 30 ms earlier (fr1's lag).
 #
 # Usage: scripts/depth_ratio_sweep.sh [BUILD_DIR] [DATA_DIR] [OUT_DIR] [FACTORS...]
 #   defaults: build/ci, ../shared/data/tum/fr1_xyz, a temporary directory, 1.000 1.025 1.050 1.075 1.100
@@ -24,12 +26,14 @@ for k in "${factors[@]}"; do
 import sys
 k = float(sys.argv[1])
 print("width: 640\nheight: 480\nfx: %.4f\nfy: %.4f\ncx: 318.6\ncy: 255.3" % (517.3 * k, 516.5 * k))
-print("distortion: 0.2624 -0.9531 -0.0054 0.0026 1.1633")
+# Normalised coordinates shrink by 1/k: rescale so that each pixel maps where it did at k = 1.
+print("distortion: %.6f %.6f %.6f %.6f %.6f" % (0.2624 * k**2, -0.9531 * k**4, -0.0054 * k, 0.0026 * k, 1.1633 * k**6))
 EOF
   ds=$(python3 -c "import sys; print('%.3f' % (5000.0 / float(sys.argv[1])))" "$k")
   echo "k $k: gasp-pairs --intrinsics $out/intrinsics_k$k.txt --depth-scale $ds" >&2
   "$build/bin/gasp-pairs" --tum "$data" --skips 10,30,50,100 --starts-every 20 --method gasp --gt-offset -0.03 \
-      --intrinsics "$out/intrinsics_k$k.txt" --depth-scale "$ds" --pairs-csv "$out/pairs_k$k.csv" > "$out/table_k$k.txt" 2>/dev/null
+      --intrinsics "$out/intrinsics_k$k.txt" --depth-scale "$ds" --pairs-csv "$out/pairs_k$k.csv" > "$out/table_k$k.txt" \
+      2> "$out/progress_k$k.log" || { echo "error: gasp-pairs failed for k = $k (see $out/progress_k$k.log)" >&2; exit 1; }
 done
 python3 - "$out" "${factors[@]}" <<'EOF'
 import csv, math, sys

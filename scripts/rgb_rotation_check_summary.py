@@ -10,6 +10,8 @@ pairwise rotation differences -- images vs reference (rgb_r_vs_ref_deg), images 
 the three-cornered hat: for three measurements a, b, c of the same rotation with independent
 errors, E|a - b|^2 = s_a^2 + s_b^2, so s_a^2 = (d_ab^2 + d_ac^2 - d_bc^2) / 2. A negative value
 (printed with a minus sign) means the independence assumption or the sample does not hold up.
+The 90 % intervals come from a block bootstrap (blocks of 10 pairs in start-frame order, since
+pairs from neighbouring start frames share frames; 2000 resamples, fixed seed).
 Triples with any difference above CUT_DEG (default 3) are left out and counted: a failed
 essential matrix (e.g. motion blur) is not an error of the other two. With --polish-reference
 columns, a second table does the same with the GICP-polished reference in place of the estimate.
@@ -17,8 +19,30 @@ Docs: docs/pipeline.md, "A depth-free check".
 """
 import csv
 import math
+import random
 import statistics
 import sys
+
+BLOCK = 10        # pairs per bootstrap block (pairs from neighbouring start frames overlap)
+RESAMPLES = 2000  # bootstrap resamples
+
+
+def hat(triples):
+    """Three-cornered hat of (a-b, a-c, b-c) differences: the shares (s_a^2, s_b^2, s_c^2)."""
+    ms = [sum(t[i] ** 2 for t in triples) / len(triples) for i in range(3)]
+    return ((ms[0] + ms[1] - ms[2]) / 2, (ms[1] + ms[2] - ms[0]) / 2, (ms[0] + ms[2] - ms[1]) / 2)
+
+
+def interval(triples, which):
+    """5 %% / 95 %% of share `which` over a block bootstrap (blocks of BLOCK pairs in start order)."""
+    blocks = [triples[i:i + BLOCK] for i in range(0, len(triples), BLOCK)]
+    rng = random.Random(1)
+    values = []
+    for _ in range(RESAMPLES):
+        sample = [t for _ in blocks for t in rng.choice(blocks)]
+        values.append(signed_sqrt(hat(sample)[which]))
+    values.sort()
+    return values[int(0.05 * len(values))], values[int(0.95 * len(values)) - 1]
 
 
 def signed_sqrt(v):
@@ -44,33 +68,34 @@ def main():
         sys.exit("error: cannot read %s: %s" % (path, e.strerror))
     skips = sorted({int(r["skip"]) for r in rows})
     print("| skip | pairs with rgb | images gave a rotation | triples used (all < %g deg) | median images-ref / images-est / est-ref [deg] "
-          "| RMS images-ref / images-est / est-ref [deg] | three-cornered hat: images / estimate / reference [deg] |" % cut)
+          "| RMS images-ref / images-est / est-ref [deg] | three-cornered hat: images / estimate / reference [deg] "
+          "(90 %% block-bootstrap interval) |" % cut)
     print("|---|---|---|---|---|---|---|")
     printed = 0
     for skip in skips:
         rs = [r for r in rows if int(r["skip"]) == skip]
         with_rgb = [r for r in rs if r["rgb_inliers"] != ""]
         rotated = [r for r in rs if r["rgb_r_vs_ref_deg"] != ""]
+        rotated.sort(key=lambda r: int(r["from"]))
         triples = [(float(r["rgb_r_vs_ref_deg"]), float(r["rgb_r_vs_est_deg"]), float(r["r_err_deg"]))
                    for r in rotated if r["estimated"] == "1" and r["rgb_r_vs_est_deg"] != ""]
         kept = [t for t in triples if max(t) < cut]
         if not kept:
             continue
         ms = [sum(t[i] ** 2 for t in kept) / len(kept) for i in range(3)]
-        hat_images = (ms[0] + ms[1] - ms[2]) / 2
-        hat_estimate = (ms[1] + ms[2] - ms[0]) / 2
-        hat_reference = (ms[0] + ms[2] - ms[1]) / 2
+        shares = [signed_sqrt(v) for v in hat(kept)]
         med = [statistics.median(t[i] for t in kept) for i in range(3)]
-        print("| %d | %d | %d | %d of %d | %.2f / %.2f / %.2f | %.2f / %.2f / %.2f | %.2f / %.2f / %.2f |" % (
+        ci = [interval(kept, i) for i in range(3)]
+        print("| %d | %d | %d | %d of %d | %.2f / %.2f / %.2f | %.2f / %.2f / %.2f | %s |" % (
             skip, len(with_rgb), len(rotated), len(kept), len(triples), med[0], med[1], med[2],
             math.sqrt(ms[0]), math.sqrt(ms[1]), math.sqrt(ms[2]),
-            signed_sqrt(hat_images), signed_sqrt(hat_estimate), signed_sqrt(hat_reference)))
+            " / ".join("%.2f (%.2f..%.2f)" % (v, lo, hi) for v, (lo, hi) in zip(shares, ci))))
         printed += 1
     if not printed:
         sys.exit("error: %s: no pair of method %s with a rotation from the images and an estimate" % (path, method))
     # With --polish-reference: the same split with the GICP-polished reference in place of the
     # estimate (images vs polished: rgb_r_vs_ref_icp_deg; polished vs reference: ref_icp_r_deg).
-    polished = [r for r in rows if r.get("rgb_r_vs_ref_icp_deg", "") != "" and r.get("ref_icp_r_deg", "") != ""
+    polished = [r for r in sorted(rows, key=lambda r: int(r["from"])) if r.get("rgb_r_vs_ref_icp_deg", "") != "" and r.get("ref_icp_r_deg", "") != ""
                 and r["rgb_r_vs_ref_deg"] != ""]
     if not polished:
         return
@@ -83,10 +108,10 @@ def main():
         kept = [t for t in triples if max(t) < cut]
         if not kept:
             continue
-        ms = [sum(t[i] ** 2 for t in kept) / len(kept) for i in range(3)]
+        # (images-ref, images-polished, polished-ref): shares of images, polished, reference.
+        a, b, c = hat([(t[0], t[1], t[2]) for t in kept])
         print("| %d | %d of %d | %.2f / %.2f / %.2f |" % (
-            skip, len(kept), len(triples), signed_sqrt((ms[0] + ms[1] - ms[2]) / 2),
-            signed_sqrt((ms[1] + ms[2] - ms[0]) / 2), signed_sqrt((ms[0] + ms[2] - ms[1]) / 2)))
+            skip, len(kept), len(triples), signed_sqrt(a), signed_sqrt(b), signed_sqrt(c)))
 
 
 if __name__ == "__main__":

@@ -251,7 +251,8 @@ int main(int argc, char** argv) {
                "matrix) and compare it with the reference's and each estimate's (columns rgb_*; pairs with rgb)");
   app.add_option("--rgb-contrast", epipolar.contrast_threshold,
                  "--rgb-rotation-check: SIFT contrast threshold (lower finds more features in flat images)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
 #endif
   double gt_offset = 0.0;
   app.add_option("--gt-offset", gt_offset,
@@ -635,6 +636,9 @@ int main(int argc, char** argv) {
       return 4;
     }
   } catch (const gasp::Error& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return 1;
+  } catch (const std::exception& e) {  // e.g. a cv::Exception from a library
     std::cerr << "error: " << e.what() << '\n';
     return 1;
   }

@@ -1,11 +1,16 @@
 // estimateEpipolarRotation (SIFT + five-point essential matrix + Sampson polish): on two views
 // of the synthetic room painted with a texture fixed to the world, the rotation comes back to
-// within a few hundredths of a degree; bad input gives a clear error or no estimate.
+// within a few hundredths of a degree (tested within 0.1: the real disagreements it judges are
+// ~1 deg); a camera that only rotates, or does not move, gives no estimate (the translation, and
+// with it the split between rotation and translation, is undetermined); bad input gives a clear
+// error or no estimate.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+
+#include <opencv2/imgproc.hpp>
 
 #include "gasp/baselines/epipolar_rotation.h"
 #include "gasp/core/error.h"
@@ -80,7 +85,7 @@ TEST(EpipolarRotation, RecoversTheRotationOfTwoTexturedViews) {
     EXPECT_GT(r.inliers, 200u);
     const double true_angle = angleDeg(Eigen::Matrix3d::Identity(), T_b_a.linear());
     ASSERT_GT(true_angle, 1.0) << "the pair should rotate";
-    EXPECT_LT(angleDeg(r.R_target_source, T_b_a.linear()), 0.05) << a << " -> " << b << " (rotates " << true_angle << " deg)";
+    EXPECT_LT(angleDeg(r.R_target_source, T_b_a.linear()), 0.1) << a << " -> " << b << " (rotates " << true_angle << " deg)";
     std::printf("%d -> %d: rotates %.2f deg, %zu inliers, parallax %.1f px, rotation error %.4f deg\n", a, b, true_angle,
                 r.inliers, r.median_parallax_px, angleDeg(r.R_target_source, T_b_a.linear()));
     // The translation direction too (when the views are apart).
@@ -96,6 +101,26 @@ TEST(EpipolarRotation, TheSameImageHasNoParallaxAndNoEstimate) {
   const cv::Mat ia = texturedView(sim, 3);
   const auto r = gb::estimateEpipolarRotation(ia, ia, sim.options().intrinsics);
   EXPECT_FALSE(r.success);
+  EXPECT_NE(r.reason.find("parallax"), std::string::npos) << r.reason;
+}
+
+TEST(EpipolarRotation, APureRotationHasNoParallaxAndNoEstimate) {
+  const auto sim = noiseFreeRoom();
+  const auto& k = sim.options().intrinsics;
+  const cv::Mat ia = texturedView(sim, 3);
+  // The image a camera rotated by R about its centre sees: the homography K R K^-1.
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(6.0 * M_PI / 180.0, Eigen::Vector3d(0.2, 1.0, 0.1).normalized()).toRotationMatrix();
+  Eigen::Matrix3d K;
+  K << k.fx, 0, k.cx, 0, k.fy, k.cy, 0, 0, 1;
+  const Eigen::Matrix3d H = K * R * K.inverse();
+  cv::Mat Hcv(3, 3, CV_64F);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) Hcv.at<double>(r, c) = H(r, c);
+  cv::Mat ib;
+  cv::warpPerspective(ia, ib, Hcv, ia.size(), cv::INTER_LINEAR);
+  const auto r = gb::estimateEpipolarRotation(ia, ib, k);
+  EXPECT_FALSE(r.success) << "claimed a rotation " << angleDeg(r.R_target_source, R) << " deg from the truth";
   EXPECT_NE(r.reason.find("parallax"), std::string::npos) << r.reason;
 }
 

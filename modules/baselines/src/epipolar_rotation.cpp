@@ -129,8 +129,7 @@ EpipolarResult estimateEpipolarRotation(const cv::Mat& image_source, const cv::M
     }
   }
   const cv::Mat K = (cv::Mat_<double>(3, 3) << k.fx, 0, k.cx, 0, k.fy, k.cy, 0, 0, 1);
-  // OpenCV seeds its RANSAC from cv::theRNG(): fix it so that runs repeat.
-  cv::theRNG().state = 1;
+  // OpenCV's RANSAC draws from a generator with a fixed seed of its own: runs repeat.
   cv::Mat mask;
   const cv::Mat E = cv::findEssentialMat(p_s, p_t, K, cv::RANSAC, params.confidence, params.threshold_px,
                                          params.max_iterations, mask);
@@ -139,7 +138,9 @@ EpipolarResult estimateEpipolarRotation(const cv::Mat& image_source, const cv::M
     return out;
   }
   cv::Mat R_cv, t_cv;
-  const int good = cv::recoverPose(E, p_s, p_t, K, R_cv, t_cv, mask);
+  // Cheirality over points up to 1e4 baselines away: the default overload drops points beyond 50
+  // baselines, and distant points are the ones that pin the rotation.
+  const int good = cv::recoverPose(E, p_s, p_t, K, R_cv, t_cv, 1e4, mask);
   if (good < params.min_inliers) {
     out.reason = std::to_string(good) + " inliers in front of both cameras, fewer than min_inliers " +
                  std::to_string(params.min_inliers);
