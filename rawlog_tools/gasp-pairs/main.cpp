@@ -249,6 +249,11 @@ int main(int argc, char** argv) {
   app.add_flag("--rgb-rotation-check", rgb_rotation_check,
                "--pairs-csv: also estimate each pair's rotation from the colour images alone (SIFT, essential "
                "matrix) and compare it with the reference's and each estimate's (columns rgb_*; pairs with rgb)");
+  std::string rgb_intrinsics_arg;
+  app.add_option("--rgb-intrinsics", rgb_intrinsics_arg,
+                 "--rgb-rotation-check: the colour camera's focal lengths and centre (fr1|fr2|fr3|ros or a file; its "
+                 "lens coefficients are ignored, the images are already undistorted); default: the folder's, which "
+                 "is wrong when --intrinsics carries a depth calibration");
   app.add_option("--rgb-contrast", epipolar.contrast_threshold,
                  "--rgb-rotation-check: SIFT contrast threshold (lower finds more features in flat images)")
       ->capture_default_str()
@@ -496,6 +501,18 @@ int main(int argc, char** argv) {
       if (!k) return std::nullopt;
       return ds.groundTruth()[*k].T_world_camera;
     };
+    // The colour camera of the (undistorted) rgb images: the folder's, or --rgb-intrinsics' K.
+    gasp::CameraIntrinsics rgb_camera = ds.intrinsics();
+#ifdef GASP_HAVE_BASELINES
+    if (!rgb_intrinsics_arg.empty()) {
+      rgb_camera = gasp::CameraIntrinsics::fromPresetOrFile(rgb_intrinsics_arg);
+      rgb_camera.distortion.fill(0.0);
+      if (rgb_camera.width != ds.intrinsics().width || rgb_camera.height != ds.intrinsics().height)
+        throw gasp::Error("--rgb-intrinsics: " + std::to_string(rgb_camera.width) + "x" +
+                          std::to_string(rgb_camera.height) + ", the images are " +
+                          std::to_string(ds.intrinsics().width) + "x" + std::to_string(ds.intrinsics().height));
+    }
+#endif
     auto rgbCheck = [&]([[maybe_unused]] std::size_t i, [[maybe_unused]] std::size_t j) {
       RgbCheck c;
 #ifdef GASP_HAVE_BASELINES
@@ -503,7 +520,7 @@ int main(int argc, char** argv) {
       const auto& fi = ds.frame(i);
       const auto& fj = ds.frame(j);
       c.ran = true;
-      const auto e = gasp::baselines::estimateEpipolarRotation(cache.rgbd(i).bgr, cache.rgbd(j).bgr, ds.intrinsics(), epipolar);
+      const auto e = gasp::baselines::estimateEpipolarRotation(cache.rgbd(i).bgr, cache.rgbd(j).bgr, rgb_camera, epipolar);
       c.inliers = e.inliers;
       c.parallax_px = e.median_parallax_px;
       if (e.success) c.R_rgb = e.R_target_source;

@@ -175,3 +175,43 @@ TEST(PairsProgram, RgbRotationCheckFillsItsColumns) {
   EXPECT_EQ(alone.exit_code, 2) << alone.output;
   EXPECT_NE(alone.output.find("--pairs-csv"), std::string::npos) << alone.output;
 }
+
+TEST(PairsProgram, RgbIntrinsicsKeepTheImagesRotationWhenTheDepthIsRecalibrated) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  // A depth calibration in --intrinsics (focal lengths x 1.05, lens coefficients rescaled so that
+  // the undistortion maps every pixel as before) must not change the colour camera the rgb check
+  // uses when --rgb-intrinsics names it.
+  const std::string scratch = gasp::test::scratchDir();  // emptied on every call: once per test
+  const std::string k_file = scratch + "/depth_k1.05.txt";
+  {
+    std::ofstream f(k_file);
+    const double k = 1.05;
+    f << "width: 640\nheight: 480\nfx: " << 517.3 * k << "\nfy: " << 516.5 * k << "\ncx: 318.6\ncy: 255.3\n"
+      << "distortion: " << 0.2624 * k * k << ' ' << -0.9531 * std::pow(k, 4) << ' ' << -0.0054 * k << ' ' << 0.0026 * k
+      << ' ' << 1.1633 * std::pow(k, 6) << "\n";
+  }
+  const std::string plain = scratch + "/rgb_plain.csv";
+  const std::string recal = scratch + "/rgb_recal.csv";
+  const std::string common = "--tum " + dir + " --skips 4 --starts-every 4 --method gasp --rgb-rotation-check ";
+  ASSERT_EQ(run("gasp-pairs", common + "--pairs-csv " + plain).exit_code, 0);
+  const auto r = run("gasp-pairs", common + "--intrinsics " + k_file + " --depth-scale 4761.9 --rgb-intrinsics fr1 --pairs-csv " + recal);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto a = lines(plain), b = lines(recal);
+  ASSERT_EQ(a.size(), 3u);
+  ASSERT_EQ(b.size(), 3u);
+  const auto header = splitCsv(a[0]);
+  const auto col = static_cast<std::size_t>(std::find(header.begin(), header.end(), "rgb_r_vs_ref_deg") - header.begin());
+  ASSERT_LT(col, header.size());
+  for (std::size_t i = 1; i < 3; ++i) {
+    const auto ca = splitCsv(a[i]), cb = splitCsv(b[i]);
+    ASSERT_FALSE(ca[col].empty()) << a[i];
+    ASSERT_FALSE(cb[col].empty()) << b[i];
+    EXPECT_NEAR(std::stod(ca[col]), std::stod(cb[col]), 0.05) << a[i] << "\n" << b[i];
+  }
+  // A colour camera of another size than the images: an error that names the option.
+  const std::string small = scratch + "/small.txt";
+  std::ofstream(small) << "width: 320\nheight: 240\nfx: 260\nfy: 260\ncx: 160\ncy: 120\n";
+  const auto bad = run("gasp-pairs", common + "--rgb-intrinsics " + small + " --pairs-csv " + recal);
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_NE(bad.output.find("--rgb-intrinsics"), std::string::npos) << bad.output;
+}
