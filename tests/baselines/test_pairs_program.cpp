@@ -44,6 +44,46 @@ std::vector<std::string> splitCsv(const std::string& s) {
   return out;
 }
 
+/// Index of the named column in a CSV header (a failure, and the header's size, when absent).
+std::size_t columnIndex(const std::vector<std::string>& header, const std::string& name) {
+  const auto it = std::find(header.begin(), header.end(), name);
+  EXPECT_NE(it, header.end()) << name;
+  return static_cast<std::size_t>(it - header.begin());
+}
+
+/// A pairs CSV, split: the header and the rows.
+struct PairsCsv {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  std::size_t column(const std::string& name) const { return columnIndex(header, name); }
+};
+
+/// gasp-pairs `--method gasp` on DIR's pairs 0 -> 4 and 4 -> 8 with `flags` and a pairs CSV at
+/// `path`. A failure (and no rows) unless it exits 0 and every row has the header's width and an
+/// estimate.
+PairsCsv gaspPairsCsv(const std::string& dir, const std::string& flags, const std::string& path) {
+  PairsCsv out;
+  const auto r = run("gasp-pairs", "--tum " + dir + " --skips 4 --starts-every 4 --method gasp " + flags + " --pairs-csv " + path);
+  if (r.exit_code != 0) {
+    ADD_FAILURE() << "gasp-pairs exited with " << r.exit_code << ": " << r.output;
+    return out;
+  }
+  const auto text = lines(path);
+  if (text.empty()) {
+    ADD_FAILURE() << "empty " << path;
+    return out;
+  }
+  out.header = splitCsv(text[0]);
+  for (std::size_t k = 1; k < text.size(); ++k) {
+    auto c = splitCsv(text[k]);
+    EXPECT_EQ(c.size(), out.header.size()) << text[k];
+    if (c.size() != out.header.size()) return PairsCsv{};
+    EXPECT_EQ(c[out.column("estimated")], "1") << text[k];
+    out.rows.push_back(std::move(c));
+  }
+  return out;
+}
+
 }  // namespace
 
 TEST(PairsProgram, BaselinesBesideGaspOnTheSamePairs) {
@@ -104,37 +144,27 @@ TEST(PairsProgram, OnePicturePerMethod) {
 TEST(PairsProgram, PolishReferenceFillsTheGicpColumns) {
   GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
   const std::string pairs = gasp::test::scratchDir() + "/polish.csv";
-  const auto r = run("gasp-pairs", "--tum " + dir + " --skips 4 --starts-every 4 --method gasp --polish-reference --pairs-csv " + pairs);
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const auto rows = lines(pairs);
-  ASSERT_EQ(rows.size(), 3u);  // header, 0 -> 4, 4 -> 8
-  const auto split = splitCsv;
-  const auto header = split(rows[0]);
-  auto column = [&](const std::string& name) {
-    const auto it = std::find(header.begin(), header.end(), name);
-    EXPECT_NE(it, header.end()) << name;
-    return static_cast<std::size_t>(it - header.begin());
-  };
-  for (std::size_t k = 1; k < rows.size(); ++k) {
-    const auto c = split(rows[k]);
-    ASSERT_EQ(c.size(), header.size()) << rows[k];
-    ASSERT_EQ(c[column("estimated")], "1") << rows[k];
+  const PairsCsv csv = gaspPairsCsv(dir, "--polish-reference", pairs);
+  ASSERT_EQ(csv.rows.size(), 2u);  // 0 -> 4, 4 -> 8
+  auto column = [&](const std::string& name) { return csv.column(name); };
+  for (const auto& c : csv.rows) {
+    const std::string row = c[column("from")] + " -> " + c[column("to")];
     for (const std::string name : {"ref_icp_t_m", "ref_icp_r_deg", "est_vs_ref_icp_t_m", "est_vs_ref_icp_r_deg",
                                    "est_icp_t_m", "est_icp_r_deg", "icp_est_vs_ref_icp_t_m", "icp_est_vs_ref_icp_r_deg"}) {
       const std::string& v = c[column(name)];
-      ASSERT_FALSE(v.empty()) << name << ": " << rows[k];
+      ASSERT_FALSE(v.empty()) << name << ": " << row;
       EXPECT_TRUE(std::isfinite(std::stod(v)) && std::stod(v) >= 0.0) << name << ": " << v;
     }
     // Consecutive-ish fr1_desk frames: GICP from the estimate and from the reference end close.
-    EXPECT_LT(std::stod(c[column("icp_est_vs_ref_icp_r_deg")]), 1.0) << rows[k];
-    EXPECT_LT(std::stod(c[column("icp_est_vs_ref_icp_t_m")]), 0.03) << rows[k];
+    EXPECT_LT(std::stod(c[column("icp_est_vs_ref_icp_r_deg")]), 1.0) << row;
+    EXPECT_LT(std::stod(c[column("icp_est_vs_ref_icp_t_m")]), 0.03) << row;
   }
   // Without the flag the columns are there and empty.
   const auto plain = run("gasp-pairs", "--tum " + dir + " --skips 4 --starts-every 4 --method gasp --max-pairs 1 --pairs-csv " + pairs);
   ASSERT_EQ(plain.exit_code, 0) << plain.output;
   const auto rows2 = lines(pairs);
   ASSERT_EQ(rows2.size(), 2u);
-  const auto c = split(rows2[1]);
+  const auto c = splitCsv(rows2[1]);
   EXPECT_TRUE(c[column("ref_icp_r_deg")].empty()) << rows2[1];
   // The flag without a pairs file has nowhere to write: a usage error that says so.
   const auto alone = run("gasp-pairs", "--tum " + dir + " --skips 4 --method gasp --polish-reference");
@@ -145,31 +175,22 @@ TEST(PairsProgram, PolishReferenceFillsTheGicpColumns) {
 TEST(PairsProgram, RgbRotationCheckFillsItsColumns) {
   GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
   const std::string pairs = gasp::test::scratchDir() + "/rgb_check.csv";
-  const auto r = run("gasp-pairs", "--tum " + dir + " --skips 4 --starts-every 4 --method gasp --rgb-rotation-check --pairs-csv " + pairs);
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const auto rows = lines(pairs);
-  ASSERT_EQ(rows.size(), 3u);  // header, 0 -> 4, 4 -> 8
-  const auto header = splitCsv(rows[0]);
-  auto column = [&](const std::string& name) {
-    const auto it = std::find(header.begin(), header.end(), name);
-    EXPECT_NE(it, header.end()) << name;
-    return static_cast<std::size_t>(it - header.begin());
-  };
-  for (std::size_t k = 1; k < rows.size(); ++k) {
-    const auto c = splitCsv(rows[k]);
-    ASSERT_EQ(c.size(), header.size()) << rows[k];
-    ASSERT_EQ(c[column("estimated")], "1") << rows[k];
+  const PairsCsv csv = gaspPairsCsv(dir, "--rgb-rotation-check", pairs);
+  ASSERT_EQ(csv.rows.size(), 2u);  // 0 -> 4, 4 -> 8
+  auto column = [&](const std::string& name) { return csv.column(name); };
+  for (const auto& c : csv.rows) {
+    const std::string row = c[column("from")] + " -> " + c[column("to")];
     // fr1_desk is textured (but blurred): over 100 epipolar inliers here, and the images' rotation within a few
     // degrees of the reference's and of the estimate's (the three disagree by about 1 deg on fr1,
     // docs/pipeline.md "A depth-free check").
-    EXPECT_GE(std::stod(c[column("rgb_inliers")]), 50.0) << rows[k];  // min_inliers
-    EXPECT_GT(std::stod(c[column("rgb_parallax_px")]), 2.0) << rows[k];
+    EXPECT_GE(std::stod(c[column("rgb_inliers")]), 50.0) << row;  // min_inliers
+    EXPECT_GT(std::stod(c[column("rgb_parallax_px")]), 2.0) << row;
     for (const std::string name : {"rgb_r_vs_ref_deg", "rgb_r_vs_est_deg"}) {
       const std::string& v = c[column(name)];
-      ASSERT_FALSE(v.empty()) << name << ": " << rows[k];
-      EXPECT_LT(std::stod(v), 3.0) << name << ": " << rows[k];
+      ASSERT_FALSE(v.empty()) << name << ": " << row;
+      EXPECT_LT(std::stod(v), 3.0) << name << ": " << row;
     }
-    EXPECT_TRUE(c[column("rgb_r_vs_ref_icp_deg")].empty()) << "no --polish-reference: " << rows[k];
+    EXPECT_TRUE(c[column("rgb_r_vs_ref_icp_deg")].empty()) << "no --polish-reference: " << row;
   }
   const auto alone = run("gasp-pairs", "--tum " + dir + " --skips 4 --method gasp --rgb-rotation-check");
   EXPECT_EQ(alone.exit_code, 2) << alone.output;
@@ -200,7 +221,7 @@ TEST(PairsProgram, RgbIntrinsicsKeepTheImagesRotationWhenTheDepthIsRecalibrated)
   ASSERT_EQ(a.size(), 3u);
   ASSERT_EQ(b.size(), 3u);
   const auto header = splitCsv(a[0]);
-  const auto col = static_cast<std::size_t>(std::find(header.begin(), header.end(), "rgb_r_vs_ref_deg") - header.begin());
+  const std::size_t col = columnIndex(header, "rgb_r_vs_ref_deg");
   ASSERT_LT(col, header.size());
   for (std::size_t i = 1; i < 3; ++i) {
     const auto ca = splitCsv(a[i]), cb = splitCsv(b[i]);
