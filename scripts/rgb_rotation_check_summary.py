@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Summarise gasp-pairs --rgb-rotation-check: whose rotation error is whose.
 
-Usage: scripts/rgb_rotation_check_summary.py PAIRS.csv [METHOD] [CUT_DEG]
+Usage: scripts/rgb_rotation_check_summary.py PAIRS.csv [METHOD] [CUT_DEG] [--svg FIGURE.svg]
 
 PAIRS.csv is a `gasp-pairs --pairs-csv ... --rgb-rotation-check` file. Per skip, over the pairs
 where the colour images gave a rotation and METHOD (default gasp) an estimate, it prints the three
@@ -15,6 +15,9 @@ pairs from neighbouring start frames share frames; 2000 resamples, fixed seed).
 Triples with any difference above CUT_DEG (default 3) are left out and counted: a failed
 essential matrix (e.g. motion blur) is not an error of the other two. With --polish-reference
 columns, a second table does the same with the GICP-polished reference in place of the estimate.
+With --svg it also draws, one panel per skip, each pair as a point: x = images vs reference,
+y = images vs estimate [deg]. Points above the diagonal are pairs where the images side with the
+reference, below it with the estimate.
 Docs: docs/pipeline.md, "A depth-free check".
 """
 import csv
@@ -49,12 +52,51 @@ def signed_sqrt(v):
     return math.copysign(math.sqrt(abs(v)), v)
 
 
+def write_svg(path, panels, cut, title):
+    """panels: [(skip, [(x, y), ...])]; a scatter per skip with the diagonal, axes 0..cut deg."""
+    size, pad, gap = 260, 44, 24
+    width = pad + len(panels) * (size + gap) + 10
+    height = size + 2 * pad + 20
+    out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif" font-size="12">' % (width, height),
+           '<rect width="100%" height="100%" fill="white"/>',
+           '<text x="%d" y="18" font-size="14">%s</text>' % (pad, title)]
+    for n, (skip, points) in enumerate(panels):
+        x0, y0 = pad + n * (size + gap), pad
+        to_x = lambda v: x0 + size * v / cut
+        to_y = lambda v: y0 + size - size * v / cut
+        out.append('<rect x="%d" y="%d" width="%d" height="%d" fill="none" stroke="black"/>' % (x0, y0, size, size))
+        out.append('<line x1="%.1f" y1="%.1f" x2="%.1f" y2="%.1f" stroke="grey" stroke-dasharray="4,3"/>' % (
+            to_x(0), to_y(0), to_x(cut), to_y(cut)))
+        for tick in range(int(cut) + 1):
+            out.append('<text x="%.1f" y="%d" text-anchor="middle">%d</text>' % (to_x(tick), y0 + size + 16, tick))
+            out.append('<text x="%d" y="%.1f" text-anchor="end">%d</text>' % (x0 - 4, to_y(tick) + 4, tick))
+        above = sum(1 for x, y in points if y > x)
+        for x, y in points:
+            colour = "#c0392b" if y > x else "#2874a6"
+            out.append('<circle cx="%.1f" cy="%.1f" r="3" fill="%s" fill-opacity="0.7"/>' % (to_x(x), to_y(y), colour))
+        out.append('<text x="%d" y="%d">skip %d: %d of %d above the diagonal</text>' % (x0 + 4, y0 - 6, skip, above, len(points)))
+        out.append('<text x="%.1f" y="%d" text-anchor="middle">images vs reference [deg]</text>' % (x0 + size / 2, y0 + size + 32))
+    out.append('<text transform="translate(12,%d) rotate(-90)" text-anchor="middle">images vs estimate [deg]</text>' % (pad + size / 2))
+    out.append("</svg>")
+    with open(path, "w") as f:
+        f.write("\n".join(out) + "\n")
+
+
 def main():
-    if len(sys.argv) < 2:
+    args = sys.argv[1:]
+    svg = None
+    if "--svg" in args:
+        k = args.index("--svg")
+        if k + 1 >= len(args):
+            sys.exit("error: --svg needs a file name")
+        svg = args[k + 1]
+        del args[k:k + 2]
+    if len(args) < 1:
         sys.exit(__doc__)
-    path = sys.argv[1]
-    method = sys.argv[2] if len(sys.argv) > 2 else "gasp"
-    cut = float(sys.argv[3]) if len(sys.argv) > 3 else 3.0
+    path = args[0]
+    method = args[1] if len(args) > 1 else "gasp"
+    cut = float(args[2]) if len(args) > 2 else 3.0
+    panels = []
     try:
         with open(path, newline="") as f:
             reader = csv.DictReader(f)
@@ -86,6 +128,7 @@ def main():
         shares = [signed_sqrt(v) for v in hat(kept)]
         med = [statistics.median(t[i] for t in kept) for i in range(3)]
         ci = [interval(kept, i) for i in range(3)]
+        panels.append((skip, [(t[0], t[1]) for t in kept]))
         print("| %d | %d | %d | %d of %d | %.2f / %.2f / %.2f | %.2f / %.2f / %.2f | %s |" % (
             skip, len(with_rgb), len(rotated), len(kept), len(triples), med[0], med[1], med[2],
             math.sqrt(ms[0]), math.sqrt(ms[1]), math.sqrt(ms[2]),
@@ -93,6 +136,9 @@ def main():
         printed += 1
     if not printed:
         sys.exit("error: %s: no pair of method %s with a rotation from the images and an estimate" % (path, method))
+    if svg:
+        write_svg(svg, panels, cut, "%s: each pair's rotation from the colour images against the reference's (x) and %s's (y)"
+                  % (path.split("/")[-1], method))
     # With --polish-reference: the same split with the GICP-polished reference in place of the
     # estimate (images vs polished: rgb_r_vs_ref_icp_deg; polished vs reference: ref_icp_r_deg).
     polished = [r for r in sorted(rows, key=lambda r: int(r["from"])) if r.get("rgb_r_vs_ref_icp_deg", "") != "" and r.get("ref_icp_r_deg", "") != ""
