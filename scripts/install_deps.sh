@@ -15,6 +15,7 @@ PACKAGES=(
   libcli11-dev                      # command-line parsing of the programs
   libgtest-dev libgmock-dev         # tests
   libbenchmark-dev                  # benchmarks
+  python3                           # the summary scripts (scripts/*.py) and their test
 )
 
 missing=()
