@@ -21,10 +21,11 @@
    against each; and the GICP-polished reference scored like an estimate against the reference
    (RMSE per skip, every pair GICP ran on): what the reference can certify.
 Python standard library only."""
-import csv
 import math
 import statistics
 import sys
+
+from pairs_csv import read_pairs_csv
 
 
 def qmul(a, b):
@@ -65,18 +66,9 @@ def main():
         sys.exit(__doc__)
     method = sys.argv[2] if len(sys.argv) > 2 else "gasp"
     path = sys.argv[1]
-    try:
-        with open(path, newline="") as f:
-            reader = csv.DictReader(f)
-            needed = {"skip", "method", "from", "to", "estimated", "t_err_m", "r_err_deg", "precision",
-                      "verified_precision", "verified_density", "agreement", "agreement_truth"}
-            missing = sorted(needed - set(reader.fieldnames or []))
-            if missing:
-                sys.exit("error: %s: not a gasp-pairs --pairs-csv file with the association columns (missing: %s)"
-                         % (path, ", ".join(missing)))
-            rows = [r for r in reader if r["method"] == method]
-    except OSError as e:
-        sys.exit("error: cannot read %s: %s" % (path, e.strerror))
+    rows = read_pairs_csv(path, method, {"skip", "method", "from", "to", "estimated", "t_err_m", "r_err_deg",
+                                         "precision", "verified_precision", "verified_density", "agreement",
+                                         "agreement_truth"}, "association columns")
     by_skip = {}
     for row in rows:
         if row["estimated"] == "1" and row.get("verified_precision", "") != "":

@@ -20,11 +20,12 @@ y = images vs estimate [deg]. Points above the diagonal are pairs where the imag
 reference, below it with the estimate.
 Docs: docs/pipeline.md, "A depth-free check".
 """
-import csv
 import math
 import random
 import statistics
 import sys
+
+from pairs_csv import read_pairs_csv
 
 BLOCK = 10        # pairs per bootstrap block (pairs from neighbouring start frames overlap)
 RESAMPLES = 2000  # bootstrap resamples
@@ -97,17 +98,8 @@ def main():
     method = args[1] if len(args) > 1 else "gasp"
     cut = float(args[2]) if len(args) > 2 else 3.0
     panels = []
-    try:
-        with open(path, newline="") as f:
-            reader = csv.DictReader(f)
-            needed = {"skip", "method", "estimated", "r_err_deg", "rgb_inliers", "rgb_r_vs_ref_deg", "rgb_r_vs_est_deg"}
-            missing = sorted(needed - set(reader.fieldnames or []))
-            if missing:
-                sys.exit("error: %s: not a gasp-pairs --pairs-csv file with the rgb_* columns (missing: %s)"
-                         % (path, ", ".join(missing)))
-            rows = [r for r in reader if r["method"] == method]
-    except OSError as e:
-        sys.exit("error: cannot read %s: %s" % (path, e.strerror))
+    rows = read_pairs_csv(path, method, {"skip", "method", "estimated", "r_err_deg", "rgb_inliers", "rgb_r_vs_ref_deg",
+                                         "rgb_r_vs_est_deg"}, "rgb_* columns")
     skips = sorted({int(r["skip"]) for r in rows})
     print("| skip | pairs with rgb | images gave a rotation | triples used (all < %g deg) | median images-ref / images-est / est-ref [deg] "
           "| RMS images-ref / images-est / est-ref [deg] | three-cornered hat: images / estimate / reference [deg] "

@@ -237,8 +237,6 @@ int main(int argc, char** argv) {
   bool rgb_rotation_check = false;  // --rgb-rotation-check (with the baselines only)
 #ifdef GASP_HAVE_BASELINES
   gasp::baselines::EpipolarParams epipolar;
-#endif
-#ifdef GASP_HAVE_BASELINES
   gasp::baselines::BaselineParams baseline;
   app.add_option("--ratio", baseline.matching.ratio, "baselines: Lowe's ratio test threshold")->capture_default_str();
   app.add_flag("!--no-mutual-matches", baseline.matching.mutual, "baselines: no mutual check of descriptor matches");
@@ -496,11 +494,7 @@ int main(int argc, char** argv) {
       std::optional<gasp::Isometry3> T_ref;               // the reference between the rgb stamps
       std::optional<gasp::Isometry3> T_di_ri, T_rj_dj;    // rgb i -> depth i, depth j -> rgb j
     };
-    auto poseAt = [&](double t) -> std::optional<gasp::Isometry3> {
-      const auto k = gasp::findNearest(ds.groundTruth(), t + gt_offset, 0.02);
-      if (!k) return std::nullopt;
-      return ds.groundTruth()[*k].T_world_camera;
-    };
+    auto poseAt = [&](double t) { return ds.groundTruthAt(t + gt_offset); };
     // The colour camera of the (undistorted) rgb images: the folder's, or --rgb-intrinsics' K.
     gasp::CameraIntrinsics rgb_camera = ds.intrinsics();
 #ifdef GASP_HAVE_BASELINES

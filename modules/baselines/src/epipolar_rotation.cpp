@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "gasp/baselines/descriptor_matching.h"
@@ -51,6 +52,12 @@ struct SampsonResidual {
   Eigen::Matrix3d R0;
   double focal;
 };
+
+/// The median of v (the upper one for an even count); v is not empty.
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
 
 Eigen::Matrix3d toEigen(const cv::Mat& m) {
   Eigen::Matrix3d out;
@@ -121,9 +128,9 @@ EpipolarResult estimateEpipolarRotation(const cv::Mat& image_source, const cv::M
     // Views that hardly move (the same image) determine no essential matrix.
     std::vector<double> shift;
     for (std::size_t i = 0; i < p_s.size(); ++i) shift.push_back(std::hypot(p_s[i].x - p_t[i].x, p_s[i].y - p_t[i].y));
-    std::nth_element(shift.begin(), shift.begin() + static_cast<std::ptrdiff_t>(shift.size() / 2), shift.end());
-    if (shift[shift.size() / 2] < params.min_parallax_px) {
-      out.reason = "median displacement of the matches " + std::to_string(shift[shift.size() / 2]) +
+    const double median_shift = median(std::move(shift));
+    if (median_shift < params.min_parallax_px) {
+      out.reason = "median displacement of the matches " + std::to_string(median_shift) +
                    " px: no parallax (below min_parallax_px)";
       return out;
     }
@@ -187,8 +194,7 @@ EpipolarResult estimateEpipolarRotation(const cv::Mat& image_source, const cv::M
     const Eigen::Vector3d r = R * x1;
     parallax.push_back(std::hypot(k.fx * (x2.x() - r.x() / r.z()), k.fy * (x2.y() - r.y() / r.z())));
   }
-  std::nth_element(parallax.begin(), parallax.begin() + static_cast<std::ptrdiff_t>(parallax.size() / 2), parallax.end());
-  out.median_parallax_px = parallax[parallax.size() / 2];
+  out.median_parallax_px = median(std::move(parallax));
   if (out.median_parallax_px < params.min_parallax_px) {
     out.reason = "median parallax " + std::to_string(out.median_parallax_px) +
                  " px (displacement the rotation does not explain), below min_parallax_px";

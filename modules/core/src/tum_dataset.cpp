@@ -111,7 +111,11 @@ const TumFrame& TumDataset::frame(std::size_t i) const {
 std::optional<Isometry3> TumDataset::groundTruthOf(std::size_t i, double offset_s) const {
   const TumFrame& f = frame(i);
   if (offset_s == 0.0) return f.T_world_camera;
-  const auto k = findNearest(ground_truth_, f.timestamp + offset_s, options_.max_dt);
+  return groundTruthAt(f.timestamp + offset_s);
+}
+
+std::optional<Isometry3> TumDataset::groundTruthAt(double t) const {
+  const auto k = findNearest(ground_truth_, t, options_.max_dt);
   if (!k) return std::nullopt;
   return ground_truth_[*k].T_world_camera;
 }

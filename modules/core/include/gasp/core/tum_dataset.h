@@ -64,6 +64,8 @@ class TumDataset {
   /// Options::max_dt); offset 0 gives frame(i).T_world_camera. TUM fr1's depth lags its motion
   /// capture (docs/pipeline.md): a negative offset fits it better.
   std::optional<Isometry3> groundTruthOf(std::size_t i, double offset_s = 0.0) const;
+  /// Ground truth at time t [s]: the pose nearest in time, within Options::max_dt.
+  std::optional<Isometry3> groundTruthAt(double t) const;
   /// Number of depth frames that have a ground-truth pose.
   std::size_t countWithGroundTruth() const;
 

@@ -1,0 +1,18 @@
+"""Reading a `gasp-pairs --pairs-csv` file for the summary scripts (standard library only)."""
+import csv
+import sys
+
+
+def read_pairs_csv(path, method, needed, what):
+    """The rows of `method` in the pairs CSV at `path`; exits with a message naming the file when
+    it cannot be read or lacks a column of `needed` (`what` says which columns, for the message)."""
+    try:
+        with open(path, newline="") as f:
+            reader = csv.DictReader(f)
+            missing = sorted(set(needed) - set(reader.fieldnames or []))
+            if missing:
+                sys.exit("error: %s: not a gasp-pairs --pairs-csv file with the %s (missing: %s)"
+                         % (path, what, ", ".join(missing)))
+            return [r for r in reader if r["method"] == method]
+    except OSError as e:
+        sys.exit("error: cannot read %s: %s" % (path, e.strerror))
