@@ -96,7 +96,12 @@ def main():
         sys.exit(__doc__)
     path = args[0]
     method = args[1] if len(args) > 1 else "gasp"
-    cut = float(args[2]) if len(args) > 2 else 3.0
+    try:
+        cut = float(args[2]) if len(args) > 2 else 3.0
+    except ValueError:
+        sys.exit("error: CUT_DEG must be a number of degrees, not '%s'" % args[2])
+    if not cut > 0:
+        sys.exit("error: CUT_DEG must be > 0, not %s" % args[2])
     panels = []
     rows = read_pairs_csv(path, method, {"skip", "method", "estimated", "r_err_deg", "rgb_inliers", "rgb_r_vs_ref_deg",
                                          "rgb_r_vs_est_deg"}, "rgb_* columns")
