@@ -1,8 +1,11 @@
 #include "gasp/sim/renderer.h"
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <vector>
+
+#include "gasp/core/error.h"
 
 namespace gasp::sim {
 
@@ -19,11 +22,9 @@ struct PreparedObject {
   bool always = false;
 };
 
-}  // namespace
-
-RenderedFrame renderFrame(const Scene& scene, const CameraIntrinsics& K,
-                          const Isometry3& T_world_camera, int frame_index) {
-  K.validate();
+/// Casts the rows [row_begin, row_end) of `out` (allocated) from the camera pose T_world_camera.
+void renderRows(const Scene& scene, const CameraIntrinsics& K, const Isometry3& T_world_camera, int frame_index,
+                int row_begin, int row_end, RenderedFrame& out) {
   const Isometry3 T_camera_world = T_world_camera.inverse();
   std::vector<PreparedObject> prepared;
   for (const auto& obj : scene.objects) {
@@ -41,12 +42,8 @@ RenderedFrame renderFrame(const Scene& scene, const CameraIntrinsics& K,
     prepared.push_back(p);
   }
 
-  RenderedFrame out;
-  out.depth = cv::Mat::zeros(K.height, K.width, CV_32FC1);
-  out.surface_id = cv::Mat::zeros(K.height, K.width, CV_16UC1);
-  out.normal = cv::Mat::zeros(K.height, K.width, CV_32FC3);
   constexpr double kTMin = 1e-6;
-  for (int v = 0; v < K.height; ++v) {
+  for (int v = row_begin; v < row_end; ++v) {
     auto* depth_row = out.depth.ptr<float>(v);
     auto* id_row = out.surface_id.ptr<std::uint16_t>(v);
     auto* normal_row = out.normal.ptr<cv::Vec3f>(v);
@@ -80,6 +77,33 @@ RenderedFrame renderFrame(const Scene& scene, const CameraIntrinsics& K,
                                 static_cast<float>(n.z()));
     }
   }
+}
+
+RenderedFrame emptyFrame(const CameraIntrinsics& K) {
+  RenderedFrame out;
+  out.depth = cv::Mat::zeros(K.height, K.width, CV_32FC1);
+  out.surface_id = cv::Mat::zeros(K.height, K.width, CV_16UC1);
+  out.normal = cv::Mat::zeros(K.height, K.width, CV_32FC3);
+  return out;
+}
+
+}  // namespace
+
+RenderedFrame renderFrame(const Scene& scene, const CameraIntrinsics& K,
+                          const Isometry3& T_world_camera, int frame_index) {
+  K.validate();
+  RenderedFrame out = emptyFrame(K);
+  renderRows(scene, K, T_world_camera, frame_index, 0, K.height, out);
+  return out;
+}
+
+RenderedFrame renderRollingShutterFrame(const Scene& scene, const CameraIntrinsics& K,
+                                        const std::function<Isometry3(int)>& T_world_camera_of_row,
+                                        int frame_index) {
+  K.validate();
+  if (!T_world_camera_of_row) throw Error("renderRollingShutterFrame: no pose function");
+  RenderedFrame out = emptyFrame(K);
+  for (int v = 0; v < K.height; ++v) renderRows(scene, K, T_world_camera_of_row(v), frame_index, v, v + 1, out);
   return out;
 }
 

@@ -2,6 +2,8 @@
 /// \file renderer.h Analytic ray casting of a scene into a pinhole depth camera.
 #include <opencv2/core.hpp>
 
+#include <functional>
+
 #include "gasp/core/camera_intrinsics.h"
 #include "gasp/core/pose.h"
 #include "gasp/sim/scene.h"
@@ -22,5 +24,13 @@ struct RenderedFrame {
 /// stored as float.
 RenderedFrame renderFrame(const Scene& scene, const CameraIntrinsics& intrinsics,
                           const Isometry3& T_world_camera, int frame_index = 0);
+
+/// A rolling-shutter view: row v is cast from the pose T_world_camera_of_row(v) (depth and
+/// normals in that row's camera frame), as a sensor that exposes its rows one after the other
+/// sees a scene while it moves (gasp/core/rolling_shutter.h). Throws gasp::Error for an empty
+/// function.
+RenderedFrame renderRollingShutterFrame(const Scene& scene, const CameraIntrinsics& intrinsics,
+                                        const std::function<Isometry3(int)>& T_world_camera_of_row,
+                                        int frame_index = 0);
 
 }  // namespace gasp::sim
