@@ -17,8 +17,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -31,6 +33,7 @@
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/eval/pair_protocol.h"
 #include "gasp/pipeline/pair_registration.h"
+#include "gasp/pipeline/rolling_shutter_deskew.h"
 #include "gasp/pipeline/visibility_check.h"
 #ifdef GASP_HAVE_BASELINES
 #include "gasp/baselines/baseline_registration.h"
@@ -93,7 +96,9 @@ struct MethodRun {
 /// start frame, so frames before the current start are dropped).
 class FrameCache {
  public:
-  explicit FrameCache(const gasp::TumDataset& ds) : ds_(ds) {}
+  /// Applied to each depth image (metres) before GASP's segmentation; none: the image as loaded.
+  using DepthFilter = std::function<cv::Mat(std::size_t, const cv::Mat&)>;
+  explicit FrameCache(const gasp::TumDataset& ds, DepthFilter filter = {}) : ds_(ds), filter_(std::move(filter)) {}
 
   struct GaspView {
     gasp::DepthView view;
@@ -102,7 +107,7 @@ class FrameCache {
   const GaspView& gaspView(std::size_t i, const gasp::SuperpixelParams& params) {
     auto it = gasp_.find(i);
     if (it != gasp_.end()) return it->second;
-    const cv::Mat depth = ds_.loadDepth(i);
+    const cv::Mat depth = filter_ ? filter_(i, ds_.loadDepth(i)) : ds_.loadDepth(i);
     const auto t0 = Clock::now();
     GaspView v{gasp::makeDepthView(depth, ds_.intrinsics(), params), 0.0};
     v.ms = msSince(t0);
@@ -150,6 +155,7 @@ class FrameCache {
 
  private:
   const gasp::TumDataset& ds_;
+  DepthFilter filter_;
   std::map<std::size_t, GaspView> gasp_;
 #ifdef GASP_HAVE_BASELINES
   std::map<std::size_t, gasp::baselines::RgbdImage> rgbd_;
@@ -257,6 +263,17 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
 #endif
+  gasp::DeskewParams deskew;
+  app.add_option("--rolling-shutter", deskew.readout_s,
+                 "GASP: deskew each depth image for a rolling shutter with this readout time [s] (first row to last; "
+                 "negative: bottom-up; TUM's Kinect: 0.03), with the velocity from --twist-from")
+      ->capture_default_str();
+  std::string twist_from = "neighbours";
+  app.add_option("--twist-from", twist_from,
+                 "velocity for --rolling-shutter: neighbours (GASP's pose between frames i-1 and i+1) or truth (the "
+                 "reference's, at the depth stamp + --gt-offset; a diagnostic)")
+      ->check(CLI::IsMember({"neighbours", "truth"}))
+      ->capture_default_str();
   double gt_offset = 0.0;
   app.add_option("--gt-offset", gt_offset,
                  "look ground truth up at depth timestamp + OFFSET [s] (nearest within 0.02 s; TUM fr1 depth lags "
@@ -264,6 +281,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
     if (pictures_only && picture_pair.empty()) throw CLI::ValidationError("--pictures-only needs --picture I,J");
+    if (!std::isfinite(deskew.readout_s)) throw CLI::ValidationError("--rolling-shutter must be a finite time in seconds");
     if (polish_reference && pairs_csv_path.empty())
       throw CLI::ValidationError("--polish-reference writes its columns to the --pairs-csv file: give --pairs-csv");
     if (rgb_rotation_check && pairs_csv_path.empty())
@@ -298,7 +316,39 @@ int main(int argc, char** argv) {
     };
     auto hasRgb = [&](std::size_t i) { return ds.frame(i).rgb_path.has_value(); };
 
-    FrameCache cache(ds);
+    // Rolling-shutter deskew before segmentation (rolling_shutter_deskew.h): the velocity from
+    // GASP's registration of frames i-1 and i+1, or (diagnostic) from the reference.
+    FrameCache::DepthFilter filter;
+    std::size_t deskew_frames = 0, deskewed = 0;
+    std::vector<double> deskew_ms;
+    if (deskew.readout_s != 0.0 && twist_from == "truth") {
+      filter = [&](std::size_t i, const cv::Mat& depth) {
+        ++deskew_frames;
+        const double t = ds.frame(i).timestamp + gt_offset;
+        const auto a = ds.groundTruthAt(t - 0.02), b = ds.groundTruthAt(t + 0.02);
+        if (!a || !b) return depth;
+        ++deskewed;
+        return gasp::deskewDepth(depth, ds.intrinsics(), gasp::twistBetween(*a, *b, 0.04), deskew.readout_s);
+      };
+    } else if (deskew.readout_s != 0.0) {
+      filter = [&](std::size_t i, const cv::Mat& depth) {
+        ++deskew_frames;
+        const std::size_t a = i > 0 ? i - 1 : i, b = i + 1 < ds.size() ? i + 1 : i;
+        if (a == b) return depth;
+        const auto t0 = Clock::now();
+        const auto [before, after] = gasp::makeDepthViews(ds.loadDepth(a), ds.loadDepth(b), ds.intrinsics(), base.superpixels);
+        auto out = gasp::deskewWithNeighbours(depth, ds.intrinsics(), before, after,
+                                              ds.frame(b).timestamp - ds.frame(a).timestamp, deskew, base);
+        deskew_ms.push_back(msSince(t0));
+        if (!out.deskewed) {
+          std::fprintf(stderr, "frame %zu not deskewed: %s\n", i, out.reason.c_str());
+          return depth;
+        }
+        ++deskewed;
+        return out.depth_m;
+      };
+    }
+    FrameCache cache(ds, filter);
     // One method on one pair (i -> j): i is the source, j the target.
     auto runMethod = [&](const std::string& method, std::size_t i, std::size_t j, Picture* picture,
                          const std::optional<gasp::Isometry3>& T_gt,
@@ -633,6 +683,14 @@ int main(int argc, char** argv) {
       if (st == stage_ms.end()) continue;
       std::printf("median_ms_per_stage %s:", method.c_str());
       for (const auto& [stage, v] : st->second) std::printf(" %s %.1f", stage.c_str(), median(v));
+      std::printf("\n");
+    }
+    if (deskew.readout_s != 0.0) {
+      std::printf("rolling_shutter: readout %.4f s, velocity from %s, %zu of %zu frames deskewed", deskew.readout_s,
+                  twist_from.c_str(), deskewed, deskew_frames);
+      if (!deskew_ms.empty())
+        std::printf(", median %.1f ms per frame for the neighbours and the deskew (not in the pair times)",
+                    median(deskew_ms));
       std::printf("\n");
     }
     std::printf("wall_time_s: %.1f\n", msSince(bench_t0) / 1000.0);

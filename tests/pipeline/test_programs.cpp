@@ -92,6 +92,59 @@ TEST(GaspPairsProgram, TableAndCsvOnARealFolder) {
   EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 1 --depth-scale -5000").exit_code, 2);
 }
 
+// --rolling-shutter: every GASP frame is deskewed with its neighbours' velocity (or the
+// reference's), which moves the estimate; bad values are usage errors.
+TEST(GaspPairsProgram, RollingShutterDeskewsEachFrame) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const std::string scratch = gasp::test::scratchDir();
+  const std::string args = "--tum " + dir + " --skips 2 --starts-every 3 --method gasp --pairs-csv ";
+  const ProgramRun plain = run("gasp-pairs", args + scratch + "/plain.csv");
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_EQ(plain.output.find("rolling_shutter:"), std::string::npos) << plain.output;
+  const ProgramRun deskewed = run("gasp-pairs", args + scratch + "/deskewed.csv --rolling-shutter 0.03");
+  ASSERT_EQ(deskewed.exit_code, 0) << deskewed.output;
+  // Pairs 0->2, 3->5, 6->8: six frames, each with a neighbour on at least one side.
+  EXPECT_NE(deskewed.output.find("rolling_shutter: readout 0.0300 s, velocity from neighbours, 6 of 6 frames deskewed"),
+            std::string::npos)
+      << deskewed.output;
+  const ProgramRun truth = run("gasp-pairs", args + scratch + "/truth.csv --rolling-shutter 0.03 --twist-from truth");
+  ASSERT_EQ(truth.exit_code, 0) << truth.output;
+  EXPECT_NE(truth.output.find("velocity from truth, 6 of 6 frames deskewed"), std::string::npos) << truth.output;
+
+  // The deskew moves the poses (by a little: fr1_desk9 moves slowly); the columns tx..qw.
+  auto poses = [](const std::string& path) {
+    std::ifstream f(path);
+    std::string line;
+    std::getline(f, line);
+    auto split = [](const std::string& text) {
+      std::vector<std::string> cells;
+      std::stringstream ss(text);
+      for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+      return cells;
+    };
+    const auto header = split(line);
+    const auto first = std::find(header.begin(), header.end(), "tx") - header.begin();
+    std::vector<std::vector<std::string>> rows;
+    while (std::getline(f, line)) {
+      const auto c = split(line);
+      rows.emplace_back(c.begin() + first, c.begin() + first + 7);
+    }
+    return rows;
+  };
+  const auto a = poses(scratch + "/plain.csv"), b = poses(scratch + "/deskewed.csv");
+  ASSERT_EQ(a.size(), 3u);
+  ASSERT_EQ(b.size(), 3u);
+  int moved = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_FALSE(a[i][0].empty());  // an estimate
+    moved += a[i] != b[i];
+  }
+  EXPECT_GE(moved, 2);
+
+  EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 2 --rolling-shutter nan").exit_code, 2);
+  EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 2 --rolling-shutter 0.03 --twist-from imu").exit_code, 2);
+}
+
 // The per-pair CSV: one row per pair with the estimated pose, whose error against the ground truth
 // is the row's own t_err_m / r_err_deg, and the free and verified associations scored.
 TEST(GaspPairsProgram, PairsCsvHasThePoseAndTheAssociationQuality) {
