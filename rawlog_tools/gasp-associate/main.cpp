@@ -24,6 +24,7 @@
 #include "gasp/core/error.h"
 #include "gasp/core/tum_dataset.h"
 #include "gasp/pipeline/pair_registration.h"
+#include "gasp/pipeline/rolling_shutter_deskew.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"gasp-associate: patch-to-patch associations and the relative pose between two depth views, from geometry alone"};
@@ -63,8 +64,15 @@ int main(int argc, char** argv) {
                  "when no estimate is found, segment again with this times the patch area and retry, mutual associations only (0 = never, else in [0.01, 1))")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
+  gasp::DeskewParams deskew;
+  app.add_option("--rolling-shutter", deskew.readout_s,
+                 "deskew both views for a rolling shutter with this readout time [s] (first row to last; negative: "
+                 "bottom-up; TUM's Kinect: 0.03), with the velocity from GASP's pose between each frame's neighbours")
+      ->needs(tum)
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
+    if (!std::isfinite(deskew.readout_s)) throw CLI::ValidationError("--rolling-shutter must be a finite time in seconds");
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;  // --help: 0; any usage error: 2
   }
@@ -85,6 +93,28 @@ int main(int argc, char** argv) {
       depth_a = ds.loadDepth(from);
       depth_b = ds.loadDepth(to);
       K = ds.intrinsics();
+      if (deskew.readout_s != 0.0) {
+        // Each view deskewed with the velocity between its neighbours (rolling_shutter_deskew.h).
+        auto deskewView = [&](std::size_t i, const char* name, cv::Mat& depth) {
+          const std::size_t a = i > 0 ? i - 1 : i, b = i + 1 < ds.size() ? i + 1 : i;
+          if (a == b) {
+            std::printf("rolling_shutter_%s: not deskewed (no neighbouring frame)\n", name);
+            return;
+          }
+          const auto [before, after] = gasp::makeDepthViews(ds.loadDepth(a), ds.loadDepth(b), K, params.superpixels);
+          const auto d = gasp::deskewWithNeighbours(depth, K, before, after,
+                                                    ds.frame(b).timestamp - ds.frame(a).timestamp, deskew, params);
+          if (!d.deskewed) {
+            std::printf("rolling_shutter_%s: not deskewed (%s)\n", name, d.reason.c_str());
+            return;
+          }
+          std::printf("rolling_shutter_%s: deskewed, velocity %.3f m/s %.1f deg/s (frames %zu -> %zu)\n", name,
+                      d.twist.v_mps.norm(), d.twist.w_radps.norm() * 180.0 / M_PI, a, b);
+          depth = d.depth_m;
+        };
+        deskewView(from, "a", depth_a);
+        deskewView(to, "b", depth_b);
+      }
       const auto ga = ds.groundTruthOf(from, gt_offset), gb = ds.groundTruthOf(to, gt_offset);
       if (ga && gb) T_b_a_true = gasp::relativePose(*gb, *ga);
       if (out_path.empty()) out_path = "associations_" + std::to_string(from) + "_" + std::to_string(to) + ".png";

@@ -50,6 +50,27 @@ TEST(GaspAssociateProgram, PoseAndPictureOnARealPair) {
   EXPECT_TRUE(std::filesystem::exists(out));
 }
 
+// --rolling-shutter: both views deskewed with their neighbours' velocity, said on two lines;
+// the pose moves. The first frame has a neighbour on one side only; PNGs have none (usage error).
+TEST(GaspAssociateProgram, RollingShutterDeskewsBothViews) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const std::string scratch = gasp::test::scratchDir();
+  const ProgramRun plain = run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --out " + scratch + "/a.png");
+  const ProgramRun r = run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --rolling-shutter 0.03 --out " + scratch + "/b.png");
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(plain.output.find("rolling_shutter"), std::string::npos);
+  EXPECT_TRUE(std::regex_search(r.output, std::regex("rolling_shutter_a: deskewed, velocity [0-9.]+ m/s [0-9.]+ deg/s \\(frames 0 -> 1\\)"))) << r.output;
+  EXPECT_TRUE(std::regex_search(r.output, std::regex("rolling_shutter_b: deskewed, velocity [0-9.]+ m/s [0-9.]+ deg/s \\(frames 3 -> 5\\)"))) << r.output;
+  std::smatch m_plain, m;
+  ASSERT_TRUE(std::regex_search(plain.output, m_plain, std::regex("pose_T_b_a: ([^(]+)")));
+  ASSERT_TRUE(std::regex_search(r.output, m, std::regex("pose_T_b_a: ([^(]+)")));
+  EXPECT_NE(m_plain[1].str(), m[1].str());
+  EXPECT_LT(number(r.output, "pose_error"), 0.05) << r.output;
+  EXPECT_EQ(run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --rolling-shutter nan").exit_code, 2);
+  EXPECT_EQ(run("gasp-associate", "--depth-a a.png --depth-b b.png --rolling-shutter 0.03").exit_code, 2);
+}
+
 TEST(GaspAssociateProgram, TwoPngsAndExitCodes) {
   GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
   std::vector<std::string> pngs;
