@@ -2,9 +2,10 @@
 //   build/release/bin/bench_superpixels [--frames N] [--no-crease-borders] [--step-borders] [google benchmark flags]
 // Google Benchmark times the whole decomposition on one thread (one frame per iteration, cycling
 // through the frames) and a pair of frames segmented at once on two threads, one frame each (the
-// pair pipeline's case; wall time), and the lens undistortion of one fr1 depth frame (done when a
-// frame is loaded, before segmentation). Afterwards a table gives the median time of each stage over
-// the frames, one thread, and the median wall time of a pair on two threads.
+// pair pipeline's case; wall time), the lens undistortion of one fr1 depth frame (done when a
+// frame is loaded, before segmentation) and its rolling-shutter deskew. Afterwards a table gives
+// the median time of each stage over the frames, one thread, and the median wall time of a pair
+// on two threads.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "bench_data.h"
+#include "gasp/core/rolling_shutter.h"
 #include "gasp/core/tum_dataset.h"
 #include "gasp/superpixels/depth_superpixels.h"
 
@@ -80,6 +82,21 @@ void BM_UndistortFr1Depth(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_UndistortFr1Depth)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+
+/// The rolling-shutter deskew of one (undistorted) fr1 depth frame at a typical fr1_xyz velocity
+/// (0.35 m/s, 15 deg/s) and TUM's Kinect readout (30 ms); the neighbours' registration that
+/// measures the velocity is not included (bench_pair times a pair).
+void BM_DeskewFr1Depth(benchmark::State& state) {
+  gasp::CameraTwist twist;
+  twist.v_mps = Eigen::Vector3d(0.25, -0.15, 0.2);
+  twist.w_radps = Eigen::Vector3d(0.15, 0.2, -0.05);
+  const cv::Mat& depth = frames().depth.front();
+  for (auto _ : state) {
+    const cv::Mat out = gasp::deskewDepth(depth, frames().intrinsics, twist, 0.03);
+    benchmark::DoNotOptimize(out.data);
+  }
+}
+BENCHMARK(BM_DeskewFr1Depth)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());

@@ -62,59 +62,79 @@ cv::Mat deskewDepth(const cv::Mat& depth, const CameraIntrinsics& k, const Camer
 
   const auto motions = rowMotions(depth.rows, twist, readout_s);
   const int cols = depth.cols, rows = depth.rows;
-  auto valid = [&](int u, int r) {
-    const float d = depth.at<float>(r, u);
-    return d > 0.0f && std::isfinite(d);
+
+  // Forward pass: where each source pixel's point lands at the stamp's pose (dx, dy: the shift
+  // in pixels) and its depth there (z; 0 = no depth or behind the camera).
+  cv::Mat dx(depth.size(), CV_32FC1), dy(depth.size(), CV_32FC1), z(depth.size(), CV_32FC1, cv::Scalar(0.0f));
+  cv::parallel_for_(cv::Range(0, rows), [&](const cv::Range& range) {
+    for (int r = range.start; r < range.end; ++r) {
+      const auto& m = motions[static_cast<std::size_t>(r)];
+      const float* d_row = depth.ptr<float>(r);
+      float *dx_row = dx.ptr<float>(r), *dy_row = dy.ptr<float>(r), *z_row = z.ptr<float>(r);
+      for (int u = 0; u < cols; ++u) {
+        const float d = d_row[u];
+        if (!(d > 0.0f) || !std::isfinite(d)) continue;
+        const Eigen::Vector3d p = m.R * k.unproject(u, r, d) + m.t;
+        double x = 0, y = 0;
+        if (!k.project(p, x, y)) continue;
+        dx_row[u] = static_cast<float>(x - u);
+        dy_row[u] = static_cast<float>(y - r);
+        z_row[u] = static_cast<float>(p.z());
+      }
+    }
+  });
+
+  // The forward maps at a fractional source position: bilinear where the four neighbouring
+  // pixels lie on one surface (depths within kSurfaceRatio of each other), else the nearest
+  // pixel's, so that no point is invented between a foreground and a background surface.
+  struct Sample {
+    double dx, dy, z;
   };
-  // Depth at a fractional pixel: bilinear where the four neighbours lie on one surface (within
-  // kSurfaceRatio of each other), else the nearest pixel's, so no point is invented between a
-  // foreground and a background surface. Negative: no depth there.
-  auto depthAt = [&](double su, double sr) -> double {
+  auto sampleAt = [&](double su, double sr, Sample& out) {
     const int u0 = static_cast<int>(std::floor(su)), r0 = static_cast<int>(std::floor(sr));
-    if (u0 >= 0 && r0 >= 0 && u0 + 1 < cols && r0 + 1 < rows && valid(u0, r0) && valid(u0 + 1, r0) &&
-        valid(u0, r0 + 1) && valid(u0 + 1, r0 + 1)) {
-      const double d00 = depth.at<float>(r0, u0), d10 = depth.at<float>(r0, u0 + 1);
-      const double d01 = depth.at<float>(r0 + 1, u0), d11 = depth.at<float>(r0 + 1, u0 + 1);
-      const double lo = std::min({d00, d10, d01, d11}), hi = std::max({d00, d10, d01, d11});
-      if (hi - lo <= kSurfaceRatio * lo) {
+    if (u0 >= 0 && r0 >= 0 && u0 + 1 < cols && r0 + 1 < rows) {
+      const float z00 = z.at<float>(r0, u0), z10 = z.at<float>(r0, u0 + 1);
+      const float z01 = z.at<float>(r0 + 1, u0), z11 = z.at<float>(r0 + 1, u0 + 1);
+      const float lo = std::min({z00, z10, z01, z11}), hi = std::max({z00, z10, z01, z11});
+      if (lo > 0.0f && hi - lo <= kSurfaceRatio * lo) {
         const double fu = su - u0, fr = sr - r0;
-        return (d00 * (1 - fu) + d10 * fu) * (1 - fr) + (d01 * (1 - fu) + d11 * fu) * fr;
+        const double w00 = (1 - fu) * (1 - fr), w10 = fu * (1 - fr), w01 = (1 - fu) * fr, w11 = fu * fr;
+        auto blend = [&](const cv::Mat& map) {
+          return w00 * map.at<float>(r0, u0) + w10 * map.at<float>(r0, u0 + 1) + w01 * map.at<float>(r0 + 1, u0) +
+                 w11 * map.at<float>(r0 + 1, u0 + 1);
+        };
+        out = {blend(dx), blend(dy), w00 * z00 + w10 * z10 + w01 * z01 + w11 * z11};
+        return true;
       }
     }
     const int iu = static_cast<int>(std::lround(su)), ir = static_cast<int>(std::lround(sr));
-    if (iu < 0 || ir < 0 || iu >= cols || ir >= rows || !valid(iu, ir)) return -1.0;
-    return depth.at<float>(ir, iu);
-  };
-  // Where the scene point seen at source position (su, sr) lands at the stamp's pose.
-  auto warp = [&](double su, double sr, double& x, double& y, double& z) {
-    const double d = depthAt(su, sr);
-    if (d <= 0.0) return false;
-    const auto& m = motions[static_cast<std::size_t>(std::clamp<long>(std::lround(sr), 0, rows - 1))];
-    const Eigen::Vector3d p = m.R * k.unproject(su, sr, d) + m.t;
-    if (!k.project(p, x, y)) return false;
-    z = p.z();
+    if (iu < 0 || ir < 0 || iu >= cols || ir >= rows || !(z.at<float>(ir, iu) > 0.0f)) return false;
+    out = {dx.at<float>(ir, iu), dy.at<float>(ir, iu), z.at<float>(ir, iu)};
     return true;
   };
 
+  // Inverse: the source position s whose point lands on target pixel (u, r), by fixed-point
+  // iteration s <- (u, r) - shift(s); the shift is a few pixels and changes slowly within a surface.
   cv::Mat out(depth.size(), CV_32FC1, cv::Scalar(0.0f));
-  for (int r = 0; r < rows; ++r) {
-    for (int u = 0; u < cols; ++u) {
-      // The source position whose point lands on (u, r): fixed-point iteration, the warp being
-      // close to the identity (a few pixels of shift that change slowly across the image).
-      double su = u, sr = r, x = 0, y = 0, z = 0;
-      bool found = false;
-      for (int it = 0; it < kIterations; ++it) {
-        if (!warp(su, sr, x, y, z)) break;
-        if (std::abs(x - u) <= kConvergedPx && std::abs(y - r) <= kConvergedPx) {
-          found = true;
-          break;
+  cv::parallel_for_(cv::Range(0, rows), [&](const cv::Range& range) {
+    for (int r = range.start; r < range.end; ++r) {
+      float* out_row = out.ptr<float>(r);
+      for (int u = 0; u < cols; ++u) {
+        double su = u, sr = r;
+        Sample sample{};
+        for (int it = 0; it < kIterations; ++it) {
+          if (!sampleAt(su, sr, sample)) break;
+          const double miss_u = u - (su + sample.dx), miss_v = r - (sr + sample.dy);
+          if (std::abs(miss_u) <= kConvergedPx && std::abs(miss_v) <= kConvergedPx) {
+            out_row[u] = static_cast<float>(sample.z);
+            break;
+          }
+          su += miss_u;
+          sr += miss_v;
         }
-        su += u - x;
-        sr += r - y;
       }
-      if (found) out.at<float>(r, u) = static_cast<float>(z);
     }
-  }
+  });
   return out;
 }
 
