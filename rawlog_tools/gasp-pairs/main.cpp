@@ -264,7 +264,7 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
 #endif
   gasp::DeskewParams deskew;
-  app.add_option("--rolling-shutter", deskew.readout_s,
+  auto* rolling_shutter_option = app.add_option("--rolling-shutter", deskew.readout_s,
                  "GASP: deskew each depth image for a rolling shutter with this readout time [s] (first row to last; "
                  "negative: bottom-up; TUM's Kinect: 0.03), with the velocity from --twist-from")
       ->capture_default_str();
@@ -273,6 +273,7 @@ int main(int argc, char** argv) {
                  "velocity for --rolling-shutter: neighbours (GASP's pose between frames i-1 and i+1) or truth (the "
                  "reference's, at the depth stamp + --gt-offset; a diagnostic)")
       ->check(CLI::IsMember({"neighbours", "truth"}))
+      ->needs(rolling_shutter_option)
       ->capture_default_str();
   double gt_offset = 0.0;
   app.add_option("--gt-offset", gt_offset,
@@ -319,20 +320,25 @@ int main(int argc, char** argv) {
     // Rolling-shutter deskew before segmentation (rolling_shutter_deskew.h): the velocity from
     // GASP's registration of frames i-1 and i+1, or (diagnostic) from the reference.
     FrameCache::DepthFilter filter;
-    std::size_t deskew_frames = 0, deskewed = 0;
+    std::set<std::size_t> deskew_frames, deskewed;  // frames, once each (a frame may be loaded again)
     std::vector<double> deskew_ms;
     if (deskew.readout_s != 0.0 && twist_from == "truth") {
       filter = [&](std::size_t i, const cv::Mat& depth) {
-        ++deskew_frames;
+        deskew_frames.insert(i);
+        // The reference samples nearest to 20 ms either side, and the time between them.
         const double t = ds.frame(i).timestamp + gt_offset;
-        const auto a = ds.groundTruthAt(t - 0.02), b = ds.groundTruthAt(t + 0.02);
-        if (!a || !b) return depth;
-        ++deskewed;
-        return gasp::deskewDepth(depth, ds.intrinsics(), gasp::twistBetween(*a, *b, 0.04), deskew.readout_s);
+        const auto& gt = ds.groundTruth();
+        const auto a = gasp::findNearest(gt, t - 0.02, 0.02), b = gasp::findNearest(gt, t + 0.02, 0.02);
+        if (!a || !b || *a == *b) return depth;
+        deskewed.insert(i);
+        return gasp::deskewDepth(depth, ds.intrinsics(),
+                                 gasp::twistBetween(gt[*a].T_world_camera, gt[*b].T_world_camera,
+                                                    gt[*b].timestamp - gt[*a].timestamp),
+                                 deskew.readout_s);
       };
     } else if (deskew.readout_s != 0.0) {
       filter = [&](std::size_t i, const cv::Mat& depth) {
-        ++deskew_frames;
+        deskew_frames.insert(i);
         const std::size_t a = i > 0 ? i - 1 : i, b = i + 1 < ds.size() ? i + 1 : i;
         if (a == b) return depth;
         const auto t0 = Clock::now();
@@ -344,7 +350,7 @@ int main(int argc, char** argv) {
           std::fprintf(stderr, "frame %zu not deskewed: %s\n", i, out.reason.c_str());
           return depth;
         }
-        ++deskewed;
+        deskewed.insert(i);
         return out.depth_m;
       };
     }
@@ -687,7 +693,7 @@ int main(int argc, char** argv) {
     }
     if (deskew.readout_s != 0.0) {
       std::printf("rolling_shutter: readout %.4f s, velocity from %s, %zu of %zu frames deskewed", deskew.readout_s,
-                  twist_from.c_str(), deskewed, deskew_frames);
+                  twist_from.c_str(), deskewed.size(), deskew_frames.size());
       if (!deskew_ms.empty())
         std::printf(", median %.1f ms per frame for the neighbours and the deskew (not in the pair times)",
                     median(deskew_ms));

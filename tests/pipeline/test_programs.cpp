@@ -164,6 +164,7 @@ TEST(GaspPairsProgram, RollingShutterDeskewsEachFrame) {
 
   EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 2 --rolling-shutter nan").exit_code, 2);
   EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 2 --rolling-shutter 0.03 --twist-from imu").exit_code, 2);
+  EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 2 --twist-from truth").exit_code, 2);  // needs --rolling-shutter
 }
 
 // The per-pair CSV: one row per pair with the estimated pose, whose error against the ground truth

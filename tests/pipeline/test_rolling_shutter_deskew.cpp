@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "gasp/core/error.h"
 #include "gasp/pipeline/rolling_shutter_deskew.h"
@@ -52,7 +53,7 @@ MovingFrame movingFrame(const Isometry3& T_world_centre, const CameraTwist& twis
           gasp::makeDepthView(rollingFrame(T_world_centre, twist, kFrameStep), K)};
 }
 
-CameraTwist twist(Eigen::Vector3d v, Eigen::Vector3d w) {
+CameraTwist makeTwist(Eigen::Vector3d v, Eigen::Vector3d w) {
   CameraTwist t;
   t.v_mps = v;
   t.w_radps = w;
@@ -75,8 +76,8 @@ TEST(RollingShutterDeskew, NeighbourVelocityUndoesTheSkewOfAPair) {
   const Isometry3 C_a = sim.path().poses[3].T_world_camera, C_b = sim.path().poses[9].T_world_camera;
   // Opposite motions at the two frames, as a hand-held camera swinging back and forth: the
   // skews do not cancel in the relative pose.
-  const CameraTwist twist_a = twist({0.6, 0.1, 0.3}, {0.1, 0.4, 0.2});
-  const CameraTwist twist_b = twist({-0.6, 0.2, -0.3}, {0.3, -0.4, 0.0});
+  const CameraTwist twist_a = makeTwist({0.6, 0.1, 0.3}, {0.1, 0.4, 0.2});
+  const CameraTwist twist_b = makeTwist({-0.6, 0.2, -0.3}, {0.3, -0.4, 0.0});
   const MovingFrame a = movingFrame(C_a, twist_a), b = movingFrame(C_b, twist_b);
   const Isometry3 T_b_a = gasp::relativePose(C_b, C_a);
 
@@ -92,8 +93,10 @@ TEST(RollingShutterDeskew, NeighbourVelocityUndoesTheSkewOfAPair) {
   ASSERT_TRUE(db.deskewed) << db.reason;
   // The velocity measured between the neighbours (in the earlier neighbour's frame, 1/30 s of
   // rotation away from the stamp's) is the true one to a few per cent.
-  EXPECT_LT((da.twist.v_mps - twist_a.v_mps).norm(), 0.05 * twist_a.v_mps.norm());
-  EXPECT_LT((db.twist.w_radps - twist_b.w_radps).norm(), 0.05 * twist_b.w_radps.norm());
+  for (const auto& [measured, truth] : {std::pair{da.twist, twist_a}, std::pair{db.twist, twist_b}}) {
+    EXPECT_LT((measured.v_mps - truth.v_mps).norm(), 0.05 * truth.v_mps.norm()) << measured.v_mps.transpose();
+    EXPECT_LT((measured.w_radps - truth.w_radps).norm(), 0.05 * truth.w_radps.norm()) << measured.w_radps.transpose();
+  }
 
   const auto deskewed = gasp::registerViews(gasp::makeDepthView(da.depth_m, da.intrinsics),
                                             gasp::makeDepthView(db.depth_m, db.intrinsics));
@@ -110,7 +113,7 @@ TEST(RollingShutterDeskew, NeighbourVelocityUndoesTheSkewOfAPair) {
 TEST(RollingShutterDeskew, NoTrustedVelocityLeavesTheFrame) {
   const auto& sim = gasp::test::simulation("room");
   const auto K = gasp::sim::SimulationOptions{}.intrinsics;
-  const MovingFrame a = movingFrame(sim.path().poses[3].T_world_camera, twist({0.6, 0.1, 0.3}, {0.1, 0.4, 0.2}));
+  const MovingFrame a = movingFrame(sim.path().poses[3].T_world_camera, makeTwist({0.6, 0.1, 0.3}, {0.1, 0.4, 0.2}));
   gasp::DeskewParams params;
   params.readout_s = kReadout;
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gasp/core/error.h"
@@ -45,6 +46,7 @@ std::vector<RowMotion> rowMotions(int rows, const CameraTwist& twist, double rea
 constexpr double kSurfaceRatio = 0.03;  ///< neighbours within 3 % of depth: one surface
 constexpr int kIterations = 8;
 constexpr double kConvergedPx = 0.05;
+constexpr int kSeedRadiusPx = 8;  ///< where to look for a starting shift when (u, r) has no depth
 
 }  // namespace
 
@@ -77,6 +79,8 @@ cv::Mat deskewDepth(const cv::Mat& depth, const CameraIntrinsics& k, const Camer
         const Eigen::Vector3d p = m.R * k.unproject(u, r, d) + m.t;
         double x = 0, y = 0;
         if (!k.project(p, x, y)) continue;
+        // A point carried to (or behind) the camera plane lands nowhere useful: no depth.
+        if (!(std::abs(x - u) < cols && std::abs(y - r) < rows)) continue;
         dx_row[u] = static_cast<float>(x - u);
         dy_row[u] = static_cast<float>(y - r);
         z_row[u] = static_cast<float>(p.z());
@@ -88,9 +92,10 @@ cv::Mat deskewDepth(const cv::Mat& depth, const CameraIntrinsics& k, const Camer
   // pixels lie on one surface (depths within kSurfaceRatio of each other), else the nearest
   // pixel's, so that no point is invented between a foreground and a background surface.
   struct Sample {
-    double dx, dy, z;
+    double shift_u, shift_v, depth;
   };
   auto sampleAt = [&](double su, double sr, Sample& out) {
+    if (!(su > -1.0 && sr > -1.0 && su < cols && sr < rows)) return false;  // also NaN
     const int u0 = static_cast<int>(std::floor(su)), r0 = static_cast<int>(std::floor(sr));
     if (u0 >= 0 && r0 >= 0 && u0 + 1 < cols && r0 + 1 < rows) {
       const float z00 = z.at<float>(r0, u0), z10 = z.at<float>(r0, u0 + 1);
@@ -113,6 +118,16 @@ cv::Mat deskewDepth(const cv::Mat& depth, const CameraIntrinsics& k, const Camer
     return true;
   };
 
+  auto seedFromNeighbour = [&](int u, int r, double& su, double& sr) {
+    for (int d = 1; d <= kSeedRadiusPx; ++d)
+      for (const auto& [nu, nr] : {std::pair{u - d, r}, std::pair{u + d, r}, std::pair{u, r - d}, std::pair{u, r + d}}) {
+        if (nu < 0 || nr < 0 || nu >= cols || nr >= rows || !(z.at<float>(nr, nu) > 0.0f)) continue;
+        su = u - dx.at<float>(nr, nu);
+        sr = r - dy.at<float>(nr, nu);
+        return;
+      }
+  };
+
   // Inverse: the source position s whose point lands on target pixel (u, r), by fixed-point
   // iteration s <- (u, r) - shift(s); the shift is a few pixels and changes slowly within a surface.
   cv::Mat out(depth.size(), CV_32FC1, cv::Scalar(0.0f));
@@ -121,12 +136,15 @@ cv::Mat deskewDepth(const cv::Mat& depth, const CameraIntrinsics& k, const Camer
       float* out_row = out.ptr<float>(r);
       for (int u = 0; u < cols; ++u) {
         double su = u, sr = r;
+        // Without depth at (u, r) itself, start from the shift of the nearest pixel with depth
+        // on the same row or column: the source of (u, r) may have depth where (u, r) has none.
+        if (!(z.at<float>(r, u) > 0.0f)) seedFromNeighbour(u, r, su, sr);
         Sample sample{};
         for (int it = 0; it < kIterations; ++it) {
           if (!sampleAt(su, sr, sample)) break;
-          const double miss_u = u - (su + sample.dx), miss_v = r - (sr + sample.dy);
+          const double miss_u = u - (su + sample.shift_u), miss_v = r - (sr + sample.shift_v);
           if (std::abs(miss_u) <= kConvergedPx && std::abs(miss_v) <= kConvergedPx) {
-            out_row[u] = static_cast<float>(sample.z);
+            out_row[u] = static_cast<float>(sample.depth);
             break;
           }
           su += miss_u;

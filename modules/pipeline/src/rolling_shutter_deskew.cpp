@@ -39,7 +39,7 @@ DeskewOutcome deskewWithNeighbours(const cv::Mat& depth_m, const CameraIntrinsic
     return out;
   }
   const CameraTwist twist = twistBetween(Isometry3::Identity(), r.pose.T_target_source, dt_s);
-  if (twist.v_mps.norm() > params.max_speed_mps || twist.w_radps.norm() > params.max_rate_radps) {
+  if (!(twist.v_mps.norm() <= params.max_speed_mps) || !(twist.w_radps.norm() <= params.max_rate_radps)) {
     char buf[160];
     std::snprintf(buf, sizeof buf, "implausible velocity between the neighbours: %.2f m/s, %.2f rad/s",
                   twist.v_mps.norm(), twist.w_radps.norm());
