@@ -27,7 +27,8 @@ RenderedFrame renderFrame(const Scene& scene, const CameraIntrinsics& intrinsics
 
 /// A rolling-shutter view: row v is cast from the pose T_world_camera_of_row(v) (depth and
 /// normals in that row's camera frame), as a sensor that exposes its rows one after the other
-/// sees a scene while it moves (gasp/core/rolling_shutter.h). Throws gasp::Error for an empty
+/// sees a scene while it moves (gasp/core/rolling_shutter.h). The scene is prepared again for
+/// every row, so it is slower than renderFrame (tests use it). Throws gasp::Error for an empty
 /// function.
 RenderedFrame renderRollingShutterFrame(const Scene& scene, const CameraIntrinsics& intrinsics,
                                         const std::function<Isometry3(int)>& T_world_camera_of_row,
