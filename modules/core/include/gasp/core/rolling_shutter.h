@@ -22,7 +22,7 @@
 /// Why: consumer depth cameras (Kinect, Xtion) read their rows out over most of the frame time
 /// (Kerl, Stueckler, Cremers, "Dense continuous-time tracking and mapping with rolling shutter
 /// RGB-D cameras", ICCV 2015). On TUM fr1_xyz a readout of 30 ms, with the velocity from each
-/// frame's neighbours, lowers the pair benchmark's rotation RMSE at skips 30-100 by 12-28 %
+/// frame's neighbours, lowers the pair benchmark's rotation RMSE at skips 30-100 by 13-27 %
 /// (docs/pipeline.md, "Rolling shutter").
 #include <opencv2/core.hpp>
 
