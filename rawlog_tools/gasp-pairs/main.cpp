@@ -278,7 +278,7 @@ int main(int argc, char** argv) {
   double gt_offset = 0.0;
   app.add_option("--gt-offset", gt_offset,
                  "look ground truth up at depth timestamp + OFFSET [s] (nearest within 0.02 s; TUM fr1 depth lags "
-                 "the motion capture, -0.02 fits better)")->capture_default_str();
+                 "the motion capture: -0.03 fits best, docs/pipeline.md)")->capture_default_str();
   try {
     app.parse(argc, argv);
     if (pictures_only && picture_pair.empty()) throw CLI::ValidationError("--pictures-only needs --picture I,J");
