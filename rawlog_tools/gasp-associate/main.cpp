@@ -96,18 +96,12 @@ int main(int argc, char** argv) {
       if (deskew.readout_s != 0.0) {
         // Each view deskewed with the velocity between its neighbours (rolling_shutter_deskew.h).
         auto deskewView = [&](std::size_t i, const char* name, cv::Mat& depth) {
-          const std::size_t a = i > 0 ? i - 1 : i, b = i + 1 < ds.size() ? i + 1 : i;
-          if (a == b) {
-            std::printf("rolling_shutter_%s: not deskewed (no neighbouring frame)\n", name);
-            return;
-          }
-          const auto [before, after] = gasp::makeDepthViews(ds.loadDepth(a), ds.loadDepth(b), K, params.superpixels);
-          const auto d = gasp::deskewWithNeighbours(depth, K, before, after,
-                                                    ds.frame(b).timestamp - ds.frame(a).timestamp, deskew, params);
+          const auto d = gasp::deskewTumFrame(ds, i, depth, deskew, params);
           if (!d.deskewed) {
             std::printf("rolling_shutter_%s: not deskewed (%s)\n", name, d.reason.c_str());
             return;
           }
+          const auto [a, b] = gasp::neighbourFrames(i, ds.size());
           std::printf("rolling_shutter_%s: deskewed, velocity %.3f m/s %.1f deg/s (frames %zu -> %zu)\n", name,
                       d.twist.v_mps.norm(), d.twist.w_radps.norm() * 180.0 / M_PI, a, b);
           depth = d.depth_m;

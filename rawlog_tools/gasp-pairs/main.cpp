@@ -339,12 +339,8 @@ int main(int argc, char** argv) {
     } else if (deskew.readout_s != 0.0) {
       filter = [&](std::size_t i, const cv::Mat& depth) {
         deskew_frames.insert(i);
-        const std::size_t a = i > 0 ? i - 1 : i, b = i + 1 < ds.size() ? i + 1 : i;
-        if (a == b) return depth;
         const auto t0 = Clock::now();
-        const auto [before, after] = gasp::makeDepthViews(ds.loadDepth(a), ds.loadDepth(b), ds.intrinsics(), base.superpixels);
-        auto out = gasp::deskewWithNeighbours(depth, ds.intrinsics(), before, after,
-                                              ds.frame(b).timestamp - ds.frame(a).timestamp, deskew, base);
+        auto out = gasp::deskewTumFrame(ds, i, depth, deskew, base);
         deskew_ms.push_back(msSince(t0));
         if (!out.deskewed) {
           std::fprintf(stderr, "frame %zu not deskewed: %s\n", i, out.reason.c_str());

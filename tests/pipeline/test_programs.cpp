@@ -26,6 +26,14 @@ ProgramRun run(const std::string& program, const std::string& args) {
   return gasp::test::runProgram(program, args);
 }
 
+/// The cells of one CSV line (no quoting: the programs quote only the last column, `reason`).
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> cells;
+  std::istringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+  return cells;
+}
+
 double number(const std::string& text, const std::string& key) {
   std::smatch m;
   if (!std::regex_search(text, m, std::regex(key + ":? ([-0-9.e+]+)"))) return -1.0;
@@ -137,17 +145,11 @@ TEST(GaspPairsProgram, RollingShutterDeskewsEachFrame) {
     std::ifstream f(path);
     std::string line;
     std::getline(f, line);
-    auto split = [](const std::string& text) {
-      std::vector<std::string> cells;
-      std::stringstream ss(text);
-      for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
-      return cells;
-    };
-    const auto header = split(line);
+    const auto header = splitCsv(line);
     const auto first = std::find(header.begin(), header.end(), "tx") - header.begin();
     std::vector<std::vector<std::string>> rows;
     while (std::getline(f, line)) {
-      const auto c = split(line);
+      const auto c = splitCsv(line);
       rows.emplace_back(c.begin() + first, c.begin() + first + 7);
     }
     return rows;
@@ -177,14 +179,7 @@ TEST(GaspPairsProgram, PairsCsvHasThePoseAndTheAssociationQuality) {
   std::ifstream f(pairs);
   std::string line;
   std::getline(f, line);
-  auto split = [](const std::string& s) {
-    std::vector<std::string> out;
-    std::string cell;
-    std::istringstream in(s);
-    while (std::getline(in, cell, ',')) out.push_back(cell);
-    return out;
-  };
-  const auto header = split(line);
+  const auto header = splitCsv(line);
   auto col = [&](const std::string& name) {
     const auto it = std::find(header.begin(), header.end(), name);
     EXPECT_NE(it, header.end()) << name;
@@ -194,7 +189,7 @@ TEST(GaspPairsProgram, PairsCsvHasThePoseAndTheAssociationQuality) {
   int rows = 0;
   while (std::getline(f, line)) {
     ++rows;
-    const auto c = split(line);
+    const auto c = splitCsv(line);
     ASSERT_GE(c.size(), header.size() - 1) << line;  // the reason may be empty
     const std::size_t from = std::stoul(c[col("from")]), to = std::stoul(c[col("to")]);
     ASSERT_EQ(c[col("estimated")], "1") << line;  // fr1_desk9's pairs are easy

@@ -149,3 +149,10 @@ TEST(RollingShutterDeskew, BadParametersThrow) {
   params.max_rate_radps = 0.0;
   EXPECT_THROW(gasp::validate(params), gasp::Error);
 }
+
+TEST(RollingShutterDeskew, NeighbourFramesAtTheEndsOfASequence) {
+  EXPECT_EQ(gasp::neighbourFrames(4, 9), (std::pair<std::size_t, std::size_t>{3, 5}));
+  EXPECT_EQ(gasp::neighbourFrames(0, 9), (std::pair<std::size_t, std::size_t>{0, 1}));
+  EXPECT_EQ(gasp::neighbourFrames(8, 9), (std::pair<std::size_t, std::size_t>{7, 8}));
+  EXPECT_EQ(gasp::neighbourFrames(0, 1), (std::pair<std::size_t, std::size_t>{0, 0}));
+}

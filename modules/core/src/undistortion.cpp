@@ -56,6 +56,12 @@ std::shared_ptr<const Undistortion> sharedUndistortion(const CameraIntrinsics& k
   return made;
 }
 
+std::pair<cv::Mat, CameraIntrinsics> pinholeDepth(const cv::Mat& depth, const CameraIntrinsics& k) {
+  if (!hasLensDistortion(k)) return {depth, k};
+  const auto undistortion = sharedUndistortion(k);
+  return {undistortion->applyToDepth(depth), undistortion->pinhole()};
+}
+
 cv::Mat Undistortion::applyToDepth(const cv::Mat& depth) const {
   if (depth.type() != CV_16UC1 && depth.type() != CV_32FC1)
     throw Error("undistortion: depth must be CV_16UC1 or CV_32FC1, got type " + std::to_string(depth.type()));

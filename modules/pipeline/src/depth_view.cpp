@@ -2,6 +2,8 @@
 
 #include <tbb/parallel_invoke.h>
 
+#include <tuple>
+
 #include "gasp/core/undistortion.h"
 #include "gasp/superpixels/depth_superpixels.h"
 
@@ -9,13 +11,7 @@ namespace gasp {
 
 DepthView makeDepthView(const cv::Mat& depth_m, const CameraIntrinsics& intrinsics, const SuperpixelParams& params) {
   DepthView v;
-  v.depth_m = depth_m;
-  v.intrinsics = intrinsics;
-  if (hasLensDistortion(intrinsics)) {
-    const auto undistortion = sharedUndistortion(intrinsics);
-    v.depth_m = undistortion->applyToDepth(depth_m);
-    v.intrinsics = undistortion->pinhole();
-  }
+  std::tie(v.depth_m, v.intrinsics) = pinholeDepth(depth_m, intrinsics);
   v.segmentation = segmentDepthSuperpixels(v.depth_m, v.intrinsics, params);
   v.superpixels = params;
   return v;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <tuple>
+#include <utility>
 
 #include "gasp/core/error.h"
 #include "gasp/core/undistortion.h"
@@ -16,40 +18,53 @@ void validate(const DeskewParams& params) {
     throw Error("deskew: max_rate_radps must be positive");
 }
 
+namespace {
+
+/// The frame as it is (resampled to the pinhole camera), with the reason it was not deskewed.
+DeskewOutcome notDeskewed(const cv::Mat& depth_m, const CameraIntrinsics& intrinsics, std::string reason) {
+  DeskewOutcome out;
+  std::tie(out.depth_m, out.intrinsics) = pinholeDepth(depth_m, intrinsics);
+  out.reason = std::move(reason);
+  return out;
+}
+
+}  // namespace
+
 DeskewOutcome deskewWithNeighbours(const cv::Mat& depth_m, const CameraIntrinsics& intrinsics,
                                    const DepthView& before, const DepthView& after, double dt_s,
                                    const DeskewParams& params, const PairParams& pair) {
   validate(params);
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) throw Error("deskew: the neighbours' time step must be positive");
-  DeskewOutcome out;
-  out.depth_m = depth_m;
-  out.intrinsics = intrinsics;
-  if (hasLensDistortion(intrinsics)) {
-    const auto undistortion = sharedUndistortion(intrinsics);
-    out.depth_m = undistortion->applyToDepth(depth_m);
-    out.intrinsics = undistortion->pinhole();
-  }
-  if (params.readout_s == 0.0) {
-    out.reason = "no readout time";
-    return out;
-  }
+  if (params.readout_s == 0.0) return notDeskewed(depth_m, intrinsics, "no readout time");
   const PairResult r = registerViews(after, before, pair);  // T_before_after
-  if (!r.pose.success) {
-    out.reason = "no pose between the neighbours: " + r.pose.reason;
-    return out;
-  }
+  if (!r.pose.success) return notDeskewed(depth_m, intrinsics, "no pose between the neighbours: " + r.pose.reason);
   const CameraTwist twist = twistBetween(Isometry3::Identity(), r.pose.T_target_source, dt_s);
   if (!(twist.v_mps.norm() <= params.max_speed_mps) || !(twist.w_radps.norm() <= params.max_rate_radps)) {
     char buf[160];
     std::snprintf(buf, sizeof buf, "implausible velocity between the neighbours: %.2f m/s, %.2f rad/s",
                   twist.v_mps.norm(), twist.w_radps.norm());
-    out.reason = buf;
-    return out;
+    return notDeskewed(depth_m, intrinsics, buf);
   }
+  DeskewOutcome out = notDeskewed(depth_m, intrinsics, "");
   out.depth_m = deskewDepth(out.depth_m, out.intrinsics, twist, params.readout_s);
   out.deskewed = true;
   out.twist = twist;
   return out;
+}
+
+std::pair<std::size_t, std::size_t> neighbourFrames(std::size_t i, std::size_t n) {
+  return {i > 0 ? i - 1 : i, i + 1 < n ? i + 1 : i};
+}
+
+DeskewOutcome deskewTumFrame(const TumDataset& ds, std::size_t i, const cv::Mat& depth_m,
+                             const DeskewParams& params, const PairParams& pair) {
+  validate(params);
+  if (params.readout_s == 0.0) return notDeskewed(depth_m, ds.intrinsics(), "no readout time");
+  const auto [a, b] = neighbourFrames(i, ds.size());
+  if (a == b) return notDeskewed(depth_m, ds.intrinsics(), "no neighbouring frame");
+  const auto [before, after] = makeDepthViews(ds.loadDepth(a), ds.loadDepth(b), ds.intrinsics(), pair.superpixels);
+  return deskewWithNeighbours(depth_m, ds.intrinsics(), before, after, ds.frame(b).timestamp - ds.frame(a).timestamp,
+                              params, pair);
 }
 
 }  // namespace gasp

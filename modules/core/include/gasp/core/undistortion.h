@@ -14,6 +14,7 @@
 #include <opencv2/core.hpp>
 
 #include <memory>
+#include <utility>
 
 #include "gasp/core/camera_intrinsics.h"
 
@@ -48,5 +49,9 @@ class Undistortion {
 /// An Undistortion for k from a small process-wide cache (the last few intrinsics used; building
 /// the maps of a 640x480 camera takes milliseconds, applying them 0.3 ms). Thread-safe.
 std::shared_ptr<const Undistortion> sharedUndistortion(const CameraIntrinsics& k);
+
+/// `depth` resampled to the pinhole camera (sharedUndistortion(k)->applyToDepth) with the pinhole
+/// intrinsics when k has lens distortion; both as given otherwise.
+std::pair<cv::Mat, CameraIntrinsics> pinholeDepth(const cv::Mat& depth, const CameraIntrinsics& k);
 
 }  // namespace gasp

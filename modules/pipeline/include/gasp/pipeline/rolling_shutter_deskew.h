@@ -12,10 +12,13 @@
 /// instead gives the same within 0.04 deg.
 #include <opencv2/core.hpp>
 
+#include <cstddef>
 #include <string>
+#include <utility>
 
 #include "gasp/core/camera_intrinsics.h"
 #include "gasp/core/rolling_shutter.h"
+#include "gasp/core/tum_dataset.h"
 #include "gasp/pipeline/depth_view.h"
 #include "gasp/pipeline/pair_registration.h"
 
@@ -51,5 +54,16 @@ struct DeskewOutcome {
 DeskewOutcome deskewWithNeighbours(const cv::Mat& depth_m, const CameraIntrinsics& intrinsics,
                                    const DepthView& before, const DepthView& after, double dt_s,
                                    const DeskewParams& params, const PairParams& pair = {});
+
+/// The frames whose registration measures frame i's velocity in a sequence of n frames: i - 1 and
+/// i + 1, or i itself at either end (the same frame twice when n is 1).
+std::pair<std::size_t, std::size_t> neighbourFrames(std::size_t i, std::size_t n);
+
+/// Frame i of a TUM folder (`depth_m`, as ds.loadDepth(i) gives it) deskewed with the velocity
+/// between its neighbourFrames(): both segmented with pair.superpixels, then
+/// deskewWithNeighbours(). No readout time or no neighbouring frame: not deskewed, with the
+/// reason, and the neighbours are not loaded.
+DeskewOutcome deskewTumFrame(const TumDataset& ds, std::size_t i, const cv::Mat& depth_m,
+                             const DeskewParams& params, const PairParams& pair = {});
 
 }  // namespace gasp
