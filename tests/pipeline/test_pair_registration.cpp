@@ -223,6 +223,21 @@ TEST(FinerScaleRetry, RunsOnlyWhenTheDefaultScaleGivesNoEstimate) {
   EXPECT_FALSE(registerViews(a, b, off).retried);
 }
 
+TEST(FinerScaleRetry, AppliesAfterAnUnobservableDenseProblemNotAfterADegeneratePatchProblem) {
+  const Pair p = makePair("room", 3, 9);
+  PairResult r;
+  r.pose.success = false;
+  EXPECT_TRUE(finerScaleRetryApplies(r, p.a, p.b));
+  r.pose.degenerate = true;  // a degenerate view or patch problem: no scale adds constraints
+  EXPECT_FALSE(finerScaleRetryApplies(r, p.a, p.b));
+  r.dense_unobservable = true;  // the dense problem at RANSAC's pose: may be a wrong pose's
+  EXPECT_TRUE(finerScaleRetryApplies(r, p.a, p.b));
+  r.pose.success = true;
+  EXPECT_FALSE(finerScaleRetryApplies(r, p.a, p.b));
+  r.pose.success = false;
+  EXPECT_FALSE(finerScaleRetryApplies(r, p.a, DepthView{}));  // no depth to segment again
+}
+
 TEST(FinerScaleRetry, FindsThePoseWhenThePatchesAreTooLargeForTheOverlap) {
   // Views segmented with 2000 cm^2 patches (about a hundred per view): too few for a consensus. The
   // retry segments each depth image again with the view's own parameters at retry_area_factor x

@@ -199,6 +199,7 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
   const detail::DenseOutcome dense =
       detail::refineDense(source, target, r.pose, inliers, params, visibilityParams(params, r.used_one_way));
   r.pose = dense.pose;
+  r.dense_unobservable = !r.pose.success && r.pose.degenerate;
   r.dense_terms = dense.rounds.terms;
   r.dense_rounds_run = dense.rounds.run;
   r.dense_last_step_m = dense.rounds.last_step_m;
@@ -242,9 +243,12 @@ PairParams finerScaleParams(const PairParams& params) {
 }
 
 bool finerScaleRetryApplies(const PairResult& r, const DepthView& source, const DepthView& target) {
-  // No retry for a degenerate view (no scale can fix it) nor for a degenerate pose problem: finer
-  // patches on the same few planes add inliers, not constraints (docs/pipeline.md step 6).
-  return !r.pose.success && !r.pose.degenerate && !source.depth_m.empty() && !target.depth_m.empty();
+  // No retry for a degenerate view (no scale can fix it) nor for a degenerate patch problem without
+  // dense rounds: finer patches on the same few planes add inliers, not constraints (docs/pipeline.md
+  // step 6). A dense problem that is unobservable at RANSAC's pose says less: a pose from a handful
+  // of wrong inliers maps little of one view onto the other. The retry's own dense rounds judge again.
+  const bool degenerate = r.pose.degenerate && !r.dense_unobservable;
+  return !r.pose.success && !degenerate && !source.depth_m.empty() && !target.depth_m.empty();
 }
 
 std::string finerScaleReason(double area_factor, const std::string& reason) {

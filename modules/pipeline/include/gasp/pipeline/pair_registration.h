@@ -113,7 +113,8 @@ struct PairParams {
   /// (look-alike structure, repeated objects).
   VisibilityCheckParams visibility;
   /// Finer-scale retry (0 = off; else in [0.01, 1)): when the views give no estimate and the
-  /// failure is not a degenerate view or pose problem (pose.degenerate), both depth images are
+  /// failure is not a degenerate view or patch problem (pose.degenerate; a dense problem that is
+  /// unobservable at RANSAC's pose is retried, PairResult::dense_unobservable), both depth images are
   /// segmented again with their own parameters (DepthView::superpixels) at this factor times
   /// their target_patch_area_m2, and the pair is registered once more with the mutual
   /// associations only and the one-way fallback's visibility limit (one_way_max_violation_ratio).
@@ -173,6 +174,9 @@ struct PairResult {
   int guided_support = -1;  ///< guided associations at the verified pose (-1: stage not reached)
   int dense_terms = 0;  ///< dense terms in the last round
   int dense_rounds_run = 0;  ///< dense rounds run for the final pose (0: none)
+  /// The dense problem was unobservable at the pose RANSAC found (pose.degenerate set by the dense
+  /// rounds, not by a view or the patch problem): the finer-scale retry may still run.
+  bool dense_unobservable = false;
   /// RMS displacement of the source patches in the last dense round [m]; below
   /// PairParams::dense_converged_m the rounds converged (-1: no round succeeded).
   double dense_last_step_m = -1.0;
@@ -206,7 +210,8 @@ std::pair<const DepthView*, const DepthView*> viewsOf(const PairResult& r, const
 DepthView finerScaleView(const DepthView& view, double area_factor);
 PairParams finerScaleParams(const PairParams& params);
 /// Whether a default-scale result `r` of source -> target is one the retry may still turn into
-/// an estimate: no pose, no degenerate view or pose problem, depth in both views.
+/// an estimate: no pose, no degenerate view or patch problem (a dense problem unobservable at
+/// RANSAC's pose does not stop it: r.dense_unobservable), depth in both views.
 bool finerScaleRetryApplies(const PairResult& r, const DepthView& source, const DepthView& target);
 /// "at 0.3x the patch area: " + reason: how a retry's outcome is named in reasons.
 std::string finerScaleReason(double area_factor, const std::string& reason);
