@@ -1,7 +1,9 @@
 // Guided association (association under a pose hypothesis): with the true pose a rigid copy is
 // associated patch for patch; a wrong pose gathers almost nothing; distance, normal and lambda
-// gates; one-to-one result independent of B's order; bad input.
+// gates; one-to-one result independent of B's order and of the thread count; bad input.
 #include <gtest/gtest.h>
+
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -142,6 +144,33 @@ TEST(GuidedAssociation, OneToOneKeepsTheBestChooser) {
   for (std::size_t k = 0; k < g.size(); ++k) {
     EXPECT_EQ(g_rev[k].a, g[k].a);
     EXPECT_EQ(g_rev[k].b, static_cast<int>(b.size()) - 1 - g[k].b);
+  }
+}
+
+TEST(GuidedAssociation, TheResultDoesNotDependOnTheThreadCount) {
+  // A pose 2 cm / 1 deg off and lambda 1: most patches of A have several candidates within the
+  // gate, so the per-patch choices are not trivial; the patches of A are searched in parallel.
+  const Views v = rigidCopy(kRoll, 400);
+  const gasp::Isometry3 off =
+      Eigen::Translation3d(0.02, 0, 0) * kRoll * Eigen::AngleAxisd(M_PI / 180.0, Eigen::Vector3d::UnitX());
+  gasp::GuidedAssociationParams gp;
+  gp.lambda = 1.0;
+  gp.max_distance_m = 0.3;
+  std::vector<gasp::PatchAssociation> first;
+  for (const std::size_t threads : {1, 2, 4}) {
+    tbb::global_control gc(tbb::global_control::max_allowed_parallelism, threads);
+    const auto g = gasp::guidedAssociations(v.a, v.b, v.qa, v.qb, off, v.params, gp);
+    if (threads == 1) {
+      first = g;
+      EXPECT_GT(first.size(), 200u);
+      continue;
+    }
+    ASSERT_EQ(g.size(), first.size()) << threads << " threads";
+    for (std::size_t k = 0; k < g.size(); ++k) {
+      EXPECT_EQ(g[k].a, first[k].a);
+      EXPECT_EQ(g[k].b, first[k].b);
+      EXPECT_EQ(g[k].distance, first[k].distance);
+    }
   }
 }
 

@@ -1,6 +1,9 @@
 #include "gasp/association/guided_association.h"
 
 #include <nanoflann.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -69,30 +72,40 @@ std::vector<PatchAssociation> guidedAssociations(const std::vector<PatchGeometry
 
   const double sq_gate = params.max_distance_m * params.max_distance_m;
   const double min_cos = std::cos(params.max_normal_angle_deg * M_PI / 180.0);
-  EditDistanceWorkspace ws;
-  std::vector<std::pair<std::uint32_t, double>> found;  // (point, squared distance)
-  std::vector<Candidate> best_of_a;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (qa[i].empty() || !isUsable(a[i])) continue;
-    const Eigen::Vector3d c = T_b_a * a[i].centroid;
-    const Eigen::Vector3d n = (T_b_a.linear() * a[i].normal).normalized();
-    found.clear();
-    tree.radiusSearch(c.data(), sq_gate, found, nanoflann::SearchParams(32, 0.0F, false));
-    Candidate best;
-    for (const auto& hit : found) {
-      const int j = cloud_to_b[hit.first];
-      const auto& pb = b[static_cast<std::size_t>(j)];
-      if (n.dot(pb.normal.normalized()) < min_cos) continue;
-      const double denom = static_cast<double>(qa[i].size() + qb[static_cast<std::size_t>(j)].size());
-      const double limit = std::min(params.lambda, best.hat);
-      const double d = featureSetDistance(qa[i], qb[static_cast<std::size_t>(j)], association.match, association.costs,
-                                          limit * denom * (1.0 + 1e-9), ws);
-      if (d == kExceedsBound) continue;
-      Candidate cand{static_cast<int>(i), j, d / denom, hit.second};
-      if (cand.hat <= params.lambda && cand.betterThan(best)) best = cand;
+  // Each patch of A is searched by itself (in parallel, one scratch per thread); the results are
+  // then taken in patch order, so they do not depend on the thread count.
+  struct Scratch {
+    EditDistanceWorkspace ws;
+    std::vector<std::pair<std::uint32_t, double>> found;  // (point, squared distance)
+  };
+  tbb::enumerable_thread_specific<Scratch> scratch;
+  std::vector<Candidate> best_per_a(a.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, a.size(), 16), [&](const tbb::blocked_range<std::size_t>& range) {
+    Scratch& s = scratch.local();
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      if (qa[i].empty() || !isUsable(a[i])) continue;
+      const Eigen::Vector3d c = T_b_a * a[i].centroid;
+      const Eigen::Vector3d n = (T_b_a.linear() * a[i].normal).normalized();
+      s.found.clear();
+      tree.radiusSearch(c.data(), sq_gate, s.found, nanoflann::SearchParams(32, 0.0F, false));
+      Candidate& best = best_per_a[i];
+      for (const auto& hit : s.found) {
+        const int j = cloud_to_b[hit.first];
+        const auto& pb = b[static_cast<std::size_t>(j)];
+        if (n.dot(pb.normal.normalized()) < min_cos) continue;
+        const double denom = static_cast<double>(qa[i].size() + qb[static_cast<std::size_t>(j)].size());
+        const double limit = std::min(params.lambda, best.hat);
+        const double d = featureSetDistance(qa[i], qb[static_cast<std::size_t>(j)], association.match,
+                                            association.costs, limit * denom * (1.0 + 1e-9), s.ws);
+        if (d == kExceedsBound) continue;
+        Candidate cand{static_cast<int>(i), j, d / denom, hit.second};
+        if (cand.hat <= params.lambda && cand.betterThan(best)) best = cand;
+      }
     }
-    if (best.b >= 0) best_of_a.push_back(best);
-  }
+  });
+  std::vector<Candidate> best_of_a;
+  for (const Candidate& c : best_per_a)
+    if (c.b >= 0) best_of_a.push_back(c);
   // One-to-one: a patch of B keeps its best chooser.
   std::vector<int> owner(b.size(), -1);
   for (std::size_t k = 0; k < best_of_a.size(); ++k) {
