@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -147,29 +148,94 @@ TEST(GuidedAssociation, OneToOneKeepsTheBestChooser) {
   }
 }
 
-TEST(GuidedAssociation, TheResultDoesNotDependOnTheThreadCount) {
-  // A pose 2 cm / 1 deg off and lambda 1: most patches of A have several candidates within the
-  // gate, so the per-patch choices are not trivial; the patches of A are searched in parallel.
-  const Views v = rigidCopy(kRoll, 400);
+// The rule of guided_association.h written out plainly: every patch of B against every patch of
+// A, the full edit distance, the least (D_hat, squared distance, a, b), then one patch of A per
+// patch of B (its best chooser).
+std::vector<gasp::PatchAssociation> naiveGuided(const Views& v, const std::vector<gasp::PatchGeometry>& b,
+                                                const std::vector<std::vector<gasp::Feature>>& qb,
+                                                const gasp::Isometry3& T_b_a, const gasp::GuidedAssociationParams& gp) {
+  struct Best {
+    int a = -1, b = -1;
+    double hat = std::numeric_limits<double>::infinity(), sq = 0.0;
+    bool betterThan(const Best& o) const {
+      if (o.b < 0) return true;
+      if (hat != o.hat) return hat < o.hat;
+      if (sq != o.sq) return sq < o.sq;
+      return a != o.a ? a < o.a : b < o.b;
+    }
+  };
+  const double min_cos = std::cos(gp.max_normal_angle_deg * M_PI / 180.0);
+  gasp::EditDistanceWorkspace ws;
+  std::vector<Best> per_a;
+  for (std::size_t i = 0; i < v.a.size(); ++i) {
+    Best best;
+    const Eigen::Vector3d c = T_b_a * v.a[i].centroid;
+    const Eigen::Vector3d n = (T_b_a.linear() * v.a[i].normal).normalized();
+    for (std::size_t j = 0; j < b.size(); ++j) {
+      const double sq = (c - b[j].centroid).squaredNorm();
+      if (sq > gp.max_distance_m * gp.max_distance_m || n.dot(b[j].normal.normalized()) < min_cos) continue;
+      const double d = gasp::featureSetDistance(v.qa[i], qb[j], v.params.match, v.params.costs,
+                                                std::numeric_limits<double>::infinity(), ws);
+      const Best cand{static_cast<int>(i), static_cast<int>(j), d / static_cast<double>(v.qa[i].size() + qb[j].size()), sq};
+      if (cand.hat <= gp.lambda && cand.betterThan(best)) best = cand;
+    }
+    if (best.b >= 0) per_a.push_back(best);
+  }
+  std::vector<int> owner(b.size(), -1);
+  for (std::size_t k = 0; k < per_a.size(); ++k) {
+    int& o = owner[static_cast<std::size_t>(per_a[k].b)];
+    if (o < 0 || per_a[k].betterThan(per_a[static_cast<std::size_t>(o)])) o = static_cast<int>(k);
+  }
+  std::vector<gasp::PatchAssociation> out;
+  for (std::size_t k = 0; k < per_a.size(); ++k)
+    if (owner[static_cast<std::size_t>(per_a[k].b)] == static_cast<int>(k)) out.push_back({per_a[k].a, per_a[k].b, per_a[k].hat});
+  return out;
+}
+
+TEST(GuidedAssociation, EqualsThePlainRuleForAnyThreadCount) {
+  // 1500 patches, B a noisy copy (1 cm centroids, a few degrees on the normals), a pose 2 cm /
+  // 1 deg off, a 0.3 m gate, no normal gate and lambda 1: most patches of A have several
+  // candidates with D_hat > 0, so every choice and tie rule counts. The patches of A are searched
+  // in parallel; the result must be the plain rule's, whatever the thread count.
+  Views v = rigidCopy(kRoll, 1500);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  for (auto& p : v.b) {
+    p.centroid += Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+    p.normal = (p.normal + 5.0 * Eigen::Vector3d(noise(rng), noise(rng), noise(rng))).normalized();
+  }
+  v.qb = gasp::computeFeatureSets(v.b, v.params.feature_sets);
   const gasp::Isometry3 off =
       Eigen::Translation3d(0.02, 0, 0) * kRoll * Eigen::AngleAxisd(M_PI / 180.0, Eigen::Vector3d::UnitX());
   gasp::GuidedAssociationParams gp;
   gp.lambda = 1.0;
   gp.max_distance_m = 0.3;
-  std::vector<gasp::PatchAssociation> first;
-  for (const std::size_t threads : {1, 2, 4}) {
-    tbb::global_control gc(tbb::global_control::max_allowed_parallelism, threads);
-    const auto g = gasp::guidedAssociations(v.a, v.b, v.qa, v.qb, off, v.params, gp);
-    if (threads == 1) {
-      first = g;
-      EXPECT_GT(first.size(), 200u);
-      continue;
-    }
-    ASSERT_EQ(g.size(), first.size()) << threads << " threads";
+  gp.max_normal_angle_deg = 180.0;
+
+  int several = 0;
+  for (const auto& pa : v.a) {
+    int within = 0;
+    for (const auto& pb : v.b) within += ((off * pa.centroid) - pb.centroid).norm() <= gp.max_distance_m;
+    several += within >= 2;
+  }
+  EXPECT_GT(several, 1000) << "the test needs patches with several candidates";
+
+  const auto expected = naiveGuided(v, v.b, v.qb, off, gp);
+  ASSERT_GT(expected.size(), 1000u);
+  int not_exact = 0;
+  for (const auto& e : expected) not_exact += e.distance > 0.0;
+  EXPECT_GT(not_exact, 1000);
+
+  tbb::global_control gc(tbb::global_control::max_allowed_parallelism, 4);
+  for (const int threads : {1, 2, 4}) {
+    tbb::task_arena arena(threads);
+    std::vector<gasp::PatchAssociation> g;
+    arena.execute([&] { g = gasp::guidedAssociations(v.a, v.b, v.qa, v.qb, off, v.params, gp); });
+    ASSERT_EQ(g.size(), expected.size()) << threads << " threads";
     for (std::size_t k = 0; k < g.size(); ++k) {
-      EXPECT_EQ(g[k].a, first[k].a);
-      EXPECT_EQ(g[k].b, first[k].b);
-      EXPECT_EQ(g[k].distance, first[k].distance);
+      EXPECT_EQ(g[k].a, expected[k].a) << threads << " threads, association " << k;
+      EXPECT_EQ(g[k].b, expected[k].b) << threads << " threads, association " << k;
+      EXPECT_EQ(g[k].distance, expected[k].distance) << threads << " threads, association " << k;
     }
   }
 }
