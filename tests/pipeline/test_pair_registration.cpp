@@ -217,7 +217,10 @@ TEST(FinerScaleRetry, RunsOnlyWhenTheDefaultScaleGivesNoEstimate) {
   // A degenerate scene is not retried (no scale makes a plane observable), nor is anything with
   // the retry off.
   const Pair plane = makePair("plane", 0, 2);
-  EXPECT_FALSE(registerViews(plane.a, plane.b).retried);
+  const PairResult on_plane = registerViews(plane.a, plane.b);
+  EXPECT_FALSE(on_plane.retried);
+  EXPECT_TRUE(on_plane.pose.degenerate);
+  EXPECT_FALSE(on_plane.dense_unobservable);  // the view check, not the dense rounds
   PairParams off;
   off.retry_area_factor = 0.0;
   EXPECT_FALSE(registerViews(a, b, off).retried);

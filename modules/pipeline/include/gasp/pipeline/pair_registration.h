@@ -174,8 +174,10 @@ struct PairResult {
   int guided_support = -1;  ///< guided associations at the verified pose (-1: stage not reached)
   int dense_terms = 0;  ///< dense terms in the last round
   int dense_rounds_run = 0;  ///< dense rounds run for the final pose (0: none)
-  /// The dense problem was unobservable at the pose RANSAC found (pose.degenerate set by the dense
-  /// rounds, not by a view or the patch problem): the finer-scale retry may still run.
+  /// The dense rounds ended unobservable (pose.degenerate set by the dense refinement, not by the
+  /// view check). The patch problem may have been degenerate as well: a degenerate patch pose with
+  /// inliers goes on to the dense rounds, and their verdict is what counts. The finer-scale retry
+  /// may still run (its own dense rounds judge again).
   bool dense_unobservable = false;
   /// RMS displacement of the source patches in the last dense round [m]; below
   /// PairParams::dense_converged_m the rounds converged (-1: no round succeeded).
