@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
@@ -47,19 +48,32 @@ EdgePoints checkerboardEdgePixels(const DepthView& view, const EdgeTermParams& p
   if (d.empty()) return e;
   if (d.type() != CV_32FC1) throw Error("edge terms: the view's depth must be CV_32FC1 [m]");
   const int w = d.cols, h = d.rows;
+  const float inf = std::numeric_limits<float>::infinity();
   for (int v = 0; v < h; ++v) {
     const float* row = d.ptr<float>(v);
+    const bool inner_row = v >= 2 && v + 2 < h;
     for (int u = v % 2; u < w; u += 2) {
       const float z = row[u];
       if (!isValidDepth(z)) continue;
       const float far = z + static_cast<float>(p.min_jump_m + p.jump_per_m2 * z * z);
-      auto deeper = [&](int uu, int vv) {
-        if (uu < 0 || vv < 0 || uu >= w || vv >= h) return false;
-        const float zn = d.ptr<float>(vv)[uu];
-        return isValidDepth(zn) && zn > far;
-      };
-      if (deeper(u + 1, v) || deeper(u - 1, v) || deeper(u, v + 1) || deeper(u, v - 1) || deeper(u + 2, v) ||
-          deeper(u - 2, v) || deeper(u, v + 2) || deeper(u, v - 2)) {
+      bool edge = false;
+      if (inner_row && u >= 2 && u + 2 < w) {
+        // Away from the image border: the eight neighbours without bounds checks, all evaluated
+        // (a deeper valid neighbour: finite and beyond `far`, which is > 0; NaN compares false).
+        const std::ptrdiff_t stride = static_cast<std::ptrdiff_t>(d.step1());
+        const float* c = row + u;
+        const float n[8] = {c[1], c[-1], c[2], c[-2], c[stride], c[-stride], c[2 * stride], c[-2 * stride]};
+        for (const float zn : n) edge |= (zn > far) & (zn < inf);
+      } else {
+        auto deeper = [&](int uu, int vv) {
+          if (uu < 0 || vv < 0 || uu >= w || vv >= h) return false;
+          const float zn = d.ptr<float>(vv)[uu];
+          return isValidDepth(zn) && zn > far;
+        };
+        edge = deeper(u + 1, v) || deeper(u - 1, v) || deeper(u, v + 1) || deeper(u, v - 1) || deeper(u + 2, v) ||
+               deeper(u - 2, v) || deeper(u, v + 2) || deeper(u, v - 2);
+      }
+      if (edge) {
         e.points.push_back(view.intrinsics.unproject(u, v, z));
         e.pixels.emplace_back(u, v);
       }
