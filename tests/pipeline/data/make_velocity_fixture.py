@@ -3,6 +3,8 @@
 camera's velocity in a known way, for scripts/error_vs_velocity.py's test:
   pitch and roll errors are linear in v_j - v_i (R^2 1 on either fit),
   the yaw error is pseudo-random, independent of the motion (R^2 low on both fits).
+Also offset_pairs.csv, for scripts/keyframe_offsets.py: errors that are one offset per frame,
+with one step (below).
 Usage: make_velocity_fixture.py OUT_DIR"""
 import math
 import os
@@ -70,3 +72,22 @@ with open(os.path.join(out, "pairs.csv"), "w") as f:
         f.write("10,gasp,%d,%d,1,%.12f,%.12f,%.12f,%.12f\n" % ((i, j) + q))
     f.write("10,shot,0,10,1,0,0,0,1\n")  # another method: not read
     f.write("10,gasp,1,11,0,,,,\n")  # no estimate: not read
+
+# For scripts/keyframe_offsets.py: pairs (i, i + 1) and (i, i + 2) over frames 0-40 whose errors
+# are exactly o_j - o_i (target frame), with one offset for frames 0-14 and another from frame 15
+# on: the fit leaves nothing and shows one step, at frame 15, of |(-1, 0.3, 2)| = 2.26 deg.
+def frame_offset(k):
+    return [0.5, 0.0, -1.0] if k < 15 else [-0.5, 0.3, 1.0]
+
+
+with open(os.path.join(out, "offset_pairs.csv"), "w") as f:
+    f.write("skip,method,from,to,estimated,qx,qy,qz,qw\n")
+    for skip in (1, 2):
+        for i in range(0, 41 - skip):
+            j = i + skip
+            (ri, _), (rj, _) = gt.pose(stamps[i]), gt.pose(stamps[j])
+            e_deg = [b - a for a, b in zip(frame_offset(i), frame_offset(j))]
+            r_true = ev.mat_mul(ev.transpose(rj), ri)
+            e_local = ev.mat_vec(ev.transpose(r_true), [math.radians(x) for x in e_deg])
+            q = matrix_to_quat(ev.mat_mul(r_true, exp_rotation(e_local)))
+            f.write("%d,gasp,%d,%d,1,%.12f,%.12f,%.12f,%.12f\n" % ((skip, i, j) + q))
