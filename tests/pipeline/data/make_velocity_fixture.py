@@ -5,6 +5,8 @@ camera's velocity in a known way, for scripts/error_vs_velocity.py's test:
   the yaw error is pseudo-random, independent of the motion (R^2 low on both fits).
 Also offset_pairs.csv, for scripts/keyframe_offsets.py: errors that are one offset per frame,
 with one step (below).
+And frame_pairs.csv, for scripts/frame_rotation_fit.py: errors of a reference turned by a constant
+rotation (below).
 Usage: make_velocity_fixture.py OUT_DIR"""
 import math
 import os
@@ -91,3 +93,18 @@ with open(os.path.join(out, "offset_pairs.csv"), "w") as f:
             e_local = ev.mat_vec(ev.transpose(r_true), [math.radians(x) for x in e_deg])
             q = matrix_to_quat(ev.mat_mul(r_true, exp_rotation(e_local)))
             f.write("%d,gasp,%d,%d,1,%.12f,%.12f,%.12f,%.12f\n" % ((skip, i, j) + q))
+
+# For scripts/frame_rotation_fit.py: pairs (i, i + 10) whose errors are exactly those of a
+# reference turned by a constant delta = (2, 0, -1) deg: e = (R^T - I) delta (source frame), so
+# the fit finds delta on all pairs and on either half, and leaves nothing.
+delta = [math.radians(2.0), 0.0, math.radians(-1.0)]
+with open(os.path.join(out, "frame_pairs.csv"), "w") as f:
+    f.write("skip,method,from,to,estimated,qx,qy,qz,qw\n")
+    for i in range(0, 140, 2):
+        j = i + 10
+        (ri, _), (rj, _) = gt.pose(stamps[i]), gt.pose(stamps[j])
+        r_ref = ev.mat_mul(ev.transpose(rj), ri)
+        a = [[r_ref[c][r] - (1.0 if r == c else 0.0) for c in range(3)] for r in range(3)]  # R^T - I
+        e = ev.mat_vec(a, delta)
+        q = matrix_to_quat(ev.mat_mul(r_ref, exp_rotation(e)))
+        f.write("10,gasp,%d,%d,1,%.12f,%.12f,%.12f,%.12f\n" % ((i, j) + q))
