@@ -279,8 +279,17 @@ int main(int argc, char** argv) {
   app.add_option("--gt-offset", gt_offset,
                  "look ground truth up at depth timestamp + OFFSET [s] (nearest within 0.02 s; TUM fr1 depth lags "
                  "the motion capture: -0.03 fits best, docs/pipeline.md)")->capture_default_str();
+  std::vector<double> gt_frame_rotation_deg;
+  app.add_option("--gt-frame-rotation", gt_frame_rotation_deg,
+                 "RX,RY,RZ [deg]: take the reference's camera frame as turned by exp(r) against the depth camera's "
+                 "and turn it back before scoring (ground truth of the pairs, the rgb check and --polish-reference; "
+                 "a diagnostic, docs/pipeline.md 'A constant frame rotation')")
+      ->expected(3)
+      ->delimiter(',');
   try {
     app.parse(argc, argv);
+    for (const double v : gt_frame_rotation_deg)
+      if (!std::isfinite(v)) throw CLI::ValidationError("--gt-frame-rotation must be three finite angles in degrees");
     if (pictures_only && picture_pair.empty()) throw CLI::ValidationError("--pictures-only needs --picture I,J");
     if (!std::isfinite(deskew.readout_s)) throw CLI::ValidationError("--rolling-shutter must be a finite time in seconds");
     if (polish_reference && pairs_csv_path.empty())
@@ -311,7 +320,19 @@ int main(int argc, char** argv) {
     opt.depth_units_per_metre = depth_scale;
     const auto ds = gasp::TumDataset::open(tum_dir, opt);
     // Ground truth of frame i: the frame's own association (offset 0) or a look-up at t + offset.
-    auto truth = [&](std::size_t i) { return ds.groundTruthOf(i, gt_offset); };
+    // --gt-frame-rotation: the reference's camera frame is the depth camera's turned by Q, so the
+    // depth camera's pose is T_world_ref * Q^-1.
+    gasp::Isometry3 Q_inv = gasp::Isometry3::Identity();
+    if (!gt_frame_rotation_deg.empty()) {
+      const Eigen::Vector3d r = Eigen::Vector3d(gt_frame_rotation_deg[0], gt_frame_rotation_deg[1],
+                                                gt_frame_rotation_deg[2]) * (M_PI / 180.0);
+      if (r.norm() > 0) Q_inv.linear() = Eigen::AngleAxisd(r.norm(), r.normalized()).toRotationMatrix().transpose();
+    }
+    auto turnedBack = [&](std::optional<gasp::Isometry3> T) {
+      if (T) *T = *T * Q_inv;
+      return T;
+    };
+    auto truth = [&](std::size_t i) { return turnedBack(ds.groundTruthOf(i, gt_offset)); };
     auto needsColour = [](const std::string& method) {
       return method == "cshot" || method == "sift" || method == "dsift";
     };
@@ -546,7 +567,7 @@ int main(int argc, char** argv) {
       std::optional<gasp::Isometry3> T_ref;               // the reference between the rgb stamps
       std::optional<gasp::Isometry3> T_di_ri, T_rj_dj;    // rgb i -> depth i, depth j -> rgb j
     };
-    auto poseAt = [&](double t) { return ds.groundTruthAt(t + gt_offset); };
+    auto poseAt = [&](double t) { return turnedBack(ds.groundTruthAt(t + gt_offset)); };
     // The colour camera of the (undistorted) rgb images: the folder's, or --rgb-intrinsics' K.
     gasp::CameraIntrinsics rgb_camera = ds.intrinsics();
 #ifdef GASP_HAVE_BASELINES

@@ -169,6 +169,36 @@ TEST(GaspPairsProgram, RollingShutterDeskewsEachFrame) {
   EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 2 --twist-from truth").exit_code, 2);  // needs --rolling-shutter
 }
 
+TEST(GaspPairsProgram, GtFrameRotationTurnsTheReferenceBack) {
+  // --gt-frame-rotation r: the reference's camera frame taken as turned by exp(r) and turned back
+  // before scoring. Zero changes nothing; a few degrees change every pair's error but not the
+  // estimates; a rotation needs three finite angles.
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const std::string scratch = gasp::test::scratchDir();
+  const std::string args = "--tum " + dir + " --skips 2 --starts-every 3 --method gasp --pairs-csv ";
+  auto column = [](const std::string& path, const std::string& name) {
+    std::ifstream f(path);
+    std::string line;
+    std::getline(f, line);
+    const auto header = splitCsv(line);
+    const auto k = std::find(header.begin(), header.end(), name) - header.begin();
+    std::vector<std::string> out;
+    while (std::getline(f, line)) out.push_back(splitCsv(line)[static_cast<std::size_t>(k)]);
+    return out;
+  };
+  ASSERT_EQ(run("gasp-pairs", args + scratch + "/plain.csv").exit_code, 0);
+  ASSERT_EQ(run("gasp-pairs", args + scratch + "/zero.csv --gt-frame-rotation 0,0,0").exit_code, 0);
+  const ProgramRun turned = run("gasp-pairs", args + scratch + "/turned.csv --gt-frame-rotation 3,0,-2");
+  ASSERT_EQ(turned.exit_code, 0) << turned.output;
+  EXPECT_EQ(column(scratch + "/plain.csv", "r_err_deg"), column(scratch + "/zero.csv", "r_err_deg"));
+  EXPECT_EQ(column(scratch + "/plain.csv", "qw"), column(scratch + "/turned.csv", "qw"));  // same estimates
+  const auto a = column(scratch + "/plain.csv", "r_err_deg"), b = column(scratch + "/turned.csv", "r_err_deg");
+  ASSERT_EQ(a.size(), 3u);
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_NE(a[i], b[i]) << "pair " << i;
+  EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 2 --gt-frame-rotation 3,0").exit_code, 2);
+  EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 2 --gt-frame-rotation 3,0,nan").exit_code, 2);
+}
+
 // The per-pair CSV: one row per pair with the estimated pose, whose error against the ground truth
 // is the row's own t_err_m / r_err_deg, and the free and verified associations scored.
 TEST(GaspPairsProgram, PairsCsvHasThePoseAndTheAssociationQuality) {
