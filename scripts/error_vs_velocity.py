@@ -97,57 +97,87 @@ class Trajectory:
         return v, w
 
 
+def solve(a, b, min_pivot=0.0):
+    """Solves a x = b (small, square) by Gaussian elimination with partial pivoting; None when a
+    pivot is below min_pivot in magnitude (singular)."""
+    n = len(a)
+    m = [row[:] + [v] for row, v in zip(a, b)]
+    for c in range(n):
+        p = max(range(c, n), key=lambda k: abs(m[k][c]))
+        m[c], m[p] = m[p], m[c]
+        if abs(m[c][c]) <= min_pivot:
+            return None
+        for k in range(c + 1, n):
+            f = m[k][c] / m[c][c]
+            if f != 0.0:
+                for col in range(c, n + 1):
+                    m[k][col] -= f * m[c][col]
+    x = [0.0] * n
+    for c in range(n - 1, -1, -1):
+        x[c] = (m[c][n] - sum(m[c][k] * x[k] for k in range(c + 1, n))) / m[c][c]
+    return x
+
+
 def least_squares_r2(x_rows, y):
     """R^2 of the least-squares fit y ~ x (x_rows include the constant column)."""
     n = len(x_rows[0])
     ata = [[sum(r[i] * r[j] for r in x_rows) for j in range(n)] for i in range(n)]
     aty = [sum(r[i] * yy for r, yy in zip(x_rows, y)) for i in range(n)]
-    # Gaussian elimination with partial pivoting.
-    m = [row[:] + [b] for row, b in zip(ata, aty)]
-    for c in range(n):
-        p = max(range(c, n), key=lambda k: abs(m[k][c]))
-        m[c], m[p] = m[p], m[c]
-        if abs(m[c][c]) < 1e-12:
-            return float("nan")
-        for k in range(n):
-            if k != c:
-                f = m[k][c] / m[c][c]
-                m[k] = [a - f * b for a, b in zip(m[k], m[c])]
-    coef = [m[i][n] / m[i][i] for i in range(n)]
+    coef = solve(ata, aty, 1e-12)
+    if coef is None:
+        return float("nan")
     mean = sum(y) / len(y)
     ss_tot = sum((yy - mean) ** 2 for yy in y)
     ss_res = sum((yy - sum(c * x for c, x in zip(coef, r))) ** 2 for r, yy in zip(x_rows, y))
     return 1 - ss_res / ss_tot if ss_tot > 0 else float("nan")
 
 
-def main(argv):
+def pair_script_args(argv, doc):
+    """The arguments PAIRS.csv TUM_DIR [GT_OFFSET_S] [METHOD] of the pair scripts."""
     if len(argv) < 3:
-        sys.exit(__doc__)
-    pairs_path, tum_dir = argv[1], argv[2]
+        sys.exit(doc)
     try:
         offset = float(argv[3]) if len(argv) > 3 else 0.0
     except ValueError:
         sys.exit("error: GT_OFFSET_S must be a number of seconds, not '%s'" % argv[3])
-    method = argv[4] if len(argv) > 4 else "gasp"
+    return argv[1], argv[2], offset, argv[4] if len(argv) > 4 else "gasp"
+
+
+def estimated_pair_rotations(pairs_path, tum_dir, offset, method, extra_columns=()):
+    """The folder's reference trajectory, and for each pair i -> j of `method` with an estimate and
+    the reference at both frames: (i, j, t_i, t_j, R_ref, e) with t the depth stamps + offset,
+    R_ref = R_j_i of the reference and e = log(R_ref^T R_est) (source frame, radians)."""
     stamps = [float(r[0]) for r in read_tum_list(tum_dir + "/depth.txt")]
     gt = Trajectory(tum_dir + "/groundtruth.txt")
-    rows = read_pairs_csv(pairs_path, method, ["skip", "from", "to", "estimated", "qx", "qy", "qz", "qw"],
+    rows = read_pairs_csv(pairs_path, method, list(extra_columns) + ["from", "to", "estimated", "qx", "qy", "qz", "qw"],
                           "estimated poses")
-    full, diff, errors = [], [], []
-    speeds, rates = [], []
+    pairs = []
     for r in rows:
         if r["estimated"] != "1":
             continue
         i, j = int(r["from"]), int(r["to"])
         if max(i, j) >= len(stamps):
             sys.exit("error: %s: frame %d is not in %s/depth.txt" % (pairs_path, max(i, j), tum_dir))
-        pi, pj = gt.pose(stamps[i] + offset), gt.pose(stamps[j] + offset)
-        vel_i, vel_j = gt.velocity(stamps[i] + offset), gt.velocity(stamps[j] + offset)
-        if not (pi and pj and vel_i and vel_j):
+        ti, tj = stamps[i] + offset, stamps[j] + offset
+        pi, pj = gt.pose(ti), gt.pose(tj)
+        if not (pi and pj):
             continue
-        r_true = mat_mul(transpose(pj[0]), pi[0])  # R_j_i: source i into target j
-        r_est = quat_to_matrix(*(float(r[k]) for k in ("qx", "qy", "qz", "qw")))
-        e = mat_vec(r_true, log_rotation(mat_mul(transpose(r_true), r_est)))
+        r_ref = mat_mul(transpose(pj[0]), pi[0])  # R_j_i: source i into target j
+        r_est = quat_to_matrix(*(float(r[c]) for c in ("qx", "qy", "qz", "qw")))
+        pairs.append((i, j, ti, tj, r_ref, log_rotation(mat_mul(transpose(r_ref), r_est))))
+    return gt, pairs
+
+
+def main(argv):
+    pairs_path, tum_dir, offset, method = pair_script_args(argv, __doc__)
+    gt, pairs = estimated_pair_rotations(pairs_path, tum_dir, offset, method, ["skip"])
+    full, diff, errors = [], [], []
+    speeds, rates = [], []
+    for i, j, ti, tj, r_true, e_source in pairs:
+        vel_i, vel_j = gt.velocity(ti), gt.velocity(tj)
+        if not (vel_i and vel_j):
+            continue
+        e = mat_vec(r_true, e_source)
         errors.append([math.degrees(x) for x in e])
         (vi, wi), (vj, wj) = vel_i, vel_j
         full.append(vi + vj + wi + wj + [1.0])

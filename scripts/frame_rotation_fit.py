@@ -21,8 +21,6 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import error_vs_velocity as ev  # noqa: E402
-from keyframe_offsets import solve  # noqa: E402
-from pairs_csv import read_pairs_csv  # noqa: E402
 
 
 def design(r):
@@ -39,7 +37,10 @@ def fit(pairs):
             atb[i] += sum(a[k][i] * e[k] for k in range(3))
             for j in range(3):
                 ata[i][j] += sum(a[k][i] * a[k][j] for k in range(3))
-    return solve(ata, atb)
+    delta = ev.solve(ata, atb, 1e-12)
+    if delta is None:
+        sys.exit("error: the pairs' rotations do not fix a frame rotation (all about one axis, or none)")
+    return delta
 
 
 def rms_deg(pairs, delta):
@@ -56,30 +57,9 @@ def fmt(delta):
 
 
 def main(argv):
-    if len(argv) < 3:
-        sys.exit(__doc__)
-    pairs_path, tum_dir = argv[1], argv[2]
-    try:
-        offset = float(argv[3]) if len(argv) > 3 else 0.0
-    except ValueError:
-        sys.exit("error: GT_OFFSET_S must be a number of seconds, not '%s'" % argv[3])
-    method = argv[4] if len(argv) > 4 else "gasp"
-    stamps = [float(r[0]) for r in ev.read_tum_list(tum_dir + "/depth.txt")]
-    gt = ev.Trajectory(tum_dir + "/groundtruth.txt")
-    rows = read_pairs_csv(pairs_path, method, ["from", "to", "estimated", "qx", "qy", "qz", "qw"], "estimated poses")
-    pairs = []
-    for r in rows:
-        if r["estimated"] != "1":
-            continue
-        i, j = int(r["from"]), int(r["to"])
-        if max(i, j) >= len(stamps):
-            sys.exit("error: %s: frame %d is not in %s/depth.txt" % (pairs_path, max(i, j), tum_dir))
-        pi, pj = gt.pose(stamps[i] + offset), gt.pose(stamps[j] + offset)
-        if not (pi and pj):
-            continue
-        r_ref = ev.mat_mul(ev.transpose(pj[0]), pi[0])
-        r_est = ev.quat_to_matrix(*(float(r[k]) for k in ("qx", "qy", "qz", "qw")))
-        pairs.append((i, j, r_ref, ev.log_rotation(ev.mat_mul(ev.transpose(r_ref), r_est))))
+    pairs_path, tum_dir, offset, method = ev.pair_script_args(argv, __doc__)
+    _, rotations = ev.estimated_pair_rotations(pairs_path, tum_dir, offset, method)
+    pairs = [(i, j, r_ref, e) for i, j, _, _, r_ref, e in rotations]
     if len(pairs) < 20:
         sys.exit("error: %s: %d estimated pairs with ground truth, too few to fit" % (pairs_path, len(pairs)))
     starts = sorted(p[0] for p in pairs)

@@ -22,53 +22,13 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import error_vs_velocity as ev  # noqa: E402
-from pairs_csv import read_pairs_csv  # noqa: E402
-
-
-def solve(a, b):
-    """Solves a x = b (a symmetric positive definite, small) by Gaussian elimination."""
-    n = len(a)
-    m = [row[:] + [v] for row, v in zip(a, b)]
-    for c in range(n):
-        p = max(range(c, n), key=lambda k: abs(m[k][c]))
-        m[c], m[p] = m[p], m[c]
-        for k in range(c + 1, n):
-            f = m[k][c] / m[c][c]
-            if f != 0.0:
-                for col in range(c, n + 1):
-                    m[k][col] -= f * m[c][col]
-    x = [0.0] * n
-    for c in range(n - 1, -1, -1):
-        x[c] = (m[c][n] - sum(m[c][k] * x[k] for k in range(c + 1, n))) / m[c][c]
-    return x
 
 
 def main(argv):
-    if len(argv) < 3:
-        sys.exit(__doc__)
-    pairs_path, tum_dir = argv[1], argv[2]
-    try:
-        offset = float(argv[3]) if len(argv) > 3 else 0.0
-    except ValueError:
-        sys.exit("error: GT_OFFSET_S must be a number of seconds, not '%s'" % argv[3])
-    method = argv[4] if len(argv) > 4 else "gasp"
-    stamps = [float(r[0]) for r in ev.read_tum_list(tum_dir + "/depth.txt")]
-    gt = ev.Trajectory(tum_dir + "/groundtruth.txt")
-    rows = read_pairs_csv(pairs_path, method, ["from", "to", "estimated", "qx", "qy", "qz", "qw"], "estimated poses")
-    pairs = []
-    for r in rows:
-        if r["estimated"] != "1":
-            continue
-        i, j = int(r["from"]), int(r["to"])
-        if max(i, j) >= len(stamps):
-            sys.exit("error: %s: frame %d is not in %s/depth.txt" % (pairs_path, max(i, j), tum_dir))
-        pi, pj = gt.pose(stamps[i] + offset), gt.pose(stamps[j] + offset)
-        if not (pi and pj):
-            continue
-        r_true = ev.mat_mul(ev.transpose(pj[0]), pi[0])
-        r_est = ev.quat_to_matrix(*(float(r[k]) for k in ("qx", "qy", "qz", "qw")))
-        e = ev.mat_vec(r_true, ev.log_rotation(ev.mat_mul(ev.transpose(r_true), r_est)))
-        pairs.append((i, j, [math.degrees(x) for x in e]))
+    pairs_path, tum_dir, offset, method = ev.pair_script_args(argv, __doc__)
+    _, rotations = ev.estimated_pair_rotations(pairs_path, tum_dir, offset, method)
+    # The error in the target camera's frame, in degrees.
+    pairs = [(i, j, [math.degrees(x) for x in ev.mat_vec(r_ref, e)]) for i, j, _, _, r_ref, e in rotations]
     frames = sorted({f for i, j, _ in pairs for f in (i, j)})
     if len(pairs) < len(frames):
         sys.exit("error: %s: %d estimated pairs with ground truth over %d frames, too few to fit an offset per "
@@ -92,7 +52,7 @@ def main(argv):
         for i, j, e in pairs:
             rhs[index[j]] += e[axis]
             rhs[index[i]] -= e[axis]
-        offsets.append(solve(lap, rhs))
+        offsets.append(ev.solve(lap, rhs))
     rms = [math.sqrt(sum(e[a] ** 2 for _, _, e in pairs) / len(pairs)) for a in range(3)]
     left = [math.sqrt(sum((e[a] - (offsets[a][index[j]] - offsets[a][index[i]])) ** 2 for i, j, e in pairs)
                       / len(pairs)) for a in range(3)]

@@ -49,6 +49,7 @@ EdgePoints checkerboardEdgePixels(const DepthView& view, const EdgeTermParams& p
   if (d.type() != CV_32FC1) throw Error("edge terms: the view's depth must be CV_32FC1 [m]");
   const int w = d.cols, h = d.rows;
   const float inf = std::numeric_limits<float>::infinity();
+  const std::ptrdiff_t stride = static_cast<std::ptrdiff_t>(d.step1());
   for (int v = 0; v < h; ++v) {
     const float* row = d.ptr<float>(v);
     const bool inner_row = v >= 2 && v + 2 < h;
@@ -60,7 +61,6 @@ EdgePoints checkerboardEdgePixels(const DepthView& view, const EdgeTermParams& p
       if (inner_row && u >= 2 && u + 2 < w) {
         // Away from the image border: the eight neighbours without bounds checks, all evaluated
         // (a deeper valid neighbour: finite and beyond `far`, which is > 0; NaN compares false).
-        const std::ptrdiff_t stride = static_cast<std::ptrdiff_t>(d.step1());
         const float* c = row + u;
         const float n[8] = {c[1], c[-1], c[2], c[-2], c[stride], c[-stride], c[2 * stride], c[-2 * stride]};
         for (const float zn : n) edge |= (zn > far) & (zn < inf);
