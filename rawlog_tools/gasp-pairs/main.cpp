@@ -32,6 +32,7 @@
 #include "gasp/core/tum_dataset.h"
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/eval/pair_protocol.h"
+#include "gasp/eval/pose_consistency.h"
 #include "gasp/pipeline/pair_registration.h"
 #include "gasp/pipeline/rolling_shutter_deskew.h"
 #include "gasp/pipeline/visibility_check.h"
@@ -82,6 +83,10 @@ struct MethodRun {
   bool slide_moved = false; ///< GASP: the slide scan moved the pose (slide_scan.h)
   int dense_terms = 0;      ///< GASP: terms of the last dense round (0: no dense rounds ran)
   int dense_rounds = 0;     ///< GASP: dense rounds run for the final pose (0: none)
+  /// GASP with an estimate and ground truth: the error's NEES under the claimed information
+  /// and its translation and rotation parts (pose_consistency.h; chi-square with 6, 3 and 3
+  /// degrees of freedom if the information were right).
+  std::optional<gasp::eval::NeesParts> nees;
   /// GASP with ground truth: free and verified associations scored (association_quality.h).
   std::optional<gasp::AssociationQuality> free_quality, verified_quality;
   /// The verified associations scored against the GICP-polished reference (--polish-reference).
@@ -414,7 +419,13 @@ int main(int argc, char** argv) {
             run.verified_quality_polished =
                 gasp::evaluateAssociations(r.verified, sa, sb, pvb->depth_m, pvb->intrinsics, *T_ref_icp);
           run.agreement_truth = gasp::depthAgreement(va.view, vb.view, *T_gt, 4);
-          if (r.pose.success) run.agreement_estimate = gasp::depthAgreement(va.view, vb.view, r.pose.T_target_source, 4);
+          if (r.pose.success) {
+            run.agreement_estimate = gasp::depthAgreement(va.view, vb.view, r.pose.T_target_source, 4);
+            try {  // a diagnostic: an information it cannot use leaves the columns empty
+              run.nees = gasp::eval::neesParts(r.pose.T_target_source, *T_gt, r.pose.information);
+            } catch (const gasp::Error&) {
+            }
+          }
         }
         run.stage_ms = {{"segmentation", va.ms + vb.ms + r.timings.retry_segmentation_ms},
                         {"association", r.timings.association_ms},
@@ -536,7 +547,7 @@ int main(int argc, char** argv) {
                     "precision,verified,verified_precision,verified_density,agreement,agreement_truth,tx,ty,tz,qx,qy,qz,qw,"
                     "motion_t_m,motion_r_deg,ref_icp_t_m,ref_icp_r_deg,est_vs_ref_icp_t_m,est_vs_ref_icp_r_deg,"
                     "est_icp_t_m,est_icp_r_deg,icp_est_vs_ref_icp_t_m,icp_est_vs_ref_icp_r_deg,verified_precision_ref_icp,"
-                    "rgb_inliers,rgb_parallax_px,rgb_r_vs_ref_deg,rgb_r_vs_est_deg,rgb_r_vs_ref_icp_deg,reason\n";
+                    "rgb_inliers,rgb_parallax_px,rgb_r_vs_ref_deg,rgb_r_vs_est_deg,rgb_r_vs_ref_icp_deg,nees,nees_t,nees_r,reason\n";
     }
     // GICP from T_init between the views GASP registers (undistorted where the intrinsics have
     // distortion; the depth is the cached one); none without the baselines or when it fails.
@@ -672,7 +683,9 @@ int main(int argc, char** argv) {
           if (rgb.ran) pairs_csv << rgb.inliers << ',' << rgb.parallax_px;
           else pairs_csv << ',';
           pairs_csv << ',' << rgbAngle(rgb, rgb.T_ref) << ',' << rgbAngle(rgb, toRgbStamps(rgb, T_est)) << ','
-                    << rgbAngle(rgb, toRgbStamps(rgb, T_ref_icp));
+                    << rgbAngle(rgb, toRgbStamps(rgb, T_ref_icp)) << ',';
+          if (run.nees) pairs_csv << run.nees->all << ',' << run.nees->translation << ',' << run.nees->rotation;
+          else pairs_csv << ",,";
           pairs_csv << ",\"" << o.reason << "\"\n";
         }
       }

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <vector>
 #include <algorithm>
+#include <cmath>
 
 #include "gasp/core/pose.h"
 #include "gasp/core/tum_dataset.h"
@@ -250,6 +251,11 @@ TEST(GaspPairsProgram, PairsCsvHasThePoseAndTheAssociationQuality) {
     // The pair's true motion: fr1_desk9 moves a few cm and degrees between these frames.
     EXPECT_NEAR(std::stod(c[col("motion_t_m")]), gasp::translationNorm(T_true), 1e-4) << line;
     EXPECT_NEAR(std::stod(c[col("motion_r_deg")]), gasp::rotationAngle(T_true) * 180.0 / M_PI, 0.01) << line;
+    // The error's NEES under the claimed information: a finite, positive number for an estimate
+    // (pose_consistency.h; its size is measured in docs/pipeline.md).
+    const double nees = std::stod(c[col("nees")]);
+    EXPECT_TRUE(std::isfinite(nees)) << line;
+    EXPECT_GT(nees, 0.0) << line;
   }
   EXPECT_EQ(rows, 4);  // 0->1, 4->5, 0->4, 4->8
 }
