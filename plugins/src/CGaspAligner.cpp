@@ -84,11 +84,11 @@ mrpt::poses::CPose3DPDF::Ptr CGaspAligner::Align3DPDF(const mrpt::maps::CMetricM
     std::optional<mrpt::poses::CPose3DPDFGaussian> pdf;
     if (r.pose.success) {
       const Isometry3 T_m1_m2 = vi.T_map_camera * r.pose.T_target_source * vj.T_map_camera.inverse();
-      cand.information = informationInFrame(r.pose.information, vi.T_map_camera);
+      cand.information = informationInFrame(r.edge_information, vi.T_map_camera);
       pdf = poseWithInformation(T_m1_m2, cand.information);
       if (!pdf) {
         cand.degenerate = true;
-        cand.reason = "the refinement's information matrix is not positive definite";
+        cand.reason = "the pose's information matrix is not positive definite";
         cand.information.setZero();
       }
     }

@@ -63,7 +63,7 @@ MatchConstraint ObservationMatcher_GASP::match(const mrpt::obs::CObservation& a,
   if (c.success) {
     const Isometry3& S_a = fa.T_robot_camera;
     c.T_a_b = toCPose3D(S_a * r.pose.T_target_source * fb.T_robot_camera.inverse());
-    c.information = informationInFrame(r.pose.information, S_a);
+    c.information = informationInFrame(r.edge_information, S_a);
   }
   c.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return c;

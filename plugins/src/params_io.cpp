@@ -54,6 +54,8 @@ void pairFields(P& p, F&& f) {
   f("refine", p.refine);
   f("retry_area_factor", p.retry_area_factor);
   f("slide_scan", p.slide_scan.enabled);
+  f("model_error_t_m", p.model_error.sigma_t_m);
+  f("model_error_r_deg", p.model_error.sigma_r_deg);
 }
 
 // ---- Strict text parsing (MRPT's read_double() would turn "abc" into 0 silently).

@@ -83,10 +83,11 @@ struct MethodRun {
   bool slide_moved = false; ///< GASP: the slide scan moved the pose (slide_scan.h)
   int dense_terms = 0;      ///< GASP: terms of the last dense round (0: no dense rounds ran)
   int dense_rounds = 0;     ///< GASP: dense rounds run for the final pose (0: none)
-  /// GASP with an estimate and ground truth: the error's NEES under the claimed information
+  /// GASP with an estimate and ground truth: the error's NEES under the edge information (PairResult)
   /// and its translation and rotation parts (pose_consistency.h; chi-square with 6, 3 and 3
   /// degrees of freedom if the information were right).
   std::optional<gasp::eval::NeesParts> nees;
+  std::optional<double> nees_refinement;  ///< the same under the refinement's own information
   /// GASP with ground truth: free and verified associations scored (association_quality.h).
   std::optional<gasp::AssociationQuality> free_quality, verified_quality;
   /// The verified associations scored against the GICP-polished reference (--polish-reference).
@@ -284,6 +285,12 @@ int main(int argc, char** argv) {
   app.add_option("--gt-offset", gt_offset,
                  "look ground truth up at depth timestamp + OFFSET [s] (nearest within 0.02 s; TUM fr1 depth lags "
                  "the motion capture: -0.03 fits best, docs/pipeline.md)")->capture_default_str();
+  std::vector<double> model_error;
+  app.add_option("--model-error", model_error,
+                 "T_M,R_DEG: GASP's model error per axis, added to the claimed pose's covariance for the edge information "
+                 "(default 0.01,0.75; the nees columns of --pairs-csv are against it, docs/pipeline.md)")
+      ->expected(2)
+      ->delimiter(',');
   std::vector<double> gt_frame_rotation_deg;
   app.add_option("--gt-frame-rotation", gt_frame_rotation_deg,
                  "RX,RY,RZ [deg]: take the reference's camera frame as turned by exp(r) against the depth camera's "
@@ -295,6 +302,14 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
     for (const double v : gt_frame_rotation_deg)
       if (!std::isfinite(v)) throw CLI::ValidationError("--gt-frame-rotation must be three finite angles in degrees");
+    if (!model_error.empty()) {
+      base.model_error = {model_error[0], model_error[1]};
+      try {
+        gasp::validate(base.model_error);
+      } catch (const gasp::Error& e) {
+        throw CLI::ValidationError(std::string("--model-error: ") + e.what());
+      }
+    }
     if (pictures_only && picture_pair.empty()) throw CLI::ValidationError("--pictures-only needs --picture I,J");
     if (!std::isfinite(deskew.readout_s)) throw CLI::ValidationError("--rolling-shutter must be a finite time in seconds");
     if (polish_reference && pairs_csv_path.empty())
@@ -422,7 +437,8 @@ int main(int argc, char** argv) {
           if (r.pose.success) {
             run.agreement_estimate = gasp::depthAgreement(va.view, vb.view, r.pose.T_target_source, 4);
             try {  // a diagnostic: an information it cannot use leaves the columns empty
-              run.nees = gasp::eval::neesParts(r.pose.T_target_source, *T_gt, r.pose.information);
+              run.nees = gasp::eval::neesParts(r.pose.T_target_source, *T_gt, r.edge_information);
+              run.nees_refinement = gasp::eval::nees(r.pose.T_target_source, *T_gt, r.pose.information);
             } catch (const gasp::Error&) {
             }
           }
@@ -547,7 +563,7 @@ int main(int argc, char** argv) {
                     "precision,verified,verified_precision,verified_density,agreement,agreement_truth,tx,ty,tz,qx,qy,qz,qw,"
                     "motion_t_m,motion_r_deg,ref_icp_t_m,ref_icp_r_deg,est_vs_ref_icp_t_m,est_vs_ref_icp_r_deg,"
                     "est_icp_t_m,est_icp_r_deg,icp_est_vs_ref_icp_t_m,icp_est_vs_ref_icp_r_deg,verified_precision_ref_icp,"
-                    "rgb_inliers,rgb_parallax_px,rgb_r_vs_ref_deg,rgb_r_vs_est_deg,rgb_r_vs_ref_icp_deg,nees,nees_t,nees_r,reason\n";
+                    "rgb_inliers,rgb_parallax_px,rgb_r_vs_ref_deg,rgb_r_vs_est_deg,rgb_r_vs_ref_icp_deg,nees,nees_t,nees_r,nees_refinement,reason\n";
     }
     // GICP from T_init between the views GASP registers (undistorted where the intrinsics have
     // distortion; the depth is the cached one); none without the baselines or when it fails.
@@ -686,6 +702,8 @@ int main(int argc, char** argv) {
                     << rgbAngle(rgb, toRgbStamps(rgb, T_ref_icp)) << ',';
           if (run.nees) pairs_csv << run.nees->all << ',' << run.nees->translation << ',' << run.nees->rotation;
           else pairs_csv << ",,";
+          pairs_csv << ',';
+          if (run.nees_refinement) pairs_csv << *run.nees_refinement;
           pairs_csv << ",\"" << o.reason << "\"\n";
         }
       }

@@ -65,6 +65,10 @@ TEST(ObservationMatcher, ParametersFromYaml) {
                                            yaml::FromText("dense_max_rounds: 4\ndense_converged_m: 0.001\n")));
   EXPECT_THROW(createObservationMatcher("gasp::ObservationMatcher_GASP", yaml::FromText("dense_max_rounds: -2\n")),
                std::exception);
+  EXPECT_NO_THROW(createObservationMatcher("gasp::ObservationMatcher_GASP",
+                                           yaml::FromText("model_error_t_m: 0.01\nmodel_error_r_deg: 1.0\n")));
+  EXPECT_THROW(createObservationMatcher("gasp::ObservationMatcher_GASP", yaml::FromText("model_error_t_m: -0.01\n")),
+               std::exception);
   EXPECT_THROW(createObservationMatcher("gasp::ObservationMatcher_GASP", yaml::FromText("candidatez: 20\n")),
                std::exception);
   EXPECT_THROW(createObservationMatcher("gasp::ObservationMatcher_GASP", yaml::FromText("lambda: 3.0\n")),

@@ -74,6 +74,7 @@ void validate(const PairParams& p) {
   validate(p.slide_scan);
   validate(p.visibility);
   validate(p.guided);
+  validate(p.model_error);
   if (!(p.one_way_max_violation_ratio >= 0.0 && p.one_way_max_violation_ratio <= 1.0))
     throw Error("PairParams: one_way_max_violation_ratio must be in [0, 1]");
   if (p.min_guided_support < 3) throw Error("PairParams: min_guided_support must be >= 3");
@@ -263,8 +264,10 @@ std::pair<const DepthView*, const DepthView*> viewsOf(const PairResult& r, const
   return {&source, &target};
 }
 
-PairResult registerViews(const DepthView& source, const DepthView& target, const PairParams& params) {
-  validate(params);
+namespace {
+
+/// registerViews() but for the edge information.
+PairResult registerWithRetry(const DepthView& source, const DepthView& target, const PairParams& params) {
   PairResult r = registerAtScale(source, target, params);
   if (params.retry_area_factor == 0.0 || !finerScaleRetryApplies(r, source, target)) return r;
   // Finer-scale retry (PairParams::retry_area_factor): each view segmented again with its own
@@ -296,6 +299,15 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
   r.retried = true;
   r.timings = total;
   r.pose.reason += "; " + finerScaleReason(f, retry.pose.reason);
+  return r;
+}
+
+}  // namespace
+
+PairResult registerViews(const DepthView& source, const DepthView& target, const PairParams& params) {
+  validate(params);
+  PairResult r = registerWithRetry(source, target, params);
+  if (r.pose.success) r.edge_information = informationWithModelError(r.pose.information, params.model_error);
   return r;
 }
 

@@ -6,8 +6,10 @@
 ///
 /// Maps of several views: every view pair (i of m1, j of m2) is registered and the claimed
 /// estimate with the most inliers is kept. The returned CPose3DPDFGaussian has the covariance
-/// J I^-1 J^T of that pair's refinement information I (pose_covariance.h), i.e. the refinement's
-/// own, first-order uncertainty (its dense terms are not independent, so it is optimistic).
+/// J I^-1 J^T of that pair's edge information I (PairResult::edge_information, pose_covariance.h):
+/// the refinement's first-order uncertainty plus the model error (options.params.model_error,
+/// keys model_error_t_m / model_error_r_deg; model_error.h), since the refinement's alone is
+/// 100-1000 times too certain on real data (docs/pipeline.md).
 /// When no pose is claimed (no associations, no consensus, degenerate geometry, failed
 /// visibility check, information not positive definite) Align3DPDF / AlignPDF return nullptr and
 /// the result info says why.

@@ -21,7 +21,8 @@ struct MatchConstraint {
   bool degenerate = false;         ///< some direction unobservable: no pose is claimed
   mrpt::poses::CPose3D T_a_b;      ///< robot frame of b in robot frame of a (sensorPose honoured)
   /// 6x6 information of T_a_b over the left perturbation T_a_b <- Exp(xi) T_a_b, xi = [t; omega]
-  /// in a's robot frame ([m], [rad]), from the refinement's Jacobians (docs/registration.md).
+  /// in a's robot frame ([m], [rad]): the refinement's (from its Jacobians, docs/registration.md)
+  /// with the model error added (PairResult::edge_information, model_error.h).
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
   std::vector<std::pair<int, int>> associations;  ///< (patch of a, patch of b); empty when finer_scale
   /// The pose came from the finer-scale retry (PairParams::retry_area_factor): its patches are not

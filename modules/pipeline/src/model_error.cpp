@@ -1,0 +1,37 @@
+#include "gasp/pipeline/model_error.h"
+
+#include <Eigen/Cholesky>
+
+#include <cmath>
+
+#include "gasp/core/error.h"
+
+namespace gasp {
+
+void validate(const ModelError& e) {
+  if (!(e.sigma_t_m >= 0.0) || !std::isfinite(e.sigma_t_m)) throw Error("ModelError: sigma_t_m must be finite and >= 0");
+  if (!(e.sigma_r_deg >= 0.0) || !std::isfinite(e.sigma_r_deg))
+    throw Error("ModelError: sigma_r_deg must be finite and >= 0");
+}
+
+Eigen::Matrix<double, 6, 6> informationWithModelError(const Eigen::Matrix<double, 6, 6>& information,
+                                                      const ModelError& e) {
+  using Matrix6 = Eigen::Matrix<double, 6, 6>;
+  validate(e);
+  if (!information.allFinite()) throw Error("informationWithModelError: the information is not finite");
+  if (e.sigma_t_m == 0.0 && e.sigma_r_deg == 0.0) return information;
+  const Matrix6 I = 0.5 * (information + information.transpose());
+  const Eigen::LLT<Matrix6> llt(I);
+  if (llt.info() != Eigen::Success) throw Error("informationWithModelError: the information is not positive definite");
+  Matrix6 C = llt.solve(Matrix6::Identity());
+  const double st2 = e.sigma_t_m * e.sigma_t_m;
+  const double sr = e.sigma_r_deg * M_PI / 180.0;
+  for (int k = 0; k < 3; ++k) C(k, k) += st2, C(k + 3, k + 3) += sr * sr;
+  C = 0.5 * (C + C.transpose());
+  const Eigen::LLT<Matrix6> llt_c(C);
+  if (llt_c.info() != Eigen::Success) throw Error("informationWithModelError: the covariance is not positive definite");
+  Matrix6 I_edge = llt_c.solve(Matrix6::Identity());
+  return 0.5 * (I_edge + I_edge.transpose());
+}
+
+}  // namespace gasp
