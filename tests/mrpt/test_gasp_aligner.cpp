@@ -91,6 +91,8 @@ TEST(GaspAligner, RecoversFr1Desk9RelativePoseBetweenMaps) {
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(Ce);
     EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
     EXPECT_LT(std::sqrt(Ce(0, 0)), 0.05);  // sigma_x within a few cm
+    for (int k = 0; k < 3; ++k)  // and not below the model error (1 cm per axis): the edge information
+      EXPECT_GE(std::sqrt(Ce(k, k)), 0.0099) << k;
     const Matrix6 J = yprJacobian(fromCPose3D(gauss->mean));
     EXPECT_TRUE((J * info.information.inverse() * J.transpose()).isApprox(Ce, 1e-6));
 

@@ -4,6 +4,8 @@
 #include <mrpt/obs/CObservation2DRangeScan.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
+#include <Eigen/LU>
+
 #include <cmath>
 
 #include "gasp/core/tum_dataset.h"
@@ -54,6 +56,13 @@ TEST(ObservationMatcher, CreatedByNameRecoversTheRelativePose) {
     EXPECT_TRUE(c.information.isApprox(c.information.transpose(), 1e-6 * c.information.norm()));
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(c.information);
     EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
+    // The edge information (with the model error, 1 cm and 0.75 deg per axis in the camera frame),
+    // not the refinement's sub-millimetre one: no axis is more certain than the model error.
+    const Eigen::Matrix<double, 6, 6> C = c.information.inverse();
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_GE(std::sqrt(C(k, k)), 0.0099) << "translation axis " << k;
+      EXPECT_GE(std::sqrt(C(k + 3, k + 3)) * 180.0 / M_PI, 0.74) << "rotation axis " << k;
+    }
   }
 }
 

@@ -47,7 +47,8 @@ TEST_P(SyntheticPair, RecoversTheTruePose) {
   EXPECT_TRUE(r.pose.information.isApprox(r.pose.information.transpose(), 1e-9));
   EXPECT_GT(r.pose.information_eigenvalues.minCoeff(), 0.0);
   // The edge information is the refinement's with the default model error, and the true error is
-  // plausible under it: NEES within the chi-square (6) 99.9 % quantile. (The refinement's own
+  // plausible under it: NEES within the chi-square (6) 99.9 % quantile. The bound catches an edge
+  // information that is too certain, not one that is too cautious. (The refinement's own
   // information gave a median NEES of 8-33 and up to 650 on the synthetic benchmark pairs:
   // docs/pipeline.md, "How far the information can be trusted".)
   EXPECT_EQ(r.edge_information, informationWithModelError(r.pose.information, ModelError{}));

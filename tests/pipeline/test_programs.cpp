@@ -200,6 +200,42 @@ TEST(GaspPairsProgram, GtFrameRotationTurnsTheReferenceBack) {
   EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 2 --gt-frame-rotation 3,0,nan").exit_code, 2);
 }
 
+// --model-error sets the model error of the edge information the nees columns are scored under:
+// with none, the edge information is the refinement's (nees = nees_refinement); with the default
+// it is less certain (nees < nees_refinement); a negative or malformed value is a usage error.
+TEST(GaspPairsProgram, ModelErrorSetsTheEdgeInformation) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const std::string scratch = gasp::test::scratchDir();
+  const std::string args = "--tum " + dir + " --skips 2 --starts-every 3 --method gasp --pairs-csv ";
+  auto columns = [](const std::string& path, const std::string& a, const std::string& b) {
+    std::ifstream f(path);
+    std::string line;
+    std::getline(f, line);
+    const auto header = splitCsv(line);
+    const auto ka = static_cast<std::size_t>(std::find(header.begin(), header.end(), a) - header.begin());
+    const auto kb = static_cast<std::size_t>(std::find(header.begin(), header.end(), b) - header.begin());
+    std::vector<std::pair<double, double>> out;
+    while (std::getline(f, line)) {
+      const auto c = splitCsv(line);
+      out.emplace_back(std::stod(c.at(ka)), std::stod(c.at(kb)));
+    }
+    return out;
+  };
+  ASSERT_EQ(run("gasp-pairs", args + scratch + "/none.csv --model-error 0,0").exit_code, 0);
+  ASSERT_EQ(run("gasp-pairs", args + scratch + "/default.csv").exit_code, 0);
+  const auto none = columns(scratch + "/none.csv", "nees", "nees_refinement");
+  const auto dflt = columns(scratch + "/default.csv", "nees", "nees_refinement");
+  ASSERT_EQ(none.size(), 3u);
+  ASSERT_EQ(dflt.size(), 3u);
+  for (std::size_t i = 0; i < none.size(); ++i) {
+    EXPECT_NEAR(none[i].first, none[i].second, 1e-4 * none[i].second) << "pair " << i;
+    EXPECT_NEAR(dflt[i].second, none[i].second, 1e-4 * none[i].second) << "pair " << i;  // same poses
+    EXPECT_LT(dflt[i].first, 0.1 * dflt[i].second) << "pair " << i;
+  }
+  EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 2 --model-error -0.01,0.75").exit_code, 2);
+  EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 2 --model-error 0.01").exit_code, 2);
+}
+
 // The per-pair CSV: one row per pair with the estimated pose, whose error against the ground truth
 // is the row's own t_err_m / r_err_deg, and the free and verified associations scored.
 TEST(GaspPairsProgram, PairsCsvHasThePoseAndTheAssociationQuality) {

@@ -19,10 +19,10 @@ Eigen::Matrix<double, 6, 6> informationWithModelError(const Eigen::Matrix<double
   using Matrix6 = Eigen::Matrix<double, 6, 6>;
   validate(e);
   if (!information.allFinite()) throw Error("informationWithModelError: the information is not finite");
-  if (e.sigma_t_m == 0.0 && e.sigma_r_deg == 0.0) return information;
   const Matrix6 I = 0.5 * (information + information.transpose());
   const Eigen::LLT<Matrix6> llt(I);
   if (llt.info() != Eigen::Success) throw Error("informationWithModelError: the information is not positive definite");
+  if (e.sigma_t_m == 0.0 && e.sigma_r_deg == 0.0) return information;
   Matrix6 C = llt.solve(Matrix6::Identity());
   const double st2 = e.sigma_t_m * e.sigma_t_m;
   const double sr = e.sigma_r_deg * M_PI / 180.0;

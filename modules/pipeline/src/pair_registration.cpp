@@ -307,7 +307,14 @@ PairResult registerWithRetry(const DepthView& source, const DepthView& target, c
 PairResult registerViews(const DepthView& source, const DepthView& target, const PairParams& params) {
   validate(params);
   PairResult r = registerWithRetry(source, target, params);
-  if (r.pose.success) r.edge_information = informationWithModelError(r.pose.information, params.model_error);
+  if (r.pose.success) {
+    try {
+      r.edge_information = informationWithModelError(r.pose.information, params.model_error);
+    } catch (const Error& e) {  // a claimed pose's information is positive definite; if not, no claim
+      r.pose.success = false;
+      r.pose.reason = std::string("edge information: ") + e.what();
+    }
+  }
   return r;
 }
 
