@@ -70,9 +70,23 @@ int main(int argc, char** argv) {
                  "bottom-up; TUM's Kinect: 0.03), with the velocity from GASP's pose between each frame's neighbours")
       ->needs(tum)
       ->capture_default_str();
+  std::vector<double> model_error;
+  app.add_option("--model-error", model_error,
+                 "T_M,R_DEG: model error per axis added to the pose's covariance for the edge information "
+                 "(edge_sigma line; default 0.01,0.75; docs/pipeline.md)")
+      ->expected(2)
+      ->delimiter(',');
   try {
     app.parse(argc, argv);
     if (!std::isfinite(deskew.readout_s)) throw CLI::ValidationError("--rolling-shutter must be a finite time in seconds");
+    if (!model_error.empty()) {
+      params.model_error = {model_error[0], model_error[1]};
+      try {
+        gasp::validate(params.model_error);
+      } catch (const gasp::Error& e) {
+        throw CLI::ValidationError(std::string("--model-error: ") + e.what());
+      }
+    }
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;  // --help: 0; any usage error: 2
   }
@@ -178,6 +192,13 @@ int main(int argc, char** argv) {
                 T.translation().y(), T.translation().z(), qt.x(), qt.y(), qt.z(), qt.w());
     std::printf("residual_rms_m: %.4f\ninformation_diag: ", r.pose.rms_residual_m);
     for (int i = 0; i < 6; ++i) std::printf("%.4g%s", r.pose.information(i, i), i < 5 ? " " : " (tx ty tz rx ry rz)\n");
+    {  // The standard deviations a pose graph gets (the edge information: with the model error).
+      const Eigen::Matrix<double, 6, 6> C = r.edge_information.inverse();
+      std::printf("edge_sigma: %.4f %.4f %.4f m, %.3f %.3f %.3f deg (tx ty tz rx ry rz; model error %g m, %g deg)\n",
+                  std::sqrt(C(0, 0)), std::sqrt(C(1, 1)), std::sqrt(C(2, 2)), std::sqrt(C(3, 3)) * 180.0 / M_PI,
+                  std::sqrt(C(4, 4)) * 180.0 / M_PI, std::sqrt(C(5, 5)) * 180.0 / M_PI, params.model_error.sigma_t_m,
+                  params.model_error.sigma_r_deg);
+    }
     std::printf("visibility_violations: %.3f\nvisibility_occluded: %.3f\n", r.visibility.violation_ratio,
                 r.visibility.occluded_ratio);
     std::printf("dense_rounds: %d (last step %.1f mm)\n", r.dense_rounds_run, 1000.0 * r.dense_last_step_m);

@@ -57,6 +57,17 @@ TEST(GaspAssociateProgram, PoseAndPictureOnARealPair) {
   EXPECT_LT(std::stod(m[1]), 0.05) << r.output;
   EXPECT_LT(std::stod(m[2]), 3.0) << r.output;
   EXPECT_TRUE(std::filesystem::exists(out));
+  // The edge information's standard deviations: no axis below the model error (1 cm, 0.75 deg).
+  ASSERT_TRUE(std::regex_search(r.output, m, std::regex("edge_sigma: ([0-9.]+) ([0-9.]+) ([0-9.]+) m, ([0-9.]+) ([0-9.]+) ([0-9.]+) deg")))
+      << r.output;
+  for (int k = 1; k <= 3; ++k) EXPECT_GE(std::stod(m[k]), 0.0099) << r.output;
+  for (int k = 4; k <= 6; ++k) EXPECT_GE(std::stod(m[k]), 0.74) << r.output;
+  // --model-error sets it; 0,0 gives the refinement's (sub-millimetre) deviations.
+  const ProgramRun none = run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --model-error 0,0");
+  ASSERT_EQ(none.exit_code, 0) << none.output;
+  ASSERT_TRUE(std::regex_search(none.output, m, std::regex("edge_sigma: ([0-9.]+) ")));
+  EXPECT_LT(std::stod(m[1]), 0.005) << none.output;
+  EXPECT_EQ(run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --model-error 0.01,-1").exit_code, 2);
 }
 
 // --rolling-shutter: both views deskewed with their neighbours' velocity, said on two lines;
