@@ -56,12 +56,17 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-bool isGasp(const std::string& method) { return method == "gasp" || method == "gasp-norefine"; }
+/// GASP's pipeline runs (gasp-gicp: then PCL's GICP from its pose).
+bool isGasp(const std::string& method) {
+  return method == "gasp" || method == "gasp-norefine" || method == "gasp-gicp";
+}
 
 std::vector<std::string> knownMethods() {
   std::vector<std::string> m{"gasp", "gasp-norefine"};
 #ifdef GASP_HAVE_BASELINES
   for (auto b : gasp::baselines::allMethods()) m.push_back(gasp::baselines::methodName(b));
+  m.push_back("gicp");       // PCL's GICP from the identity: ICP without a start
+  m.push_back("gasp-gicp");  // GICP started from GASP's pose: ICP with GASP's start
 #endif
   return m;
 }
@@ -192,7 +197,8 @@ int main(int argc, char** argv) {
   app.add_option("--skips", skips, "frame skips (in depth.txt order)")->delimiter(',')->capture_default_str();
   app.add_option("--starts-every", starts_every, "start frames 0, N, 2N, ...")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--method", methods,
-                 "gasp (full pipeline), gasp-norefine (RANSAC only); baselines (when built): fpfh, shot, cshot, sift, dsift")
+                 "gasp (full pipeline), gasp-norefine (RANSAC only); baselines (when built): fpfh, shot, cshot, sift, dsift, "
+                 "gicp (PCL's GICP from the identity), gasp-gicp (GICP from GASP's pose)")
       ->delimiter(',')->check(CLI::IsMember(knownMethods()))->capture_default_str();
   bool no_undistort = false;
   app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored");
@@ -399,7 +405,7 @@ int main(int argc, char** argv) {
       MethodRun run;
       if (isGasp(method)) {
         gasp::PairParams params = base;
-        params.refine = method == "gasp";
+        params.refine = method != "gasp-norefine";
         const auto& va = cache.gaspView(i, params.superpixels);
         const auto& vb = cache.gaspView(j, params.superpixels);
         const auto t0 = Clock::now();
@@ -421,6 +427,25 @@ int main(int argc, char** argv) {
         run.slide_moved = r.slide.moved;
         run.dense_terms = r.dense_terms;
         run.dense_rounds = r.dense_rounds_run;
+        double gicp_ms = 0.0;
+#ifdef GASP_HAVE_BASELINES
+        if (method == "gasp-gicp" && r.pose.success) {
+          // ICP with GASP's start: GICP from GASP's pose, kept when it converges and passes the
+          // same visibility check; otherwise GASP's pose stands (said in the reason).
+          const auto t1 = Clock::now();
+          const auto g = gasp::baselines::polishPose(va.view.depth_m, vb.view.depth_m, va.view.intrinsics,
+                                                     r.pose.T_target_source);
+          if (!g.success) {
+            run.reason = "GICP: " + g.reason + "; GASP's pose kept";
+          } else {
+            const auto check = gasp::checkVisibility(va.view, vb.view, g.T_target_source, base.visibility);
+            if (check.passed) run.T_target_source = g.T_target_source;
+            else run.reason = "GICP's pose failed the visibility check (" + check.reason + "); GASP's pose kept";
+          }
+          gicp_ms = msSince(t1);
+          run.ms += gicp_ms;
+        }
+#endif
         // The views r's patch indices refer to (the finer-scale retry's when it gave the estimate).
         const auto [pva, pvb] = gasp::viewsOf(r, va.view, vb.view);
         if (T_gt) {
@@ -435,7 +460,9 @@ int main(int argc, char** argv) {
                 gasp::evaluateAssociations(r.verified, sa, sb, pvb->depth_m, pvb->intrinsics, *T_ref_icp);
           run.agreement_truth = gasp::depthAgreement(va.view, vb.view, *T_gt, 4);
           if (r.pose.success) {
-            run.agreement_estimate = gasp::depthAgreement(va.view, vb.view, r.pose.T_target_source, 4);
+            run.agreement_estimate = gasp::depthAgreement(va.view, vb.view, run.T_target_source, 4);
+          }
+          if (r.pose.success && method != "gasp-gicp") {  // the information is of GASP's pose
             try {  // a diagnostic: an information it cannot use leaves the columns empty
               run.nees = gasp::eval::neesParts(r.pose.T_target_source, *T_gt, r.edge_information);
               run.nees_refinement = gasp::eval::nees(r.pose.T_target_source, *T_gt, r.pose.information);
@@ -448,6 +475,7 @@ int main(int argc, char** argv) {
                         {"ransac", r.timings.ransac_ms},
                         {"refinement+check", reg_ms - r.timings.retry_segmentation_ms - r.timings.association_ms -
                                                  r.timings.ransac_ms}};
+        if (method == "gasp-gicp") run.stage_ms["gicp"] = gicp_ms;
         if (picture) {
           std::vector<unsigned char> correct;
           if (T_gt)
@@ -463,6 +491,29 @@ int main(int argc, char** argv) {
         return run;
       }
 #ifdef GASP_HAVE_BASELINES
+      if (method == "gicp") {
+        // ICP without a start: GICP from the identity (icp_polish.h: voxel-sampled clouds, 5 cm
+        // correspondence gate), then the visibility check every method's pose must pass.
+        const auto& va = cache.gaspView(i, base.superpixels).view;
+        const auto& vb = cache.gaspView(j, base.superpixels).view;
+        const auto t0 = Clock::now();
+        const auto g = gasp::baselines::polishPose(va.depth_m, vb.depth_m, va.intrinsics, gasp::Isometry3::Identity());
+        const double icp_ms = msSince(t0);
+        run.T_target_source = g.T_target_source;
+        if (!g.success) {
+          run.reason = "GICP: " + g.reason;
+        } else {
+          const auto check = gasp::checkVisibility(va, vb, g.T_target_source, base.visibility);
+          run.violation_ratio = check.violation_ratio;
+          run.consistent = check.consistent, run.occluded = check.occluded, run.violations = check.violations;
+          run.occluded_ratio = check.occluded_ratio;
+          run.estimated = check.passed;
+          if (!check.passed) run.reason = check.reason;
+        }
+        run.ms = msSince(t0);
+        run.stage_ms = {{"gicp", icp_ms}, {"check", run.ms - icp_ms}};
+        return run;
+      }
       const auto m = gasp::baselines::parseMethod(method);
       const auto& ka = cache.described(i, m, baseline);
       const auto& kb = cache.described(j, m, baseline);

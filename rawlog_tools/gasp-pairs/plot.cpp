@@ -55,7 +55,8 @@ const std::vector<cv::Scalar> kColours{{40, 40, 220}, {0, 140, 255}, {200, 120, 
 
 std::string fmt(double v) {
   char b[32];
-  std::snprintf(b, sizeof b, v < 1 ? "%.2f" : v < 10 ? "%.1f" : "%.0f", v);
+  // Two significant digits below 1, so that ticks 0.007 apart stay apart (not "0.01, 0.01").
+  std::snprintf(b, sizeof b, v == 0 ? "0" : v < 1 ? "%.2g" : v < 10 ? "%.1f" : "%.0f", v);
   return b;
 }
 

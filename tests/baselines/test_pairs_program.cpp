@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -106,6 +107,53 @@ TEST(PairsProgram, BaselinesBesideGaspOnTheSamePairs) {
   ASSERT_EQ(p.exit_code, 0) << p.output;
   EXPECT_FALSE(cv::imread(png).empty());
   EXPECT_EQ(run("gasp-pairs-plot", "--csv " + pairs + " --out " + png).exit_code, 1);  // not a table
+}
+
+// gicp: PCL's GICP from the identity, the same visibility check as every method; gasp-gicp: GICP
+// from GASP's pose (GASP's pose kept when GICP fails or is declined). On fr1_desk9's pairs 4 frames
+// apart GASP's start gives GICP poses within a few cm; the NEES belongs to GASP's own pose only.
+TEST(PairsProgram, GicpFromTheIdentityAndFromGaspsPose) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const std::string tmp = gasp::test::scratchDir();
+  const std::string pairs = tmp + "/p.csv";
+  const auto r = run("gasp-pairs", "--tum " + dir + " --skips 4 --starts-every 4 --method gasp,gasp-gicp,gicp --pairs-csv " + pairs);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("median_ms_per_stage gicp: check"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("median_ms_per_stage gasp-gicp: association"), std::string::npos) << r.output;
+  const auto text = lines(pairs);
+  ASSERT_EQ(text.size(), 1u + 2 * 3) << r.output;  // pairs 0 -> 4, 4 -> 8; three methods each
+  const auto header = splitCsv(text[0]);
+  const std::size_t method = columnIndex(header, "method"), estimated = columnIndex(header, "estimated"),
+                    t_err = columnIndex(header, "t_err_m"), r_err = columnIndex(header, "r_err_deg"),
+                    nees = columnIndex(header, "nees"), qw = columnIndex(header, "qw"), ms = columnIndex(header, "ms");
+  std::map<std::string, std::vector<std::vector<std::string>>> by_method;
+  for (std::size_t k = 1; k < text.size(); ++k) {
+    auto c = splitCsv(text[k]);
+    ASSERT_EQ(c.size(), header.size()) << text[k];
+    by_method[c[method]].push_back(std::move(c));
+  }
+  ASSERT_EQ(by_method["gasp"].size(), 2u);
+  ASSERT_EQ(by_method["gasp-gicp"].size(), 2u);
+  ASSERT_EQ(by_method["gicp"].size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const auto& g = by_method["gasp"][k];
+    const auto& gi = by_method["gasp-gicp"][k];
+    ASSERT_EQ(gi[estimated], "1") << text[1 + 3 * k];
+    EXPECT_LT(std::stod(gi[t_err]), 0.03);
+    EXPECT_LT(std::stod(gi[r_err]), 2.0);
+    EXPECT_FALSE(g[nees].empty());
+    EXPECT_TRUE(gi[nees].empty());  // no information for GICP's pose
+    EXPECT_GT(std::stod(gi[ms]), std::stod(g[ms]));  // GASP's time plus GICP's
+    // GICP moved GASP's pose (it converged and passed the check) or the reason says it was kept.
+    EXPECT_TRUE(gi[qw] != g[qw] || gi.back().find("GASP's pose kept") != std::string::npos) << gi.back();
+    // GICP from the identity: a pose that passed the visibility check, or the reason it has none.
+    const auto& ic = by_method["gicp"][k];
+    if (ic[estimated] == "1") {
+      EXPECT_FALSE(ic[qw].empty());
+    } else {
+      EXPECT_FALSE(ic.back().empty());
+    }
+  }
 }
 
 TEST(PairsProgram, ColourMethodsAreNotApplicableWithoutRgb) {
