@@ -1,12 +1,12 @@
 // gasp-pairs: the paper's pair benchmark on a TUM folder, GASP beside the feature baselines.
 //   gasp-pairs --tum DIR [--skips 10,20,30,40] [--starts-every N]
-//              [--method gasp,gasp-norefine,fpfh,shot,cshot,sift,dsift] [--csv OUT.csv]
+//              [--method gasp,gasp-norefine,fpfh,shot,cshot,sift,dsift,gicp,gasp-gicp] [--csv OUT.csv]
 //              [--pairs-csv OUT_pairs.csv] [--max-pairs N] [--picture I,J [--picture-prefix P] [--picture-format png|jpg] [--pictures-only]]
 // Pairs (i, i + skip) from start frames 0, N, 2N, ... (indices in depth.txt order); for each pair
 // and method a relative pose is estimated and compared with ground truth. Prints one table row per
 // skip and method (definitions in gasp/eval/pair_protocol.h and docs/evaluation.md); progress goes
-// to stderr. The baselines (fpfh, shot, cshot, sift, dsift; gasp/baselines/) exist when the build
-// has GASP_BUILD_BASELINES. Colour methods (cshot, sift, dsift) are not run on pairs where a frame
+// to stderr. The baselines (fpfh, shot, cshot, sift, dsift; gasp/baselines/) and PCL's GICP from
+// the identity (gicp) or from GASP's pose (gasp-gicp) exist when the build has GASP_BUILD_BASELINES. Colour methods (cshot, sift, dsift) are not run on pairs where a frame
 // has no rgb: those rows say "n/a (no rgb)" and count the pairs left out.
 // Time per pair = description of both views (segmentation for GASP; measured once per frame and
 // charged to every pair using it) + association or matching + pose stages; image loading excluded.
@@ -430,8 +430,9 @@ int main(int argc, char** argv) {
         double gicp_ms = 0.0;
 #ifdef GASP_HAVE_BASELINES
         if (method == "gasp-gicp" && r.pose.success) {
-          // ICP with GASP's start: GICP from GASP's pose, kept when it converges and passes the
-          // same visibility check; otherwise GASP's pose stands (said in the reason).
+          // ICP with GASP's start: GICP from GASP's pose, kept when it gives a pose (PCL counts the
+          // iteration limit as converged) that passes the same visibility check; otherwise GASP's
+          // pose stands (said in the reason). No test of which pose is better.
           const auto t1 = Clock::now();
           const auto g = gasp::baselines::polishPose(va.view.depth_m, vb.view.depth_m, va.view.intrinsics,
                                                      r.pose.T_target_source);
@@ -439,8 +440,14 @@ int main(int argc, char** argv) {
             run.reason = "GICP: " + g.reason + "; GASP's pose kept";
           } else {
             const auto check = gasp::checkVisibility(va.view, vb.view, g.T_target_source, base.visibility);
-            if (check.passed) run.T_target_source = g.T_target_source;
-            else run.reason = "GICP's pose failed the visibility check (" + check.reason + "); GASP's pose kept";
+            if (check.passed) {
+              run.T_target_source = g.T_target_source;
+              run.violation_ratio = check.violation_ratio;
+              run.consistent = check.consistent, run.occluded = check.occluded, run.violations = check.violations;
+              run.occluded_ratio = check.occluded_ratio;
+            } else {
+              run.reason = "GICP's pose failed the visibility check (" + check.reason + "); GASP's pose kept";
+            }
           }
           gicp_ms = msSince(t1);
           run.ms += gicp_ms;
@@ -475,7 +482,7 @@ int main(int argc, char** argv) {
                         {"ransac", r.timings.ransac_ms},
                         {"refinement+check", reg_ms - r.timings.retry_segmentation_ms - r.timings.association_ms -
                                                  r.timings.ransac_ms}};
-        if (method == "gasp-gicp") run.stage_ms["gicp"] = gicp_ms;
+        if (method == "gasp-gicp" && r.pose.success) run.stage_ms["gicp+check"] = gicp_ms;
         if (picture) {
           std::vector<unsigned char> correct;
           if (T_gt)
@@ -493,9 +500,11 @@ int main(int argc, char** argv) {
 #ifdef GASP_HAVE_BASELINES
       if (method == "gicp") {
         // ICP without a start: GICP from the identity (icp_polish.h: voxel-sampled clouds, 5 cm
-        // correspondence gate), then the visibility check every method's pose must pass.
-        const auto& va = cache.gaspView(i, base.superpixels).view;
-        const auto& vb = cache.gaspView(j, base.superpixels).view;
+        // correspondence gate), then the visibility check every method's pose must pass. The
+        // depth as the baselines get it (undistorted where the lens is; never deskewed).
+        gasp::DepthView va, vb;  // the check reads only depth and intrinsics
+        va.depth_m = cache.rgbd(i).depth_m, va.intrinsics = cache.rgbd(i).intrinsics;
+        vb.depth_m = cache.rgbd(j).depth_m, vb.intrinsics = cache.rgbd(j).intrinsics;
         const auto t0 = Clock::now();
         const auto g = gasp::baselines::polishPose(va.depth_m, vb.depth_m, va.intrinsics, gasp::Isometry3::Identity());
         const double icp_ms = msSince(t0);
@@ -510,6 +519,7 @@ int main(int argc, char** argv) {
           run.estimated = check.passed;
           if (!check.passed) run.reason = check.reason;
         }
+        if (run.estimated && T_gt) run.agreement_estimate = gasp::depthAgreement(va, vb, run.T_target_source, 4);
         run.ms = msSince(t0);
         run.stage_ms = {{"gicp", icp_ms}, {"check", run.ms - icp_ms}};
         return run;
@@ -568,6 +578,10 @@ int main(int argc, char** argv) {
       for (const auto& method : methods) {
         if (needsColour(method) && (!hasRgb(i) || !hasRgb(j))) {
           std::printf("picture %s: n/a (no rgb)\n", method.c_str());
+          continue;
+        }
+        if (method == "gicp") {  // no associations to draw
+          std::printf("picture %s: n/a (GICP has no associations)\n", method.c_str());
           continue;
         }
         Picture pic;

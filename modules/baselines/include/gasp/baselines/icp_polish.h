@@ -1,9 +1,10 @@
 #pragma once
 /// \file icp_polish.h An independent check of a relative pose: PCL's Generalized-ICP (Segal,
 /// Haehnel, Thrun, RSS 2009) between the two depth clouds, started from a given pose. GASP uses it
-/// only to judge a *reference* pose (`gasp-pairs --polish-reference`): if GICP started from the
+/// to judge a *reference* pose (`gasp-pairs --polish-reference`): if GICP started from the
 /// ground truth moves far, and to where GASP's estimate is, the reference -- not the estimate --
-/// is what disagrees with the depth. GICP shares no code or objective with GASP's refinement
+/// is what disagrees with the depth. It is also the ICP of the benchmark's `gicp` (from the
+/// identity) and `gasp-gicp` (from GASP's pose) methods. GICP shares no code or objective with GASP's refinement
 /// (plane-to-plane covariances on voxel-sampled clouds, not GASP's patch and projective terms).
 #include <opencv2/core.hpp>
 
@@ -27,7 +28,7 @@ struct IcpPolishParams {
 void validate(const IcpPolishParams& params);
 
 struct IcpPolishResult {
-  bool success = false;                                  ///< GICP converged from T_init
+  bool success = false;  ///< GICP ran from T_init (PCL counts reaching max_iterations as converged)
   Isometry3 T_target_source = Isometry3::Identity();     ///< the polished pose (T_init when !success)
   double fitness_m2 = 0.0;  ///< mean squared distance of source points to their nearest target point, within the gate
   std::size_t source_points = 0, target_points = 0;  ///< after sampling
