@@ -13,7 +13,11 @@ too certain by that factor in variance, below 1 = too cautious. And the share of
 within the chi-square (6) 95 % quantile (95 % if the information were right).
 The reference's own error counts as estimation error here: against an imperfect reference the
 factors are upper bounds.
+With the pairs' true motion (columns motion_t_m, motion_r_deg), a second table splits all the
+estimates into quarters by translation: median motion, RMS error and the median NEES ratios of
+the parts, so that an error that grows with the baseline shows (the model error does not grow).
 Python standard library only."""
+import math
 import statistics
 import sys
 
@@ -48,6 +52,21 @@ def main():
         print("| %d | %d | %.3g (%.3g, %.3g) | %.0f %% | %.3g | %.0f %% |" % (
             skip, len(rs), med("nees") / CHI2_6_MEDIAN, med("nees_t") / CHI2_3_MEDIAN, med("nees_r") / CHI2_3_MEDIAN,
             100 * share("nees"), med("nees_refinement") / CHI2_6_MEDIAN, 100 * share("nees_refinement")))
+    every = sorted((r for rs in by_skip.values() for r in rs if r.get("motion_t_m", "") != ""),
+                   key=lambda r: float(r["motion_t_m"]))
+    if len(every) >= 4:
+        print()
+        print("| quarter by motion | pairs | median motion t [m] / r [deg] | RMS error t [m] / r [deg] "
+              "| median NEES / chi2 median: translation, rotation |")
+        print("|---|---|---|---|---|")
+        n = len(every)
+        for q in range(4):
+            rs = every[q * n // 4:(q + 1) * n // 4]
+            med = lambda name: statistics.median(float(r[name]) for r in rs)
+            rms = lambda name: math.sqrt(sum(float(r[name]) ** 2 for r in rs) / len(rs))
+            print("| %d | %d | %.3f / %.1f | %.4f / %.2f | %.3g, %.3g |" % (
+                q + 1, len(rs), med("motion_t_m"), med("motion_r_deg"), rms("t_err_m"), rms("r_err_deg"),
+                med("nees_t") / CHI2_3_MEDIAN, med("nees_r") / CHI2_3_MEDIAN))
 
 
 if __name__ == "__main__":
