@@ -43,7 +43,8 @@ struct TGaspAlignmentResult : public mrpt::slam::TMetricMapAlignmentResult {
   bool finer_scale = false;
   int inliers = 0;
   /// Information of the pose of m2 in m1 over the left perturbation in m1's frame,
-  /// xi = [t; omega] ([m], [rad]); zero when no pose is claimed.
+  /// xi = [t; omega] ([m], [rad]): the pair's edge information (the refinement's with the model
+  /// error, PairResult::edge_information); zero when no pose is claimed.
   Matrix6 information = Matrix6::Zero();
   int view_pairs = 0;   ///< view pairs registered
   double time_ms = 0.0;
