@@ -1,7 +1,9 @@
 // gasp-associate: patch associations and the relative pose between two depth views.
 //   gasp-associate --tum DIR --from I --to J [--out PICTURE.png] [options]
 //   gasp-associate --depth-a A.png --depth-b B.png [--intrinsics fr1|fr2|fr3|ros|FILE] [--depth-scale 5000]
-// I and J are frame indices in depth.txt order. Prints the patch count of each view, the number
+//   gasp-associate --rawlog FILE.rawlog --from I --to J [--gt CAMERA_TRAJECTORY.txt] [options]
+// I and J are frame indices in depth.txt order, or (--rawlog) the I-th and J-th
+// CObservation3DRangeScan of the rawlog, counting from 0. Prints the patch count of each view, the number
 // of associations, time per stage, the pose T_b_a (maps A's camera frame into B's) with its
 // inliers and information, and, where both frames have ground truth, `precision:`, `density:`
 // (definitions in gasp/association/association_quality.h) and the pose error. Writes a picture:
@@ -13,6 +15,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -22,9 +25,11 @@
 #include "gasp/association/association_quality.h"
 #include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
+#include "gasp/core/tum_trajectory.h"
 #include "gasp/core/tum_dataset.h"
 #include "gasp/pipeline/pair_registration.h"
 #include "gasp/pipeline/rolling_shutter_deskew.h"
+#include "gasp/rawlog/rawlog_reader.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"gasp-associate: patch-to-patch associations and the relative pose between two depth views, from geometry alone"};
@@ -33,10 +38,19 @@ int main(int argc, char** argv) {
   double depth_scale = gasp::kTumDepthUnitsPerMetre;
   gasp::PairParams params;
   auto* tum = app.add_option("--tum", tum_dir, "TUM RGB-D folder");
-  app.add_option("--from", from, "index of view A in depth.txt order")->needs(tum);
-  app.add_option("--to", to, "index of view B in depth.txt order")->needs(tum);
-  auto* da = app.add_option("--depth-a", depth_a_path, "view A: a 16-bit depth PNG")->excludes(tum);
-  auto* db = app.add_option("--depth-b", depth_b_path, "view B: a 16-bit depth PNG")->excludes(tum);
+  std::string rawlog_path, gt_path;
+  auto* rawlog = app.add_option("--rawlog", rawlog_path,
+                                "an MRPT rawlog: views A and B are its --from-th and --to-th CObservation3DRangeScan "
+                                "(counting from 0; other objects are skipped)")
+                     ->excludes(tum);
+  auto* from_opt = app.add_option("--from", from, "index of view A in depth.txt order (--rawlog: among its 3D range scans)");
+  auto* to_opt = app.add_option("--to", to, "index of view B in depth.txt order (--rawlog: among its 3D range scans)");
+  app.add_option("--gt", gt_path,
+                 "with --rawlog: a TUM trajectory of the camera (optical frame) poses, looked up at the scans' "
+                 "timestamps (nearest within 0.02 s), e.g. the OUT_groundtruth.txt gasp-tum2rawlog writes")
+      ->needs(rawlog);
+  auto* da = app.add_option("--depth-a", depth_a_path, "view A: a 16-bit depth PNG")->excludes(tum)->excludes(rawlog);
+  auto* db = app.add_option("--depth-b", depth_b_path, "view B: a 16-bit depth PNG")->excludes(tum)->excludes(rawlog);
   da->needs(db);
   db->needs(da);
   app.add_option("--depth-scale", depth_scale, "raw depth units per metre (with --depth-a/-b)")->capture_default_str();
@@ -78,6 +92,8 @@ int main(int argc, char** argv) {
       ->delimiter(',');
   try {
     app.parse(argc, argv);
+    if ((from_opt->count() > 0 || to_opt->count() > 0) && tum_dir.empty() && rawlog_path.empty())
+      throw CLI::ValidationError("--from and --to need --tum or --rawlog");
     if (!std::isfinite(deskew.readout_s)) throw CLI::ValidationError("--rolling-shutter must be a finite time in seconds");
     if (!model_error.empty()) {
       params.model_error = {model_error[0], model_error[1]};
@@ -90,16 +106,41 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;  // --help: 0; any usage error: 2
   }
-  if (tum_dir.empty() && depth_a_path.empty()) {
-    std::cerr << "error: give --tum DIR --from I --to J, or --depth-a A.png --depth-b B.png\n";
+  if (tum_dir.empty() && rawlog_path.empty() && depth_a_path.empty()) {
+    std::cerr << "error: give --tum DIR --from I --to J, --rawlog FILE --from I --to J, or --depth-a A.png --depth-b B.png\n";
     return 2;
   }
   params.association.match.theta_dev_rad = theta_dev_deg * M_PI / 180.0;
   try {
     cv::Mat depth_a, depth_b;
-    gasp::CameraIntrinsics K;
-    std::optional<gasp::Isometry3> T_b_a_true;
-    if (!tum_dir.empty()) {
+    gasp::CameraIntrinsics K, K_b;  // K_b: view B's when it differs (rawlogs)
+    bool own_intrinsics = false;
+    std::optional<gasp::Isometry3> T_b_a_true, T_robot_camera_a, T_robot_camera_b;
+    if (!rawlog_path.empty()) {
+      // The two scans, read in one pass (the rawlog may be long; only what is needed is kept).
+      gasp::RawlogReader reader(rawlog_path);
+      std::optional<gasp::RgbdFrame> fa, fb;
+      for (std::size_t k = 0; k <= std::max(from, to); ++k) {
+        auto f = reader.next();
+        if (!f)
+          throw gasp::Error(rawlog_path + ": has " + std::to_string(k) + " CObservation3DRangeScan, index " +
+                            std::to_string(std::max(from, to)) + " asked for (other objects: " +
+                            reader.skippedSummary() + ")");
+        if (k == from) fa = *f;
+        if (k == to) fb = std::move(*f);
+      }
+      depth_a = fa->depth_m, depth_b = fb->depth_m;
+      K = fa->depth_intrinsics, K_b = fb->depth_intrinsics;
+      own_intrinsics = true;
+      T_robot_camera_a = fa->T_robot_camera, T_robot_camera_b = fb->T_robot_camera;
+      if (!gt_path.empty()) {
+        const gasp::Trajectory gt = gasp::readTumTrajectory(gt_path);
+        const auto ia = gasp::findNearest(gt, fa->timestamp, 0.02), ib = gasp::findNearest(gt, fb->timestamp, 0.02);
+        if (ia && ib) T_b_a_true = gasp::relativePose(gt[*ib].T_world_camera, gt[*ia].T_world_camera);
+        else std::printf("ground_truth: none within 0.02 s of the scans' timestamps in %s\n", gt_path.c_str());
+      }
+      if (out_path.empty()) out_path = "associations_" + std::to_string(from) + "_" + std::to_string(to) + ".png";
+    } else if (!tum_dir.empty()) {
       gasp::TumDataset::Options opt;
       if (!intrinsics_arg.empty()) opt.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg);
       opt.undistort = !no_undistort;
@@ -135,7 +176,10 @@ int main(int argc, char** argv) {
       K = undistortion.pinhole();
       if (out_path.empty()) out_path = "associations.png";
     }
-    const auto [va, vb] = gasp::makeDepthViews(depth_a, depth_b, K, params.superpixels);
+    // Each view resampled to its pinhole camera where its intrinsics carry lens distortion.
+    const auto [va, vb] = own_intrinsics ? std::make_pair(gasp::makeDepthView(depth_a, K, params.superpixels),
+                                                          gasp::makeDepthView(depth_b, K_b, params.superpixels))
+                                         : gasp::makeDepthViews(depth_a, depth_b, K, params.superpixels);
     const auto r = gasp::registerViews(va, vb, params);
     // The views r's patch indices refer to: the finer-scale retry's when it found the estimate.
     const auto [pva, pvb] = gasp::viewsOf(r, va, vb);
@@ -190,6 +234,13 @@ int main(int argc, char** argv) {
     const Eigen::Quaterniond qt(T.linear());
     std::printf("pose_T_b_a: %.5f %.5f %.5f %.6f %.6f %.6f %.6f (tx ty tz qx qy qz qw)\n", T.translation().x(),
                 T.translation().y(), T.translation().z(), qt.x(), qt.y(), qt.z(), qt.w());
+    if (T_robot_camera_a && T_robot_camera_b) {
+      // The same pose between the scans' robot frames (their sensorPose honoured), as MRPT uses it.
+      const gasp::Isometry3 R = *T_robot_camera_b * T * T_robot_camera_a->inverse();
+      const Eigen::Quaterniond qr(R.linear());
+      std::printf("pose_robot_b_a: %.5f %.5f %.5f %.6f %.6f %.6f %.6f (tx ty tz qx qy qz qw; robot frame of A in B's)\n",
+                  R.translation().x(), R.translation().y(), R.translation().z(), qr.x(), qr.y(), qr.z(), qr.w());
+    }
     std::printf("residual_rms_m: %.4f\ninformation_diag: ", r.pose.rms_residual_m);
     for (int i = 0; i < 6; ++i) std::printf("%.4g%s", r.pose.information(i, i), i < 5 ? " " : " (tx ty tz rx ry rz)\n");
     {  // The standard deviations a pose graph gets (the edge information: with the model error).

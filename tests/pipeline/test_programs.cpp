@@ -70,6 +70,44 @@ TEST(GaspAssociateProgram, PoseAndPictureOnARealPair) {
   EXPECT_EQ(run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --model-error 0.01,-1").exit_code, 2);
 }
 
+// --rawlog: two scans of an MRPT rawlog (fr1_desk9 converted by gasp-tum2rawlog) give the same
+// pose as the TUM folder they came from, in camera and in robot frames, scored against the
+// converter's camera trajectory; bad indices, a missing file and misplaced options are errors.
+TEST(GaspAssociateProgram, TwoScansOfAnMrptRawlog) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const std::string scratch = gasp::test::scratchDir();
+  const std::string rawlog = scratch + "/d9.rawlog";
+  const ProgramRun convert = run("gasp-tum2rawlog", dir + " " + rawlog);
+  ASSERT_EQ(convert.exit_code, 0) << convert.output;
+  const ProgramRun r = run("gasp-associate", "--rawlog " + rawlog + " --from 0 --to 4 --gt " + scratch +
+                                                 "/d9_groundtruth.txt --out " + scratch + "/r.png");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const ProgramRun t = run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --out " + scratch + "/t.png");
+  ASSERT_EQ(t.exit_code, 0) << t.output;
+  std::smatch mr, mt;
+  ASSERT_TRUE(std::regex_search(r.output, mr, std::regex("pose_T_b_a: ([^(]+)"))) << r.output;
+  ASSERT_TRUE(std::regex_search(t.output, mt, std::regex("pose_T_b_a: ([^(]+)"))) << t.output;
+  EXPECT_EQ(mr[1].str(), mt[1].str());  // the conversion keeps depth and intrinsics exactly
+  ASSERT_TRUE(std::regex_search(r.output, mr, std::regex("pose_error: ([0-9.]+) m ([0-9.]+) deg"))) << r.output;
+  EXPECT_LT(std::stod(mr[1]), 0.05);
+  EXPECT_LT(std::stod(mr[2]), 3.0);
+  EXPECT_GE(number(r.output, "precision"), 0.0) << r.output;
+  // In robot frames (the converter mounts the camera looking along +X): the camera's z (forward)
+  // translation is the robot's x.
+  ASSERT_TRUE(std::regex_search(r.output, mr, std::regex("pose_robot_b_a: ([-0-9.]+) ([-0-9.]+) ([-0-9.]+) "))) << r.output;
+  ASSERT_TRUE(std::regex_search(t.output, mt, std::regex("pose_T_b_a: ([-0-9.]+) ([-0-9.]+) ([-0-9.]+) "))) << t.output;
+  EXPECT_EQ(mr[1].str(), mt[3].str());
+  EXPECT_TRUE(std::filesystem::exists(scratch + "/r.png"));
+
+  const ProgramRun far = run("gasp-associate", "--rawlog " + rawlog + " --from 0 --to 40");
+  EXPECT_EQ(far.exit_code, 1);
+  EXPECT_NE(far.output.find("has 9 CObservation3DRangeScan"), std::string::npos) << far.output;
+  EXPECT_EQ(run("gasp-associate", "--rawlog " + scratch + "/missing.rawlog --from 0 --to 4").exit_code, 1);
+  EXPECT_EQ(run("gasp-associate", "--from 0 --to 4").exit_code, 2);  // no source of views
+  EXPECT_EQ(run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --gt x.txt").exit_code, 2);  // --gt needs --rawlog
+  EXPECT_EQ(run("gasp-associate", "--tum " + dir + " --rawlog " + rawlog + " --from 0 --to 4").exit_code, 2);
+}
+
 // --rolling-shutter: both views deskewed with their neighbours' velocity, said on two lines;
 // the pose moves. The first frame has a neighbour on one side only; PNGs have none (usage error).
 TEST(GaspAssociateProgram, RollingShutterDeskewsBothViews) {
