@@ -1,0 +1,138 @@
+#include "gasp/rawlog/rawlog_to_tum.h"
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <set>
+
+#include "gasp/core/depth_image.h"
+#include "gasp/core/error.h"
+#include "gasp/core/tum_trajectory.h"
+#include "gasp/rawlog/rawlog_reader.h"
+
+namespace fs = std::filesystem;
+
+namespace gasp {
+
+namespace {
+
+bool sameCamera(const CameraIntrinsics& a, const CameraIntrinsics& b) {
+  return a.width == b.width && a.height == b.height && a.fx == b.fx && a.fy == b.fy && a.cx == b.cx &&
+         a.cy == b.cy && a.distortion == b.distortion;
+}
+
+/// "1305031452.791720" (TUM's six decimals).
+std::string stamp(double t) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.6f", t);
+  return b;
+}
+
+void makeDir(const fs::path& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw Error("cannot create folder '" + dir.string() + "'" + (ec ? ": " + ec.message() : std::string()));
+}
+
+void writeImage(const fs::path& path, const cv::Mat& image) {
+  bool ok = false;
+  try {
+    ok = cv::imwrite(path.string(), image);
+  } catch (const cv::Exception& e) {
+    throw Error("cannot write '" + path.string() + "': " + e.what());
+  }
+  if (!ok) throw Error("cannot write '" + path.string() + "'");
+}
+
+}  // namespace
+
+RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std::string& out_dir,
+                                      const RawlogToTumOptions& options) {
+  const fs::path root(out_dir);
+  if (fs::exists(root / "depth.txt")) throw Error("'" + out_dir + "' already holds a TUM folder (depth.txt)");
+  // The trajectory first: a bad file fails before anything is written.
+  Trajectory ground_truth;
+  if (!options.ground_truth_path.empty()) ground_truth = readTumTrajectory(options.ground_truth_path);
+
+  RawlogReader reader(rawlog_path);
+  RawlogToTumSummary s;
+  std::set<std::string> labels;
+  std::set<std::string> stamps;
+  std::ofstream depth_txt, rgb_txt;
+  constexpr double kMaxUnits = std::numeric_limits<std::uint16_t>::max();  // depthToRaw() writes 0 beyond
+  while (auto f = reader.next()) {
+    if (!options.sensor_label.empty() && f->sensor_label != options.sensor_label) {
+      ++s.frames_other_sensor;
+      continue;
+    }
+    labels.insert(f->sensor_label);
+    if (labels.size() > 1)
+      throw Error(rawlog_path + ": 3D range scans of several sensors ('" + *labels.begin() + "', '" +
+                  *labels.rbegin() + "'): choose one (sensor label)");
+    if (s.frames_written == 0) {
+      s.sensor_label = f->sensor_label;
+      s.intrinsics = f->depth_intrinsics;
+      makeDir(root / "depth");
+      s.intrinsics.save((root / "intrinsics.txt").string());
+      depth_txt.open(root / "depth.txt");
+      if (!depth_txt) throw Error("cannot write '" + (root / "depth.txt").string() + "'");
+      depth_txt << "# depth maps\n# converted from " << rawlog_path << " by gasp-rawlog2tum\n# timestamp filename\n";
+    } else if (!sameCamera(f->depth_intrinsics, s.intrinsics)) {
+      throw Error(rawlog_path + ": scan " + std::to_string(reader.scansRead() - 1) +
+                  " has other depth intrinsics than the first: a TUM folder holds one camera");
+    }
+    const std::string t = stamp(f->timestamp);
+    if (!stamps.insert(t).second) throw Error(rawlog_path + ": two scans at timestamp " + t);
+    for (int r = 0; r < f->depth_m.rows; ++r)
+      for (int c = 0; c < f->depth_m.cols; ++c) {
+        const float z = f->depth_m.at<float>(r, c);
+        s.pixels_beyond_range += isValidDepth(z) && std::round(z * kTumDepthUnitsPerMetre) > kMaxUnits;
+      }
+    writeImage(root / "depth" / (t + ".png"), depthToRaw(f->depth_m, kTumDepthUnitsPerMetre));
+    depth_txt << t << " depth/" << t << ".png\n";
+    if (options.with_rgb && !f->rgb.empty()) {
+      const bool registered =
+          sameCamera(f->rgb_intrinsics, f->depth_intrinsics) && f->T_depth_rgb.isApprox(Isometry3::Identity(), 1e-12);
+      if (!registered) {
+        ++s.rgb_not_registered;
+      } else {
+        if (s.frames_with_rgb == 0) {
+          makeDir(root / "rgb");
+          rgb_txt.open(root / "rgb.txt");
+          if (!rgb_txt) throw Error("cannot write '" + (root / "rgb.txt").string() + "'");
+          rgb_txt << "# color images\n# converted from " << rawlog_path << " by gasp-rawlog2tum\n# timestamp filename\n";
+        }
+        writeImage(root / "rgb" / (t + ".png"), f->rgb);
+        rgb_txt << t << " rgb/" << t << ".png\n";
+        ++s.frames_with_rgb;
+      }
+    }
+    ++s.frames_written;
+    if (options.max_frames > 0 && s.frames_written >= options.max_frames) break;
+  }
+  if (s.frames_written == 0)
+    throw Error(rawlog_path + ": no CObservation3DRangeScan" +
+                (options.sensor_label.empty() ? std::string() : " with sensor label '" + options.sensor_label + "'") +
+                " (other objects: " + reader.skippedSummary() + ")");
+  depth_txt.close();
+  if (!depth_txt) throw Error("error while writing '" + (root / "depth.txt").string() + "'");
+  if (rgb_txt.is_open()) {
+    rgb_txt.close();
+    if (!rgb_txt) throw Error("error while writing '" + (root / "rgb.txt").string() + "'");
+  }
+  if (!options.ground_truth_path.empty()) {
+    writeTumTrajectory((root / "groundtruth.txt").string(), ground_truth,
+                       "# ground truth trajectory (camera poses), copied from " + options.ground_truth_path);
+    s.ground_truth = true;
+  }
+  s.other_objects = reader.skipped();
+  return s;
+}
+
+}  // namespace gasp

@@ -1,0 +1,121 @@
+// gasp-rawlog2tum's library: a TUM folder through a rawlog and back keeps depth, colour, timestamps,
+// intrinsics and ground truth exactly; what TUM cannot hold is left out and counted; bad input
+// is an error that says what is wrong.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "gasp/core/error.h"
+#include "gasp/core/tum_dataset.h"
+#include "gasp/core/tum_trajectory.h"
+#include "gasp/rawlog/rawlog_to_tum.h"
+#include "gasp/rawlog/tum_to_rawlog.h"
+#include "gasp_test_data.h"
+#include "program_run.h"
+#include "rawlog_test_frames.h"
+
+namespace fs = std::filesystem;
+
+TEST(RawlogToTum, ATumFolderThroughARawlogAndBackIsUnchanged) {
+  GASP_REQUIRE_DATA(tum, "tum/fr1_desk9");
+  const std::string dir = gasp::test::scratchDir();
+  // As stored (no undistortion), so that the round trip can be compared pixel for pixel.
+  gasp::TumDataset::Options as_stored;
+  as_stored.undistort = false;
+  const auto ds = gasp::TumDataset::open(tum, as_stored);
+  gasp::TumToRawlogOptions to;
+  to.undistort = false;
+  const auto there = gasp::convertTumToRawlog(tum, dir + "/d9.rawlog", to);
+  gasp::RawlogToTumOptions back;
+  back.ground_truth_path = there.ground_truth_path;
+  const auto s = gasp::convertRawlogToTum(dir + "/d9.rawlog", dir + "/d9", back);
+  EXPECT_EQ(s.frames_written, 9u);
+  EXPECT_EQ(s.frames_with_rgb, 9u);
+  EXPECT_EQ(s.rgb_not_registered, 0u);
+  EXPECT_EQ(s.pixels_beyond_range, 0u);
+  EXPECT_EQ(s.sensor_label, "RGBD");
+  EXPECT_TRUE(s.ground_truth);
+
+  const auto out = gasp::TumDataset::open(dir + "/d9", as_stored);
+  ASSERT_EQ(out.size(), ds.size());
+  EXPECT_EQ(out.intrinsics(), ds.intrinsics());  // fr1's lens coefficients included
+  for (std::size_t i = 0; i < ds.size(); ++i) {
+    EXPECT_NEAR(out.frame(i).timestamp, ds.frame(i).timestamp, 1e-6) << i;
+    EXPECT_TRUE(gasp::test::sameMat(out.loadDepthRaw(i), ds.loadDepthRaw(i))) << "depth " << i;
+    EXPECT_TRUE(gasp::test::sameMat(out.loadRgb(i), ds.loadRgb(i))) << "rgb " << i;
+    ASSERT_TRUE(out.frame(i).T_world_camera.has_value()) << i;
+    EXPECT_TRUE(out.frame(i).T_world_camera->isApprox(*ds.frame(i).T_world_camera, 1e-7)) << i;
+  }
+  // A second conversion into the same folder would mix two sequences: refused.
+  EXPECT_THROW(gasp::convertRawlogToTum(dir + "/d9.rawlog", dir + "/d9", back), gasp::Error);
+}
+
+TEST(RawlogToTum, ColourNotRegisteredToTheDepthIsLeftOutAndCounted) {
+  // MRPT's own sample: depth and intensity cameras with different intrinsics, depth in mm.
+  const std::string path = "/usr/share/mrpt/datasets/tests_rgbd.rawlog";
+  if (!fs::exists(path)) GTEST_SKIP() << path << " not found (package mrpt-common)";
+  const std::string dir = gasp::test::scratchDir() + "/sample";
+  const auto s = gasp::convertRawlogToTum(path, dir);
+  EXPECT_EQ(s.frames_written, 1u);
+  EXPECT_EQ(s.frames_with_rgb, 0u);
+  EXPECT_EQ(s.rgb_not_registered, 1u);
+  EXPECT_EQ(s.sensor_label, "OPENNI2");
+  EXPECT_FALSE(fs::exists(dir + "/rgb.txt"));
+  const auto out = gasp::TumDataset::open(dir);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_FALSE(out.frame(0).rgb_path.has_value());
+  EXPECT_GT(out.loadDepth(0).cols, 0);
+}
+
+TEST(RawlogToTum, BadInputIsAnErrorThatSaysWhat) {
+  GASP_REQUIRE_DATA(tum, "tum/fr1_desk9");
+  const std::string dir = gasp::test::scratchDir();
+  gasp::TumToRawlogOptions to;
+  to.max_frames = 2;
+  const auto there = gasp::convertTumToRawlog(tum, dir + "/two.rawlog", to);
+  auto message = [](auto&& f) {
+    try {
+      f();
+    } catch (const gasp::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message([&] { gasp::convertRawlogToTum(dir + "/missing.rawlog", dir + "/a"); }).find("missing.rawlog"),
+            std::string::npos);
+  gasp::RawlogToTumOptions other;
+  other.sensor_label = "LIDAR";
+  EXPECT_NE(message([&] { gasp::convertRawlogToTum(dir + "/two.rawlog", dir + "/b", other); })
+                .find("no CObservation3DRangeScan with sensor label 'LIDAR'"),
+            std::string::npos);
+  // A bad trajectory fails before anything is written.
+  std::ofstream(dir + "/bad_gt.txt") << "1305031453.374112 1 2 3\n";
+  gasp::RawlogToTumOptions bad_gt;
+  bad_gt.ground_truth_path = dir + "/bad_gt.txt";
+  EXPECT_NE(message([&] { gasp::convertRawlogToTum(dir + "/two.rawlog", dir + "/c", bad_gt); }).find("bad_gt.txt"),
+            std::string::npos);
+  EXPECT_FALSE(fs::exists(dir + "/c/depth.txt"));
+  // max_frames.
+  gasp::RawlogToTumOptions one;
+  one.max_frames = 1;
+  EXPECT_EQ(gasp::convertRawlogToTum(dir + "/two.rawlog", dir + "/d", one).frames_written, 1u);
+}
+
+TEST(RawlogToTum, TheProgramSaysWhatItWroteAndExitsWithTheRightCode) {
+  GASP_REQUIRE_DATA(tum, "tum/fr1_desk9");
+  const std::string dir = gasp::test::scratchDir();
+  ASSERT_EQ(gasp::test::runProgram("gasp-tum2rawlog", tum + " " + dir + "/d9.rawlog --max-frames 3").exit_code, 0);
+  const auto ok = gasp::test::runProgram("gasp-rawlog2tum", dir + "/d9.rawlog " + dir + "/out --gt " + dir +
+                                                                "/d9_groundtruth.txt");
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_NE(ok.output.find("frames written:      3 (sensor 'RGBD')"), std::string::npos) << ok.output;
+  EXPECT_NE(ok.output.find("ground truth:        groundtruth.txt"), std::string::npos) << ok.output;
+  EXPECT_TRUE(fs::exists(dir + "/out/intrinsics.txt"));
+  const auto again = gasp::test::runProgram("gasp-rawlog2tum", dir + "/d9.rawlog " + dir + "/out");
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_NE(again.output.find("already holds a TUM folder"), std::string::npos) << again.output;
+  EXPECT_EQ(gasp::test::runProgram("gasp-rawlog2tum", dir + "/missing.rawlog " + dir + "/x").exit_code, 1);
+  EXPECT_NE(gasp::test::runProgram("gasp-rawlog2tum", "").exit_code, 0);  // usage
+}
