@@ -53,13 +53,13 @@ int main(int argc, char** argv) {
   auto* db = app.add_option("--depth-b", depth_b_path, "view B: a 16-bit depth PNG")->excludes(tum)->excludes(rawlog);
   da->needs(db);
   db->needs(da);
-  app.add_option("--depth-scale", depth_scale, "raw depth units per metre (with --depth-a/-b)")->capture_default_str();
+  app.add_option("--depth-scale", depth_scale, "raw depth units per metre (with --depth-a/-b)")->capture_default_str()->excludes(rawlog);
   double gt_offset = 0.0;
   app.add_option("--gt-offset", gt_offset,
-                 "with --tum: look ground truth up at depth timestamp + OFFSET [s] (as gasp-pairs)")->capture_default_str();
+                 "with --tum: look ground truth up at depth timestamp + OFFSET [s] (as gasp-pairs)")->capture_default_str()->excludes(rawlog);
   bool no_undistort = false;
-  app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored");
-  app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: the folder's; ros for PNGs)");
+  app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored")->excludes(rawlog);
+  app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: the folder's; ros for PNGs)")->excludes(rawlog);
   app.add_option("--out", out_path, "association picture (default: associations_I_J.png, or associations.png for PNGs)");
   app.add_option("--k", params.association.feature_sets.neighbourhood.k, "neighbourhood size (0 = full view)")->capture_default_str();
   app.add_option("--candidates", params.association.candidates, "KD-tree candidates per patch (C)")->capture_default_str();
@@ -94,6 +94,8 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
     if ((from_opt->count() > 0 || to_opt->count() > 0) && tum_dir.empty() && rawlog_path.empty())
       throw CLI::ValidationError("--from and --to need --tum or --rawlog");
+    if ((!tum_dir.empty() || !rawlog_path.empty()) && (from_opt->count() == 0 || to_opt->count() == 0))
+      throw CLI::ValidationError("--tum and --rawlog need --from I and --to J");
     if (!std::isfinite(deskew.readout_s)) throw CLI::ValidationError("--rolling-shutter must be a finite time in seconds");
     if (!model_error.empty()) {
       params.model_error = {model_error[0], model_error[1]};
@@ -235,10 +237,12 @@ int main(int argc, char** argv) {
     std::printf("pose_T_b_a: %.5f %.5f %.5f %.6f %.6f %.6f %.6f (tx ty tz qx qy qz qw)\n", T.translation().x(),
                 T.translation().y(), T.translation().z(), qt.x(), qt.y(), qt.z(), qt.w());
     if (T_robot_camera_a && T_robot_camera_b) {
-      // The same pose between the scans' robot frames (their sensorPose honoured), as MRPT uses it.
+      // The same pose between the scans' robot frames (their sensorPose honoured). MRPT's edge
+      // A -> B (and CICP's result) is its inverse, the pose of B's robot frame in A's.
       const gasp::Isometry3 R = *T_robot_camera_b * T * T_robot_camera_a->inverse();
       const Eigen::Quaterniond qr(R.linear());
-      std::printf("pose_robot_b_a: %.5f %.5f %.5f %.6f %.6f %.6f %.6f (tx ty tz qx qy qz qw; robot frame of A in B's)\n",
+      std::printf("pose_robot_b_a: %.5f %.5f %.5f %.6f %.6f %.6f %.6f (tx ty tz qx qy qz qw; robot frame of A in B's; "
+                  "MRPT's edge A -> B is its inverse)\n",
                   R.translation().x(), R.translation().y(), R.translation().z(), qr.x(), qr.y(), qr.z(), qr.w());
     }
     std::printf("residual_rms_m: %.4f\ninformation_diag: ", r.pose.rms_residual_m);

@@ -34,6 +34,9 @@ int main(int argc, char** argv) {
       std::cout << "  rgb left out:      " << s.rgb_not_registered
                 << " (not registered to the depth: other intrinsics or an offset; TUM assumes registered rgb)\n";
     if (s.frames_other_sensor > 0) std::cout << "other sensors:       " << s.frames_other_sensor << " scans skipped\n";
+    if (s.sensor_pose_dropped > 0)
+      std::cout << "robot frame:         " << s.sensor_pose_dropped
+                << " scans with a sensorPose not kept (a TUM folder holds camera poses only)\n";
     if (s.pixels_beyond_range > 0)
       std::cout << "beyond 13.107 m:     " << s.pixels_beyond_range << " depth pixels written as 0 (no data)\n";
     std::cout << "intrinsics:          fx " << K.fx << " fy " << K.fy << " cx " << K.cx << " cy " << K.cy << " ("

@@ -106,6 +106,8 @@ TEST(GaspAssociateProgram, TwoScansOfAnMrptRawlog) {
   EXPECT_EQ(run("gasp-associate", "--from 0 --to 4").exit_code, 2);  // no source of views
   EXPECT_EQ(run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --gt x.txt").exit_code, 2);  // --gt needs --rawlog
   EXPECT_EQ(run("gasp-associate", "--tum " + dir + " --rawlog " + rawlog + " --from 0 --to 4").exit_code, 2);
+  EXPECT_EQ(run("gasp-associate", "--rawlog " + rawlog + " --to 4").exit_code, 2);  // both indices needed
+  EXPECT_EQ(run("gasp-associate", "--rawlog " + rawlog + " --from 0 --to 4 --intrinsics fr1").exit_code, 2);  // the scans carry theirs
 }
 
 // --rolling-shutter: both views deskewed with their neighbours' velocity, said on two lines;

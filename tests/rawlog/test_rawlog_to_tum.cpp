@@ -6,11 +6,13 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "gasp/core/error.h"
 #include "gasp/core/tum_dataset.h"
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/rawlog/rawlog_to_tum.h"
+#include "gasp/rawlog/rawlog_writer.h"
 #include "gasp/rawlog/tum_to_rawlog.h"
 #include "gasp_test_data.h"
 #include "program_run.h"
@@ -40,7 +42,10 @@ TEST(RawlogToTum, ATumFolderThroughARawlogAndBackIsUnchanged) {
 
   const auto out = gasp::TumDataset::open(dir + "/d9", as_stored);
   ASSERT_EQ(out.size(), ds.size());
-  EXPECT_EQ(out.intrinsics(), ds.intrinsics());  // fr1's lens coefficients included
+  // The pinhole part; gasp-tum2rawlog --no-undistort drops the lens coefficients (docs/rawlog.md
+  // "Distortion"), so the coefficients' way through is tested on MRPT's sample below.
+  EXPECT_EQ(out.intrinsics(), ds.intrinsics());
+  EXPECT_EQ(s.sensor_pose_dropped, 0u);  // gasp-tum2rawlog's scans have the identity sensorPose
   for (std::size_t i = 0; i < ds.size(); ++i) {
     EXPECT_NEAR(out.frame(i).timestamp, ds.frame(i).timestamp, 1e-6) << i;
     EXPECT_TRUE(gasp::test::sameMat(out.loadDepthRaw(i), ds.loadDepthRaw(i))) << "depth " << i;
@@ -67,6 +72,49 @@ TEST(RawlogToTum, ColourNotRegisteredToTheDepthIsLeftOutAndCounted) {
   ASSERT_EQ(out.size(), 1u);
   EXPECT_FALSE(out.frame(0).rgb_path.has_value());
   EXPECT_GT(out.loadDepth(0).cols, 0);
+  // The depth camera's lens coefficients reach intrinsics.txt, and the folder is undistorted on loading.
+  EXPECT_EQ(out.calibratedIntrinsics(), s.intrinsics);
+  EXPECT_NE(out.calibratedIntrinsics().distortion[0], 0.0);
+  EXPECT_EQ(out.intrinsics().distortion[0], 0.0);
+}
+
+TEST(RawlogToTum, SeveralSensorsOrTwoScansAtOneTimeLeaveNoHalfWrittenFolder) {
+  const std::string dir = gasp::test::scratchDir();
+  auto write = [&](const std::string& path, const std::vector<gasp::RgbdFrame>& frames) {
+    gasp::RawlogWriter w(path);
+    for (const auto& f : frames) w.write(f);
+    w.close();
+  };
+  auto a = gasp::test::syntheticFrame(1.0), b = gasp::test::syntheticFrame(2.0), c = gasp::test::syntheticFrame(2.0);
+  b.sensor_label = "OTHER";
+  write(dir + "/two_sensors.rawlog", {a, gasp::test::syntheticFrame(1.5), b});
+  write(dir + "/same_time.rawlog", {a, gasp::test::syntheticFrame(2.0), c});
+  try {
+    gasp::convertRawlogToTum(dir + "/two_sensors.rawlog", dir + "/x");
+    ADD_FAILURE() << "two sensors accepted";
+  } catch (const gasp::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("several sensors"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir + "/x"));  // the two frames written before were removed again
+  try {
+    gasp::convertRawlogToTum(dir + "/same_time.rawlog", dir + "/y");
+    ADD_FAILURE() << "two scans at one timestamp accepted";
+  } catch (const gasp::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("two scans at timestamp 2.000000"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir + "/y"));
+  // One sensor chosen: converted; the synthetic scans' robot frame is not the camera's, and said.
+  gasp::RawlogToTumOptions one;
+  one.sensor_label = a.sensor_label;
+  const auto s = gasp::convertRawlogToTum(dir + "/two_sensors.rawlog", dir + "/z", one);
+  EXPECT_EQ(s.frames_written, 2u);
+  EXPECT_EQ(s.frames_other_sensor, 1u);
+  EXPECT_EQ(s.sensor_pose_dropped, 2u);
+  EXPECT_EQ(s.rgb_not_registered, 2u);  // the synthetic colour camera has its own fx
+  // A folder that already holds part of a TUM folder is refused.
+  fs::create_directories(dir + "/w");
+  std::ofstream(dir + "/w/groundtruth.txt") << "# stale\n";
+  EXPECT_THROW(gasp::convertRawlogToTum(dir + "/two_sensors.rawlog", dir + "/w", one), gasp::Error);
 }
 
 TEST(RawlogToTum, BadInputIsAnErrorThatSaysWhat) {

@@ -9,10 +9,12 @@
 #include <fstream>
 #include <limits>
 #include <set>
+#include <vector>
 
 #include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
 #include "gasp/core/tum_trajectory.h"
+#include "gasp/rawlog/frame_convention.h"
 #include "gasp/rawlog/rawlog_reader.h"
 
 namespace fs = std::filesystem;
@@ -50,17 +52,41 @@ void writeImage(const fs::path& path, const cv::Mat& image) {
   if (!ok) throw Error("cannot write '" + path.string() + "'");
 }
 
+/// What one conversion created, removed again when it fails (no half-written folder is left).
+class CreatedPaths {
+ public:
+  void dir(const fs::path& p) {
+    if (!fs::exists(p)) {
+      makeDir(p);
+      paths_.push_back(p);
+    }
+  }
+  void file(const fs::path& p) { paths_.push_back(p); }
+  void keep() { paths_.clear(); }
+  ~CreatedPaths() {
+    std::error_code ec;
+    for (auto it = paths_.rbegin(); it != paths_.rend(); ++it) fs::remove(*it, ec);  // dirs are empty by then
+  }
+
+ private:
+  std::vector<fs::path> paths_;
+};
+
 }  // namespace
 
 RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std::string& out_dir,
                                       const RawlogToTumOptions& options) {
   const fs::path root(out_dir);
-  if (fs::exists(root / "depth.txt")) throw Error("'" + out_dir + "' already holds a TUM folder (depth.txt)");
+  for (const char* name : {"depth.txt", "rgb.txt", "groundtruth.txt", "intrinsics.txt"})
+    if (fs::exists(root / name))
+      throw Error("'" + out_dir + "' already holds a TUM folder (" + name + "): write into a new folder");
   // The trajectory first: a bad file fails before anything is written.
   Trajectory ground_truth;
   if (!options.ground_truth_path.empty()) ground_truth = readTumTrajectory(options.ground_truth_path);
 
   RawlogReader reader(rawlog_path);
+  CreatedPaths created;
+  created.dir(root);
   RawlogToTumSummary s;
   std::set<std::string> labels;
   std::set<std::string> stamps;
@@ -78,8 +104,10 @@ RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std:
     if (s.frames_written == 0) {
       s.sensor_label = f->sensor_label;
       s.intrinsics = f->depth_intrinsics;
-      makeDir(root / "depth");
+      created.dir(root / "depth");
+      created.file(root / "intrinsics.txt");
       s.intrinsics.save((root / "intrinsics.txt").string());
+      created.file(root / "depth.txt");
       depth_txt.open(root / "depth.txt");
       if (!depth_txt) throw Error("cannot write '" + (root / "depth.txt").string() + "'");
       depth_txt << "# depth maps\n# converted from " << rawlog_path << " by gasp-rawlog2tum\n# timestamp filename\n";
@@ -94,6 +122,8 @@ RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std:
         const float z = f->depth_m.at<float>(r, c);
         s.pixels_beyond_range += isValidDepth(z) && std::round(z * kTumDepthUnitsPerMetre) > kMaxUnits;
       }
+    s.sensor_pose_dropped += !f->T_robot_camera.isApprox(mrptCameraFromOptical(), 1e-12);
+    created.file(root / "depth" / (t + ".png"));
     writeImage(root / "depth" / (t + ".png"), depthToRaw(f->depth_m, kTumDepthUnitsPerMetre));
     depth_txt << t << " depth/" << t << ".png\n";
     if (options.with_rgb && !f->rgb.empty()) {
@@ -103,11 +133,13 @@ RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std:
         ++s.rgb_not_registered;
       } else {
         if (s.frames_with_rgb == 0) {
-          makeDir(root / "rgb");
+          created.dir(root / "rgb");
+          created.file(root / "rgb.txt");
           rgb_txt.open(root / "rgb.txt");
           if (!rgb_txt) throw Error("cannot write '" + (root / "rgb.txt").string() + "'");
           rgb_txt << "# color images\n# converted from " << rawlog_path << " by gasp-rawlog2tum\n# timestamp filename\n";
         }
+        created.file(root / "rgb" / (t + ".png"));
         writeImage(root / "rgb" / (t + ".png"), f->rgb);
         rgb_txt << t << " rgb/" << t << ".png\n";
         ++s.frames_with_rgb;
@@ -127,11 +159,13 @@ RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std:
     if (!rgb_txt) throw Error("error while writing '" + (root / "rgb.txt").string() + "'");
   }
   if (!options.ground_truth_path.empty()) {
+    created.file(root / "groundtruth.txt");
     writeTumTrajectory((root / "groundtruth.txt").string(), ground_truth,
-                       "# ground truth trajectory (camera poses), copied from " + options.ground_truth_path);
+                       "ground truth trajectory (camera poses), copied from " + options.ground_truth_path);
     s.ground_truth = true;
   }
   s.other_objects = reader.skipped();
+  created.keep();
   return s;
 }
 

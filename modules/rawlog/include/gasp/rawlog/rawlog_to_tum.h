@@ -9,7 +9,8 @@
 /// T_depth_rgb = identity, as TUM assumes), and groundtruth.txt copied from a given camera
 /// trajectory. What TUM cannot hold is dropped and counted: the robot frame (sensorPose; the poses
 /// are the camera's), colour images that are not registered to the depth, depth beyond 13.107 m
-/// (uint16 at 5000 units per metre).
+/// (uint16 at 5000 units per metre). The colour image is taken as colour whatever the scan's
+/// intensityImageChannel says.
 #include <cstddef>
 #include <map>
 #include <string>
@@ -35,13 +36,17 @@ struct RawlogToTumSummary {
   std::size_t rgb_not_registered = 0;      ///< colour images left out: not registered to the depth
   std::size_t frames_other_sensor = 0;     ///< scans of another sensorLabel, skipped
   std::size_t pixels_beyond_range = 0;     ///< depth pixels beyond 13.107 m, written as 0 (no data)
+  /// Scans whose sensorPose is not the identity: their robot frame is not kept (the folder's
+  /// poses are the camera's).
+  std::size_t sensor_pose_dropped = 0;
   std::map<std::string, std::size_t> other_objects;  ///< other rawlog objects, skipped
   std::string sensor_label;
   CameraIntrinsics intrinsics;             ///< the depth camera's, written to intrinsics.txt
   bool ground_truth = false;               ///< groundtruth.txt written
 };
 
-/// Writes the folder (created if missing; it must not already hold a depth.txt). Throws
+/// Writes the folder (created if missing; it must not already hold a depth.txt, rgb.txt,
+/// groundtruth.txt or intrinsics.txt). On failure what this call wrote is removed again. Throws
 /// gasp::Error: unreadable rawlog, no 3D range scan (of the label), several labels without
 /// sensor_label, depth cameras that change within the sensor, two scans with the same timestamp,
 /// an unreadable trajectory, an unwritable folder.
