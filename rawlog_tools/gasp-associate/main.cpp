@@ -1,7 +1,7 @@
 // gasp-associate: patch associations and the relative pose between two depth views.
 //   gasp-associate --tum DIR --from I --to J [--out PICTURE.png] [options]
 //   gasp-associate --depth-a A.png --depth-b B.png [--intrinsics fr1|fr2|fr3|ros|FILE] [--depth-scale 5000]
-//   gasp-associate --rawlog FILE.rawlog --from I --to J [--gt CAMERA_TRAJECTORY.txt] [options]
+//   gasp-associate --rawlog FILE.rawlog --from I --to J [--sensor LABEL] [--gt CAMERA_TRAJECTORY.txt] [options]
 // I and J are frame indices in depth.txt order, or (--rawlog) the I-th and J-th
 // CObservation3DRangeScan of the rawlog, counting from 0. Prints the patch count of each view, the number
 // of associations, time per stage, the pose T_b_a (maps A's camera frame into B's) with its
@@ -45,6 +45,8 @@ int main(int argc, char** argv) {
                      ->excludes(tum);
   auto* from_opt = app.add_option("--from", from, "index of view A in depth.txt order (--rawlog: among its 3D range scans)");
   auto* to_opt = app.add_option("--to", to, "index of view B in depth.txt order (--rawlog: among its 3D range scans)");
+  std::string sensor_label;
+  app.add_option("--sensor", sensor_label, "with --rawlog: count only the scans with this sensorLabel")->needs(rawlog);
   app.add_option("--gt", gt_path,
                  "with --rawlog: a TUM trajectory of the camera (optical frame) poses, looked up at the scans' "
                  "timestamps (nearest within 0.02 s), e.g. the OUT_groundtruth.txt gasp-tum2rawlog writes")
@@ -122,14 +124,17 @@ int main(int argc, char** argv) {
       // The two scans, read in one pass (the rawlog may be long; only what is needed is kept).
       gasp::RawlogReader reader(rawlog_path);
       std::optional<gasp::RgbdFrame> fa, fb;
-      for (std::size_t k = 0; k <= std::max(from, to); ++k) {
+      for (std::size_t k = 0; k <= std::max(from, to);) {
         auto f = reader.next();
         if (!f)
-          throw gasp::Error(rawlog_path + ": has " + std::to_string(k) + " CObservation3DRangeScan, index " +
-                            std::to_string(std::max(from, to)) + " asked for (other objects: " +
+          throw gasp::Error(rawlog_path + ": has " + std::to_string(k) + " CObservation3DRangeScan" +
+                            (sensor_label.empty() ? std::string() : " of sensor '" + sensor_label + "'") +
+                            ", index " + std::to_string(std::max(from, to)) + " asked for (other objects: " +
                             reader.skippedSummary() + ")");
+        if (!sensor_label.empty() && f->sensor_label != sensor_label) continue;
         if (k == from) fa = *f;
         if (k == to) fb = std::move(*f);
+        ++k;
       }
       depth_a = fa->depth_m, depth_b = fb->depth_m;
       K = fa->depth_intrinsics, K_b = fb->depth_intrinsics;

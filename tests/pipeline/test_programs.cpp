@@ -107,6 +107,15 @@ TEST(GaspAssociateProgram, TwoScansOfAnMrptRawlog) {
   EXPECT_EQ(run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --gt x.txt").exit_code, 2);  // --gt needs --rawlog
   EXPECT_EQ(run("gasp-associate", "--tum " + dir + " --rawlog " + rawlog + " --from 0 --to 4").exit_code, 2);
   EXPECT_EQ(run("gasp-associate", "--rawlog " + rawlog + " --to 4").exit_code, 2);  // both indices needed
+  // --sensor counts only that sensor's scans: gasp-tum2rawlog labels them RGBD.
+  const ProgramRun labelled = run("gasp-associate", "--rawlog " + rawlog + " --sensor RGBD --from 0 --to 4 --out " + scratch + "/s.png");
+  ASSERT_EQ(labelled.exit_code, 0) << labelled.output;
+  ASSERT_TRUE(std::regex_search(labelled.output, mr, std::regex("pose_T_b_a: ([^(]+)"))) << labelled.output;
+  ASSERT_TRUE(std::regex_search(t.output, mt, std::regex("pose_T_b_a: ([^(]+)"))) << t.output;
+  EXPECT_EQ(mr[1].str(), mt[1].str());
+  const ProgramRun other = run("gasp-associate", "--rawlog " + rawlog + " --sensor KINECT2 --from 0 --to 4");
+  EXPECT_EQ(other.exit_code, 1);
+  EXPECT_NE(other.output.find("has 0 CObservation3DRangeScan of sensor 'KINECT2'"), std::string::npos) << other.output;
   EXPECT_EQ(run("gasp-associate", "--rawlog " + rawlog + " --from 0 --to 4 --intrinsics fr1").exit_code, 2);  // the scans carry theirs
 }
 
