@@ -117,8 +117,8 @@ int main(int argc, char** argv) {
   params.association.match.theta_dev_rad = theta_dev_deg * M_PI / 180.0;
   try {
     cv::Mat depth_a, depth_b;
-    gasp::CameraIntrinsics K, K_b;  // K_b: view B's when it differs (rawlogs)
-    bool own_intrinsics = false;
+    gasp::CameraIntrinsics K;
+    std::optional<gasp::CameraIntrinsics> K_b;  // view B's own (rawlog scans carry theirs)
     std::optional<gasp::Isometry3> T_b_a_true, T_robot_camera_a, T_robot_camera_b;
     if (!rawlog_path.empty()) {
       // The two scans, read in one pass (the rawlog may be long; only what is needed is kept).
@@ -138,7 +138,6 @@ int main(int argc, char** argv) {
       }
       depth_a = fa->depth_m, depth_b = fb->depth_m;
       K = fa->depth_intrinsics, K_b = fb->depth_intrinsics;
-      own_intrinsics = true;
       T_robot_camera_a = fa->T_robot_camera, T_robot_camera_b = fb->T_robot_camera;
       if (!gt_path.empty()) {
         const gasp::Trajectory gt = gasp::readTumTrajectory(gt_path);
@@ -184,9 +183,9 @@ int main(int argc, char** argv) {
       if (out_path.empty()) out_path = "associations.png";
     }
     // Each view resampled to its pinhole camera where its intrinsics carry lens distortion.
-    const auto [va, vb] = own_intrinsics ? std::make_pair(gasp::makeDepthView(depth_a, K, params.superpixels),
-                                                          gasp::makeDepthView(depth_b, K_b, params.superpixels))
-                                         : gasp::makeDepthViews(depth_a, depth_b, K, params.superpixels);
+    const auto [va, vb] = K_b && *K_b != K ? std::make_pair(gasp::makeDepthView(depth_a, K, params.superpixels),
+                                                            gasp::makeDepthView(depth_b, *K_b, params.superpixels))
+                                           : gasp::makeDepthViews(depth_a, depth_b, K, params.superpixels);
     const auto r = gasp::registerViews(va, vb, params);
     // The views r's patch indices refer to: the finer-scale retry's when it found the estimate.
     const auto [pva, pvb] = gasp::viewsOf(r, va, vb);

@@ -23,11 +23,6 @@ namespace gasp {
 
 namespace {
 
-bool sameCamera(const CameraIntrinsics& a, const CameraIntrinsics& b) {
-  return a.width == b.width && a.height == b.height && a.fx == b.fx && a.fy == b.fy && a.cx == b.cx &&
-         a.cy == b.cy && a.distortion == b.distortion;
-}
-
 /// "1305031452.791720" (TUM's six decimals).
 std::string stamp(double t) {
   char b[64];
@@ -88,7 +83,6 @@ RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std:
   CreatedPaths created;
   created.dir(root);
   RawlogToTumSummary s;
-  std::set<std::string> labels;
   std::set<std::string> stamps;
   std::ofstream depth_txt, rgb_txt;
   constexpr double kMaxUnits = std::numeric_limits<std::uint16_t>::max();  // depthToRaw() writes 0 beyond
@@ -97,10 +91,9 @@ RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std:
       ++s.frames_other_sensor;
       continue;
     }
-    labels.insert(f->sensor_label);
-    if (labels.size() > 1)
-      throw Error(rawlog_path + ": 3D range scans of several sensors ('" + *labels.begin() + "', '" +
-                  *labels.rbegin() + "'): choose one (sensor label)");
+    if (s.frames_written > 0 && f->sensor_label != s.sensor_label)
+      throw Error(rawlog_path + ": 3D range scans of several sensors ('" + s.sensor_label + "', '" +
+                  f->sensor_label + "'): choose one (sensor label)");
     if (s.frames_written == 0) {
       s.sensor_label = f->sensor_label;
       s.intrinsics = f->depth_intrinsics;
@@ -111,7 +104,7 @@ RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std:
       depth_txt.open(root / "depth.txt");
       if (!depth_txt) throw Error("cannot write '" + (root / "depth.txt").string() + "'");
       depth_txt << "# depth maps\n# converted from " << rawlog_path << " by gasp-rawlog2tum\n# timestamp filename\n";
-    } else if (!sameCamera(f->depth_intrinsics, s.intrinsics)) {
+    } else if (f->depth_intrinsics != s.intrinsics) {
       throw Error(rawlog_path + ": scan " + std::to_string(reader.scansRead() - 1) +
                   " has other depth intrinsics than the first: a TUM folder holds one camera");
     }
@@ -124,11 +117,11 @@ RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std:
       }
     s.sensor_pose_dropped += !f->T_robot_camera.isApprox(mrptCameraFromOptical(), 1e-12);
     created.file(root / "depth" / (t + ".png"));
-    writeImage(root / "depth" / (t + ".png"), depthToRaw(f->depth_m, kTumDepthUnitsPerMetre));
+    saveDepth((root / "depth" / (t + ".png")).string(), f->depth_m, kTumDepthUnitsPerMetre);
     depth_txt << t << " depth/" << t << ".png\n";
     if (options.with_rgb && !f->rgb.empty()) {
       const bool registered =
-          sameCamera(f->rgb_intrinsics, f->depth_intrinsics) && f->T_depth_rgb.isApprox(Isometry3::Identity(), 1e-12);
+          f->rgb_intrinsics == f->depth_intrinsics && f->T_depth_rgb.isApprox(Isometry3::Identity(), 1e-12);
       if (!registered) {
         ++s.rgb_not_registered;
       } else {
