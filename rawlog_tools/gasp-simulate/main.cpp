@@ -22,6 +22,10 @@ int main(int argc, char** argv) {
   app.add_option("--out", out_dir, "Output folder (created if needed)");
   app.add_option("--frames", options.frames, "Number of frames (>= 8)")->capture_default_str();
   app.add_option("--seed", options.seed, "Noise seed")->capture_default_str();
+  app.add_option("--rate", options.rate_hz,
+                 "Frame rate [Hz]: the timestamps' spacing (the path is the same; at 30 Hz the 60-frame path moves up to "
+                 "3 m/s and 6 rad/s, at 5 Hz a sixth of that)")
+      ->capture_default_str();
   app.add_flag("--no-noise", no_noise, "Exact ray-cast depth: no noise, quantisation or dropouts");
   app.add_flag("--list-scenes", list_scenes, "List the scenes and exit");
   CLI11_PARSE(app, argc, argv);

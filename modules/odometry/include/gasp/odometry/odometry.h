@@ -1,0 +1,93 @@
+#pragma once
+/// \file odometry.h GASP over a sequence of depth frames: camera odometry and the pose-graph
+/// constraints a graph-SLAM back-end consumes.
+///
+/// Each frame is segmented once (superpixels) and registered (registerViews(), the whole pair
+/// front-end) to the current keyframe. When that gives no estimate, it is registered to the frame
+/// before it, and then becomes the keyframe. When neither gives one, its pose is predicted with
+/// the last measured velocity and marked as not tracked: the trajectory goes on, the pose graph
+/// has no edge to it from the past (a break). Every measured pose is a PoseConstraint with GASP's
+/// edge information, so the constraints form a tree over the frames, to which a back-end adds
+/// loop closures.
+///
+/// Deterministic: the same frames and parameters give the same poses, whatever the thread count
+/// (registerViews() is).
+#include <opencv2/core.hpp>
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gasp/core/camera_intrinsics.h"
+#include "gasp/core/pose.h"
+#include "gasp/core/rolling_shutter.h"
+#include "gasp/core/tum_trajectory.h"
+#include "gasp/odometry/odometry_params.h"
+#include "gasp/odometry/pose_constraint.h"
+#include "gasp/pipeline/depth_view.h"
+
+namespace gasp {
+
+/// What the odometry did with one frame.
+struct OdometryFrame {
+  std::size_t index = 0;
+  double timestamp = 0.0;  ///< [s]
+  Isometry3 T_world_camera = Isometry3::Identity();  ///< world = the first frame's camera (or as given)
+  /// The pose was measured by GASP against `reference` (frame 0: the origin, tracked by
+  /// definition). false: predicted with the last velocity (or standing still without one).
+  bool tracked = false;
+  bool keyframe = false;       ///< later frames are registered to this one
+  std::size_t reference = 0;   ///< the frame it was registered to (its own index when not tracked)
+  /// Why each failed attempt failed: not tracked, or tracked against the previous frame after
+  /// the keyframe failed (empty when the keyframe gave the pose).
+  std::string reason;
+  int patches = 0;             ///< superpixels of the frame
+  int inliers = 0;             ///< RANSAC inliers of the pose (0 when not tracked)
+  bool deskewed = false;       ///< the depth was deskewed for the rolling shutter before segmenting
+  double segmentation_ms = 0.0;  ///< deskew + superpixels
+  double registration_ms = 0.0;  ///< all registration attempts
+};
+
+class DepthOdometry {
+ public:
+  /// Throws gasp::Error for invalid parameters. T_world_first: the first frame's pose.
+  explicit DepthOdometry(const OdometryParams& params = {},
+                         const Isometry3& T_world_first = Isometry3::Identity());
+
+  /// Adds the next frame: depth [m] (CV_32FC1, 0 or NaN = no data; lens distortion in the
+  /// intrinsics is resampled away as in makeDepthView()). A frame without usable depth is not
+  /// tracked, with the reason. Throws gasp::Error for a timestamp that is not finite or not later
+  /// than the previous frame's, or a depth image that does not match its intrinsics.
+  const OdometryFrame& addFrame(double timestamp, const cv::Mat& depth_m, const CameraIntrinsics& intrinsics);
+
+  const std::vector<OdometryFrame>& frames() const { return frames_; }
+  /// One per tracked frame after the first (from = its reference, to = the frame), in frame order.
+  const std::vector<PoseConstraint>& constraints() const { return constraints_; }
+  /// Every frame's pose (tracked or predicted), in frame order.
+  Trajectory trajectory() const;
+  std::size_t trackedCount() const;
+  std::size_t keyframeCount() const;
+  /// Connected pieces of the pose graph the constraints make over all frames: 1 when every frame
+  /// is linked to the first, 0 without frames. A lost frame is a piece of its own, and so is each
+  /// run of frames that restarted from one.
+  std::size_t componentCount() const;
+  const OdometryParams& params() const { return params_; }
+
+ private:
+  /// Registers `view` (frame i at time t) to `ref`; on success sets f's pose and adds the constraint.
+  bool track(const DepthView& view, const DepthView& ref, std::size_t ref_index, OdometryFrame& f,
+             const char* attempt);
+
+  OdometryParams params_;
+  Isometry3 T_world_first_;
+  std::vector<OdometryFrame> frames_;
+  std::vector<PoseConstraint> constraints_;
+  std::optional<DepthView> keyframe_view_;
+  std::size_t keyframe_index_ = 0;
+  std::optional<DepthView> previous_view_;
+  /// Velocity of the last tracked step (frames i-1 -> i, both tracked), in the camera's frame.
+  std::optional<CameraTwist> velocity_;
+};
+
+}  // namespace gasp

@@ -1,0 +1,30 @@
+#pragma once
+/// \file odometry_params.h Parameters of GASP's depth odometry (odometry.h), with their defaults
+/// and units.
+#include "gasp/pipeline/pair_registration.h"
+
+namespace gasp {
+
+struct OdometryParams {
+  /// How each frame is segmented (pair.superpixels) and registered (everything else).
+  PairParams pair;
+  /// A tracked frame becomes the next keyframe when its pose is this far from its keyframe's
+  /// [m] or turned by this much [deg]. Registering to a keyframe rather than to the previous
+  /// frame keeps the small per-pair errors from adding up while the camera lingers (fr1_xyz
+  /// moves about 1 cm per frame); GASP registers views far apart, so keyframes may be sparse.
+  double keyframe_distance_m = 0.10;
+  double keyframe_angle_deg = 10.0;
+  /// A registration implying a faster motion than this (over the time between the two frames)
+  /// is not taken: no hand-held or robot camera moves so, a wrong pose may [m/s], [rad/s].
+  double max_speed_mps = 3.0;
+  double max_rate_radps = 3.0;
+  /// Rolling-shutter readout of the depth sensor [s] (DeskewParams::readout_s; TUM's Kinect:
+  /// 0.03, docs/pipeline.md "Rolling shutter"); 0 = off. Each frame is deskewed with the velocity
+  /// of the last tracked step (frames i-2 -> i-1), so only the past is used.
+  double rolling_shutter_readout_s = 0.0;
+};
+
+/// Throws gasp::Error naming the first invalid parameter (including the pair's).
+void validate(const OdometryParams& params);
+
+}  // namespace gasp

@@ -1,0 +1,25 @@
+#pragma once
+/// \file pose_constraint.h One edge of a pose graph: the relative pose between two frames of a
+/// sequence with its information, as GASP measured it.
+#include <cstddef>
+
+#include "gasp/core/pose.h"
+#include "gasp/registration/registration_result.h"
+
+namespace gasp {
+
+struct PoseConstraint {
+  std::size_t from = 0;  ///< frame index (the pair's target view)
+  std::size_t to = 0;    ///< frame index (the pair's source view)
+  /// Pose of frame `to` in frame `from` (p_from = T_from_to p_to): the pair's T_target_source
+  /// with target = from, source = to. A graph's edge from -> to, as MRPT's CNetworkOfPoses stores it.
+  Isometry3 T_from_to = Isometry3::Identity();
+  /// PairResult::edge_information: order [tx ty tz rx ry rz] of the left perturbation
+  /// T_from_to <- Exp(xi) T_from_to in frame `from` (registration_result.h), with the model error
+  /// added (model_error.h) [1/m^2, 1/(m rad), 1/rad^2].
+  Matrix6d information = Matrix6d::Zero();
+  int inliers = 0;            ///< RANSAC inliers behind the pose
+  bool loop_closure = false;  ///< false: odometry (a frame against its keyframe or predecessor)
+};
+
+}  // namespace gasp

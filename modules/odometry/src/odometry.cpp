@@ -1,0 +1,176 @@
+#include "gasp/odometry/odometry.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <utility>
+
+#include "gasp/core/error.h"
+#include "gasp/core/undistortion.h"
+#include "gasp/pipeline/pair_registration.h"
+
+namespace gasp {
+
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// The camera's motion over dt at a constant twist (first order in the translation, as twistBetween()).
+Isometry3 stepOf(const CameraTwist& twist, double dt) {
+  Isometry3 T = Isometry3::Identity();
+  const Eigen::Vector3d rot = twist.w_radps * dt;
+  if (rot.norm() > 0.0) T.linear() = Eigen::AngleAxisd(rot.norm(), rot.normalized()).toRotationMatrix();
+  T.translation() = twist.v_mps * dt;
+  return T;
+}
+
+/// Empty when the motion T_a_b over dt seconds is plausible, else why not.
+std::string implausibleMotion(const Isometry3& T_a_b, double dt, const OdometryParams& p) {
+  const double speed = translationNorm(T_a_b) / dt, rate = rotationAngle(T_a_b) / dt;
+  if (speed <= p.max_speed_mps && rate <= p.max_rate_radps) return {};
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "implausible motion: %.2f m/s, %.2f rad/s over %.3f s", speed, rate, dt);
+  return buf;
+}
+
+}  // namespace
+
+DepthOdometry::DepthOdometry(const OdometryParams& params, const Isometry3& T_world_first)
+    : params_(params), T_world_first_(T_world_first) {
+  validate(params_);
+}
+
+bool DepthOdometry::track(const DepthView& view, const DepthView& ref, std::size_t ref_index, OdometryFrame& f,
+                          const char* attempt) {
+  const PairResult r = registerViews(view, ref, params_.pair);  // T_ref_frame
+  std::string why = r.pose.success ? std::string() : r.pose.reason;
+  const double dt = f.timestamp - frames_[ref_index].timestamp;
+  if (why.empty()) why = implausibleMotion(r.pose.T_target_source, dt, params_);
+  if (!why.empty()) {
+    f.reason += (f.reason.empty() ? "" : "; ") + std::string(attempt) + " frame " + std::to_string(ref_index) +
+                ": " + why;
+    return false;
+  }
+  f.tracked = true;
+  f.reference = ref_index;
+  f.inliers = r.pose.num_inliers;
+  f.T_world_camera = frames_[ref_index].T_world_camera * r.pose.T_target_source;
+  PoseConstraint c;
+  c.from = ref_index;
+  c.to = f.index;
+  c.T_from_to = r.pose.T_target_source;
+  c.information = r.edge_information;
+  c.inliers = r.pose.num_inliers;
+  constraints_.push_back(c);
+  return true;
+}
+
+const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& depth_m,
+                                             const CameraIntrinsics& intrinsics) {
+  if (!std::isfinite(timestamp)) throw Error("odometry: frame " + std::to_string(frames_.size()) + ": timestamp is not finite");
+  if (!frames_.empty() && !(timestamp > frames_.back().timestamp)) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "odometry: frame %zu: timestamp %.6f is not later than the previous frame's (%.6f)",
+                  frames_.size(), timestamp, frames_.back().timestamp);
+    throw Error(buf);
+  }
+  OdometryFrame f;
+  f.index = frames_.size();
+  f.timestamp = timestamp;
+  f.reference = f.index;
+
+  // Deskew with the last step's velocity, then segment.
+  const auto t_seg = std::chrono::steady_clock::now();
+  DepthView view;
+  if (params_.rolling_shutter_readout_s != 0.0 && velocity_) {
+    auto [pinhole, k] = pinholeDepth(depth_m, intrinsics);
+    view = makeDepthView(deskewDepth(pinhole, k, *velocity_, params_.rolling_shutter_readout_s), k,
+                         params_.pair.superpixels);
+    f.deskewed = true;
+  } else {
+    view = makeDepthView(depth_m, intrinsics, params_.pair.superpixels);
+  }
+  f.segmentation_ms = msSince(t_seg);
+  f.patches = static_cast<int>(view.segmentation.patches.size());
+
+  const auto t_reg = std::chrono::steady_clock::now();
+  bool new_keyframe = false;
+  if (frames_.empty()) {
+    f.tracked = true;
+    f.T_world_camera = T_world_first_;
+    new_keyframe = true;
+  } else {
+    const std::size_t prev = f.index - 1;
+    if (track(view, *keyframe_view_, keyframe_index_, f, "against keyframe")) {
+      const Isometry3 T_key_frame = frames_[keyframe_index_].T_world_camera.inverse() * f.T_world_camera;
+      new_keyframe = translationNorm(T_key_frame) > params_.keyframe_distance_m ||
+                     rotationAngle(T_key_frame) * 180.0 / M_PI > params_.keyframe_angle_deg;
+    } else if (prev != keyframe_index_ && track(view, *previous_view_, prev, f, "against the previous")) {
+      new_keyframe = true;  // the keyframe no longer reaches this far
+    }
+    if (!f.tracked) {
+      // Predicted with the last velocity (standing still without one); the keyframe stays.
+      const double dt = timestamp - frames_[prev].timestamp;
+      f.T_world_camera = frames_[prev].T_world_camera * (velocity_ ? stepOf(*velocity_, dt) : Isometry3::Identity());
+    }
+  }
+  f.registration_ms = msSince(t_reg);
+
+  // The velocity of this step (both frames tracked), for the next frame's deskew and prediction.
+  if (f.index > 0) {
+    const OdometryFrame& p = frames_.back();
+    const Isometry3 T_p_f = p.T_world_camera.inverse() * f.T_world_camera;
+    const double dt = timestamp - p.timestamp;
+    if (f.tracked && p.tracked && implausibleMotion(T_p_f, dt, params_).empty())
+      velocity_ = twistBetween(p.T_world_camera, f.T_world_camera, dt);
+    else if (!f.tracked)
+      velocity_.reset();  // a prediction is not a measurement: the next lost frame stands still
+  }
+
+  if (new_keyframe) {
+    f.keyframe = true;
+    keyframe_index_ = f.index;
+    keyframe_view_ = view;
+  }
+  previous_view_ = std::move(view);
+  frames_.push_back(std::move(f));
+  return frames_.back();
+}
+
+Trajectory DepthOdometry::trajectory() const {
+  Trajectory t;
+  t.reserve(frames_.size());
+  for (const OdometryFrame& f : frames_) t.push_back({f.timestamp, f.T_world_camera});
+  return t;
+}
+
+std::size_t DepthOdometry::trackedCount() const {
+  std::size_t n = 0;
+  for (const OdometryFrame& f : frames_) n += f.tracked ? 1 : 0;
+  return n;
+}
+
+std::size_t DepthOdometry::keyframeCount() const {
+  std::size_t n = 0;
+  for (const OdometryFrame& f : frames_) n += f.keyframe ? 1 : 0;
+  return n;
+}
+
+std::size_t DepthOdometry::componentCount() const {
+  std::vector<std::size_t> parent(frames_.size());
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
+  const auto root = [&parent](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::size_t n = frames_.size();
+  for (const PoseConstraint& c : constraints_) {
+    const std::size_t a = root(c.from), b = root(c.to);
+    if (a != b) parent[b] = a, --n;
+  }
+  return n;
+}
+
+}  // namespace gasp

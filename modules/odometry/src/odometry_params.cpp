@@ -1,0 +1,26 @@
+#include "gasp/odometry/odometry_params.h"
+
+#include <cmath>
+#include <string>
+
+#include "gasp/core/error.h"
+
+namespace gasp {
+
+namespace {
+void requirePositive(double v, const char* name) {
+  if (!(v > 0.0) || !std::isfinite(v)) throw Error(std::string("odometry: ") + name + " must be positive and finite");
+}
+}  // namespace
+
+void validate(const OdometryParams& params) {
+  requirePositive(params.keyframe_distance_m, "keyframe_distance_m");
+  requirePositive(params.keyframe_angle_deg, "keyframe_angle_deg");
+  requirePositive(params.max_speed_mps, "max_speed_mps");
+  requirePositive(params.max_rate_radps, "max_rate_radps");
+  if (!std::isfinite(params.rolling_shutter_readout_s))
+    throw Error("odometry: rolling_shutter_readout_s must be finite");
+  validate(params.pair);
+}
+
+}  // namespace gasp

@@ -1,0 +1,29 @@
+#pragma once
+/// \file pose_graph.h GASP's odometry (gasp/odometry/odometry.h) as an MRPT pose graph, ready for
+/// mrpt::graphslam's optimisers and for CNetworkOfPoses::saveToTextFile (VERTEX3 / EDGE3 lines).
+#include <mrpt/graphs/CNetworkOfPoses.h>
+
+#include <cstddef>
+#include <vector>
+
+#include "gasp/core/pose.h"
+#include "gasp/odometry/odometry.h"
+
+namespace gasp {
+
+struct PoseGraphExport {
+  mrpt::graphs::CNetworkOfPoses3DInf graph;
+  /// Constraints left out because their information is not positive definite (no covariance
+  /// can be claimed for them; GASP's edge information, with its model error, always is).
+  std::size_t skipped_constraints = 0;
+};
+
+/// Node i = frame i, at T_world_robot = T_world_camera T_robot_camera^-1; edge from -> to = the
+/// pose of robot frame `to` in robot frame `from`, with its information over MRPT's
+/// [x y z yaw pitch roll] (pose_covariance.h, first order). T_robot_camera is the camera's pose on
+/// the robot (RgbdFrame::T_robot_camera, from MRPT's sensorPose); the identity keeps GASP's optical
+/// camera frames (x right, y down, z forward). The root is node 0.
+PoseGraphExport toPoseGraph(const std::vector<OdometryFrame>& frames, const std::vector<PoseConstraint>& constraints,
+                            const Isometry3& T_robot_camera = Isometry3::Identity());
+
+}  // namespace gasp

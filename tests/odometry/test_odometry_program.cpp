@@ -1,0 +1,105 @@
+// gasp-odometry end to end: a simulated folder, its outputs, and the exit codes of bad input.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "gasp/core/tum_dataset.h"
+#include "gasp_test_data.h"
+#include "program_run.h"
+
+namespace {
+
+using gasp::test::runProgram;
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+std::size_t countLinesStartingWith(const std::string& path, const std::string& prefix) {
+  std::ifstream in(path);
+  std::size_t n = 0;
+  for (std::string line; std::getline(in, line);) n += line.rfind(prefix, 0) == 0 ? 1 : 0;
+  return n;
+}
+
+/// A 30-frame simulated room at 5 Hz (up to 1 m/s and 2 rad/s), made once.
+const std::string& simulatedFolder() {
+  static const std::string dir = [] {
+    const std::string d = std::string(GASP_TEST_TMP_DIR) + "/odometry_program_sim";
+    std::filesystem::remove_all(d);
+    const auto run = runProgram("gasp-simulate", "--out " + d + " --frames 30 --rate 5");
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    return d;
+  }();
+  return dir;
+}
+
+}  // namespace
+
+TEST(GaspOdometryProgram, WritesTheTrajectoryGraphAndFramesAndScoresThem) {
+  // Frames 0-9, before the occluder appears.
+  const std::string out = gasp::test::scratchDir();
+  const auto run = runProgram("gasp-odometry", "--tum " + simulatedFolder() + " --max-frames 10 --out " + out +
+                                                   "/traj.txt --graph " + out + "/odo.graph --frames-csv " + out +
+                                                   "/frames.csv");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "frames: 10\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "tracked: 10\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "graph_components: 1\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "graph: " + out + "/odo.graph (10 nodes, 9 edges)")) << run.output;
+  EXPECT_EQ(gasp::readTumTrajectory(out + "/traj.txt").size(), 10u);
+  EXPECT_EQ(countLinesStartingWith(out + "/odo.graph", "VERTEX3 "), 10u);
+  EXPECT_EQ(countLinesStartingWith(out + "/odo.graph", "EDGE3 "), 9u);
+  EXPECT_EQ(countLinesStartingWith(out + "/frames.csv", "index,timestamp,tracked"), 1u);
+  EXPECT_EQ(countLinesStartingWith(out + "/frames.csv", "9,"), 1u);
+  // The ATE it prints (the folder's groundtruth.txt) is below a centimetre.
+  const auto pos = run.output.find("ate_rmse_m: ");
+  ASSERT_NE(pos, std::string::npos) << run.output;
+  EXPECT_LT(std::stod(run.output.substr(pos + 12)), 0.01) << run.output;
+}
+
+TEST(GaspOdometryProgram, AFrameItCannotTrackExitsWith3AndSaysWhy) {
+  // The occluder pops into the scene at frame 19 of 30: the visibility check refuses that frame's
+  // pose (a static world is assumed), which is then predicted.
+  const std::string out = gasp::test::scratchDir();
+  const auto run = runProgram("gasp-odometry", "--tum " + simulatedFolder() + " --out " + out + "/traj.txt --frames-csv " +
+                                                   out + "/f.csv");
+  EXPECT_EQ(run.exit_code, 3) << run.output;
+  EXPECT_TRUE(contains(run.output, "tracked: 29\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "not_tracked: 1 frames")) << run.output;
+  EXPECT_EQ(gasp::readTumTrajectory(out + "/traj.txt").size(), 30u);  // the lost frame's pose is predicted
+  std::ifstream in(out + "/f.csv");
+  std::string line, frame19;
+  while (std::getline(in, line))
+    if (line.rfind("19,", 0) == 0) frame19 = line;
+  EXPECT_TRUE(contains(frame19, ",0,") && contains(frame19, "visibility check")) << frame19;
+}
+
+TEST(GaspOdometryProgram, BadInputExitsWith1OrAUsageCode) {
+  const std::string out = gasp::test::scratchDir();
+  auto run = runProgram("gasp-odometry", "--tum " + out + "/nothing --out " + out + "/t.txt");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "error: ") && contains(run.output, "nothing")) << run.output;
+
+  run = runProgram("gasp-odometry", "--tum " + simulatedFolder() + " --first 50 --out " + out + "/t.txt");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "--first 50 but the folder has 30 frames")) << run.output;
+
+  {
+    std::ofstream garbage(out + "/garbage.rawlog");
+    garbage << "not a rawlog";
+  }
+  run = runProgram("gasp-odometry", "--rawlog " + out + "/garbage.rawlog --out " + out + "/t.txt");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "garbage.rawlog")) << run.output;
+
+  run = runProgram("gasp-odometry", "--out " + out + "/t.txt");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  run = runProgram("gasp-odometry", "--tum " + simulatedFolder());  // --out is required
+  EXPECT_NE(run.exit_code, 0) << run.output;
+  run = runProgram("gasp-odometry", "--tum " + simulatedFolder() + " --out " + out + "/t.txt --keyframe-angle 0");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "keyframe_angle_deg")) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(out + "/t.txt"));
+}
