@@ -23,16 +23,13 @@ std::size_t countLinesStartingWith(const std::string& path, const std::string& p
   return n;
 }
 
-/// A 30-frame simulated room at 5 Hz (up to 1 m/s and 2 rad/s), made once.
-const std::string& simulatedFolder() {
-  static const std::string dir = [] {
-    const std::string d = std::string(GASP_TEST_TMP_DIR) + "/odometry_program_sim";
-    std::filesystem::remove_all(d);
-    const auto run = runProgram("gasp-simulate", "--out " + d + " --frames 30 --rate 5");
-    EXPECT_EQ(run.exit_code, 0) << run.output;
-    return d;
-  }();
-  return dir;
+/// A 30-frame simulated room at 5 Hz (up to 1 m/s and 2 rad/s) in DIR/sim. Each test makes its
+/// own: ctest runs the tests of this file in parallel processes.
+std::string simulatedFolder(const std::string& dir) {
+  const std::string d = dir + "/sim";
+  const auto run = runProgram("gasp-simulate", "--out " + d + " --frames 30 --rate 5");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  return d;
 }
 
 }  // namespace
@@ -40,7 +37,7 @@ const std::string& simulatedFolder() {
 TEST(GaspOdometryProgram, WritesTheTrajectoryGraphAndFramesAndScoresThem) {
   // Frames 0-9, before the occluder appears.
   const std::string out = gasp::test::scratchDir();
-  const auto run = runProgram("gasp-odometry", "--tum " + simulatedFolder() + " --max-frames 10 --out " + out +
+  const auto run = runProgram("gasp-odometry", "--tum " + simulatedFolder(out) + " --max-frames 10 --out " + out +
                                                    "/traj.txt --graph " + out + "/odo.graph --frames-csv " + out +
                                                    "/frames.csv");
   ASSERT_EQ(run.exit_code, 0) << run.output;
@@ -63,7 +60,7 @@ TEST(GaspOdometryProgram, AFrameItCannotTrackExitsWith3AndSaysWhy) {
   // The occluder pops into the scene at frame 19 of 30: the visibility check refuses that frame's
   // pose (a static world is assumed), which is then predicted.
   const std::string out = gasp::test::scratchDir();
-  const auto run = runProgram("gasp-odometry", "--tum " + simulatedFolder() + " --out " + out + "/traj.txt --frames-csv " +
+  const auto run = runProgram("gasp-odometry", "--tum " + simulatedFolder(out) + " --out " + out + "/traj.txt --frames-csv " +
                                                    out + "/f.csv");
   EXPECT_EQ(run.exit_code, 3) << run.output;
   EXPECT_TRUE(contains(run.output, "tracked: 29\n")) << run.output;
@@ -78,11 +75,12 @@ TEST(GaspOdometryProgram, AFrameItCannotTrackExitsWith3AndSaysWhy) {
 
 TEST(GaspOdometryProgram, BadInputExitsWith1OrAUsageCode) {
   const std::string out = gasp::test::scratchDir();
+  const std::string sim = simulatedFolder(out);
   auto run = runProgram("gasp-odometry", "--tum " + out + "/nothing --out " + out + "/t.txt");
   EXPECT_EQ(run.exit_code, 1) << run.output;
   EXPECT_TRUE(contains(run.output, "error: ") && contains(run.output, "nothing")) << run.output;
 
-  run = runProgram("gasp-odometry", "--tum " + simulatedFolder() + " --first 50 --out " + out + "/t.txt");
+  run = runProgram("gasp-odometry", "--tum " + sim + " --first 50 --out " + out + "/t.txt");
   EXPECT_EQ(run.exit_code, 1) << run.output;
   EXPECT_TRUE(contains(run.output, "--first 50 but the folder has 30 frames")) << run.output;
 
@@ -96,9 +94,9 @@ TEST(GaspOdometryProgram, BadInputExitsWith1OrAUsageCode) {
 
   run = runProgram("gasp-odometry", "--out " + out + "/t.txt");
   EXPECT_EQ(run.exit_code, 2) << run.output;
-  run = runProgram("gasp-odometry", "--tum " + simulatedFolder());  // --out is required
+  run = runProgram("gasp-odometry", "--tum " + sim);  // --out is required
   EXPECT_NE(run.exit_code, 0) << run.output;
-  run = runProgram("gasp-odometry", "--tum " + simulatedFolder() + " --out " + out + "/t.txt --keyframe-angle 0");
+  run = runProgram("gasp-odometry", "--tum " + sim + " --out " + out + "/t.txt --keyframe-angle 0");
   EXPECT_EQ(run.exit_code, 1) << run.output;
   EXPECT_TRUE(contains(run.output, "keyframe_angle_deg")) << run.output;
   EXPECT_FALSE(std::filesystem::exists(out + "/t.txt"));
