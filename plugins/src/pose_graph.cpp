@@ -2,25 +2,20 @@
 
 #include <mrpt/poses/CPose3DPDFGaussianInf.h>
 
+#include <algorithm>
+#include <string>
+
 #include "gasp/core/error.h"
 #include "gasp/mrpt/pose_covariance.h"
+#include "gasp/rawlog/observation_conversion.h"
 
 namespace gasp {
-
-namespace {
-mrpt::poses::CPose3D toMrpt(const Isometry3& T) {
-  mrpt::math::CMatrixDouble44 m;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) m(r, c) = T.matrix()(r, c);
-  return mrpt::poses::CPose3D(m);
-}
-}  // namespace
 
 PoseGraphExport toPoseGraph(const std::vector<OdometryFrame>& frames, const std::vector<PoseConstraint>& constraints,
                             const Isometry3& T_robot_camera) {
   PoseGraphExport out;
   const Isometry3 T_camera_robot = T_robot_camera.inverse();
-  for (const OdometryFrame& f : frames) out.graph.nodes[f.index] = toMrpt(f.T_world_camera * T_camera_robot);
+  for (const OdometryFrame& f : frames) out.graph.nodes[f.index] = toCPose3D(f.T_world_camera * T_camera_robot);
   out.graph.root = 0;
   for (const PoseConstraint& c : constraints) {
     if (c.from >= frames.size() || c.to >= frames.size())

@@ -76,7 +76,11 @@ int main(int argc, char** argv) {
   app.add_option("--rolling-shutter", params.rolling_shutter_readout_s,
                  "deskew each frame for a rolling-shutter readout of S seconds with the last step's velocity (TUM Kinect: 0.03; 0 = off)")
       ->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;  // --help: 0; any usage error: 2
+  }
   if (tum_dir.empty() && rawlog_path.empty()) {
     std::cerr << "error: give --tum DIR or --rawlog FILE\n";
     return 2;
@@ -110,10 +114,7 @@ int main(int argc, char** argv) {
         if (!sensor_label.empty() && f->sensor_label != sensor_label) continue;
         const std::size_t index = seen++;
         if (index < first) continue;
-        if (!take(index)) {
-          if (max_frames != 0 && used >= max_frames) break;
-          continue;
-        }
+        if (!take(index)) continue;
         if (!T_robot_camera) {
           T_robot_camera = f->T_robot_camera;
         } else if (!T_robot_camera->isApprox(f->T_robot_camera, 1e-9)) {
@@ -121,6 +122,7 @@ int main(int argc, char** argv) {
                             " has another sensorPose than the first (one camera only; choose it with --sensor)");
         }
         progress(odometry.addFrame(f->timestamp, f->depth_m, f->depth_intrinsics));
+        if (max_frames != 0 && used >= max_frames) break;  // read no scan beyond the last one used
       }
       if (used == 0)
         throw gasp::Error(rawlog_path + ": no scan to use (" + std::to_string(seen) + " scans" +
@@ -138,13 +140,14 @@ int main(int argc, char** argv) {
                   g.skipped_constraints ? (", " + std::to_string(g.skipped_constraints) + " without a covariance left out").c_str() : "");
     }
 
-    std::vector<double> seg, reg;
-    for (const auto& f : frames) seg.push_back(f.segmentation_ms), reg.push_back(f.registration_ms);
+    std::vector<double> seg, reg, total;
+    for (const auto& f : frames)
+      seg.push_back(f.segmentation_ms), reg.push_back(f.registration_ms), total.push_back(f.segmentation_ms + f.registration_ms);
     std::printf("frames: %zu\n", frames.size());
     std::printf("tracked: %zu\n", odometry.trackedCount());
     std::printf("keyframes: %zu\n", odometry.keyframeCount());
     std::printf("graph_components: %zu\n", odometry.componentCount());
-    std::printf("median_ms_per_frame: %.1f (segmentation %.1f, registration %.1f)\n", median(seg) + median(reg),
+    std::printf("median_ms_per_frame: %.1f (medians: segmentation %.1f, registration %.1f)\n", median(total),
                 median(seg), median(reg));
     std::printf("trajectory: %s\n", out_path.c_str());
     if (!gt.empty()) {
@@ -163,7 +166,7 @@ int main(int argc, char** argv) {
                   frames.size() - odometry.trackedCount());
       return 3;
     }
-  } catch (const gasp::Error& e) {
+  } catch (const std::exception& e) {  // gasp::Error, and MRPT's when the graph cannot be written
     std::cerr << "error: " << e.what() << '\n';
     return 1;
   }

@@ -32,7 +32,7 @@ Isometry3 fromMrpt(const mrpt::poses::CPose3D& p) {
   return T;
 }
 
-/// Three frames, frame 2 registered to keyframe 0 and frame 1 to frame 0; 1 cm / 1 deg per axis.
+/// Three frames, frames 1 and 2 registered to keyframe 0.
 struct Odometry {
   std::vector<gasp::OdometryFrame> frames;
   std::vector<gasp::PoseConstraint> constraints;
@@ -50,8 +50,13 @@ Odometry threeFrames() {
     f.tracked = true;
     o.frames.push_back(f);
   }
-  gasp::Matrix6d info = gasp::Matrix6d::Zero();
-  info.diagonal() << 1e4, 1e4, 1e4, std::pow(180.0 / M_PI, 2), std::pow(180.0 / M_PI, 2), std::pow(180.0 / M_PI, 2);
+  // An anisotropic, correlated covariance (1-2 cm, 0.5-2 deg), so that the frame change matters.
+  gasp::Matrix6d cov = gasp::Matrix6d::Zero();
+  const double deg = M_PI / 180.0;
+  cov.diagonal() << 1e-4, 4e-4, 2.25e-4, std::pow(1 * deg, 2), std::pow(2 * deg, 2), std::pow(0.5 * deg, 2);
+  gasp::Matrix6d mix = gasp::Matrix6d::Identity();
+  mix(0, 4) = 0.3, mix(1, 3) = -0.2, mix(2, 0) = 0.4, mix(5, 1) = 0.5, mix(3, 4) = 0.3;
+  const gasp::Matrix6d info = (mix * cov * mix.transpose()).inverse();
   for (auto [from, to] : {std::pair<std::size_t, std::size_t>{0, 1}, {0, 2}}) {
     gasp::PoseConstraint c;
     c.from = from, c.to = to;

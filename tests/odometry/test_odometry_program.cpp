@@ -1,6 +1,7 @@
 // gasp-odometry end to end: a simulated folder, its outputs, and the exit codes of bad input.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -70,7 +71,53 @@ TEST(GaspOdometryProgram, AFrameItCannotTrackExitsWith3AndSaysWhy) {
   std::string line, frame19;
   while (std::getline(in, line))
     if (line.rfind("19,", 0) == 0) frame19 = line;
-  EXPECT_TRUE(contains(frame19, ",0,") && contains(frame19, "visibility check")) << frame19;
+  std::stringstream fields(frame19);
+  std::string index, stamp, tracked;
+  std::getline(fields, index, ',');
+  std::getline(fields, stamp, ',');
+  std::getline(fields, tracked, ',');
+  EXPECT_EQ(tracked, "0") << frame19;
+  EXPECT_TRUE(contains(frame19, "visibility check")) << frame19;
+}
+
+TEST(GaspOdometryProgram, ARawlogGivesTheFoldersPosesAndRobotFrameGraph) {
+  // The folder's frames 1, 3, 5, 7 (--first 1 --every 2 --max-frames 4) through gasp-tum2rawlog:
+  // the same depth, intrinsics and stamps, so the same poses as from the folder.
+  const std::string out = gasp::test::scratchDir();
+  const std::string sim = simulatedFolder(out);
+  auto run = runProgram("gasp-tum2rawlog", sim + " " + out + "/sim.rawlog --max-frames 10 --no-rgb");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string selection = " --first 1 --every 2 --max-frames 4";
+  run = runProgram("gasp-odometry", "--tum " + sim + selection + " --out " + out + "/tum.txt");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "frames: 4\n")) << run.output;
+  run = runProgram("gasp-odometry", "--rawlog " + out + "/sim.rawlog --gt " + out + "/sim_groundtruth.txt" + selection +
+                                        " --out " + out + "/rawlog.txt --graph " + out + "/robot.graph");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "tracked: 4\n") && contains(run.output, "ate_rmse_m: ")) << run.output;
+  EXPECT_TRUE(contains(run.output, "(4 nodes, 3 edges)")) << run.output;
+  const auto from_tum = gasp::readTumTrajectory(out + "/tum.txt");
+  const auto from_rawlog = gasp::readTumTrajectory(out + "/rawlog.txt");
+  const auto folder = gasp::TumDataset::open(sim);
+  ASSERT_EQ(from_tum.size(), 4u);
+  ASSERT_EQ(from_rawlog.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_NEAR(from_tum[i].timestamp, folder.frame(1 + 2 * i).timestamp, 1e-6);
+    EXPECT_NEAR(from_rawlog[i].timestamp, from_tum[i].timestamp, 1e-6);
+    EXPECT_TRUE(from_rawlog[i].T_world_camera.isApprox(from_tum[i].T_world_camera, 1e-6)) << i;
+  }
+  // The graph's nodes are robot frames (gasp-tum2rawlog's sensorPose is a rotation): node 0 is
+  // not the camera's identity pose written in the trajectory.
+  std::ifstream graph(out + "/robot.graph");
+  std::string first_vertex;
+  for (std::string line; std::getline(graph, line);)
+    if (line.rfind("VERTEX3 0 ", 0) == 0) first_vertex = line;
+  std::stringstream v(first_vertex);
+  std::string key;
+  int id = -1;
+  double x, y, z, roll, pitch, yaw;
+  ASSERT_TRUE(v >> key >> id >> x >> y >> z >> roll >> pitch >> yaw) << first_vertex;
+  EXPECT_GT(std::abs(roll) + std::abs(pitch) + std::abs(yaw), 1.0) << first_vertex;
 }
 
 TEST(GaspOdometryProgram, BadInputExitsWith1OrAUsageCode) {
@@ -95,7 +142,13 @@ TEST(GaspOdometryProgram, BadInputExitsWith1OrAUsageCode) {
   run = runProgram("gasp-odometry", "--out " + out + "/t.txt");
   EXPECT_EQ(run.exit_code, 2) << run.output;
   run = runProgram("gasp-odometry", "--tum " + sim);  // --out is required
-  EXPECT_NE(run.exit_code, 0) << run.output;
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  run = runProgram("gasp-odometry", "--tum " + sim + " --every 0 --out " + out + "/t.txt");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  run = runProgram("gasp-odometry", "--tum " + sim + " --max-frames 2 --out " + out + "/t2.txt --graph " + out +
+                                        "/no/such/folder/g.graph");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "error: ") && contains(run.output, "g.graph")) << run.output;
   run = runProgram("gasp-odometry", "--tum " + sim + " --out " + out + "/t.txt --keyframe-angle 0");
   EXPECT_EQ(run.exit_code, 1) << run.output;
   EXPECT_TRUE(contains(run.output, "keyframe_angle_deg")) << run.output;

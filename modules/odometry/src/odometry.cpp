@@ -76,6 +76,13 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
                   frames_.size(), timestamp, frames_.back().timestamp);
     throw Error(buf);
   }
+  if (depth_m.empty()) throw Error("odometry: frame " + std::to_string(frames_.size()) + ": empty depth image");
+  if (depth_m.cols != intrinsics.width || depth_m.rows != intrinsics.height) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "odometry: frame %zu: depth image is %dx%d, its intrinsics are %dx%d", frames_.size(),
+                  depth_m.cols, depth_m.rows, intrinsics.width, intrinsics.height);
+    throw Error(buf);
+  }
   OdometryFrame f;
   f.index = frames_.size();
   f.timestamp = timestamp;
@@ -97,10 +104,15 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
 
   const auto t_reg = std::chrono::steady_clock::now();
   bool new_keyframe = false;
-  if (frames_.empty()) {
-    f.tracked = true;
+  if (!keyframe_view_) {
+    // The first frame with patches is the origin; frames before it are not tracked.
     f.T_world_camera = T_world_first_;
-    new_keyframe = true;
+    if (f.patches > 0) {
+      f.tracked = true;
+      new_keyframe = true;
+    } else {
+      f.reason = "no surface patches to start from";
+    }
   } else {
     const std::size_t prev = f.index - 1;
     if (track(view, *keyframe_view_, keyframe_index_, f, "against keyframe")) {
@@ -123,10 +135,12 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
     const OdometryFrame& p = frames_.back();
     const Isometry3 T_p_f = p.T_world_camera.inverse() * f.T_world_camera;
     const double dt = timestamp - p.timestamp;
+    // Anything but a measured, plausible step leaves no velocity (a prediction is not a
+    // measurement): the next frame is then not deskewed, and stands still if it is lost.
     if (f.tracked && p.tracked && implausibleMotion(T_p_f, dt, params_).empty())
       velocity_ = twistBetween(p.T_world_camera, f.T_world_camera, dt);
-    else if (!f.tracked)
-      velocity_.reset();  // a prediction is not a measurement: the next lost frame stands still
+    else
+      velocity_.reset();
   }
 
   if (new_keyframe) {

@@ -34,8 +34,8 @@ struct OdometryFrame {
   std::size_t index = 0;
   double timestamp = 0.0;  ///< [s]
   Isometry3 T_world_camera = Isometry3::Identity();  ///< world = the first frame's camera (or as given)
-  /// The pose was measured by GASP against `reference` (frame 0: the origin, tracked by
-  /// definition). false: predicted with the last velocity (or standing still without one).
+  /// The pose was measured by GASP against `reference` (the first frame with patches: the origin,
+  /// tracked by definition). false: predicted with the last velocity (or standing still without one).
   bool tracked = false;
   bool keyframe = false;       ///< later frames are registered to this one
   std::size_t reference = 0;   ///< the frame it was registered to (its own index when not tracked)
@@ -56,9 +56,11 @@ class DepthOdometry {
                          const Isometry3& T_world_first = Isometry3::Identity());
 
   /// Adds the next frame: depth [m] (CV_32FC1, 0 or NaN = no data; lens distortion in the
-  /// intrinsics is resampled away as in makeDepthView()). A frame without usable depth is not
-  /// tracked, with the reason. Throws gasp::Error for a timestamp that is not finite or not later
-  /// than the previous frame's, or a depth image that does not match its intrinsics.
+  /// intrinsics is resampled away as in makeDepthView()). A frame without usable depth (no
+  /// surface patch) is not tracked, with the reason; the first frame with patches is the origin.
+  /// Throws gasp::Error, and does not add the frame, for a timestamp that is not finite or not
+  /// later than the previous frame's, an empty image, or one whose size or type does not match
+  /// its intrinsics.
   const OdometryFrame& addFrame(double timestamp, const cv::Mat& depth_m, const CameraIntrinsics& intrinsics);
 
   const std::vector<OdometryFrame>& frames() const { return frames_; }
@@ -69,8 +71,9 @@ class DepthOdometry {
   std::size_t trackedCount() const;
   std::size_t keyframeCount() const;
   /// Connected pieces of the pose graph the constraints make over all frames: 1 when every frame
-  /// is linked to the first, 0 without frames. A lost frame is a piece of its own, and so is each
-  /// run of frames that restarted from one.
+  /// is linked to the first, 0 without frames. A lost frame that no later frame is registered to
+  /// is a piece of its own; one that the next frame is registered to (the keyframe failed) starts
+  /// a new piece with the frames after it.
   std::size_t componentCount() const;
   const OdometryParams& params() const { return params_; }
 
@@ -86,7 +89,8 @@ class DepthOdometry {
   std::optional<DepthView> keyframe_view_;
   std::size_t keyframe_index_ = 0;
   std::optional<DepthView> previous_view_;
-  /// Velocity of the last tracked step (frames i-1 -> i, both tracked), in the camera's frame.
+  /// Velocity of the last step (frames i-1 -> i) when both were tracked and it was plausible, in
+  /// the camera's frame; empty otherwise.
   std::optional<CameraTwist> velocity_;
 };
 
