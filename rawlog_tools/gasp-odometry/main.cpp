@@ -22,6 +22,7 @@
 #include "gasp/core/tum_dataset.h"
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/eval/ate.h"
+#include "gasp/eval/error_statistics.h"
 #include "gasp/eval/rpe.h"
 #include "gasp/mrpt/pose_graph.h"
 #include "gasp/odometry/odometry.h"
@@ -29,12 +30,7 @@
 
 namespace {
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+double median(const std::vector<double>& v) { return gasp::eval::computeStatistics(v).median; }
 
 void writeFramesCsv(const std::string& path, const std::vector<gasp::OdometryFrame>& frames) {
   std::ofstream out(path);

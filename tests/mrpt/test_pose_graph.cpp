@@ -6,11 +6,12 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <random>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include "gasp/core/error.h"
 #include "gasp/mrpt/pose_graph.h"
+#include "gasp/rawlog/observation_conversion.h"
 #include "gasp_test_data.h"
 
 namespace {
@@ -24,12 +25,12 @@ Isometry3 pose(double x, double y, double z, double angle_deg, const Eigen::Vect
   return T;
 }
 
-Isometry3 fromMrpt(const mrpt::poses::CPose3D& p) {
-  Isometry3 T = Isometry3::Identity();
-  const auto m = p.getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>();
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) T.matrix()(r, c) = m(r, c);
-  return T;
+/// An MRPT-like mounting: camera 0.2 m up, optical z along the robot's x.
+Isometry3 mountedCamera() {
+  Isometry3 T_robot_camera = Isometry3::Identity();
+  T_robot_camera.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  T_robot_camera.translation() = Eigen::Vector3d(0.05, 0, 0.2);
+  return T_robot_camera;
 }
 
 /// Three frames, frames 1 and 2 registered to keyframe 0.
@@ -71,21 +72,18 @@ Odometry threeFrames() {
 
 TEST(PoseGraph, NodesAndEdgesAreTheOdometrysInTheRobotFrame) {
   const Odometry o = threeFrames();
-  // An MRPT-like mounting: camera 0.2 m up, optical z along the robot's x.
-  Isometry3 T_robot_camera = Isometry3::Identity();
-  T_robot_camera.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-  T_robot_camera.translation() = Eigen::Vector3d(0.05, 0, 0.2);
+  const Isometry3 T_robot_camera = mountedCamera();
   const auto g = gasp::toPoseGraph(o.frames, o.constraints, T_robot_camera);
   EXPECT_EQ(g.skipped_constraints, 0u);
   ASSERT_EQ(g.graph.nodes.size(), 3u);
   ASSERT_EQ(g.graph.edgeCount(), 2u);
   EXPECT_EQ(g.graph.root, 0u);
   for (std::size_t i = 0; i < 3; ++i)
-    EXPECT_TRUE(fromMrpt(g.graph.nodes.at(i)).isApprox(o.frames[i].T_world_camera * T_robot_camera.inverse(), 1e-9));
+    EXPECT_TRUE(gasp::fromCPose3D(g.graph.nodes.at(i)).isApprox(o.frames[i].T_world_camera * T_robot_camera.inverse(), 1e-9));
   for (const auto& [ids, edge] : g.graph.edges) {
     // MRPT's convention: node_to = node_from (+) edge.
     const mrpt::poses::CPose3D composed = g.graph.nodes.at(ids.first) + edge.mean;
-    EXPECT_TRUE(fromMrpt(composed).isApprox(fromMrpt(g.graph.nodes.at(ids.second)), 1e-9)) << ids.first << "->" << ids.second;
+    EXPECT_TRUE(gasp::fromCPose3D(composed).isApprox(gasp::fromCPose3D(g.graph.nodes.at(ids.second)), 1e-9)) << ids.first << "->" << ids.second;
   }
 }
 
@@ -94,9 +92,7 @@ TEST(PoseGraph, TheEdgeCovarianceIsTheSampledOneInMrptsCoordinates) {
   // its information (left perturbation in frame `from`), carry each draw to the robot frames and
   // into MRPT's [x y z yaw pitch roll], and compare the sample covariance with the edge's.
   const Odometry o = threeFrames();
-  Isometry3 T_robot_camera = Isometry3::Identity();
-  T_robot_camera.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-  T_robot_camera.translation() = Eigen::Vector3d(0.05, 0, 0.2);
+  const Isometry3 T_robot_camera = mountedCamera();
   const auto g = gasp::toPoseGraph(o.frames, o.constraints, T_robot_camera);
   const auto& c = o.constraints[1];
   const Eigen::Matrix<double, 6, 6> L = c.information.inverse().llt().matrixL();
@@ -113,10 +109,7 @@ TEST(PoseGraph, TheEdgeCovarianceIsTheSampledOneInMrptsCoordinates) {
     E.linear() = Eigen::AngleAxisd(xi.tail<3>().norm(), xi.tail<3>().normalized()).toRotationMatrix();
     E.translation() = xi.head<3>();
     const Isometry3 T = T_robot_camera * (E * c.T_from_to) * T_robot_camera.inverse();
-    mrpt::math::CMatrixDouble44 m;
-    for (int r = 0; r < 4; ++r)
-      for (int k = 0; k < 4; ++k) m(r, k) = T.matrix()(r, k);
-    const mrpt::poses::CPose3D p(m);
+    const mrpt::poses::CPose3D p = gasp::toCPose3D(T);
     Eigen::Matrix<double, 6, 1> v;
     v << p.x(), p.y(), p.z(), p.yaw(), p.pitch(), p.roll();
     draws.push_back(v);
@@ -156,7 +149,7 @@ TEST(PoseGraph, ItsTextFileLoadsBackIntoMrpt) {
   ASSERT_EQ(loaded.edgeCount(), 2u);
   for (const auto& [ids, edge] : g.graph.edges) {
     const auto& back = loaded.getEdge(ids.first, ids.second);
-    EXPECT_TRUE(fromMrpt(back.mean).isApprox(fromMrpt(edge.mean), 1e-5));
+    EXPECT_TRUE(gasp::fromCPose3D(back.mean).isApprox(gasp::fromCPose3D(edge.mean), 1e-5));
     // MRPT 2.5's reader drops the information's yaw-pitch-roll cross terms: it reads them into
     // the lower triangle, then mirrors the upper triangle over it. Every other entry survives.
     for (int r = 0; r < 6; ++r)
