@@ -129,7 +129,7 @@ TEST(GaspOdometryProgram, BadInputExitsWith1OrAUsageCode) {
 
   run = runProgram("gasp-odometry", "--tum " + sim + " --first 50 --out " + out + "/t.txt");
   EXPECT_EQ(run.exit_code, 1) << run.output;
-  EXPECT_TRUE(contains(run.output, "--first 50 but the folder has 30 frames")) << run.output;
+  EXPECT_TRUE(contains(run.output, "first frame 50 but the folder has 30 frames")) << run.output;
 
   {
     std::ofstream garbage(out + "/garbage.rawlog");

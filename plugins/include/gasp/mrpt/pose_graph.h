@@ -1,5 +1,5 @@
 #pragma once
-/// \file pose_graph.h GASP's odometry (gasp/odometry/odometry.h) as an MRPT pose graph, ready for
+/// \file pose_graph.h GASP's odometry (gasp/odometry/odometry.h) or SLAM (gasp/slam) as an MRPT pose graph, ready for
 /// mrpt::graphslam's optimisers and for CNetworkOfPoses::saveToTextFile (VERTEX3 / EDGE3 lines).
 #include <mrpt/graphs/CNetworkOfPoses.h>
 
@@ -24,6 +24,11 @@ struct PoseGraphExport {
 /// the robot (RgbdFrame::T_robot_camera, from MRPT's sensorPose); the identity keeps GASP's optical
 /// camera frames (x right, y down, z forward). The root is node 0.
 PoseGraphExport toPoseGraph(const std::vector<OdometryFrame>& frames, const std::vector<PoseConstraint>& constraints,
+                            const Isometry3& T_robot_camera = Isometry3::Identity());
+
+/// The same with node i at T_world_camera[i] (e.g. DepthSlam::poses(), optimised); loop closures
+/// are edges like any other.
+PoseGraphExport toPoseGraph(const std::vector<Isometry3>& T_world_camera, const std::vector<PoseConstraint>& constraints,
                             const Isometry3& T_robot_camera = Isometry3::Identity());
 
 }  // namespace gasp

@@ -76,6 +76,9 @@ class DepthOdometry {
   /// a new piece with the frames after it.
   std::size_t componentCount() const;
   const OdometryParams& params() const { return params_; }
+  /// The current keyframe's segmented view (that of the last frame with `keyframe` set; deskewed
+  /// when the frame was); nullptr before the first. A loop closer keeps copies (depth_slam.h).
+  const DepthView* keyframeView() const { return keyframe_view_ ? &*keyframe_view_ : nullptr; }
 
  private:
   /// Registers `view` (frame i at time t) to `ref`; on success sets f's pose and adds the constraint.

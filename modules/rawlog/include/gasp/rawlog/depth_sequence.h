@@ -1,0 +1,60 @@
+#pragma once
+/// \file depth_sequence.h The depth frames of a TUM RGB-D folder or of an MRPT rawlog, in order, as
+/// the sequence programs (gasp-odometry, gasp-slam) read them: from the `first`-th, every
+/// `every`-th, at most `max_frames`.
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "gasp/core/tum_trajectory.h"
+#include "gasp/rawlog/rgbd_frame.h"
+
+namespace gasp {
+
+struct DepthSequenceOptions {
+  std::string tum_dir;       ///< a TUM folder (frames in depth.txt order) ...
+  std::string rawlog_path;   ///< ... or an MRPT rawlog (its CObservation3DRangeScan in file order)
+  std::string sensor_label;  ///< rawlog: only the scans with this sensorLabel (empty: all)
+  std::size_t first = 0;     ///< index of the first frame used, among the input's frames
+  std::size_t every = 1;     ///< use every N-th frame
+  std::size_t max_frames = 0;  ///< at most this many frames (0 = all)
+  bool with_rgb = false;       ///< TUM: load the associated rgb image too
+};
+
+class DepthSequence {
+ public:
+  /// Throws gasp::Error for neither or both inputs, every = 0, a missing or corrupt folder or
+  /// rawlog, or `first` beyond a TUM folder's frames.
+  explicit DepthSequence(const DepthSequenceOptions& options);
+  ~DepthSequence();
+  DepthSequence(DepthSequence&&) noexcept;
+  DepthSequence& operator=(DepthSequence&&) noexcept;
+
+  /// The next frame used, or nullopt at the end. Throws gasp::Error for a corrupt frame, a rawlog
+  /// scan whose sensorPose differs from the first used (one camera only: choose it with
+  /// sensor_label), and, at the end, when no frame at all was used.
+  std::optional<RgbdFrame> next();
+
+  /// Index among the input's frames (counting only the chosen sensor's scans) of the frame the
+  /// last next() returned.
+  std::size_t inputIndex() const { return input_index_; }
+  std::size_t framesUsed() const { return used_; }
+  /// The TUM folder's ground truth (empty for a rawlog or a folder without one).
+  const Trajectory& groundTruth() const { return ground_truth_; }
+  /// The depth camera's pose on the robot shared by every frame (identity until the first).
+  const Isometry3& robotCamera() const { return T_robot_camera_; }
+  /// "TUM folder DIR" or "rawlog FILE".
+  std::string describe() const;
+
+ private:
+  struct Impl;
+  DepthSequenceOptions options_;
+  std::unique_ptr<Impl> impl_;
+  Trajectory ground_truth_;
+  Isometry3 T_robot_camera_ = Isometry3::Identity();
+  std::size_t input_index_ = 0;
+  std::size_t used_ = 0;
+};
+
+}  // namespace gasp

@@ -1,0 +1,78 @@
+#include "gasp/rawlog/depth_sequence.h"
+
+#include <utility>
+
+#include "gasp/core/error.h"
+#include "gasp/core/tum_dataset.h"
+#include "gasp/rawlog/rawlog_reader.h"
+#include "gasp/rawlog/tum_to_rawlog.h"
+
+namespace gasp {
+
+struct DepthSequence::Impl {
+  std::optional<TumDataset> tum;
+  std::optional<RawlogReader> rawlog;
+  std::size_t next_tum = 0;    ///< TUM: index of the next frame to use
+  std::size_t scans_seen = 0;  ///< rawlog: scans of the chosen sensor seen so far
+};
+
+DepthSequence::DepthSequence(const DepthSequenceOptions& options) : options_(options), impl_(std::make_unique<Impl>()) {
+  if (options.tum_dir.empty() == options.rawlog_path.empty())
+    throw Error("depth sequence: give either a TUM folder or a rawlog");
+  if (options.every == 0) throw Error("depth sequence: every must be at least 1");
+  if (!options.tum_dir.empty()) {
+    impl_->tum = TumDataset::open(options.tum_dir);
+    ground_truth_ = impl_->tum->groundTruth();
+    if (options.first >= impl_->tum->size())
+      throw Error(options.tum_dir + ": first frame " + std::to_string(options.first) + " but the folder has " +
+                  std::to_string(impl_->tum->size()) + " frames");
+    impl_->next_tum = options.first;
+  } else {
+    impl_->rawlog.emplace(options.rawlog_path);
+  }
+}
+
+DepthSequence::~DepthSequence() = default;
+DepthSequence::DepthSequence(DepthSequence&&) noexcept = default;
+DepthSequence& DepthSequence::operator=(DepthSequence&&) noexcept = default;
+
+std::string DepthSequence::describe() const {
+  return options_.tum_dir.empty() ? "rawlog " + options_.rawlog_path : "TUM folder " + options_.tum_dir;
+}
+
+std::optional<RgbdFrame> DepthSequence::next() {
+  if (options_.max_frames != 0 && used_ >= options_.max_frames) return std::nullopt;  // read nothing more
+  std::optional<RgbdFrame> out;
+  if (impl_->tum) {
+    if (impl_->next_tum < impl_->tum->size()) {
+      input_index_ = impl_->next_tum;
+      out = frameFromTum(*impl_->tum, input_index_, options_.with_rgb);
+      impl_->next_tum += options_.every;
+    }
+  } else {
+    for (std::optional<RgbdFrame> f; (f = impl_->rawlog->next());) {
+      if (!options_.sensor_label.empty() && f->sensor_label != options_.sensor_label) continue;
+      const std::size_t index = impl_->scans_seen++;
+      if (index < options_.first || (index - options_.first) % options_.every != 0) continue;
+      if (used_ == 0) {
+        T_robot_camera_ = f->T_robot_camera;
+      } else if (!T_robot_camera_.isApprox(f->T_robot_camera, 1e-9)) {
+        throw Error(options_.rawlog_path + ": scan " + std::to_string(index) +
+                    " has another sensorPose than the first (one camera only; choose it with the sensor label)");
+      }
+      input_index_ = index;
+      out = std::move(f);
+      break;
+    }
+    if (!out && used_ == 0)
+      throw Error(options_.rawlog_path + ": no scan to use (" + std::to_string(impl_->scans_seen) + " scans" +
+                  (options_.sensor_label.empty() ? std::string() : " of sensor '" + options_.sensor_label + "'") +
+                  ", first " + std::to_string(options_.first) + ")");
+  }
+  if (out) {
+    ++used_;
+  }
+  return out;
+}
+
+}  // namespace gasp

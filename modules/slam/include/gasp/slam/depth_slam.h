@@ -1,0 +1,78 @@
+#pragma once
+/// \file depth_slam.h GASP's depth SLAM: the odometry (odometry.h), loop closures between
+/// keyframes, and the pose graph of both optimised (pose_graph_optimizer.h).
+///
+/// Each new keyframe is registered, with the whole pair front-end and no initial guess, to up to
+/// `max_candidates` earlier keyframes near it at the current estimate (loop_closure.h). A
+/// registration is taken as a loop closure when it agrees with the odometry within the
+/// uncertainty of the odometry constraints between the two keyframes (a chi-square gate); the
+/// graph is then optimised, and a closure that the optimised graph contradicts is dropped. When
+/// the odometry lost track and the graph fell into pieces, new keyframes are also registered to
+/// the latest keyframes of the other pieces (relocalisation), which joins them.
+///
+/// Memory: every keyframe's segmented view is kept (about 2.5 MB at 640x480: the depth, the
+/// labels and the patches) so that it can be registered again later.
+#include <opencv2/core.hpp>
+
+#include <cstddef>
+#include <map>
+#include <vector>
+
+#include "gasp/core/camera_intrinsics.h"
+#include "gasp/core/pose.h"
+#include "gasp/core/tum_trajectory.h"
+#include "gasp/odometry/odometry.h"
+#include "gasp/odometry/pose_constraint.h"
+#include "gasp/pipeline/depth_view.h"
+#include "gasp/slam/loop_closure.h"
+#include "gasp/slam/slam_params.h"
+
+namespace gasp {
+
+class DepthSlam {
+ public:
+  /// Throws gasp::Error for invalid parameters. T_world_first: the first frame's pose.
+  explicit DepthSlam(const SlamParams& params = {}, const Isometry3& T_world_first = Isometry3::Identity());
+
+  /// Adds the next frame (DepthOdometry::addFrame(), same errors), then, when it became a
+  /// keyframe, searches for loop closures and optimises the graph if one is taken.
+  const OdometryFrame& addFrame(double timestamp, const cv::Mat& depth_m, const CameraIntrinsics& intrinsics);
+
+  const DepthOdometry& odometry() const { return odometry_; }
+  /// Every frame's pose in the optimised graph (the odometry's until a loop closure is taken).
+  /// Frames that no constraint reaches follow their predecessor as the odometry predicted them.
+  const std::vector<Isometry3>& poses() const { return T_world_frame_; }
+  Trajectory trajectory() const;
+  /// The loop closures in the graph (PoseConstraint::loop_closure set), in the order taken.
+  const std::vector<PoseConstraint>& loopClosures() const { return loop_closures_; }
+  /// The odometry's constraints, then the loop closures: the graph's edges.
+  std::vector<PoseConstraint> constraints() const;
+  /// Every registration tried for a loop closure or relocalisation, in order.
+  const std::vector<LoopClosureAttempt>& attempts() const { return attempts_; }
+  /// Connected pieces of the graph over all frames (the odometry's componentCount() before
+  /// loop closures join pieces).
+  std::size_t pieceCount() const;
+  std::size_t optimisationCount() const { return optimisations_; }
+  double optimisationMs() const { return optimisation_ms_; }  ///< total wall time of the optimisations
+  const SlamParams& params() const { return params_; }
+
+ private:
+  void closeLoops(std::size_t keyframe);
+  /// Registers keyframe `to` to keyframe `from`; returns the attempt (with the constraint when
+  /// the registration gave a plausible estimate).
+  LoopClosureAttempt tryPair(std::size_t from, std::size_t to, bool relocalisation, PoseConstraint& c) const;
+  void optimise();
+
+  SlamParams params_;
+  DepthOdometry odometry_;
+  std::vector<Isometry3> T_world_frame_;
+  std::vector<std::size_t> keyframes_;          ///< frame indices, ascending
+  std::map<std::size_t, DepthView> keyframe_views_;
+  std::vector<PoseConstraint> loop_closures_;
+  std::vector<std::size_t> loop_attempt_;       ///< for each loop closure, its index in attempts_
+  std::vector<LoopClosureAttempt> attempts_;
+  std::size_t optimisations_ = 0;
+  double optimisation_ms_ = 0.0;
+};
+
+}  // namespace gasp

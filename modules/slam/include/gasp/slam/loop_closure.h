@@ -1,0 +1,43 @@
+#pragma once
+/// \file loop_closure.h Which earlier keyframes a new keyframe is registered to, and what came of
+/// each attempt.
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "gasp/core/pose.h"
+#include "gasp/slam/slam_params.h"
+
+namespace gasp {
+
+/// One registration of a new keyframe (`to`) against an earlier one (`from`).
+struct LoopClosureAttempt {
+  std::size_t from = 0;         ///< the earlier keyframe (the pair's target view)
+  std::size_t to = 0;           ///< the new keyframe (the pair's source view)
+  bool relocalisation = false;  ///< `from` was in another piece of the graph: no pose prior
+  bool accepted = false;        ///< in the graph (false also when dropped after an optimisation)
+  int inliers = 0;              ///< RANSAC inliers (0 without an estimate)
+  /// The consistency statistic against the odometry (loop closures; NaN for relocalisations and
+  /// when the registration gave no estimate).
+  double gate_chi2 = std::numeric_limits<double>::quiet_NaN();
+  double registration_ms = 0.0;
+  std::string reason;  ///< why it was not taken, or dropped
+};
+
+/// Loop-closure candidates for keyframe `current`, nearest first: earlier keyframes of the same
+/// piece (`piece_root`, pose_graph.h's pieceRoots()) at least `min_keyframe_gap` keyframes back,
+/// within `search_radius_m` at the poses given and with optical axes (camera z) at most
+/// `max_axis_angle_deg` apart; at most `max_candidates`, at least `min_keyframe_gap` keyframes
+/// apart from each other. `keyframes`: the keyframes' frame indices, ascending, `current` last.
+std::vector<std::size_t> loopCandidates(const std::vector<std::size_t>& keyframes,
+                                        const std::vector<Isometry3>& T_world_frame,
+                                        const std::vector<std::size_t>& piece_root, const LoopClosureParams& params);
+
+/// Relocalisation candidates for the last of `keyframes`: the latest keyframes of other pieces,
+/// latest first, at most `relocalisation_candidates`.
+std::vector<std::size_t> relocalisationCandidates(const std::vector<std::size_t>& keyframes,
+                                                  const std::vector<std::size_t>& piece_root,
+                                                  const LoopClosureParams& params);
+
+}  // namespace gasp

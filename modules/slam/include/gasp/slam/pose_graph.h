@@ -1,0 +1,50 @@
+#pragma once
+/// \file pose_graph.h Pose-graph algebra shared by the loop closer and the optimiser: the left
+/// perturbation between poses, its adjoint, an edge's chi-square, relative poses composed along
+/// the odometry's tree with their covariance, and connected pieces.
+///
+/// Perturbation convention (as PoseConstraint::information, registration_result.h): xi = [t r]
+/// acts on the left, T = Exp(xi) T_hat, in the frame T maps into; Exp(xi) = [AngleAxis(r), t].
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "gasp/core/pose.h"
+#include "gasp/odometry/pose_constraint.h"
+
+namespace gasp {
+
+/// xi with T_a = Exp(xi) T_b: [translation of T_a T_b^-1, angle-axis of its rotation].
+Vector6d leftPerturbation(const Isometry3& T_a, const Isometry3& T_b);
+
+/// Ad(T) for the [t r] left perturbation: T Exp(xi) T^-1 = Exp(Ad(T) xi) to first order;
+/// Ad = [R, [t]x R; 0, R].
+Matrix6d adjoint(const Isometry3& T);
+
+/// The constraint's chi-square at the poses given: xi^T Lambda xi with
+/// T_from^-1 T_to = Exp(xi) c.T_from_to, Lambda = c.information.
+double edgeChi2(const Isometry3& T_world_from, const Isometry3& T_world_to, const PoseConstraint& c);
+
+/// A relative pose with its covariance (left perturbation in frame a) [m^2, m rad, rad^2].
+struct RelativePoseEstimate {
+  Isometry3 T_a_b = Isometry3::Identity();
+  Matrix6d covariance = Matrix6d::Zero();
+  std::size_t edges = 0;  ///< constraints on the path
+};
+
+/// T_a_b composed along the constraints of a tree (at most one constraint ends in each frame,
+/// as the odometry's), through their lowest common ancestor, with the covariance of the path's
+/// constraints (their informations' inverses) carried to frame a to first order. Empty when a
+/// and b are in different pieces of the tree. Throws gasp::Error for a frame out of range, a
+/// frame with two constraints ending in it, or an information that is not positive definite.
+std::optional<RelativePoseEstimate> composeAlongTree(const std::vector<PoseConstraint>& tree, std::size_t frame_count,
+                                                     std::size_t a, std::size_t b);
+
+/// For each of `node_count` nodes, the lowest node index of its connected piece under `edges`
+/// (edges naming nodes out of range throw gasp::Error).
+std::vector<std::size_t> pieceRoots(std::size_t node_count, const std::vector<PoseConstraint>& edges);
+
+/// Connected pieces of the graph (isolated nodes count as pieces; 0 without nodes).
+std::size_t pieceCount(std::size_t node_count, const std::vector<PoseConstraint>& edges);
+
+}  // namespace gasp

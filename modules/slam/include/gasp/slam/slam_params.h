@@ -1,0 +1,50 @@
+#pragma once
+/// \file slam_params.h Parameters of GASP's depth SLAM (depth_slam.h): the odometry's, the loop
+/// closer's and the pose-graph optimiser's, with their defaults and units.
+#include <cstddef>
+
+#include "gasp/odometry/odometry_params.h"
+#include "gasp/slam/pose_graph_optimizer.h"
+
+namespace gasp {
+
+struct LoopClosureParams {
+  bool enabled = true;  ///< false: odometry only (the graph is then a tree and never optimised)
+  /// Candidates: earlier keyframes of the same graph piece within this distance of the new
+  /// keyframe, at the current estimate [m]. GASP needs no initial guess, so the radius only
+  /// bounds the search; the views must still overlap.
+  double search_radius_m = 0.5;
+  /// ...whose optical axes are at most this far apart [deg]; a roll about the axis does not count
+  /// (GASP registers 180-degree rolls).
+  double max_axis_angle_deg = 45.0;
+  /// Keyframes this close in the sequence to the new one are not candidates: the odometry
+  /// already links them. Candidates chosen together are also this far apart from each other.
+  std::size_t min_keyframe_gap = 5;
+  std::size_t max_candidates = 2;  ///< registrations per new keyframe, nearest first
+  /// A loop closure is taken when the registration succeeds with at least `min_inliers` inliers
+  /// and agrees with the odometry: xi^T (S_path + S_meas)^-1 xi <= gate_chi2, xi the difference
+  /// between the measured and the predicted relative pose, S_path the covariance of the odometry
+  /// constraints between the two keyframes, S_meas the closure's. The default is the chi-square
+  /// quantile of 6 degrees of freedom at 0.999. After each optimisation, a closure whose own
+  /// chi-square exceeds it is dropped and the graph optimised again.
+  int min_inliers = 20;
+  double gate_chi2 = 22.46;
+  /// Relocalisation: when the odometry lost track and the graph fell into pieces, each new
+  /// keyframe is also registered, with no pose prior, to the latest keyframes of the other
+  /// pieces (at most this many); a success with at least `relocalisation_min_inliers` inliers
+  /// joins the pieces. 0 = off.
+  std::size_t relocalisation_candidates = 3;
+  int relocalisation_min_inliers = 40;
+};
+
+struct SlamParams {
+  OdometryParams odometry;
+  LoopClosureParams loop;
+  PoseGraphSettings graph;
+};
+
+/// Throws gasp::Error naming the first invalid parameter (including the odometry's).
+void validate(const LoopClosureParams& params);
+void validate(const SlamParams& params);
+
+}  // namespace gasp

@@ -1,0 +1,184 @@
+#include "gasp/slam/depth_slam.h"
+
+#include <Eigen/Cholesky>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <utility>
+
+#include "gasp/core/error.h"
+#include "gasp/pipeline/pair_registration.h"
+#include "gasp/slam/pose_graph.h"
+
+namespace gasp {
+
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::string formatted(const char* fmt, double a, double b) {
+  char buf[200];
+  std::snprintf(buf, sizeof buf, fmt, a, b);
+  return buf;
+}
+
+}  // namespace
+
+DepthSlam::DepthSlam(const SlamParams& params, const Isometry3& T_world_first)
+    : params_(params), odometry_((validate(params), params.odometry), T_world_first) {}
+
+const OdometryFrame& DepthSlam::addFrame(double timestamp, const cv::Mat& depth_m, const CameraIntrinsics& intrinsics) {
+  const OdometryFrame& f = odometry_.addFrame(timestamp, depth_m, intrinsics);  // throws: nothing added
+  const std::vector<OdometryFrame>& frames = odometry_.frames();
+  if (f.tracked && f.reference != f.index) {
+    const PoseConstraint& c = odometry_.constraints().back();  // the one ending in f
+    T_world_frame_.push_back(T_world_frame_[c.from] * c.T_from_to);
+  } else if (f.index > 0 && !f.tracked) {
+    // Predicted: follow the predecessor as the odometry did.
+    const Isometry3 T_prev_f = frames[f.index - 1].T_world_camera.inverse() * f.T_world_camera;
+    T_world_frame_.push_back(T_world_frame_[f.index - 1] * T_prev_f);
+  } else {
+    T_world_frame_.push_back(f.T_world_camera);  // the origin, or an untracked first frame
+  }
+  if (f.keyframe && params_.loop.enabled) {
+    keyframes_.push_back(f.index);
+    keyframe_views_.emplace(f.index, *odometry_.keyframeView());
+    closeLoops(f.index);
+  }
+  return f;
+}
+
+LoopClosureAttempt DepthSlam::tryPair(std::size_t from, std::size_t to, bool relocalisation, PoseConstraint& c) const {
+  LoopClosureAttempt a;
+  a.from = from;
+  a.to = to;
+  a.relocalisation = relocalisation;
+  const auto t0 = std::chrono::steady_clock::now();
+  const PairResult r = registerViews(keyframe_views_.at(to), keyframe_views_.at(from), params_.odometry.pair);
+  a.registration_ms = msSince(t0);
+  a.inliers = r.pose.success ? r.pose.num_inliers : 0;
+  const int min_inliers = relocalisation ? params_.loop.relocalisation_min_inliers : params_.loop.min_inliers;
+  if (!r.pose.success) {
+    a.reason = "no estimate: " + r.pose.reason;
+  } else if (r.pose.num_inliers < min_inliers) {
+    a.reason = formatted("%.0f inliers, fewer than %.0f", r.pose.num_inliers, min_inliers);
+  }
+  c = PoseConstraint{};
+  c.from = from;
+  c.to = to;
+  c.T_from_to = r.pose.T_target_source;
+  c.information = r.edge_information;
+  c.inliers = a.inliers;
+  c.loop_closure = true;
+  return a;
+}
+
+void DepthSlam::closeLoops(std::size_t k) {
+  bool taken = false;
+  const std::size_t n = T_world_frame_.size();
+  {
+    const std::vector<std::size_t> roots = pieceRoots(n, constraints());
+    for (const std::size_t cand : loopCandidates(keyframes_, T_world_frame_, roots, params_.loop)) {
+      PoseConstraint c;
+      LoopClosureAttempt a = tryPair(cand, k, false, c);
+      if (a.reason.empty()) {
+        // Agreement with the odometry between the two keyframes, within both uncertainties.
+        const std::optional<RelativePoseEstimate> path = composeAlongTree(odometry_.constraints(), n, cand, k);
+        if (path) {
+          const Isometry3 T_pred = T_world_frame_[cand].inverse() * T_world_frame_[k];
+          const Vector6d xi = leftPerturbation(c.T_from_to, T_pred);
+          const Matrix6d S = path->covariance + c.information.ldlt().solve(Matrix6d::Identity());
+          a.gate_chi2 = xi.dot(S.ldlt().solve(xi));
+          if (!(a.gate_chi2 <= params_.loop.gate_chi2))
+            a.reason = formatted("disagrees with the odometry: chi-square %.1f > %.2f", a.gate_chi2, params_.loop.gate_chi2);
+        } else if (a.inliers < params_.loop.relocalisation_min_inliers) {
+          // Joined only through other loop closures: no odometry path to check it against.
+          a.reason = formatted("no odometry path to check against, and %.0f inliers, fewer than %.0f", a.inliers,
+                               params_.loop.relocalisation_min_inliers);
+        }
+      }
+      if (a.reason.empty()) {
+        a.accepted = true;
+        loop_closures_.push_back(c);
+        loop_attempt_.push_back(attempts_.size());
+        taken = true;
+      }
+      attempts_.push_back(std::move(a));
+    }
+  }
+  if (params_.loop.relocalisation_candidates > 0) {
+    std::vector<std::size_t> roots = pieceRoots(n, constraints());
+    for (const std::size_t cand : relocalisationCandidates(keyframes_, roots, params_.loop)) {
+      if (roots[cand] == roots[k]) continue;  // joined by an earlier candidate
+      PoseConstraint c;
+      LoopClosureAttempt a = tryPair(cand, k, true, c);
+      if (a.reason.empty()) {
+        // Move k's piece rigidly onto the closure, so the optimiser starts near the answer.
+        const Isometry3 T_fix = T_world_frame_[cand] * c.T_from_to * T_world_frame_[k].inverse();
+        for (std::size_t i = 0; i < n; ++i)
+          if (roots[i] == roots[k]) T_world_frame_[i] = T_fix * T_world_frame_[i];
+        a.accepted = true;
+        loop_closures_.push_back(c);
+        loop_attempt_.push_back(attempts_.size());
+        taken = true;
+        roots = pieceRoots(n, constraints());
+      }
+      attempts_.push_back(std::move(a));
+    }
+  }
+  if (taken) optimise();
+}
+
+void DepthSlam::optimise() {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<OdometryFrame>& frames = odometry_.frames();
+  for (;;) {
+    const std::vector<PoseConstraint> edges = constraints();
+    const PoseGraphResult r = optimizePoseGraph(T_world_frame_, edges, params_.graph);
+    ++optimisations_;
+    T_world_frame_ = r.T_world_node;
+    // Frames no constraint reaches follow their predecessor, as the odometry predicted them.
+    std::vector<bool> linked(T_world_frame_.size(), false);
+    for (const PoseConstraint& c : edges) linked[c.from] = linked[c.to] = true;
+    for (std::size_t i = 1; i < T_world_frame_.size(); ++i)
+      if (!linked[i])
+        T_world_frame_[i] = T_world_frame_[i - 1] * (frames[i - 1].T_world_camera.inverse() * frames[i].T_world_camera);
+    // Drop the closure the optimised graph contradicts most, if any does, and optimise again.
+    std::size_t worst = loop_closures_.size();
+    double worst_chi2 = params_.loop.gate_chi2;
+    for (std::size_t j = 0; j < loop_closures_.size(); ++j) {
+      const PoseConstraint& c = loop_closures_[j];
+      const double chi2 = edgeChi2(T_world_frame_[c.from], T_world_frame_[c.to], c);
+      if (chi2 > worst_chi2) worst = j, worst_chi2 = chi2;
+    }
+    if (worst == loop_closures_.size()) break;
+    LoopClosureAttempt& a = attempts_[loop_attempt_[worst]];
+    a.accepted = false;
+    a.reason = formatted("dropped: the optimised graph contradicts it (chi-square %.1f > %.2f)", worst_chi2,
+                         params_.loop.gate_chi2);
+    loop_closures_.erase(loop_closures_.begin() + static_cast<std::ptrdiff_t>(worst));
+    loop_attempt_.erase(loop_attempt_.begin() + static_cast<std::ptrdiff_t>(worst));
+  }
+  optimisation_ms_ += msSince(t0);
+}
+
+std::vector<PoseConstraint> DepthSlam::constraints() const {
+  std::vector<PoseConstraint> all = odometry_.constraints();
+  all.insert(all.end(), loop_closures_.begin(), loop_closures_.end());
+  return all;
+}
+
+Trajectory DepthSlam::trajectory() const {
+  Trajectory t;
+  t.reserve(T_world_frame_.size());
+  const std::vector<OdometryFrame>& frames = odometry_.frames();
+  for (std::size_t i = 0; i < frames.size(); ++i) t.push_back({frames[i].timestamp, T_world_frame_[i]});
+  return t;
+}
+
+std::size_t DepthSlam::pieceCount() const { return gasp::pieceCount(T_world_frame_.size(), constraints()); }
+
+}  // namespace gasp

@@ -1,0 +1,61 @@
+#include "gasp/slam/point_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+
+#include "gasp/core/error.h"
+#include "gasp/core/point_cloud.h"
+#include "gasp/core/undistortion.h"
+
+namespace gasp {
+
+VoxelPointMap::VoxelPointMap(double voxel_m, double max_depth_m) : voxel_m_(voxel_m), max_depth_m_(max_depth_m) {
+  if (!(voxel_m > 0.0) || !std::isfinite(voxel_m)) throw Error("point map: the voxel size must be positive and finite");
+  if (!(max_depth_m > 0.0)) throw Error("point map: the maximum depth must be positive");
+}
+
+void VoxelPointMap::insert(const cv::Mat& depth_m, const CameraIntrinsics& intrinsics, const Isometry3& T_world_camera) {
+  if (!T_world_camera.matrix().allFinite()) throw Error("point map: the pose is not finite");
+  const auto [pinhole, k] = pinholeDepth(depth_m, intrinsics);
+  const OrganizedPointCloud cloud = backProject(pinhole, k);
+  const Eigen::Matrix3d R = T_world_camera.rotation();
+  const Eigen::Vector3d t = T_world_camera.translation();
+  // 21 bits per axis: +-2^20 voxels (10 km at 1 cm).
+  constexpr std::int64_t kHalf = std::int64_t{1} << 20, kMask = (std::int64_t{1} << 21) - 1;
+  for (const Eigen::Vector3f& pc : cloud.points) {
+    if (!pc.allFinite() || pc.z() <= 0.0f || pc.z() > max_depth_m_) continue;
+    const Eigen::Vector3d p = R * pc.cast<double>() + t;
+    std::int64_t key = 0;
+    bool inside = true;
+    for (int a = 0; a < 3; ++a) {
+      const std::int64_t v = static_cast<std::int64_t>(std::floor(p[a] / voxel_m_)) + kHalf;
+      if (v < 0 || v > kMask) inside = false;
+      key = (key << 21) | (v & kMask);
+    }
+    if (!inside) continue;
+    Cell& c = voxels_[key];
+    if (c.count == 0) c.order = voxels_.size() - 1;
+    c.sum += p;
+    ++c.count;
+  }
+}
+
+std::vector<Eigen::Vector3f> VoxelPointMap::points() const {
+  std::vector<Eigen::Vector3f> out(voxels_.size());
+  for (const auto& [key, c] : voxels_) out[c.order] = (c.sum / static_cast<double>(c.count)).cast<float>();
+  return out;
+}
+
+void VoxelPointMap::writePly(const std::string& path) const {
+  std::ofstream out(path);
+  if (!out) throw Error("cannot write " + path);
+  const std::vector<Eigen::Vector3f> pts = points();
+  out << "ply\nformat ascii 1.0\ncomment GASP point map, voxel " << voxel_m_ << " m\nelement vertex " << pts.size()
+      << "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+  for (const Eigen::Vector3f& p : pts) out << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+  if (!out) throw Error("cannot write " + path);
+}
+
+}  // namespace gasp

@@ -1,0 +1,151 @@
+#include "gasp/slam/pose_graph_optimizer.h"
+
+#include <ceres/ceres.h>
+#include <ceres/rotation.h>
+#include <Eigen/Cholesky>
+
+#include <memory>
+#include <string>
+
+#include "gasp/core/error.h"
+#include "gasp/slam/pose_graph.h"
+
+namespace gasp {
+
+namespace {
+
+/// r = L^T xi with Lambda = L L^T and T_from^-1 T_to = Exp(xi) T_meas (pose_graph.h): translation
+/// of E = T_from^-1 T_to T_meas^-1, then the angle-axis of its rotation.
+struct EdgeResidual {
+  EdgeResidual(const Isometry3& T_meas, const Matrix6d& L_transposed)
+      : q_meas_inv(Eigen::Quaterniond(T_meas.rotation()).conjugate()),
+        t_meas(T_meas.translation()),
+        sqrt_information(L_transposed) {}
+
+  template <typename T>
+  bool operator()(const T* q_from_p, const T* t_from_p, const T* q_to_p, const T* t_to_p, T* r) const {
+    using Q = Eigen::Quaternion<T>;
+    using V = Eigen::Matrix<T, 3, 1>;
+    const Eigen::Map<const Q> q_from(q_from_p), q_to(q_to_p);
+    const Eigen::Map<const V> t_from(t_from_p), t_to(t_to_p);
+    const Q q_from_inv = q_from.conjugate();
+    const Q q_est = q_from_inv * q_to;                      // rotation of T_from^-1 T_to
+    const V t_est = q_from_inv * (t_to - t_from);           // its translation
+    const Q q_e = q_est * q_meas_inv.cast<T>();             // E's rotation
+    const V t_e = t_est - q_e * t_meas.cast<T>();           // E's translation
+    Eigen::Matrix<T, 6, 1> xi;
+    xi.template head<3>() = t_e;
+    const T q_wxyz[4] = {q_e.w(), q_e.x(), q_e.y(), q_e.z()};
+    T aa[3];
+    ceres::QuaternionToAngleAxis(q_wxyz, aa);
+    xi(3) = aa[0], xi(4) = aa[1], xi(5) = aa[2];
+    Eigen::Map<Eigen::Matrix<T, 6, 1>> residual(r);
+    residual = sqrt_information.cast<T>() * xi;
+    return true;
+  }
+
+  Eigen::Quaterniond q_meas_inv;
+  Eigen::Vector3d t_meas;
+  Matrix6d sqrt_information;  ///< L^T
+};
+
+Matrix6d sqrtInformation(const PoseConstraint& c) {
+  const Eigen::LLT<Matrix6d> llt(c.information);
+  if (!c.information.allFinite() || llt.info() != Eigen::Success)
+    throw Error("pose graph: the information of constraint " + std::to_string(c.from) + " -> " +
+                std::to_string(c.to) + " is not positive definite");
+  return llt.matrixU();  // L^T
+}
+
+double totalChi2(const std::vector<Isometry3>& T, const std::vector<PoseConstraint>& edges) {
+  double s = 0.0;
+  for (const PoseConstraint& c : edges) s += edgeChi2(T[c.from], T[c.to], c);
+  return s;
+}
+
+}  // namespace
+
+PoseGraphResult optimizePoseGraph(const std::vector<Isometry3>& T_world_node, const std::vector<PoseConstraint>& edges,
+                                  const PoseGraphSettings& settings) {
+  const std::size_t n = T_world_node.size();
+  for (std::size_t i = 0; i < n; ++i)
+    if (!T_world_node[i].matrix().allFinite()) throw Error("pose graph: node " + std::to_string(i) + " is not finite");
+  for (const PoseConstraint& c : edges) {
+    if (c.from >= n || c.to >= n || c.from == c.to)
+      throw Error("pose graph: constraint " + std::to_string(c.from) + " -> " + std::to_string(c.to) +
+                  " names a node out of range or links a node to itself (" + std::to_string(n) + " nodes)");
+    if (!c.T_from_to.matrix().allFinite())
+      throw Error("pose graph: constraint " + std::to_string(c.from) + " -> " + std::to_string(c.to) + " is not finite");
+  }
+  if (settings.max_iterations < 1 || settings.num_threads < 1 || !(settings.function_tolerance > 0.0))
+    throw Error("pose graph: max_iterations, num_threads and function_tolerance must be positive");
+
+  PoseGraphResult out;
+  out.T_world_node = T_world_node;
+  out.initial_chi2 = totalChi2(T_world_node, edges);
+
+  // Parameters: unit quaternion (x y z w, Eigen's order) and translation per node.
+  std::vector<Eigen::Quaterniond> q(n);
+  std::vector<Eigen::Vector3d> t(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    q[i] = Eigen::Quaterniond(T_world_node[i].rotation()).normalized();
+    t[i] = T_world_node[i].translation();
+  }
+  // The problem borrows the costs and the manifold (owned here), as in the registration's PoseProblem.
+  ceres::Problem::Options problem_options;
+  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  const auto manifold = std::make_unique<ceres::EigenQuaternionManifold>();
+  std::vector<std::unique_ptr<ceres::CostFunction>> costs;
+  costs.reserve(edges.size());
+  std::vector<bool> used(n, false);
+  for (const PoseConstraint& c : edges) {
+    costs.push_back(std::make_unique<ceres::AutoDiffCostFunction<EdgeResidual, 6, 4, 3, 4, 3>>(
+        new EdgeResidual(c.T_from_to, sqrtInformation(c))));  // the cost function owns its functor
+    problem.AddResidualBlock(costs.back().get(), nullptr, q[c.from].coeffs().data(), t[c.from].data(),
+                             q[c.to].coeffs().data(), t[c.to].data());
+    for (const std::size_t i : {c.from, c.to}) {
+      if (!used[i]) problem.SetManifold(q[i].coeffs().data(), manifold.get());
+      used[i] = true;
+    }
+  }
+  const std::vector<std::size_t> roots = pieceRoots(n, edges);
+  for (std::size_t i = 0; i < n; ++i)
+    if (used[i] && roots[i] == i) {
+      problem.SetParameterBlockConstant(q[i].coeffs().data());
+      problem.SetParameterBlockConstant(t[i].data());
+      ++out.fixed_nodes;
+    }
+  if (edges.empty()) {
+    out.converged = true;
+    out.message = "no constraints";
+    return out;
+  }
+
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE) ||
+                                       ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)
+                                   ? ceres::SPARSE_NORMAL_CHOLESKY
+                                   : ceres::DENSE_QR;
+  options.max_num_iterations = settings.max_iterations;
+  options.function_tolerance = settings.function_tolerance;
+  options.num_threads = settings.num_threads;
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  out.converged = summary.termination_type == ceres::CONVERGENCE;
+  out.iterations = static_cast<int>(summary.iterations.size());
+  out.message = summary.BriefReport();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!used[i]) continue;
+    Isometry3 T = Isometry3::Identity();
+    T.linear() = q[i].normalized().toRotationMatrix();
+    T.translation() = t[i];
+    out.T_world_node[i] = T;
+  }
+  out.final_chi2 = totalChi2(out.T_world_node, edges);
+  return out;
+}
+
+}  // namespace gasp

@@ -1,0 +1,32 @@
+#include "gasp/slam/slam_params.h"
+
+#include <cmath>
+#include <string>
+
+#include "gasp/core/error.h"
+
+namespace gasp {
+
+namespace {
+void requirePositive(double v, const char* name) {
+  if (!(v > 0.0) || !std::isfinite(v)) throw Error(std::string("loop closure: ") + name + " must be positive and finite");
+}
+}  // namespace
+
+void validate(const LoopClosureParams& p) {
+  requirePositive(p.search_radius_m, "search_radius_m");
+  requirePositive(p.max_axis_angle_deg, "max_axis_angle_deg");
+  requirePositive(p.gate_chi2, "gate_chi2");
+  if (p.min_keyframe_gap < 1) throw Error("loop closure: min_keyframe_gap must be at least 1");
+  if (p.min_inliers < 3 || p.relocalisation_min_inliers < 3)
+    throw Error("loop closure: min_inliers and relocalisation_min_inliers must be at least 3");
+}
+
+void validate(const SlamParams& p) {
+  validate(p.odometry);
+  validate(p.loop);
+  if (p.graph.max_iterations < 1 || p.graph.num_threads < 1 || !(p.graph.function_tolerance > 0.0))
+    throw Error("pose graph: max_iterations, num_threads and function_tolerance must be positive");
+}
+
+}  // namespace gasp

@@ -1,0 +1,41 @@
+#include "gasp/mrpt/keyframe_map.h"
+
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPose3DPDFGaussian.h>
+
+#include <string>
+
+#include "gasp/core/error.h"
+#include "gasp/rawlog/observation_conversion.h"
+
+namespace gasp {
+
+mrpt::maps::CSimpleMap keyframeSimpleMap(const std::vector<RgbdFrame>& keyframes,
+                                         const std::vector<Isometry3>& T_world_camera) {
+  if (keyframes.size() != T_world_camera.size())
+    throw Error("keyframe map: " + std::to_string(keyframes.size()) + " keyframes but " +
+                std::to_string(T_world_camera.size()) + " poses");
+  mrpt::maps::CSimpleMap map;
+  for (std::size_t i = 0; i < keyframes.size(); ++i) {
+    const RgbdFrame& f = keyframes[i];
+    auto gaussian = mrpt::poses::CPose3DPDFGaussian::Create();
+    gaussian->mean = toCPose3D(T_world_camera[i] * f.T_robot_camera.inverse());
+    const mrpt::poses::CPose3DPDF::Ptr pose = gaussian;
+    auto sf = mrpt::obs::CSensoryFrame::Create();
+    sf->insert(observationFromFrame(f));
+    map.insert(pose, sf);
+  }
+  return map;
+}
+
+void saveSimpleMap(const mrpt::maps::CSimpleMap& map, const std::string& path) {
+  bool ok = false;
+  try {
+    ok = map.saveToFile(path);
+  } catch (const std::exception& e) {
+    throw Error("cannot write " + path + ": " + e.what());
+  }
+  if (!ok) throw Error("cannot write " + path);
+}
+
+}  // namespace gasp

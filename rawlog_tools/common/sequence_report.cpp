@@ -1,0 +1,56 @@
+#include "sequence_report.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+
+#include "gasp/core/error.h"
+#include "gasp/eval/ate.h"
+#include "gasp/eval/error_statistics.h"
+#include "gasp/eval/rpe.h"
+
+namespace gasp::tools {
+
+void writeFramesCsv(const std::string& path, const std::vector<OdometryFrame>& frames) {
+  std::ofstream out(path);
+  if (!out) throw Error("cannot write " + path);
+  out << "index,timestamp,tracked,keyframe,reference,patches,inliers,deskewed,segmentation_ms,registration_ms,reason\n";
+  for (const auto& f : frames) {
+    std::string reason = f.reason;
+    std::replace(reason.begin(), reason.end(), '"', '\'');
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "%zu,%.6f,%d,%d,%zu,%d,%d,%d,%.2f,%.2f,", f.index, f.timestamp, f.tracked ? 1 : 0,
+                  f.keyframe ? 1 : 0, f.reference, f.patches, f.inliers, f.deskewed ? 1 : 0, f.segmentation_ms,
+                  f.registration_ms);
+    out << buf << '"' << reason << "\"\n";
+  }
+  if (!out) throw Error("cannot write " + path);
+}
+
+void printOdometrySummary(const DepthOdometry& odometry) {
+  const auto& frames = odometry.frames();
+  std::vector<double> seg, reg, total;
+  for (const auto& f : frames)
+    seg.push_back(f.segmentation_ms), reg.push_back(f.registration_ms), total.push_back(f.segmentation_ms + f.registration_ms);
+  const auto median = [](const std::vector<double>& v) { return eval::computeStatistics(v).median; };
+  std::printf("frames: %zu\n", frames.size());
+  std::printf("tracked: %zu\n", odometry.trackedCount());
+  std::printf("keyframes: %zu\n", odometry.keyframeCount());
+  std::printf("median_ms_per_frame: %.1f (medians: segmentation %.1f, registration %.1f)\n", median(total), median(seg),
+              median(reg));
+}
+
+void printEvaluation(const Trajectory& ground_truth, const Trajectory& estimate, const std::string& prefix) {
+  if (ground_truth.empty()) return;
+  try {
+    const auto ate = eval::computeAte(ground_truth, estimate);
+    std::printf("%sate_rmse_m: %.4f (%zu poses)\n", prefix.c_str(), ate.translation.rmse, ate.translation.count);
+    const auto rpe = eval::computeRpe(ground_truth, estimate);
+    std::printf("%srpe_1s_rmse: %.4f m, %.3f deg (%zu pairs)\n", prefix.c_str(), rpe.translation.rmse,
+                rpe.rotation_deg.rmse, rpe.pairs.size());
+  } catch (const Error& e) {
+    std::printf("%sevaluation: not possible: %s\n", prefix.c_str(), e.what());
+  }
+}
+
+}  // namespace gasp::tools

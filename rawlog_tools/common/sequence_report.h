@@ -1,0 +1,23 @@
+#pragma once
+/// \file sequence_report.h What gasp-odometry and gasp-slam print and write about a sequence.
+#include <string>
+#include <vector>
+
+#include "gasp/core/tum_trajectory.h"
+#include "gasp/odometry/odometry.h"
+
+namespace gasp::tools {
+
+/// One line per frame: index,timestamp,tracked,keyframe,reference,patches,inliers,deskewed,
+/// segmentation_ms,registration_ms,reason. Throws gasp::Error when it cannot be written.
+void writeFramesCsv(const std::string& path, const std::vector<OdometryFrame>& frames);
+
+/// Prints frames:, tracked:, keyframes: and median_ms_per_frame: (the median of each frame's
+/// segmentation + registration, then the two stages' own medians).
+void printOdometrySummary(const DepthOdometry& odometry);
+
+/// Prints `<prefix>ate_rmse_m:` and `<prefix>rpe_1s_rmse:` of `estimate` against `ground_truth`
+/// (TUM's definitions, gasp/eval), or why they cannot be computed.
+void printEvaluation(const Trajectory& ground_truth, const Trajectory& estimate, const std::string& prefix = "");
+
+}  // namespace gasp::tools

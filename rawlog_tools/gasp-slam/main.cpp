@@ -1,0 +1,168 @@
+// gasp-slam: a map built offline from a depth sequence with GASP: odometry, loop closures and the
+// optimised pose graph (gasp/slam/depth_slam.h).
+//   gasp-slam --tum DIR | --rawlog FILE [--sensor LABEL] [--gt TRAJ.txt] --out TRAJ.txt
+//             [--graph G.graph] [--simplemap MAP.simplemap] [--cloud MAP.ply] [options]
+// Writes the optimised trajectory of the depth camera (TUM format) in the world of the first
+// frame's robot frame (MRPT's sensorPose; TUM folders: the camera looking along the robot's +X),
+// optionally the pose graph with its loop closures (MRPT VERTEX3 / EDGE3), the keyframes as an
+// MRPT simple map (for MRPT's observations2map) and a voxel point map (PLY).
+// Exit codes: 0 every frame tracked and the graph in one piece, 1 bad input, 2 usage error,
+// 3 written, but some frames were not tracked or the graph stayed in pieces.
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <vector>
+
+#include "gasp/core/error.h"
+#include "gasp/core/tum_trajectory.h"
+#include "gasp/mrpt/keyframe_map.h"
+#include "gasp/mrpt/pose_graph.h"
+#include "gasp/rawlog/depth_sequence.h"
+#include "gasp/slam/depth_slam.h"
+#include "gasp/slam/point_map.h"
+#include "sequence_report.h"
+
+namespace {
+
+void writeLoopsCsv(const std::string& path, const std::vector<gasp::LoopClosureAttempt>& attempts) {
+  std::ofstream out(path);
+  if (!out) throw gasp::Error("cannot write " + path);
+  out << "from,to,relocalisation,accepted,inliers,gate_chi2,registration_ms,reason\n";
+  for (const auto& a : attempts) {
+    std::string reason = a.reason;
+    for (char& c : reason) c = c == '"' ? '\'' : c;
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "%zu,%zu,%d,%d,%d,%.3f,%.2f,", a.from, a.to, a.relocalisation ? 1 : 0,
+                  a.accepted ? 1 : 0, a.inliers, a.gate_chi2, a.registration_ms);
+    out << buf << '"' << reason << "\"\n";
+  }
+  if (!out) throw gasp::Error("cannot write " + path);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"gasp-slam: a map built offline from a depth sequence with GASP: odometry, loop closures between "
+               "keyframes and the optimised pose graph"};
+  gasp::DepthSequenceOptions input;
+  std::string gt_path, out_path, odometry_out, graph_path, frames_csv, loops_csv, simplemap_path, cloud_path;
+  double voxel_m = 0.01, cloud_max_depth_m = 4.0;
+  bool no_loops = false;
+  gasp::SlamParams params;
+  auto* tum = app.add_option("--tum", input.tum_dir, "TUM RGB-D folder (frames in depth.txt order; its groundtruth.txt is the reference)");
+  auto* rawlog = app.add_option("--rawlog", input.rawlog_path, "an MRPT rawlog: its CObservation3DRangeScan in file order")->excludes(tum);
+  app.add_option("--sensor", input.sensor_label, "with --rawlog: only the scans with this sensorLabel")->needs(rawlog);
+  app.add_option("--gt", gt_path, "with --rawlog: a TUM trajectory of the camera (optical frame), e.g. the "
+                                  "OUT_groundtruth.txt gasp-tum2rawlog writes")->needs(rawlog);
+  app.add_option("--out", out_path, "optimised trajectory to write (TUM format: timestamp tx ty tz qx qy qz qw of the depth camera)")->required();
+  app.add_option("--odometry-out", odometry_out, "the odometry's trajectory before loop closures (TUM format, same world)");
+  app.add_option("--graph", graph_path, "pose graph to write: odometry and loop-closure edges at the optimised poses (MRPT VERTEX3/EDGE3, robot frames)");
+  app.add_option("--simplemap", simplemap_path, "the keyframes' scans at their optimised poses as an MRPT simple map (for observations2map)");
+  app.add_option("--cloud", cloud_path, "a point map of the keyframes at their optimised poses (PLY, one point per voxel)");
+  app.add_option("--voxel", voxel_m, "voxel size of --cloud [m]")->capture_default_str();
+  app.add_option("--cloud-max-depth", cloud_max_depth_m, "depth beyond which points are left out of --cloud [m]")->capture_default_str();
+  app.add_option("--frames-csv", frames_csv, "one line per frame: tracked, keyframe, reference, patches, inliers, times, reason");
+  app.add_option("--loops-csv", loops_csv, "one line per loop-closure registration: keyframes, accepted, inliers, gate chi-square, reason");
+  app.add_option("--first", input.first, "first frame used (index among the input's frames)")->capture_default_str();
+  app.add_option("--max-frames", input.max_frames, "at most this many frames (0 = all)")->capture_default_str();
+  app.add_option("--every", input.every, "use every N-th frame (a wider baseline between frames)")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--keyframe-distance", params.odometry.keyframe_distance_m, "new keyframe beyond this distance from the last [m]")->capture_default_str();
+  app.add_option("--keyframe-angle", params.odometry.keyframe_angle_deg, "new keyframe beyond this rotation from the last [deg]")->capture_default_str();
+  app.add_option("--rolling-shutter", params.odometry.rolling_shutter_readout_s,
+                 "deskew each frame for a rolling-shutter readout of S seconds with the last step's velocity (TUM Kinect: 0.03; 0 = off)")
+      ->capture_default_str();
+  app.add_flag("--no-loop-closures", no_loops, "odometry only (no loop closures, no optimisation)");
+  app.add_option("--search-radius", params.loop.search_radius_m, "loop-closure candidates within this distance [m]")->capture_default_str();
+  app.add_option("--loop-candidates", params.loop.max_candidates, "registrations per new keyframe")->capture_default_str();
+  app.add_option("--keyframe-gap", params.loop.min_keyframe_gap, "candidates at least this many keyframes back")->capture_default_str();
+  app.add_option("--relocalisation-candidates", params.loop.relocalisation_candidates,
+                 "registrations to other pieces of the graph per new keyframe (0 = off)")->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;  // --help: 0; any usage error: 2
+  }
+  if (input.tum_dir.empty() && input.rawlog_path.empty()) {
+    std::cerr << "error: give --tum DIR or --rawlog FILE\n";
+    return 2;
+  }
+  params.loop.enabled = !no_loops;
+
+  try {
+    gasp::validate(params);
+    const gasp::VoxelPointMap probe(voxel_m, cloud_max_depth_m);  // the cloud's options, checked before the run
+    gasp::DepthSequence sequence(input);
+    const gasp::Trajectory gt = gt_path.empty() ? sequence.groundTruth() : gasp::readTumTrajectory(gt_path);
+    std::optional<gasp::DepthSlam> slam;
+    gasp::Isometry3 T_robot_camera = gasp::Isometry3::Identity();
+    std::vector<gasp::RgbdFrame> keyframes;  // for --simplemap and --cloud
+    const bool keep_keyframes = !simplemap_path.empty() || !cloud_path.empty();
+    while (std::optional<gasp::RgbdFrame> frame = sequence.next()) {
+      if (!slam) {
+        // World = the first frame's robot frame: the first camera sits at its sensorPose.
+        T_robot_camera = frame->T_robot_camera;
+        slam.emplace(params, T_robot_camera);
+      }
+      const gasp::OdometryFrame& f = slam->addFrame(frame->timestamp, frame->depth_m, frame->depth_intrinsics);
+      if (f.keyframe && keep_keyframes) {
+        frame->rgb.release();  // the map keeps depth only
+        keyframes.push_back(std::move(*frame));
+      }
+      if (sequence.framesUsed() % 50 == 0)
+        std::fprintf(stderr, "frame %zu: %zu tracked of %zu, %zu loop closures\n", f.index,
+                     slam->odometry().trackedCount(), slam->odometry().frames().size(), slam->loopClosures().size());
+    }
+    if (!slam) throw gasp::Error(sequence.describe() + ": no frame to use");
+
+    const auto& frames = slam->odometry().frames();
+    gasp::writeTumTrajectory(out_path, slam->trajectory(), "depth camera trajectory by gasp-slam (optimised)");
+    if (!odometry_out.empty())
+      gasp::writeTumTrajectory(odometry_out, slam->odometry().trajectory(), "depth camera trajectory by gasp-slam (odometry)");
+    if (!frames_csv.empty()) gasp::tools::writeFramesCsv(frames_csv, frames);
+    if (!loops_csv.empty()) writeLoopsCsv(loops_csv, slam->attempts());
+    if (!graph_path.empty()) {
+      const auto g = gasp::toPoseGraph(slam->poses(), slam->constraints(), T_robot_camera);
+      g.graph.saveToTextFile(graph_path);
+      std::printf("graph: %s (%zu nodes, %zu edges)\n", graph_path.c_str(), g.graph.nodes.size(), g.graph.edgeCount());
+    }
+    std::vector<gasp::Isometry3> keyframe_poses;
+    for (const auto& f : frames)
+      if (f.keyframe && keep_keyframes) keyframe_poses.push_back(slam->poses()[f.index]);
+    if (!simplemap_path.empty()) {
+      gasp::saveSimpleMap(gasp::keyframeSimpleMap(keyframes, keyframe_poses), simplemap_path);
+      std::printf("simplemap: %s (%zu keyframes)\n", simplemap_path.c_str(), keyframes.size());
+    }
+    if (!cloud_path.empty()) {
+      gasp::VoxelPointMap map(voxel_m, cloud_max_depth_m);
+      for (std::size_t i = 0; i < keyframes.size(); ++i)
+        map.insert(keyframes[i].depth_m, keyframes[i].depth_intrinsics, keyframe_poses[i]);
+      map.writePly(cloud_path);
+      std::printf("cloud: %s (%zu points, voxel %.3f m)\n", cloud_path.c_str(), map.size(), voxel_m);
+    }
+
+    gasp::tools::printOdometrySummary(slam->odometry());
+    std::size_t tried = 0, relocalisations = 0;
+    for (const auto& a : slam->attempts()) tried += a.relocalisation ? 0 : 1;
+    for (const auto& c : slam->loopClosures())
+      for (const auto& a : slam->attempts())
+        if (a.accepted && a.relocalisation && a.from == c.from && a.to == c.to) ++relocalisations;
+    std::printf("loop_closures: %zu (%zu registrations tried; %zu relocalisations)\n",
+                slam->loopClosures().size() - relocalisations, tried, relocalisations);
+    std::printf("optimisations: %zu (%.1f ms in all)\n", slam->optimisationCount(), slam->optimisationMs());
+    std::printf("graph_pieces: %zu (odometry alone: %zu)\n", slam->pieceCount(), slam->odometry().componentCount());
+    std::printf("trajectory: %s\n", out_path.c_str());
+    gasp::tools::printEvaluation(gt, slam->odometry().trajectory(), "odometry_");
+    gasp::tools::printEvaluation(gt, slam->trajectory());
+    const std::size_t lost = frames.size() - slam->odometry().trackedCount();
+    if (lost > 0) std::printf("not_tracked: %zu frames (poses predicted; reasons in --frames-csv)\n", lost);
+    if (lost > 0 || slam->pieceCount() > 1) return 3;
+  } catch (const std::exception& e) {  // gasp::Error, and MRPT's when an output cannot be written
+    std::cerr << "error: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,179 @@
+// DepthSlam (depth_slam.h): loop closures and relocalisation on synthetic sequences with exact
+// ground truth, and a real TUM sequence that revisits its places.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "gasp/core/error.h"
+#include "gasp/core/tum_dataset.h"
+#include "gasp/eval/ate.h"
+#include "gasp/sim/camera_path.h"
+#include "gasp/sim/noise_model.h"
+#include "gasp/sim/renderer.h"
+#include "gasp/sim/simulation.h"
+#include "gasp/slam/depth_slam.h"
+#include "gasp/slam/pose_graph.h"
+#include "gasp_test_data.h"
+
+namespace {
+
+using gasp::Isometry3;
+
+/// The simulator's room, and a camera that circles 0.3 m around a pose of its path looking at a
+/// point 3 m ahead, at 5 Hz, coming back to where it began. With `look_away`, the frames
+/// listed look 90 degrees to the right (nothing in common with the others).
+struct LoopSequence {
+  std::vector<Isometry3> T_world_camera;
+  std::vector<cv::Mat> depth;
+  std::vector<double> timestamps;
+  gasp::CameraIntrinsics K;
+};
+
+const gasp::sim::Simulation& room() {
+  static const gasp::sim::Simulation sim{gasp::sim::SimulationOptions{}};
+  return sim;
+}
+
+LoopSequence circleSequence(int frames, const std::vector<int>& look_away = {}) {
+  const auto& sim = room();
+  LoopSequence s;
+  s.K = sim.options().intrinsics;
+  // From the path's frame 45 (in its roll), looking 3 m ahead: the room's clutter fills the view.
+  const Isometry3 start = sim.path().poses.at(45).T_world_camera;
+  const Eigen::Vector3d p0 = start.translation(), target = start * Eigen::Vector3d(0, 0, 3.0);
+  const double r = 0.3;
+  for (int i = 0; i < frames; ++i) {
+    const double a = 2 * M_PI * i / frames;
+    const Eigen::Vector3d p = p0 + r * Eigen::Vector3d(std::cos(a) - 1, std::sin(a), 0);
+    const bool turned = std::find(look_away.begin(), look_away.end(), i) != look_away.end();
+    const Eigen::Vector3d away = p + Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitZ()) * (target - p);
+    const Isometry3 T = gasp::sim::lookAt(p, turned ? away : target);
+    const auto rendered = gasp::sim::renderFrame(sim.scene(), s.K, T, 0);
+    s.depth.push_back(gasp::sim::sensorDepth(rendered, sim.options().noise, s.K, 7, i));
+    s.T_world_camera.push_back(T);
+    s.timestamps.push_back(1000.0 + i / 5.0);
+  }
+  return s;
+}
+
+/// Translation [m] and rotation [deg] error of a closure against the truth.
+std::pair<double, double> closureError(const gasp::PoseConstraint& c, const LoopSequence& s) {
+  const Isometry3 truth = s.T_world_camera[c.from].inverse() * s.T_world_camera[c.to];
+  const Isometry3 e = truth.inverse() * c.T_from_to;
+  return {gasp::translationNorm(e), gasp::rotationAngle(e) * 180 / M_PI};
+}
+
+}  // namespace
+
+TEST(DepthSlam, ClosesTheLoopOfACircleWithClosuresThatAreTrue) {
+  const LoopSequence s = circleSequence(30);
+  gasp::DepthSlam slam({}, s.T_world_camera[0]);
+  gasp::Trajectory gt;
+  for (std::size_t i = 0; i < s.depth.size(); ++i) {
+    const auto& f = slam.addFrame(s.timestamps[i], s.depth[i], s.K);
+    EXPECT_TRUE(f.tracked) << "frame " << i << ": " << f.reason;
+    gt.push_back({s.timestamps[i], s.T_world_camera[i]});
+  }
+  ASSERT_FALSE(slam.loopClosures().empty());
+  for (const auto& c : slam.loopClosures()) {
+    EXPECT_TRUE(c.loop_closure);
+    const auto [t, r] = closureError(c, s);
+    EXPECT_LT(t, 0.02) << c.from << " -> " << c.to;
+    EXPECT_LT(r, 1.0) << c.from << " -> " << c.to;
+  }
+  // Some closure spans most of the circle (the end back at the start).
+  std::size_t longest = 0;
+  for (const auto& c : slam.loopClosures()) longest = std::max(longest, c.to - c.from);
+  EXPECT_GE(longest, 20u);
+  EXPECT_GE(slam.optimisationCount(), 1u);
+  EXPECT_EQ(slam.pieceCount(), 1u);
+  EXPECT_EQ(slam.constraints().size(), slam.odometry().constraints().size() + slam.loopClosures().size());
+  EXPECT_TRUE(slam.poses()[0].isApprox(s.T_world_camera[0], 1e-9));  // the gauge: the first frame
+  const double ate_odo = gasp::eval::computeAte(gt, slam.odometry().trajectory()).translation.rmse;
+  const double ate = gasp::eval::computeAte(gt, slam.trajectory()).translation.rmse;
+  std::printf("circle, 30 frames: %zu loop closures of %zu tried; ATE %.4f m (odometry %.4f m)\n",
+              slam.loopClosures().size(), slam.attempts().size(), ate, ate_odo);
+  EXPECT_LT(ate, 0.01);
+  EXPECT_LT(ate, ate_odo);
+  // Every closure in the graph is consistent with the optimised poses.
+  for (const auto& c : slam.loopClosures())
+    EXPECT_LE(gasp::edgeChi2(slam.poses()[c.from], slam.poses()[c.to], c), slam.params().loop.gate_chi2);
+}
+
+TEST(DepthSlam, RelocalisesAfterTheCameraLooksAwayAndKeepsTheUnrelatedPieceApart) {
+  // Frames 12-14 look away: the odometry loses track twice (into that view and back), so the
+  // graph falls into pieces: 0-11, 12-14 (13 registered to 12) and 15-29 (16 registered to 15).
+  const LoopSequence s = circleSequence(30, {12, 13, 14});
+  gasp::DepthSlam slam({}, s.T_world_camera[0]);
+  for (std::size_t i = 0; i < s.depth.size(); ++i) slam.addFrame(s.timestamps[i], s.depth[i], s.K);
+  EXPECT_GE(slam.odometry().componentCount(), 3u);
+  std::size_t relocalisations = 0;
+  for (const auto& a : slam.attempts()) {
+    if (!a.accepted) continue;
+    relocalisations += a.relocalisation ? 1 : 0;
+    // No accepted registration joins a look-away frame to the others.
+    const bool from_back = a.from >= 12 && a.from <= 14, to_back = a.to >= 12 && a.to <= 14;
+    EXPECT_EQ(from_back, to_back) << a.from << " -> " << a.to;
+  }
+  EXPECT_GE(relocalisations, 1u);
+  for (const auto& c : slam.loopClosures()) {
+    const auto [t, r] = closureError(c, s);
+    EXPECT_LT(t, 0.02) << c.from << " -> " << c.to;
+    EXPECT_LT(r, 1.0) << c.from << " -> " << c.to;
+  }
+  // The look-away frames stay a piece of their own; everything else is one piece again, in place.
+  EXPECT_EQ(slam.pieceCount(), 2u);
+  for (std::size_t i = 16; i < s.depth.size(); ++i) {
+    const Isometry3 e = s.T_world_camera[i].inverse() * slam.poses()[i];
+    EXPECT_LT(gasp::translationNorm(e), 0.02) << "frame " << i;
+    EXPECT_LT(gasp::rotationAngle(e) * 180 / M_PI, 1.0) << "frame " << i;
+  }
+}
+
+TEST(DepthSlam, WithoutLoopClosuresItIsTheOdometry) {
+  const LoopSequence s = circleSequence(30);
+  gasp::SlamParams p;
+  p.loop.enabled = false;
+  gasp::DepthSlam slam(p, s.T_world_camera[0]);
+  for (std::size_t i = 0; i < s.depth.size(); ++i) slam.addFrame(s.timestamps[i], s.depth[i], s.K);
+  EXPECT_TRUE(slam.attempts().empty());
+  EXPECT_EQ(slam.optimisationCount(), 0u);
+  for (std::size_t i = 0; i < s.depth.size(); ++i)
+    EXPECT_TRUE(slam.poses()[i].isApprox(slam.odometry().frames()[i].T_world_camera, 1e-12)) << i;
+}
+
+TEST(DepthSlam, BadFramesAreErrorsThatLeaveItUnchanged) {
+  const LoopSequence s = circleSequence(30);
+  gasp::DepthSlam slam;
+  slam.addFrame(1.0, s.depth[0], s.K);
+  EXPECT_THROW(slam.addFrame(1.0, s.depth[1], s.K), gasp::Error);  // not later
+  EXPECT_THROW(slam.addFrame(2.0, cv::Mat(), s.K), gasp::Error);
+  EXPECT_THROW(slam.addFrame(2.0, cv::Mat(10, 10, CV_32FC1, cv::Scalar(1.0)), s.K), gasp::Error);
+  EXPECT_EQ(slam.poses().size(), 1u);
+  // A frame without depth is predicted, not an error.
+  const auto& f = slam.addFrame(2.0, cv::Mat(s.K.height, s.K.width, CV_32FC1, cv::Scalar(0.0)), s.K);
+  EXPECT_FALSE(f.tracked);
+  EXPECT_EQ(slam.poses().size(), 2u);
+  gasp::SlamParams p;
+  p.loop.max_axis_angle_deg = 0;
+  EXPECT_THROW(gasp::DepthSlam{p}, gasp::Error);
+}
+
+TEST(DepthSlam, Fr1XyzRevisitsGiveLoopClosuresThatLowerTheError) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_xyz");
+  const auto ds = gasp::TumDataset::open(dir);
+  gasp::DepthSlam slam;
+  // Frames 0-358, every second: the camera moves along x and back, then along y.
+  for (std::size_t i = 0; i < 360 && i < ds.size(); i += 2) slam.addFrame(ds.frame(i).timestamp, ds.loadDepth(i), ds.intrinsics());
+  const gasp::Trajectory gt = ds.groundTruth();
+  const double ate_odo = gasp::eval::computeAte(gt, slam.odometry().trajectory()).translation.rmse;
+  const double ate = gasp::eval::computeAte(gt, slam.trajectory()).translation.rmse;
+  std::printf("fr1_xyz frames 0-358 every 2nd: %zu loop closures of %zu tried; ATE %.4f m (odometry %.4f m)\n",
+              slam.loopClosures().size(), slam.attempts().size(), ate, ate_odo);
+  EXPECT_EQ(slam.odometry().trackedCount(), slam.odometry().frames().size());
+  EXPECT_GE(slam.loopClosures().size(), 5u);
+  EXPECT_LT(ate, ate_odo);
+  EXPECT_LT(ate, 0.02);
+}

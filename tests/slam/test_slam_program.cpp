@@ -1,0 +1,126 @@
+// gasp-slam end to end: a simulated folder and a rawlog, its outputs (trajectory, graph, MRPT
+// simple map, point map, CSVs), and the exit codes of bad input.
+#include <gtest/gtest.h>
+
+#include <mrpt/maps/CSimpleMap.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPose3DPDF.h>
+
+#include <fstream>
+#include <string>
+
+#include "gasp/core/tum_trajectory.h"
+#include "gasp/rawlog/observation_conversion.h"
+#include "gasp_test_data.h"
+#include "program_run.h"
+
+namespace {
+
+using gasp::test::runProgram;
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+std::size_t countLinesStartingWith(const std::string& path, const std::string& prefix) {
+  std::ifstream in(path);
+  std::size_t n = 0;
+  for (std::string line; std::getline(in, line);) n += line.rfind(prefix, 0) == 0 ? 1 : 0;
+  return n;
+}
+
+std::size_t printedCount(const std::string& output, const std::string& key) {
+  const auto pos = output.find(key);
+  return pos == std::string::npos ? static_cast<std::size_t>(-1) : std::stoul(output.substr(pos + key.size()));
+}
+
+/// A 30-frame simulated room at 5 Hz in DIR/sim (the occluder appears at frame 19). Each test
+/// makes its own: ctest runs the tests of this file in parallel processes.
+std::string simulatedFolder(const std::string& dir) {
+  const std::string d = dir + "/sim";
+  const auto run = runProgram("gasp-simulate", "--out " + d + " --frames 30 --rate 5");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  return d;
+}
+
+}  // namespace
+
+TEST(GaspSlamProgram, WritesTheTrajectoryGraphSimpleMapAndCloud) {
+  const std::string out = gasp::test::scratchDir();
+  const auto run = runProgram("gasp-slam", "--tum " + simulatedFolder(out) + " --max-frames 16 --out " + out +
+                                               "/traj.txt --odometry-out " + out + "/odo.txt --graph " + out +
+                                               "/g.graph --simplemap " + out + "/map.simplemap --cloud " + out +
+                                               "/map.ply --loops-csv " + out + "/loops.csv --frames-csv " + out + "/f.csv");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "frames: 16\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "tracked: 16\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "graph_pieces: 1 ")) << run.output;
+  const std::size_t keyframes = printedCount(run.output, "keyframes: ");
+  const std::size_t loops = printedCount(run.output, "loop_closures: ");
+  ASSERT_LT(keyframes, 17u) << run.output;
+  ASSERT_LT(loops, 100u) << run.output;
+  EXPECT_EQ(gasp::readTumTrajectory(out + "/traj.txt").size(), 16u);
+  EXPECT_EQ(gasp::readTumTrajectory(out + "/odo.txt").size(), 16u);
+  EXPECT_EQ(countLinesStartingWith(out + "/g.graph", "VERTEX3 "), 16u);
+  EXPECT_EQ(countLinesStartingWith(out + "/g.graph", "EDGE3 "), 15u + loops);
+  EXPECT_EQ(countLinesStartingWith(out + "/loops.csv", "from,to,relocalisation,accepted"), 1u);
+  EXPECT_EQ(countLinesStartingWith(out + "/f.csv", "15,"), 1u);
+  // The ATE against the folder's ground truth is below a centimetre.
+  const auto pos = run.output.find("\nate_rmse_m: ");
+  ASSERT_NE(pos, std::string::npos) << run.output;
+  EXPECT_LT(std::stod(run.output.substr(pos + 13)), 0.01) << run.output;
+
+  // The simple map: one scan per keyframe at the trajectory's pose (world = the first robot
+  // frame: the camera's sensorPose applied).
+  mrpt::maps::CSimpleMap map;
+  ASSERT_TRUE(map.loadFromFile(out + "/map.simplemap"));
+  ASSERT_EQ(map.size(), keyframes);
+  const auto traj = gasp::readTumTrajectory(out + "/traj.txt");
+  const auto [pose, sf] = map.get(0);
+  ASSERT_TRUE(pose && sf);
+  const auto scan = sf->getObservationByClass<mrpt::obs::CObservation3DRangeScan>();
+  ASSERT_TRUE(scan);
+  EXPECT_TRUE(scan->hasRangeImage);
+  const gasp::Isometry3 T_world_robot = gasp::fromCPose3D(pose->getMeanVal());
+  // Frame 0 is a keyframe at the origin of the world: the robot's pose is the identity.
+  EXPECT_TRUE(T_world_robot.isApprox(gasp::Isometry3::Identity(), 1e-6));
+  // The point map has points.
+  EXPECT_GT(printedCount(run.output, "cloud: " + out + "/map.ply ("), 1000u) << run.output;
+}
+
+TEST(GaspSlamProgram, BadInputExitsWith1OrAUsageCode) {
+  const std::string out = gasp::test::scratchDir();
+  auto run = runProgram("gasp-slam", "--tum " + out + "/nothing --out " + out + "/t.txt");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "error: ") && contains(run.output, "nothing")) << run.output;
+  run = runProgram("gasp-slam", "--out " + out + "/t.txt");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  run = runProgram("gasp-slam", "--tum " + out + " --rawlog x.rawlog --out " + out + "/t.txt");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  const std::string sim = simulatedFolder(out);
+  run = runProgram("gasp-slam", "--tum " + sim + " --voxel 0 --cloud " + out + "/c.ply --out " + out + "/t.txt");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "voxel")) << run.output;
+  run = runProgram("gasp-slam", "--tum " + sim + " --search-radius -1 --out " + out + "/t.txt");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "search_radius_m")) << run.output;
+  run = runProgram("gasp-slam", "--tum " + sim + " --max-frames 3 --simplemap /nonexistent-dir/m.simplemap --out " + out +
+                                    "/t.txt");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "m.simplemap")) << run.output;
+  // A rawlog that is not one.
+  std::ofstream(out + "/garbage.rawlog") << "not a rawlog";
+  run = runProgram("gasp-slam", "--rawlog " + out + "/garbage.rawlog --out " + out + "/t.txt");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+}
+
+TEST(GaspSlamProgram, TheOccluderFrameLeavesTheGraphInPiecesOrRejoinsItAndSaysSo) {
+  // All 30 frames: the occluder pops in at frame 19, which the odometry cannot track; the frames
+  // after it are registered to it, a new piece. The program exits 3 and says why.
+  const std::string out = gasp::test::scratchDir();
+  const auto run = runProgram("gasp-slam", "--tum " + simulatedFolder(out) + " --out " + out + "/t.txt --loops-csv " +
+                                               out + "/loops.csv");
+  EXPECT_EQ(run.exit_code, 3) << run.output;
+  EXPECT_TRUE(contains(run.output, "not_tracked: 1 frames")) << run.output;
+  EXPECT_TRUE(contains(run.output, "(odometry alone: 2)")) << run.output;
+  EXPECT_EQ(gasp::readTumTrajectory(out + "/t.txt").size(), 30u);
+}
