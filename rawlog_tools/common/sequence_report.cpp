@@ -36,6 +36,7 @@ void printOdometrySummary(const DepthOdometry& odometry) {
   std::printf("frames: %zu\n", frames.size());
   std::printf("tracked: %zu\n", odometry.trackedCount());
   std::printf("keyframes: %zu\n", odometry.keyframeCount());
+  std::printf("graph_components: %zu\n", odometry.componentCount());
   std::printf("median_ms_per_frame: %.1f (medians: segmentation %.1f, registration %.1f)\n", median(total), median(seg),
               median(reg));
 }

@@ -12,8 +12,9 @@ namespace gasp::tools {
 /// segmentation_ms,registration_ms,reason. Throws gasp::Error when it cannot be written.
 void writeFramesCsv(const std::string& path, const std::vector<OdometryFrame>& frames);
 
-/// Prints frames:, tracked:, keyframes: and median_ms_per_frame: (the median of each frame's
-/// segmentation + registration, then the two stages' own medians).
+/// Prints frames:, tracked:, keyframes:, graph_components: (the odometry's pieces) and
+/// median_ms_per_frame: (the median of each frame's segmentation + registration, then the two
+/// stages' own medians).
 void printOdometrySummary(const DepthOdometry& odometry);
 
 /// Prints `<prefix>ate_rmse_m:` and `<prefix>rpe_1s_rmse:` of `estimate` against `ground_truth`

@@ -75,7 +75,6 @@ int main(int argc, char** argv) {
     }
 
     gasp::tools::printOdometrySummary(odometry);
-    std::printf("graph_components: %zu\n", odometry.componentCount());
     std::printf("trajectory: %s\n", out_path.c_str());
     gasp::tools::printEvaluation(gt, odometry.trajectory());
     if (odometry.trackedCount() < frames.size()) {

@@ -127,7 +127,8 @@ int main(int argc, char** argv) {
     if (!graph_path.empty()) {
       const auto g = gasp::toPoseGraph(slam->poses(), slam->constraints(), T_robot_camera);
       g.graph.saveToTextFile(graph_path);
-      std::printf("graph: %s (%zu nodes, %zu edges)\n", graph_path.c_str(), g.graph.nodes.size(), g.graph.edgeCount());
+      std::printf("graph: %s (%zu nodes, %zu edges%s)\n", graph_path.c_str(), g.graph.nodes.size(), g.graph.edgeCount(),
+                  g.skipped_constraints ? (", " + std::to_string(g.skipped_constraints) + " without a covariance left out").c_str() : "");
     }
     std::vector<gasp::Isometry3> keyframe_poses;
     for (const auto& f : frames)

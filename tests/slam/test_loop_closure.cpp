@@ -54,6 +54,10 @@ TEST(RelocalisationCandidates, TheLatestKeyframesOfOtherPieces) {
   for (std::size_t i = 10; i < 19; ++i) roots[i] = 10;  // frames 10.. are a piece of their own
   gasp::LoopClosureParams p;  // 3 candidates
   EXPECT_EQ(gasp::relocalisationCandidates(keyframes, roots, p), (std::vector<std::size_t>{9, 6, 3}));
+  // Three pieces: the latest keyframe of each other piece comes first.
+  for (std::size_t i = 13; i < 19; ++i) roots[i] = 13;  // 0-9 | 10-12 | 13-18 (current)
+  EXPECT_EQ(gasp::relocalisationCandidates(keyframes, roots, p), (std::vector<std::size_t>{12, 9, 6}));
+  for (std::size_t i = 10; i < 19; ++i) roots[i] = 10;
   p.relocalisation_candidates = 0;
   EXPECT_TRUE(gasp::relocalisationCandidates(keyframes, roots, p).empty());
   p.relocalisation_candidates = 3;

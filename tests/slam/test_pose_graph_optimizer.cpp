@@ -2,6 +2,8 @@
 // known answer.
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
+
 #include <cmath>
 #include <random>
 #include <vector>
@@ -66,34 +68,41 @@ TEST(PoseGraph, LeftPerturbationInvertsExpAndTheAdjointMovesIt) {
 }
 
 TEST(PoseGraph, ComposeAlongTreeGivesTheRelativePoseAndTheSampledCovariance) {
-  // A tree 0 -> 1 -> 2, 1 -> 3: from 2 to 3 through their common ancestor 1.
+  // A tree 0 -> 1 -> 2 -> 4 and 1 -> 3 -> 5: from 4 to 5 through their common ancestor 1, two
+  // constraints on each leg.
   const std::vector<Isometry3> T = circle(8);
   std::vector<PoseConstraint> tree;
-  const Matrix6d info = isotropicInformation(0.01, 0.01);
-  for (auto [a, b] : {std::pair<std::size_t, std::size_t>{0, 1}, {1, 2}, {1, 3}})
+  Matrix6d info = isotropicInformation(0.01, 0.01);
+  info(0, 4) = info(4, 0) = 2000.0;  // correlated translation and rotation
+  for (auto [a, b] : {std::pair<std::size_t, std::size_t>{0, 1}, {1, 2}, {2, 4}, {1, 3}, {3, 5}})
     tree.push_back(edge(a, b, T[a].inverse() * T[b], info));
-  const auto est = gasp::composeAlongTree(tree, 4, 2, 3);
+  const auto est = gasp::composeAlongTree(tree, 6, 4, 5);
   ASSERT_TRUE(est.has_value());
-  EXPECT_EQ(est->edges, 2u);
-  EXPECT_TRUE(est->T_a_b.isApprox(T[2].inverse() * T[3], 1e-12));
-  // Sampled: perturb both edges, carry into frame 2's left perturbation.
+  EXPECT_EQ(est->edges, 4u);
+  EXPECT_TRUE(est->T_a_b.isApprox(T[4].inverse() * T[5], 1e-12));
+  // Sampled: perturb the four constraints with their covariance, compose, and take the left
+  // perturbation in frame 4.
+  const Matrix6d L = Eigen::LLT<Matrix6d>(info.inverse()).matrixL();
   std::mt19937 rng(5);
-  std::normal_distribution<double> n(0, 0.01);
+  std::normal_distribution<double> n(0, 1);
+  const auto draw = [&](const PoseConstraint& c) {
+    Vector6d z;
+    for (int j = 0; j < 6; ++j) z(j) = n(rng);
+    return Isometry3(expLeft(L * z) * c.T_from_to);
+  };
   Matrix6d S = Matrix6d::Zero();
   const int draws = 20000;
   for (int k = 0; k < draws; ++k) {
-    Vector6d a, b;
-    for (int j = 0; j < 6; ++j) a(j) = n(rng), b(j) = n(rng);
-    const Isometry3 T12 = expLeft(a) * tree[1].T_from_to, T13 = expLeft(b) * tree[2].T_from_to;
-    const Vector6d xi = gasp::leftPerturbation(T12.inverse() * T13, est->T_a_b);
+    const Isometry3 T14 = draw(tree[1]) * draw(tree[2]), T15 = draw(tree[3]) * draw(tree[4]);
+    const Vector6d xi = gasp::leftPerturbation(T14.inverse() * T15, est->T_a_b);
     S += xi * xi.transpose() / draws;
   }
   EXPECT_LT((S - est->covariance).norm() / est->covariance.norm(), 0.05);
   // Frames in different pieces: no path.
-  EXPECT_FALSE(gasp::composeAlongTree(tree, 6, 2, 5).has_value());
-  EXPECT_THROW(gasp::composeAlongTree(tree, 4, 2, 9), gasp::Error);
+  EXPECT_FALSE(gasp::composeAlongTree(tree, 7, 2, 6).has_value());
+  EXPECT_THROW(gasp::composeAlongTree(tree, 6, 2, 9), gasp::Error);
   tree.push_back(edge(0, 3, Isometry3::Identity(), info));
-  EXPECT_THROW(gasp::composeAlongTree(tree, 4, 2, 3), gasp::Error);  // two constraints end in 3
+  EXPECT_THROW(gasp::composeAlongTree(tree, 6, 2, 3), gasp::Error);  // two constraints end in 3
 }
 
 TEST(PoseGraph, PieceRootsAreTheLowestIndexOfEachPiece) {

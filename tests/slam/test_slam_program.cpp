@@ -1,4 +1,4 @@
-// gasp-slam end to end: a simulated folder and a rawlog, its outputs (trajectory, graph, MRPT
+// gasp-slam end to end: a simulated folder, its outputs (trajectory, graph, MRPT
 // simple map, point map, CSVs), and the exit codes of bad input.
 #include <gtest/gtest.h>
 

@@ -47,7 +47,8 @@ std::optional<RgbdFrame> DepthSequence::next() {
     if (impl_->next_tum < impl_->tum->size()) {
       input_index_ = impl_->next_tum;
       out = frameFromTum(*impl_->tum, input_index_, options_.with_rgb);
-      impl_->next_tum += options_.every;
+      // No wrap-around for a huge `every`: past the end is the end.
+      impl_->next_tum = options_.every > impl_->tum->size() - input_index_ ? impl_->tum->size() : input_index_ + options_.every;
     }
   } else {
     for (std::optional<RgbdFrame> f; (f = impl_->rawlog->next());) {

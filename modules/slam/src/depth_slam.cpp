@@ -88,8 +88,8 @@ void DepthSlam::closeLoops(std::size_t k) {
         // Agreement with the odometry between the two keyframes, within both uncertainties.
         const std::optional<RelativePoseEstimate> path = composeAlongTree(odometry_.constraints(), n, cand, k);
         if (path) {
-          const Isometry3 T_pred = T_world_frame_[cand].inverse() * T_world_frame_[k];
-          const Vector6d xi = leftPerturbation(c.T_from_to, T_pred);
+          // The odometry's own prediction: S_path describes it (not the optimised poses).
+          const Vector6d xi = leftPerturbation(c.T_from_to, path->T_a_b);
           const Matrix6d S = path->covariance + c.information.ldlt().solve(Matrix6d::Identity());
           a.gate_chi2 = xi.dot(S.ldlt().solve(xi));
           if (!(a.gate_chi2 <= params_.loop.gate_chi2))
@@ -100,13 +100,13 @@ void DepthSlam::closeLoops(std::size_t k) {
                                params_.loop.relocalisation_min_inliers);
         }
       }
-      if (a.reason.empty()) {
-        a.accepted = true;
+      a.accepted = a.reason.empty();
+      attempts_.push_back(std::move(a));
+      if (attempts_.back().accepted) {
         loop_closures_.push_back(c);
-        loop_attempt_.push_back(attempts_.size());
+        loop_attempt_.push_back(attempts_.size() - 1);
         taken = true;
       }
-      attempts_.push_back(std::move(a));
     }
   }
   if (params_.loop.relocalisation_candidates > 0) {
@@ -115,18 +115,21 @@ void DepthSlam::closeLoops(std::size_t k) {
       if (roots[cand] == roots[k]) continue;  // joined by an earlier candidate
       PoseConstraint c;
       LoopClosureAttempt a = tryPair(cand, k, true, c);
-      if (a.reason.empty()) {
-        // Move k's piece rigidly onto the closure, so the optimiser starts near the answer.
+      a.accepted = a.reason.empty();
+      attempts_.push_back(std::move(a));
+      if (attempts_.back().accepted) {
+        // Move the later piece (the larger root) rigidly onto the closure, so the optimiser
+        // starts at the answer and the piece holding frame 0 keeps its place (the gauge).
         const Isometry3 T_fix = T_world_frame_[cand] * c.T_from_to * T_world_frame_[k].inverse();
+        const std::size_t moved = std::max(roots[cand], roots[k]);
+        const Isometry3 T_move = roots[k] == moved ? T_fix : T_fix.inverse();
         for (std::size_t i = 0; i < n; ++i)
-          if (roots[i] == roots[k]) T_world_frame_[i] = T_fix * T_world_frame_[i];
-        a.accepted = true;
+          if (roots[i] == moved) T_world_frame_[i] = T_move * T_world_frame_[i];
         loop_closures_.push_back(c);
-        loop_attempt_.push_back(attempts_.size());
+        loop_attempt_.push_back(attempts_.size() - 1);
         taken = true;
         roots = pieceRoots(n, constraints());
       }
-      attempts_.push_back(std::move(a));
     }
   }
   if (taken) optimise();

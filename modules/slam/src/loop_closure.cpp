@@ -48,10 +48,27 @@ std::vector<std::size_t> relocalisationCandidates(const std::vector<std::size_t>
   if (keyframes.empty()) return out;
   const std::size_t current = keyframes.back();
   if (current >= piece_root.size()) throw Error("loop closure: keyframe " + std::to_string(current) + " has no pose");
-  for (std::size_t pos = keyframes.size() - 1; pos-- > 0 && out.size() < p.relocalisation_candidates;) {
-    const std::size_t k = keyframes[pos];
+  for (const std::size_t k : keyframes)
     if (k >= piece_root.size()) throw Error("loop closure: keyframe " + std::to_string(k) + " has no pose");
-    if (piece_root[k] != piece_root[current]) out.push_back(k);
+  // First the latest keyframe of each other piece (the latest piece first), so that a recent
+  // piece cannot take every slot; then the next latest of them, and so on.
+  std::vector<std::size_t> pieces_seen;
+  for (std::size_t round = 0; out.size() < p.relocalisation_candidates; ++round) {
+    bool any = false;
+    std::vector<std::size_t> taken_in_piece;  // per piece in pieces_seen: keyframes taken so far
+    for (std::size_t pos = keyframes.size() - 1; pos-- > 0 && out.size() < p.relocalisation_candidates;) {
+      const std::size_t k = keyframes[pos], piece = piece_root[k];
+      if (piece == piece_root[current]) continue;
+      const auto it = std::find(pieces_seen.begin(), pieces_seen.end(), piece);
+      const std::size_t slot = static_cast<std::size_t>(it - pieces_seen.begin());
+      if (it == pieces_seen.end()) pieces_seen.push_back(piece);
+      if (taken_in_piece.size() < pieces_seen.size()) taken_in_piece.resize(pieces_seen.size(), 0);
+      // In round r, the (r+1)-th latest keyframe of each piece.
+      if (taken_in_piece[slot]++ != round) continue;
+      out.push_back(k);
+      any = true;
+    }
+    if (!any) break;
   }
   return out;
 }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <iomanip>
+#include <limits>
 
 #include "gasp/core/error.h"
 #include "gasp/core/point_cloud.h"
@@ -30,8 +32,12 @@ void VoxelPointMap::insert(const cv::Mat& depth_m, const CameraIntrinsics& intri
     std::int64_t key = 0;
     bool inside = true;
     for (int a = 0; a < 3; ++a) {
-      const std::int64_t v = static_cast<std::int64_t>(std::floor(p[a] / voxel_m_)) + kHalf;
-      if (v < 0 || v > kMask) inside = false;
+      const double cell = std::floor(p[a] / voxel_m_);
+      if (!(std::abs(cell) < static_cast<double>(kHalf))) {  // also NaN; the cast below is then defined
+        inside = false;
+        break;
+      }
+      const std::int64_t v = static_cast<std::int64_t>(cell) + kHalf;
       key = (key << 21) | (v & kMask);
     }
     if (!inside) continue;
@@ -54,6 +60,7 @@ void VoxelPointMap::writePly(const std::string& path) const {
   const std::vector<Eigen::Vector3f> pts = points();
   out << "ply\nformat ascii 1.0\ncomment GASP point map, voxel " << voxel_m_ << " m\nelement vertex " << pts.size()
       << "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+  out << std::setprecision(std::numeric_limits<float>::max_digits10);
   for (const Eigen::Vector3f& p : pts) out << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
   if (!out) throw Error("cannot write " + path);
 }

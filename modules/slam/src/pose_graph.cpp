@@ -79,7 +79,8 @@ std::optional<RelativePoseEstimate> composeAlongTree(const std::vector<PoseConst
   std::vector<std::size_t> chain_b{b};
   while (depth_of[chain_b.back()] == kNone) {
     const std::size_t x = chain_b.back();
-    if (parent_edge[x] == kNone || chain_b.size() > frame_count) return std::nullopt;
+    if (parent_edge[x] == kNone) return std::nullopt;
+    if (chain_b.size() > frame_count) throw Error("pose graph: the constraints form a cycle: not a tree");
     chain_b.push_back(tree[parent_edge[x]].from);
   }
   const std::size_t lca = chain_b.back();

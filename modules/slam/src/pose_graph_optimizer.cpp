@@ -92,13 +92,14 @@ PoseGraphResult optimizePoseGraph(const std::vector<Isometry3>& T_world_node, co
     t[i] = T_world_node[i].translation();
   }
   // The problem borrows the costs and the manifold (owned here), as in the registration's PoseProblem.
+  // Declared before the problem, so they outlive it.
+  const auto manifold = std::make_unique<ceres::EigenQuaternionManifold>();
+  std::vector<std::unique_ptr<ceres::CostFunction>> costs;
+  costs.reserve(edges.size());
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
-  const auto manifold = std::make_unique<ceres::EigenQuaternionManifold>();
-  std::vector<std::unique_ptr<ceres::CostFunction>> costs;
-  costs.reserve(edges.size());
   std::vector<bool> used(n, false);
   for (const PoseConstraint& c : edges) {
     costs.push_back(std::make_unique<ceres::AutoDiffCostFunction<EdgeResidual, 6, 4, 3, 4, 3>>(
@@ -124,10 +125,15 @@ PoseGraphResult optimizePoseGraph(const std::vector<Isometry3>& T_world_node, co
   }
 
   ceres::Solver::Options options;
-  options.linear_solver_type = ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE) ||
-                                       ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)
-                                   ? ceres::SPARSE_NORMAL_CHOLESKY
-                                   : ceres::DENSE_QR;
+  if (ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE)) {
+    options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+    options.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
+  } else if (ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)) {
+    options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+    options.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
+  } else {
+    options.linear_solver_type = ceres::DENSE_QR;
+  }
   options.max_num_iterations = settings.max_iterations;
   options.function_tolerance = settings.function_tolerance;
   options.num_threads = settings.num_threads;

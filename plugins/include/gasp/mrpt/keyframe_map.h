@@ -4,6 +4,7 @@
 /// build metric maps (observations2map: point maps, octomaps, occupancy grids).
 #include <mrpt/maps/CSimpleMap.h>
 
+#include <string>
 #include <vector>
 
 #include "gasp/core/pose.h"

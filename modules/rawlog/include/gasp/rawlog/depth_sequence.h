@@ -42,7 +42,9 @@ class DepthSequence {
   std::size_t framesUsed() const { return used_; }
   /// The TUM folder's ground truth (empty for a rawlog or a folder without one).
   const Trajectory& groundTruth() const { return ground_truth_; }
-  /// The depth camera's pose on the robot shared by every frame (identity until the first).
+  /// Rawlog: the depth camera's pose on the robot (sensorPose) shared by every frame used
+  /// (identity until the first). TUM folder: the identity (gasp-odometry's graphs stay in
+  /// optical frames), although each frame carries mrptCameraFromOptical() as T_robot_camera.
   const Isometry3& robotCamera() const { return T_robot_camera_; }
   /// "TUM folder DIR" or "rawlog FILE".
   std::string describe() const;

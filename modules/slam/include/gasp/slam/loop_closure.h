@@ -34,8 +34,9 @@ std::vector<std::size_t> loopCandidates(const std::vector<std::size_t>& keyframe
                                         const std::vector<Isometry3>& T_world_frame,
                                         const std::vector<std::size_t>& piece_root, const LoopClosureParams& params);
 
-/// Relocalisation candidates for the last of `keyframes`: the latest keyframes of other pieces,
-/// latest first, at most `relocalisation_candidates`.
+/// Relocalisation candidates for the last of `keyframes`, at most `relocalisation_candidates`:
+/// the latest keyframe of each other piece (the most recent piece first), then the second
+/// latest of each, and so on, so that one recent piece cannot take every slot.
 std::vector<std::size_t> relocalisationCandidates(const std::vector<std::size_t>& keyframes,
                                                   const std::vector<std::size_t>& piece_root,
                                                   const LoopClosureParams& params);
