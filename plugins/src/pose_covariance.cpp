@@ -12,12 +12,6 @@ namespace gasp {
 
 namespace {
 
-Eigen::Matrix3d skew(const Eigen::Vector3d& t) {
-  Eigen::Matrix3d m;
-  m << 0, -t.z(), t.y(), t.z(), 0, -t.x(), -t.y(), t.x(), 0;
-  return m;
-}
-
 /// [x y z yaw pitch roll] of T.
 Eigen::Matrix<double, 6, 1> ypr(const Isometry3& T) {
   const mrpt::poses::CPose3D p = toCPose3D(T);
@@ -26,24 +20,7 @@ Eigen::Matrix<double, 6, 1> ypr(const Isometry3& T) {
   return v;
 }
 
-Isometry3 leftPerturbed(const Isometry3& T, const Eigen::Matrix<double, 6, 1>& xi) {
-  Isometry3 D = Isometry3::Identity();
-  const Eigen::Vector3d w = xi.tail<3>();
-  if (w.norm() > 0) D.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix();
-  D.translation() = xi.head<3>();
-  return D * T;
-}
-
 }  // namespace
-
-Matrix6 adjoint(const Isometry3& S) {
-  const Eigen::Matrix3d R = S.linear();
-  Matrix6 A = Matrix6::Zero();
-  A.topLeftCorner<3, 3>() = R;
-  A.topRightCorner<3, 3>() = skew(S.translation()) * R;
-  A.bottomRightCorner<3, 3>() = R;
-  return A;
-}
 
 Matrix6 informationInFrame(const Matrix6& information_ca, const Isometry3& S_a) {
   const Matrix6 Ad_inv = adjoint(S_a.inverse());
@@ -56,7 +33,7 @@ Matrix6 yprJacobian(const Isometry3& T) {
   for (int k = 0; k < 6; ++k) {
     Eigen::Matrix<double, 6, 1> xi = Eigen::Matrix<double, 6, 1>::Zero();
     xi[k] = h;
-    Eigen::Matrix<double, 6, 1> d = ypr(leftPerturbed(T, xi)) - ypr(leftPerturbed(T, -xi));
+    Eigen::Matrix<double, 6, 1> d = ypr(expLeft(xi) * T) - ypr(expLeft(-xi) * T);
     for (int i = 3; i < 6; ++i) d[i] = mrpt::math::wrapToPi(d[i]);
     J.col(k) = d / (2 * h);
   }

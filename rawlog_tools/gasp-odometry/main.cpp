@@ -19,6 +19,7 @@
 #include "gasp/mrpt/pose_graph.h"
 #include "gasp/odometry/odometry.h"
 #include "gasp/rawlog/depth_sequence.h"
+#include "sequence_options.h"
 #include "sequence_report.h"
 
 int main(int argc, char** argv) {
@@ -27,22 +28,11 @@ int main(int argc, char** argv) {
   gasp::DepthSequenceOptions input;
   std::string gt_path, out_path, graph_path, frames_csv;
   gasp::OdometryParams params;
-  auto* tum = app.add_option("--tum", input.tum_dir, "TUM RGB-D folder (frames in depth.txt order; its groundtruth.txt is the reference)");
-  auto* rawlog = app.add_option("--rawlog", input.rawlog_path, "an MRPT rawlog: its CObservation3DRangeScan in file order")->excludes(tum);
-  app.add_option("--sensor", input.sensor_label, "with --rawlog: only the scans with this sensorLabel")->needs(rawlog);
-  app.add_option("--gt", gt_path, "with --rawlog: a TUM trajectory of the camera (optical frame), e.g. the "
-                                  "OUT_groundtruth.txt gasp-tum2rawlog writes")->needs(rawlog);
+  gasp::tools::addSequenceOptions(app, input, gt_path);
   app.add_option("--out", out_path, "trajectory to write (TUM format: timestamp tx ty tz qx qy qz qw of the depth camera)")->required();
   app.add_option("--graph", graph_path, "pose graph to write (MRPT VERTEX3/EDGE3 text; --rawlog: robot frames from the scans' sensorPose)");
   app.add_option("--frames-csv", frames_csv, "one line per frame: tracked, keyframe, reference, patches, inliers, times, reason");
-  app.add_option("--first", input.first, "first frame used (index among the input's frames)")->capture_default_str();
-  app.add_option("--max-frames", input.max_frames, "at most this many frames (0 = all)")->capture_default_str();
-  app.add_option("--every", input.every, "use every N-th frame (a wider baseline between frames)")->capture_default_str()->check(CLI::PositiveNumber);
-  app.add_option("--keyframe-distance", params.keyframe_distance_m, "new keyframe beyond this distance from the last [m]")->capture_default_str();
-  app.add_option("--keyframe-angle", params.keyframe_angle_deg, "new keyframe beyond this rotation from the last [deg]")->capture_default_str();
-  app.add_option("--rolling-shutter", params.rolling_shutter_readout_s,
-                 "deskew each frame for a rolling-shutter readout of S seconds with the last step's velocity (TUM Kinect: 0.03; 0 = off)")
-      ->capture_default_str();
+  gasp::tools::addOdometryOptions(app, params);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -24,6 +24,7 @@
 #include "gasp/rawlog/depth_sequence.h"
 #include "gasp/slam/depth_slam.h"
 #include "gasp/slam/point_map.h"
+#include "sequence_options.h"
 #include "sequence_report.h"
 
 namespace {
@@ -53,11 +54,7 @@ int main(int argc, char** argv) {
   double voxel_m = 0.01, cloud_max_depth_m = 4.0;
   bool no_loops = false;
   gasp::SlamParams params;
-  auto* tum = app.add_option("--tum", input.tum_dir, "TUM RGB-D folder (frames in depth.txt order; its groundtruth.txt is the reference)");
-  auto* rawlog = app.add_option("--rawlog", input.rawlog_path, "an MRPT rawlog: its CObservation3DRangeScan in file order")->excludes(tum);
-  app.add_option("--sensor", input.sensor_label, "with --rawlog: only the scans with this sensorLabel")->needs(rawlog);
-  app.add_option("--gt", gt_path, "with --rawlog: a TUM trajectory of the camera (optical frame), e.g. the "
-                                  "OUT_groundtruth.txt gasp-tum2rawlog writes")->needs(rawlog);
+  gasp::tools::addSequenceOptions(app, input, gt_path);
   app.add_option("--out", out_path, "optimised trajectory to write (TUM format: timestamp tx ty tz qx qy qz qw of the depth camera)")->required();
   app.add_option("--odometry-out", odometry_out, "the odometry's trajectory before loop closures (TUM format, same world)");
   app.add_option("--graph", graph_path, "pose graph to write: odometry and loop-closure edges at the optimised poses (MRPT VERTEX3/EDGE3, robot frames)");
@@ -67,14 +64,7 @@ int main(int argc, char** argv) {
   app.add_option("--cloud-max-depth", cloud_max_depth_m, "depth beyond which points are left out of --cloud [m]")->capture_default_str();
   app.add_option("--frames-csv", frames_csv, "one line per frame: tracked, keyframe, reference, patches, inliers, times, reason");
   app.add_option("--loops-csv", loops_csv, "one line per loop-closure registration: keyframes, accepted, inliers, gate chi-square, reason");
-  app.add_option("--first", input.first, "first frame used (index among the input's frames)")->capture_default_str();
-  app.add_option("--max-frames", input.max_frames, "at most this many frames (0 = all)")->capture_default_str();
-  app.add_option("--every", input.every, "use every N-th frame (a wider baseline between frames)")->capture_default_str()->check(CLI::PositiveNumber);
-  app.add_option("--keyframe-distance", params.odometry.keyframe_distance_m, "new keyframe beyond this distance from the last [m]")->capture_default_str();
-  app.add_option("--keyframe-angle", params.odometry.keyframe_angle_deg, "new keyframe beyond this rotation from the last [deg]")->capture_default_str();
-  app.add_option("--rolling-shutter", params.odometry.rolling_shutter_readout_s,
-                 "deskew each frame for a rolling-shutter readout of S seconds with the last step's velocity (TUM Kinect: 0.03; 0 = off)")
-      ->capture_default_str();
+  gasp::tools::addOdometryOptions(app, params.odometry);
   app.add_flag("--no-loop-closures", no_loops, "odometry only (no loop closures, no optimisation)");
   app.add_option("--search-radius", params.loop.search_radius_m, "loop-closure candidates within this distance [m]")->capture_default_str();
   app.add_option("--loop-candidates", params.loop.max_candidates, "registrations per new keyframe")->capture_default_str();
@@ -147,10 +137,10 @@ int main(int argc, char** argv) {
 
     gasp::tools::printOdometrySummary(slam->odometry());
     std::size_t tried = 0, relocalisations = 0;
-    for (const auto& a : slam->attempts()) tried += a.relocalisation ? 0 : 1;
-    for (const auto& c : slam->loopClosures())
-      for (const auto& a : slam->attempts())
-        if (a.accepted && a.relocalisation && a.from == c.from && a.to == c.to) ++relocalisations;
+    for (const auto& a : slam->attempts()) {  // an attempt is accepted while its closure is in the graph
+      tried += a.relocalisation ? 0 : 1;
+      relocalisations += a.accepted && a.relocalisation ? 1 : 0;
+    }
     std::printf("loop_closures: %zu (%zu registrations tried; %zu relocalisations)\n",
                 slam->loopClosures().size() - relocalisations, tried, relocalisations);
     std::printf("optimisations: %zu (%.1f ms in all)\n", slam->optimisationCount(), slam->optimisationMs());

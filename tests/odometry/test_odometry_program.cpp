@@ -13,16 +13,9 @@
 
 namespace {
 
+using gasp::test::contains;
+using gasp::test::countLinesStartingWith;
 using gasp::test::runProgram;
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
-std::size_t countLinesStartingWith(const std::string& path, const std::string& prefix) {
-  std::ifstream in(path);
-  std::size_t n = 0;
-  for (std::string line; std::getline(in, line);) n += line.rfind(prefix, 0) == 0 ? 1 : 0;
-  return n;
-}
 
 /// A 30-frame simulated room at 5 Hz (up to 1 m/s and 2 rad/s) in DIR/sim. Each test makes its
 /// own: ctest runs the tests of this file in parallel processes.

@@ -18,14 +18,7 @@ using gasp::Isometry3;
 using gasp::Matrix6d;
 using gasp::PoseConstraint;
 using gasp::Vector6d;
-
-Isometry3 expLeft(const Vector6d& xi) {
-  Isometry3 T = Isometry3::Identity();
-  const Eigen::Vector3d r = xi.tail<3>();
-  if (r.norm() > 0) T.linear() = Eigen::AngleAxisd(r.norm(), r.normalized()).toRotationMatrix();
-  T.translation() = xi.head<3>();
-  return T;
-}
+using gasp::expLeft;
 
 Matrix6d isotropicInformation(double sigma_t, double sigma_r) {
   Vector6d d;

@@ -1,10 +1,12 @@
 #pragma once
-// Test helper: run one of GASP's programs (from the build's bin folder) and capture its exit code
-// and output (stdout and stderr).
+// Test helpers: run one of GASP's programs (from the build's bin folder) and capture its exit code
+// and output (stdout and stderr); look into that output and the files it wrote.
 #include <sys/wait.h>
 
 #include <array>
+#include <cstddef>
 #include <cstdio>
+#include <fstream>
 #include <memory>
 #include <string>
 
@@ -24,6 +26,17 @@ inline ProgramRun runProgram(const std::string& program, const std::string& args
   while (std::fgets(buf.data(), static_cast<int>(buf.size()), pipe.get())) out += buf.data();
   const int status = pclose(pipe.release());
   return {WEXITSTATUS(status), out};
+}
+
+/// `part` occurs in `s` (a program's output).
+inline bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+/// Lines of the file at `path` that start with `prefix` (0 when it cannot be read).
+inline std::size_t countLinesStartingWith(const std::string& path, const std::string& prefix) {
+  std::ifstream in(path);
+  std::size_t n = 0;
+  for (std::string line; std::getline(in, line);) n += line.rfind(prefix, 0) == 0 ? 1 : 0;
+  return n;
 }
 
 }  // namespace gasp::test

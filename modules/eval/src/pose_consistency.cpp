@@ -8,16 +8,11 @@
 #include <cmath>
 
 #include "gasp/core/error.h"
+#include "gasp/core/pose_perturbation.h"
 
 namespace gasp::eval {
 
 namespace {
-
-Eigen::Matrix3d hat(const Eigen::Vector3d& w) {
-  Eigen::Matrix3d W;
-  W << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
-  return W;
-}
 
 /// Throws unless the information is finite, symmetric and positive semi-definite; returns its
 /// eigenvalues (ascending).
@@ -38,7 +33,7 @@ Vector6 leftPerturbation(const Isometry3& T_est, const Isometry3& T_ref) {
   const Eigen::AngleAxisd aa(D.linear());
   const double theta = aa.angle();
   const Eigen::Vector3d omega = theta * aa.axis();
-  const Eigen::Matrix3d W = hat(omega);
+  const Eigen::Matrix3d W = skew(omega);
   // V^-1 = I - W / 2 + c W^2, c = (1 - theta sin(theta) / (2 (1 - cos(theta)))) / theta^2
   // (-> 1/12 as theta -> 0).
   const double c = theta < 1e-4 ? 1.0 / 12.0 + theta * theta / 720.0

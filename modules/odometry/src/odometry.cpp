@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "gasp/core/error.h"
+#include "gasp/core/pose_perturbation.h"
 #include "gasp/core/undistortion.h"
 #include "gasp/pipeline/pair_registration.h"
 
@@ -19,11 +20,9 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 
 /// The camera's motion over dt at a constant twist (first order in the translation, as twistBetween()).
 Isometry3 stepOf(const CameraTwist& twist, double dt) {
-  Isometry3 T = Isometry3::Identity();
-  const Eigen::Vector3d rot = twist.w_radps * dt;
-  if (rot.norm() > 0.0) T.linear() = Eigen::AngleAxisd(rot.norm(), rot.normalized()).toRotationMatrix();
-  T.translation() = twist.v_mps * dt;
-  return T;
+  Vector6 xi;
+  xi << twist.v_mps * dt, twist.w_radps * dt;
+  return expLeft(xi);
 }
 
 /// Empty when the motion T_a_b over dt seconds is plausible, else why not.

@@ -8,15 +8,10 @@
 #include <cstdio>
 
 #include "gasp/core/error.h"
+#include "gasp/core/pose_perturbation.h"
 
 namespace gasp {
 namespace {
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return m;
-}
 
 /// "(x, y, z)" of the unit vector along v, signed so that its largest component is positive.
 std::string axisText(const Eigen::Vector3d& v) {

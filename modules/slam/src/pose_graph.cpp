@@ -10,12 +10,6 @@ namespace gasp {
 
 namespace {
 
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d S;
-  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return S;
-}
-
 Matrix6d covarianceOf(const PoseConstraint& c) {
   const Eigen::LDLT<Matrix6d> ldlt(c.information);
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || !(ldlt.vectorD().array() > 0.0).all() ||
@@ -26,24 +20,6 @@ Matrix6d covarianceOf(const PoseConstraint& c) {
 }
 
 }  // namespace
-
-Vector6d leftPerturbation(const Isometry3& T_a, const Isometry3& T_b) {
-  const Isometry3 E = T_a * T_b.inverse();
-  const Eigen::AngleAxisd aa(E.rotation());
-  Vector6d xi;
-  xi.head<3>() = E.translation();
-  xi.tail<3>() = aa.angle() * aa.axis();
-  return xi;
-}
-
-Matrix6d adjoint(const Isometry3& T) {
-  const Eigen::Matrix3d R = T.rotation();
-  Matrix6d Ad = Matrix6d::Zero();
-  Ad.topLeftCorner<3, 3>() = R;
-  Ad.topRightCorner<3, 3>() = skew(T.translation()) * R;
-  Ad.bottomRightCorner<3, 3>() = R;
-  return Ad;
-}
 
 double edgeChi2(const Isometry3& T_world_from, const Isometry3& T_world_to, const PoseConstraint& c) {
   const Vector6d xi = leftPerturbation(T_world_from.inverse() * T_world_to, c.T_from_to);

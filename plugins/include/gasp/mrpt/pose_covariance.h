@@ -9,13 +9,9 @@
 #include <optional>
 
 #include "gasp/core/pose.h"
+#include "gasp/core/pose_perturbation.h"  // Matrix6, adjoint(): Exp(Ad_S xi) = S Exp(xi) S^-1
 
 namespace gasp {
-
-using Matrix6 = Eigen::Matrix<double, 6, 6>;
-
-/// Adjoint of S for xi = [t; omega]: Exp(Ad_S xi) = S Exp(xi) S^-1.
-Matrix6 adjoint(const Isometry3& S);
 
 /// The information of T_a_b = S_a T_ca_cb S_b^-1 (left perturbation in a) from the information of
 /// T_ca_cb (left perturbation in ca): I_a = Ad(S_a^-1)^T I_ca Ad(S_a^-1).

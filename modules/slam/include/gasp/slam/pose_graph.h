@@ -1,25 +1,17 @@
 #pragma once
-/// \file pose_graph.h Pose-graph algebra shared by the loop closer and the optimiser: the left
-/// perturbation between poses, its adjoint, an edge's chi-square, relative poses composed along
-/// the odometry's tree with their covariance, and connected pieces.
-///
-/// Perturbation convention (as PoseConstraint::information, registration_result.h): xi = [t r]
-/// acts on the left, T = Exp(xi) T_hat, in the frame T maps into; Exp(xi) = [AngleAxis(r), t].
+/// \file pose_graph.h Pose-graph algebra shared by the loop closer and the optimiser: an edge's
+/// chi-square, relative poses composed along the odometry's tree with their covariance, and
+/// connected pieces. Perturbations as in gasp/core/pose_perturbation.h (PoseConstraint's
+/// convention).
 #include <cstddef>
 #include <optional>
 #include <vector>
 
 #include "gasp/core/pose.h"
+#include "gasp/core/pose_perturbation.h"
 #include "gasp/odometry/pose_constraint.h"
 
 namespace gasp {
-
-/// xi with T_a = Exp(xi) T_b: [translation of T_a T_b^-1, angle-axis of its rotation].
-Vector6d leftPerturbation(const Isometry3& T_a, const Isometry3& T_b);
-
-/// Ad(T) for the [t r] left perturbation: T Exp(xi) T^-1 = Exp(Ad(T) xi) to first order;
-/// Ad = [R, [t]x R; 0, R].
-Matrix6d adjoint(const Isometry3& T);
 
 /// The constraint's chi-square at the poses given: xi^T Lambda xi with
 /// T_from^-1 T_to = Exp(xi) c.T_from_to, Lambda = c.information.

@@ -1,0 +1,34 @@
+#pragma once
+/// \file sequence_options.h The command-line options gasp-odometry and gasp-slam share: the input
+/// sequence and the odometry's parameters.
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "gasp/odometry/odometry_params.h"
+#include "gasp/rawlog/depth_sequence.h"
+
+namespace gasp::tools {
+
+/// --tum, --rawlog, --sensor, --gt (into gt_path), --first, --max-frames, --every.
+inline void addSequenceOptions(CLI::App& app, DepthSequenceOptions& input, std::string& gt_path) {
+  auto* tum = app.add_option("--tum", input.tum_dir, "TUM RGB-D folder (frames in depth.txt order; its groundtruth.txt is the reference)");
+  auto* rawlog = app.add_option("--rawlog", input.rawlog_path, "an MRPT rawlog: its CObservation3DRangeScan in file order")->excludes(tum);
+  app.add_option("--sensor", input.sensor_label, "with --rawlog: only the scans with this sensorLabel")->needs(rawlog);
+  app.add_option("--gt", gt_path, "with --rawlog: a TUM trajectory of the camera (optical frame), e.g. the "
+                                  "OUT_groundtruth.txt gasp-tum2rawlog writes")->needs(rawlog);
+  app.add_option("--first", input.first, "first frame used (index among the input's frames)")->capture_default_str();
+  app.add_option("--max-frames", input.max_frames, "at most this many frames (0 = all)")->capture_default_str();
+  app.add_option("--every", input.every, "use every N-th frame (a wider baseline between frames)")->capture_default_str()->check(CLI::PositiveNumber);
+}
+
+/// --keyframe-distance, --keyframe-angle, --rolling-shutter.
+inline void addOdometryOptions(CLI::App& app, OdometryParams& params) {
+  app.add_option("--keyframe-distance", params.keyframe_distance_m, "new keyframe beyond this distance from the last [m]")->capture_default_str();
+  app.add_option("--keyframe-angle", params.keyframe_angle_deg, "new keyframe beyond this rotation from the last [deg]")->capture_default_str();
+  app.add_option("--rolling-shutter", params.rolling_shutter_readout_s,
+                 "deskew each frame for a rolling-shutter readout of S seconds with the last step's velocity (TUM Kinect: 0.03; 0 = off)")
+      ->capture_default_str();
+}
+
+}  // namespace gasp::tools
