@@ -52,28 +52,8 @@ const OdometryFrame& DepthSlam::addFrame(double timestamp, const cv::Mat& depth_
 }
 
 LoopClosureAttempt DepthSlam::tryPair(std::size_t from, std::size_t to, bool relocalisation, PoseConstraint& c) const {
-  LoopClosureAttempt a;
-  a.from = from;
-  a.to = to;
-  a.relocalisation = relocalisation;
-  const auto t0 = std::chrono::steady_clock::now();
-  const PairResult r = registerViews(keyframe_views_.at(to), keyframe_views_.at(from), params_.odometry.pair);
-  a.registration_ms = msSince(t0);
-  a.inliers = r.pose.success ? r.pose.num_inliers : 0;
-  const int min_inliers = relocalisation ? params_.loop.relocalisation_min_inliers : params_.loop.min_inliers;
-  if (!r.pose.success) {
-    a.reason = "no estimate: " + r.pose.reason;
-  } else if (r.pose.num_inliers < min_inliers) {
-    a.reason = formatted("%.0f inliers, fewer than %.0f", r.pose.num_inliers, min_inliers);
-  }
-  c = PoseConstraint{};
-  c.from = from;
-  c.to = to;
-  c.T_from_to = r.pose.T_target_source;
-  c.information = r.edge_information;
-  c.inliers = a.inliers;
-  c.loop_closure = true;
-  return a;
+  return registerLoopClosure(keyframe_views_.at(from), keyframe_views_.at(to), from, to, relocalisation,
+                             params_.odometry.pair, params_.loop, c);
 }
 
 void DepthSlam::closeLoops(std::size_t k) {
@@ -84,22 +64,8 @@ void DepthSlam::closeLoops(std::size_t k) {
     for (const std::size_t cand : loopCandidates(keyframes_, T_world_frame_, roots, params_.loop)) {
       PoseConstraint c;
       LoopClosureAttempt a = tryPair(cand, k, false, c);
-      if (a.reason.empty()) {
-        // Agreement with the odometry between the two keyframes, within both uncertainties.
-        const std::optional<RelativePoseEstimate> path = composeAlongTree(odometry_.constraints(), n, cand, k);
-        if (path) {
-          // The odometry's own prediction: S_path describes it (not the optimised poses).
-          const Vector6d xi = leftPerturbation(c.T_from_to, path->T_a_b);
-          const Matrix6d S = path->covariance + c.information.ldlt().solve(Matrix6d::Identity());
-          a.gate_chi2 = xi.dot(S.ldlt().solve(xi));
-          if (!(a.gate_chi2 <= params_.loop.gate_chi2))
-            a.reason = formatted("disagrees with the odometry: chi-square %.1f > %.2f", a.gate_chi2, params_.loop.gate_chi2);
-        } else if (a.inliers < params_.loop.relocalisation_min_inliers) {
-          // Joined only through other loop closures: no odometry path to check it against.
-          a.reason = formatted("no odometry path to check against, and %.0f inliers, fewer than %.0f", a.inliers,
-                               params_.loop.relocalisation_min_inliers);
-        }
-      }
+      // Agreement with the odometry between the two keyframes, within both uncertainties.
+      if (a.reason.empty()) gateLoopClosure(c, composeAlongTree(odometry_.constraints(), n, cand, k), params_.loop, a);
       a.accepted = a.reason.empty();
       attempts_.push_back(std::move(a));
       if (attempts_.back().accepted) {

@@ -1,12 +1,27 @@
 #include "gasp/slam/loop_closure.h"
 
+#include <Eigen/Cholesky>
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <utility>
 
 #include "gasp/core/error.h"
+#include "gasp/core/pose_perturbation.h"
 
 namespace gasp {
+
+namespace {
+
+std::string formatted(const char* fmt, double a, double b) {
+  char buf[200];
+  std::snprintf(buf, sizeof buf, fmt, a, b);
+  return buf;
+}
+
+}  // namespace
 
 std::vector<std::size_t> loopCandidates(const std::vector<std::size_t>& keyframes,
                                         const std::vector<Isometry3>& T_world_frame,
@@ -71,6 +86,49 @@ std::vector<std::size_t> relocalisationCandidates(const std::vector<std::size_t>
     if (!any) break;
   }
   return out;
+}
+
+LoopClosureAttempt registerLoopClosure(const DepthView& from_view, const DepthView& to_view, std::size_t from,
+                                       std::size_t to, bool relocalisation, const PairParams& pair,
+                                       const LoopClosureParams& params, PoseConstraint& c) {
+  LoopClosureAttempt a;
+  a.from = from;
+  a.to = to;
+  a.relocalisation = relocalisation;
+  const auto t0 = std::chrono::steady_clock::now();
+  const PairResult r = registerViews(to_view, from_view, pair);
+  a.registration_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  a.inliers = r.pose.success ? r.pose.num_inliers : 0;
+  const int min_inliers = relocalisation ? params.relocalisation_min_inliers : params.min_inliers;
+  if (!r.pose.success) {
+    a.reason = "no estimate: " + r.pose.reason;
+  } else if (r.pose.num_inliers < min_inliers) {
+    a.reason = formatted("%.0f inliers, fewer than %.0f", r.pose.num_inliers, min_inliers);
+  }
+  c = PoseConstraint{};
+  c.from = from;
+  c.to = to;
+  c.T_from_to = r.pose.T_target_source;
+  c.information = r.edge_information;
+  c.inliers = a.inliers;
+  c.loop_closure = true;
+  return a;
+}
+
+void gateLoopClosure(const PoseConstraint& c, const std::optional<RelativePoseEstimate>& prediction,
+                     const LoopClosureParams& params, LoopClosureAttempt& a) {
+  if (prediction) {
+    // The prediction's own covariance describes it (not that of optimised poses).
+    const Vector6 xi = leftPerturbation(c.T_from_to, prediction->T_a_b);
+    const Matrix6 S = prediction->covariance + c.information.ldlt().solve(Matrix6::Identity());
+    a.gate_chi2 = xi.dot(S.ldlt().solve(xi));
+    if (!(a.gate_chi2 <= params.gate_chi2))
+      a.reason = formatted("disagrees with the odometry: chi-square %.1f > %.2f", a.gate_chi2, params.gate_chi2);
+  } else if (a.inliers < params.relocalisation_min_inliers) {
+    // Joined only through other loop closures: no odometry path to check it against.
+    a.reason = formatted("no odometry path to check against, and %.0f inliers, fewer than %.0f", a.inliers,
+                         params.relocalisation_min_inliers);
+  }
 }
 
 }  // namespace gasp

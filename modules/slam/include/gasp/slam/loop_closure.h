@@ -3,10 +3,15 @@
 /// each attempt.
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "gasp/core/pose.h"
+#include "gasp/odometry/pose_constraint.h"
+#include "gasp/pipeline/depth_view.h"
+#include "gasp/pipeline/pair_registration.h"
+#include "gasp/slam/pose_graph.h"
 #include "gasp/slam/slam_params.h"
 
 namespace gasp {
@@ -40,5 +45,22 @@ std::vector<std::size_t> loopCandidates(const std::vector<std::size_t>& keyframe
 std::vector<std::size_t> relocalisationCandidates(const std::vector<std::size_t>& keyframes,
                                                   const std::vector<std::size_t>& piece_root,
                                                   const LoopClosureParams& params);
+
+/// Registers view `to_view` (keyframe `to`, the pair's source) to `from_view` (keyframe `from`,
+/// the target) with the whole pair front-end and no initial guess. Returns the attempt, its
+/// reason set when there is no estimate or fewer inliers than `min_inliers` (or
+/// `relocalisation_min_inliers`), and in `c` the constraint from -> to (loop_closure set) with
+/// PairResult::edge_information.
+LoopClosureAttempt registerLoopClosure(const DepthView& from_view, const DepthView& to_view, std::size_t from,
+                                       std::size_t to, bool relocalisation, const PairParams& pair,
+                                       const LoopClosureParams& params, PoseConstraint& c);
+
+/// The gate of a registered loop closure `c` (its attempt `a` without a reason yet) against
+/// the odometry's prediction of the same relative pose: sets a.gate_chi2 = xi^T (S_path +
+/// S_meas)^-1 xi and a reason when it exceeds params.gate_chi2. Without a prediction (the two
+/// keyframes are joined only through other loop closures), the closure needs
+/// relocalisation_min_inliers instead.
+void gateLoopClosure(const PoseConstraint& c, const std::optional<RelativePoseEstimate>& prediction,
+                     const LoopClosureParams& params, LoopClosureAttempt& a);
 
 }  // namespace gasp
