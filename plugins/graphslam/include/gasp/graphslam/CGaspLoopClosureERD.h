@@ -1,0 +1,80 @@
+#pragma once
+/// \file CGaspLoopClosureERD.h mrpt::graphslam edge registration decider (ERD): GASP loop
+/// closures and relocalisations between the graph's nodes, with any node registration decider.
+///
+/// Each node gets the depth scan of the step that registered it (the root: the first scan), which
+/// is segmented once and kept. For each new node, GASP registers it with no initial guess to
+/// earlier nodes chosen as gasp-slam chooses keyframes (loop_closure.h): nearby nodes of the same
+/// piece of the graph, and the latest nodes of other pieces (relocalisation). A loop closure is
+/// inserted when it agrees with the prediction along the node registration decider's edges (the
+/// edges i -> i+1) within both uncertainties (a chi-square gate); a relocalisation needs more
+/// inliers. Break edges (graph_types.h) do not join pieces. Inserted edges: the registration's
+/// pose between the robot frames with GASP's edge information in [x y z yaw pitch roll].
+///
+/// Parameters: ini section [CGaspLoopClosureERD] (docs/graphslam.md): the pair keys of
+/// params_io.h, search_radius_m, max_axis_angle_deg, min_keyframe_gap, max_candidates,
+/// min_inliers, gate_chi2, relocalisation_candidates, relocalisation_min_inliers, sensor_label,
+/// class_verbosity.
+#include <mrpt/graphslam/interfaces/CEdgeRegistrationDecider.h>
+
+#include <cstddef>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gasp/graphslam/graph_types.h"
+#include "gasp/odometry/pose_constraint.h"
+#include "gasp/pipeline/depth_view.h"
+#include "gasp/pipeline/pair_registration.h"
+#include "gasp/slam/loop_closure.h"
+#include "gasp/slam/slam_params.h"
+
+namespace gasp::graphslam {
+
+class CGaspLoopClosureERD : public mrpt::graphslam::deciders::CEdgeRegistrationDecider<Graph3D> {
+ public:
+  CGaspLoopClosureERD();
+
+  /// Keeps the step's scan; when the graph gained nodes, segments the newest one's scan and
+  /// registers it to its candidates, inserting the closures taken. Always true.
+  bool updateState(mrpt::obs::CActionCollection::Ptr action, mrpt::obs::CSensoryFrame::Ptr observations,
+                   mrpt::obs::CObservation::Ptr observation) override;
+  /// Reads section [CGaspLoopClosureERD] (as CGaspOdometryNRD::loadParams()).
+  void loadParams(const std::string& source_fname) override;
+  void printParams() const override;
+  void getDescriptiveReport(std::string* report_str) const override;
+  /// "lc": loop closures and relocalisations inserted.
+  void getEdgesStats(std::map<std::string, int>* edge_type_to_num) const override;
+
+  /// Throws gasp::Error for invalid parameters.
+  void setParams(const PairParams& pair, const LoopClosureParams& loop);
+  const PairParams& pairParams() const { return pair_; }
+  const LoopClosureParams& loopParams() const { return loop_; }
+  void setSensorLabel(const std::string& label) { sensor_label_ = label; }
+  /// Every registration tried, in order (from, to: node IDs).
+  const std::vector<LoopClosureAttempt>& attempts() const { return attempts_; }
+  std::size_t insertedEdges() const { return inserted_; }
+
+ private:
+  struct Node {
+    std::optional<DepthView> view;  ///< empty when no scan could be given to the node
+    Isometry3 T_robot_camera = Isometry3::Identity();
+  };
+  void addNode(const mrpt::obs::CObservation3DRangeScan::Ptr& scan);
+  void closeLoops(std::size_t k);
+  /// The decider's edges i -> i+1 (not breaks) as constraints between camera frames.
+  std::vector<PoseConstraint> treeConstraints() const;
+  void insert(const PoseConstraint& c_camera);
+
+  PairParams pair_;
+  LoopClosureParams loop_;
+  std::string sensor_label_;
+  mrpt::obs::CObservation3DRangeScan::Ptr first_scan_, last_scan_;
+  std::vector<Node> nodes_;
+  std::vector<PoseConstraint> closures_;  ///< inserted, between camera frames
+  std::vector<LoopClosureAttempt> attempts_;
+  std::size_t inserted_ = 0;
+};
+
+}  // namespace gasp::graphslam

@@ -1,0 +1,70 @@
+#pragma once
+/// \file CGaspPoseGraphGSO.h mrpt::graphslam optimiser (GSO): the whole graph optimised with
+/// GASP's Ceres pose-graph optimiser (gasp/slam/pose_graph_optimizer.h).
+///
+/// Each edge's information is read as MRPT's CPose3DPDFGaussianInf declares it, over
+/// [x y z yaw pitch roll], and converted to the left perturbation the optimiser uses (first
+/// order). (MRPT 2.5.8's CLevMarqGSO applies it to SE(3)'s logarithm [x y z rx ry rz] instead.)
+///
+/// When: CGraphSlamEngine recomputes every node's pose along a spanning tree from the root
+/// (dijkstra_nodes_estimate) after each step that registers a node, after the optimiser has run,
+/// so an optimisation in such a step would be lost. This optimiser therefore runs at the first
+/// step without a new node after edges beyond the node registration decider's (loop closures)
+/// were added, and when optimizeNow() is called (gasp-graphslam calls it after the last step, so
+/// the graph it saves is optimised).
+///
+/// After each optimisation, an edge that does not link consecutive nodes (a loop closure) and
+/// whose chi-square at the optimised poses exceeds `drop_chi2` is removed, the worst first, and
+/// the graph optimised again (0 = never).
+///
+/// Parameters: ini section [CGaspPoseGraphGSO]: max_iterations, function_tolerance, drop_chi2,
+/// class_verbosity.
+#include <mrpt/graphslam/interfaces/CGraphSlamOptimizer.h>
+
+#include <cstddef>
+#include <string>
+
+#include "gasp/graphslam/graph_types.h"
+#include "gasp/slam/pose_graph_optimizer.h"
+
+namespace gasp::graphslam {
+
+class CGaspPoseGraphGSO : public mrpt::graphslam::optimizers::CGraphSlamOptimizer<Graph3D> {
+ public:
+  CGaspPoseGraphGSO();
+
+  bool updateState(mrpt::obs::CActionCollection::Ptr action, mrpt::obs::CSensoryFrame::Ptr observations,
+                   mrpt::obs::CObservation::Ptr observation) override;
+  void loadParams(const std::string& source_fname) override;
+  void printParams() const override;
+  void getDescriptiveReport(std::string* report_str) const override;
+  bool justFullyOptimizedGraph() const override { return just_optimised_; }
+
+  /// Optimises the graph now (the caller holds the graph's lock, if it shares the graph).
+  void optimizeNow();
+
+  void setSettings(const PoseGraphSettings& settings, double drop_chi2);
+  const PoseGraphSettings& settings() const { return settings_; }
+  double dropChi2() const { return drop_chi2_; }
+  std::size_t optimisations() const { return optimisations_; }
+  std::size_t droppedEdges() const { return dropped_; }
+  /// Edges left out because their information is not positive definite.
+  std::size_t skippedEdges() const { return skipped_; }
+  double optimisationMs() const { return optimisation_ms_; }
+  /// The last optimisation's result (chi-square before and after, Ceres's summary).
+  const PoseGraphResult& lastResult() const { return last_; }
+
+ protected:
+  void optimizeGraph() override { optimizeNow(); }
+
+ private:
+  PoseGraphSettings settings_;
+  double drop_chi2_ = 22.46;  ///< the loop closer's gate (chi-square of 6 d.o.f. at 0.999)
+  std::size_t seen_nodes_ = 0, seen_extra_edges_ = 0;
+  bool pending_ = false, just_optimised_ = false;
+  std::size_t optimisations_ = 0, dropped_ = 0, skipped_ = 0;
+  double optimisation_ms_ = 0.0;
+  PoseGraphResult last_;
+};
+
+}  // namespace gasp::graphslam

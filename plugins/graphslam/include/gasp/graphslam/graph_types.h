@@ -1,0 +1,34 @@
+#pragma once
+/// \file graph_types.h What GASP's mrpt::graphslam classes share: the graph type (3D poses with
+/// information matrices), the depth observation of a step, and how a "break" edge is told.
+#include <mrpt/graphs/CNetworkOfPoses.h>
+#include <mrpt/obs/CObservation.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPose3DPDFGaussianInf.h>
+
+#include <string>
+
+namespace gasp::graphslam {
+
+/// The graph GASP's deciders and optimiser work on: CGraphSlamEngine<Graph3D>.
+using Graph3D = mrpt::graphs::CNetworkOfPoses3DInf;
+
+/// The 3D range scan of an engine step: `observation` (rawlog format #2) or the first scan of
+/// `observations` (format #1) whose sensorLabel is `sensor_label` (empty: any). nullptr without one.
+mrpt::obs::CObservation3DRangeScan::Ptr depthScanOf(const mrpt::obs::CSensoryFrame::Ptr& observations,
+                                                    const mrpt::obs::CObservation::Ptr& observation,
+                                                    const std::string& sensor_label);
+
+/// A break edge keeps MRPT's graph connected where GASP's odometry lost track (CGraphSlamEngine
+/// computes node poses along a spanning tree from the root, so every node needs a path to it).
+/// It carries the odometry's prediction with this information on each of [x y z yaw pitch roll]
+/// (a standard deviation of 1000 m and 1000 rad): it constrains nothing.
+constexpr double kBreakInformation = 1e-6;
+/// Edges whose information has no eigenvalue above this are breaks: the loop closer does not
+/// count them as links between nodes, and they predict nothing for its gate.
+constexpr double kBreakMaxInformation = 1e-3;
+/// True for a break edge (kBreakMaxInformation).
+bool isBreakEdge(const mrpt::poses::CPose3DPDFGaussianInf& edge);
+
+}  // namespace gasp::graphslam

@@ -1,0 +1,212 @@
+#include "gasp/graphslam/CGaspLoopClosureERD.h"
+
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/system/filesystem.h>
+
+#include <iostream>
+#include <set>
+#include <sstream>
+
+#include "gasp/core/error.h"
+#include "gasp/mrpt/params_io.h"
+#include "gasp/mrpt/pose_graph.h"
+#include "gasp/rawlog/observation_conversion.h"
+#include "gasp/slam/pose_graph.h"
+
+namespace gasp::graphslam {
+
+namespace {
+const char* const kSection = "CGaspLoopClosureERD";
+}
+
+CGaspLoopClosureERD::CGaspLoopClosureERD() {
+  this->initializeLoggers(kSection);
+  this->setMinLoggingLevel(mrpt::system::LVL_WARN);  // until loadParams() reads class_verbosity
+}
+
+void CGaspLoopClosureERD::setParams(const PairParams& pair, const LoopClosureParams& loop) {
+  validate(pair);
+  validate(loop);
+  pair_ = pair;
+  loop_ = loop;
+}
+
+void CGaspLoopClosureERD::addNode(const mrpt::obs::CObservation3DRangeScan::Ptr& scan) {
+  Node node;
+  if (scan) {
+    try {
+      const RgbdFrame frame = frameFromObservation(*scan, "scan '" + scan->sensorLabel + "'");
+      node.T_robot_camera = frame.T_robot_camera;
+      node.view = makeDepthView(frame.depth_m, frame.depth_intrinsics, pair_.superpixels);
+    } catch (const Error& e) {
+      MRPT_LOG_WARN_STREAM("node " << nodes_.size() << " has no view: " << e.what());
+    }
+  }
+  nodes_.push_back(std::move(node));
+}
+
+bool CGaspLoopClosureERD::updateState(mrpt::obs::CActionCollection::Ptr /*action*/,
+                                      mrpt::obs::CSensoryFrame::Ptr observations,
+                                      mrpt::obs::CObservation::Ptr observation) {
+  m_just_inserted_lc = false;
+  if (auto scan = depthScanOf(observations, observation, sensor_label_)) {
+    if (!first_scan_) first_scan_ = scan;
+    last_scan_ = scan;
+  }
+  const std::size_t n = m_graph->nodeCount();
+  if (n <= nodes_.size()) return true;
+  // The root takes the first scan; the newest node the scan of this step; any other node added
+  // in the same step has none.
+  while (nodes_.size() < n) {
+    const std::size_t id = nodes_.size();
+    addNode(id == 0 ? first_scan_ : id + 1 == n ? last_scan_ : nullptr);
+  }
+  if (loop_.enabled && nodes_.back().view) closeLoops(n - 1);
+  return true;
+}
+
+std::vector<PoseConstraint> CGaspLoopClosureERD::treeConstraints() const {
+  std::vector<PoseConstraint> tree;
+  std::set<std::size_t> ends;
+  for (const auto& [ids, edge] : m_graph->edges) {
+    const auto [from, to] = ids;
+    if (to != from + 1 || to >= nodes_.size() || ends.count(to) || isBreakEdge(edge)) continue;
+    bool ours = false;
+    for (const PoseConstraint& c : closures_) ours = ours || (c.from == from && c.to == to);
+    if (ours) continue;
+    if (auto c = constraintFromEdge(from, to, edge, nodes_[from].T_robot_camera, nodes_[to].T_robot_camera)) {
+      tree.push_back(*c);
+      ends.insert(to);
+    }
+  }
+  return tree;
+}
+
+void CGaspLoopClosureERD::insert(const PoseConstraint& c) {
+  const auto edge = edgeFromConstraint(c, nodes_[c.from].T_robot_camera, nodes_[c.to].T_robot_camera);
+  if (!edge) {
+    attempts_.back().accepted = false;
+    attempts_.back().reason = "its information is not positive definite";
+    return;
+  }
+  m_graph->insertEdge(c.from, c.to, *edge);
+  closures_.push_back(c);
+  ++inserted_;
+  m_just_inserted_lc = true;
+  MRPT_LOG_INFO_STREAM("loop closure " << c.from << " -> " << c.to << " (" << c.inliers << " inliers)");
+}
+
+void CGaspLoopClosureERD::closeLoops(std::size_t k) {
+  const std::size_t n = nodes_.size();
+  // An optimiser may have removed closures (CGaspPoseGraphGSO drops contradicted ones).
+  std::vector<PoseConstraint> present;
+  for (const PoseConstraint& c : closures_)
+    if (m_graph->edges.count({c.from, c.to})) present.push_back(c);
+  closures_.swap(present);
+  std::vector<std::size_t> with_view;  // the nodes that can be registered, ascending (k last)
+  std::vector<Isometry3> T_world_camera(n, Isometry3::Identity());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (nodes_[i].view) with_view.push_back(i);
+    T_world_camera[i] = fromCPose3D(m_graph->nodes.at(i)) * nodes_[i].T_robot_camera;
+  }
+  const std::vector<PoseConstraint> tree = treeConstraints();
+  const auto links = [&] {
+    std::vector<PoseConstraint> all = tree;
+    all.insert(all.end(), closures_.begin(), closures_.end());
+    return all;
+  };
+  std::vector<std::size_t> roots = pieceRoots(n, links());
+  for (const std::size_t cand : loopCandidates(with_view, T_world_camera, roots, loop_)) {
+    PoseConstraint c;
+    LoopClosureAttempt a = registerLoopClosure(*nodes_[cand].view, *nodes_[k].view, cand, k, false, pair_, loop_, c);
+    if (a.reason.empty()) gateLoopClosure(c, composeAlongTree(tree, n, cand, k), loop_, a);
+    a.accepted = a.reason.empty();
+    attempts_.push_back(std::move(a));
+    if (attempts_.back().accepted) insert(c);
+  }
+  if (loop_.relocalisation_candidates == 0) return;
+  roots = pieceRoots(n, links());
+  for (const std::size_t cand : relocalisationCandidates(with_view, roots, loop_)) {
+    if (roots[cand] == roots[k]) continue;  // joined by an earlier candidate
+    PoseConstraint c;
+    LoopClosureAttempt a = registerLoopClosure(*nodes_[cand].view, *nodes_[k].view, cand, k, true, pair_, loop_, c);
+    a.accepted = a.reason.empty();
+    attempts_.push_back(std::move(a));
+    if (!attempts_.back().accepted) continue;
+    insert(c);
+    roots = pieceRoots(n, links());
+  }
+}
+
+void CGaspLoopClosureERD::getEdgesStats(std::map<std::string, int>* edge_type_to_num) const {
+  if (edge_type_to_num) (*edge_type_to_num)["lc"] = static_cast<int>(inserted_);
+}
+
+void CGaspLoopClosureERD::loadParams(const std::string& source_fname) {
+  if (!mrpt::system::fileExists(source_fname))
+    THROW_EXCEPTION_FMT("CGaspLoopClosureERD: configuration file not found: %s", source_fname.c_str());
+  const mrpt::config::CConfigFile cfg(source_fname);
+  PairParams pair = pair_;
+  LoopClosureParams loop = loop_;
+  const std::set<std::string> own = {"enabled", "search_radius_m", "max_axis_angle_deg", "min_keyframe_gap",
+                                     "max_candidates", "min_inliers", "gate_chi2", "relocalisation_candidates",
+                                     "relocalisation_min_inliers", "sensor_label", "class_verbosity"};
+  readPairParams(cfg, kSection, pair, own);
+  int enabled = loop.enabled ? 1 : 0, gap = static_cast<int>(loop.min_keyframe_gap),
+      candidates = static_cast<int>(loop.max_candidates), reloc = static_cast<int>(loop.relocalisation_candidates);
+  readValue(cfg, kSection, "enabled", enabled);
+  readValue(cfg, kSection, "search_radius_m", loop.search_radius_m);
+  readValue(cfg, kSection, "max_axis_angle_deg", loop.max_axis_angle_deg);
+  readValue(cfg, kSection, "min_keyframe_gap", gap);
+  readValue(cfg, kSection, "max_candidates", candidates);
+  readValue(cfg, kSection, "min_inliers", loop.min_inliers);
+  readValue(cfg, kSection, "gate_chi2", loop.gate_chi2);
+  readValue(cfg, kSection, "relocalisation_candidates", reloc);
+  readValue(cfg, kSection, "relocalisation_min_inliers", loop.relocalisation_min_inliers);
+  int verbosity = static_cast<int>(getMinLoggingLevel());
+  readValue(cfg, kSection, "class_verbosity", verbosity);
+  if (enabled != 0 && enabled != 1) THROW_EXCEPTION_FMT("[%s] enabled: must be 0 or 1", kSection);
+  if (gap < 0 || candidates < 0 || reloc < 0)
+    THROW_EXCEPTION_FMT("[%s]: min_keyframe_gap, max_candidates and relocalisation_candidates must not be negative",
+                        kSection);
+  loop.enabled = enabled == 1;
+  loop.min_keyframe_gap = static_cast<std::size_t>(gap);
+  loop.max_candidates = static_cast<std::size_t>(candidates);
+  loop.relocalisation_candidates = static_cast<std::size_t>(reloc);
+  try {
+    setParams(pair, loop);
+  } catch (const Error& e) {
+    THROW_EXCEPTION_FMT("[%s]: %s", kSection, e.what());
+  }
+  sensor_label_ = cfg.read_string(kSection, "sensor_label", sensor_label_);
+  setMinLoggingLevel(static_cast<mrpt::system::VerbosityLevel>(verbosity));
+}
+
+void CGaspLoopClosureERD::printParams() const {
+  std::cout << "------------[ CGaspLoopClosureERD ]------------\n"
+            << "enabled                    = " << (loop_.enabled ? 1 : 0) << '\n'
+            << "search_radius_m            = " << loop_.search_radius_m << '\n'
+            << "max_axis_angle_deg         = " << loop_.max_axis_angle_deg << '\n'
+            << "min_keyframe_gap           = " << loop_.min_keyframe_gap << '\n'
+            << "max_candidates             = " << loop_.max_candidates << '\n'
+            << "min_inliers                = " << loop_.min_inliers << '\n'
+            << "gate_chi2                  = " << loop_.gate_chi2 << '\n'
+            << "relocalisation_candidates  = " << loop_.relocalisation_candidates << '\n'
+            << "relocalisation_min_inliers = " << loop_.relocalisation_min_inliers << '\n'
+            << "sensor_label               = " << (sensor_label_.empty() ? "(any)" : sensor_label_) << '\n';
+}
+
+void CGaspLoopClosureERD::getDescriptiveReport(std::string* report_str) const {
+  CEdgeRegistrationDecider<Graph3D>::getDescriptiveReport(report_str);
+  std::size_t relocalisations = 0;
+  for (const auto& a : attempts_) relocalisations += a.accepted && a.relocalisation ? 1 : 0;
+  std::ostringstream ss;
+  ss << "GASP loop closures: " << attempts_.size() << " registrations tried, " << inserted_ << " edges inserted ("
+     << relocalisations << " relocalisations)\n";
+  for (const auto& a : attempts_)
+    ss << "  " << a.from << " -> " << a.to << (a.relocalisation ? " (relocalisation)" : "") << ": "
+       << (a.accepted ? "inserted" : a.reason) << ", " << a.inliers << " inliers\n";
+  *report_str += ss.str();
+}
+
+}  // namespace gasp::graphslam

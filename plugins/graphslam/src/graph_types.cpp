@@ -1,0 +1,35 @@
+#include "gasp/graphslam/graph_types.h"
+
+#include <Eigen/Eigenvalues>
+
+namespace gasp::graphslam {
+
+mrpt::obs::CObservation3DRangeScan::Ptr depthScanOf(const mrpt::obs::CSensoryFrame::Ptr& observations,
+                                                    const mrpt::obs::CObservation::Ptr& observation,
+                                                    const std::string& sensor_label) {
+  using mrpt::obs::CObservation3DRangeScan;
+  const auto matches = [&](const CObservation3DRangeScan::Ptr& s) {
+    return s && (sensor_label.empty() || s->sensorLabel == sensor_label);
+  };
+  if (observation) {
+    auto scan = std::dynamic_pointer_cast<CObservation3DRangeScan>(observation);
+    return matches(scan) ? scan : nullptr;
+  }
+  if (!observations) return nullptr;
+  for (const auto& o : *observations) {
+    auto scan = std::dynamic_pointer_cast<CObservation3DRangeScan>(o);
+    if (matches(scan)) return scan;
+  }
+  return nullptr;
+}
+
+bool isBreakEdge(const mrpt::poses::CPose3DPDFGaussianInf& edge) {
+  Eigen::Matrix<double, 6, 6> I;
+  for (int r = 0; r < 6; ++r)
+    for (int k = 0; k < 6; ++k) I(r, k) = edge.cov_inv(r, k);
+  if (!I.allFinite()) return false;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(0.5 * (I + I.transpose()), Eigen::EigenvaluesOnly);
+  return eig.eigenvalues().maxCoeff() < kBreakMaxInformation;
+}
+
+}  // namespace gasp::graphslam

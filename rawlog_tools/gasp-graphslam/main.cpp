@@ -1,0 +1,221 @@
+// gasp-graphslam: MRPT's graph-SLAM engine (mrpt::graphslam::CGraphSlamEngine, 3D graphs) over a
+// rawlog of depth scans, with GASP's node and edge registration deciders and optimiser, or any
+// MRPT ones the options checker knows (gasp/graphslam/options_checker.h).
+//   gasp-graphslam --rawlog FILE [--ini FILE] [--node-reg NAME] [--edge-reg NAME] [--optimizer NAME]
+//                  [--out TRAJ.txt] [--graph G.graph] [--report-dir DIR] [--gt TRAJ.txt]
+//   gasp-graphslam --list-regs | --list-optimizers | --print-ini
+// Runs without a window. After the last step the graph is optimised once more (CGaspPoseGraphGSO),
+// because the engine re-derives node poses along a spanning tree at every node it registers.
+// Exit codes: 0 done, 1 bad input, 2 usage error, 3 written, but GASP's odometry lost track
+// (break edges in the graph).
+#include <CLI/CLI.hpp>
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CRawlog.h>
+#include <mrpt/serialization/archiveFrom_std_streams.h>
+#include <mrpt/system/filesystem.h>
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "default_ini.h"
+#include "gasp/core/error.h"
+#include "gasp/core/tum_trajectory.h"
+#include "gasp/graphslam/CGaspLoopClosureERD.h"
+#include "gasp/graphslam/CGaspOdometryNRD.h"
+#include "gasp/graphslam/CGaspPoseGraphGSO.h"
+#include "gasp/graphslam/engine.h"
+#include "gasp/graphslam/options_checker.h"
+#include "gasp/rawlog/observation_conversion.h"
+#include "sequence_report.h"
+
+namespace {
+
+using gasp::graphslam::Graph3D;
+
+/// The default configuration in a temporary file (the engine reads a file), removed at exit.
+class TemporaryIni {
+ public:
+  TemporaryIni() {
+    path_ = (std::filesystem::temp_directory_path() /
+             ("gasp-graphslam-" + std::to_string(::getpid()) + ".ini")).string();
+    std::ofstream out(path_);
+    out << gasp::tools::kDefaultGraphSlamIni;
+    if (!out) throw gasp::Error("cannot write the default configuration to " + path_);
+  }
+  ~TemporaryIni() {
+    std::error_code ec;
+    std::filesystem::remove(path_, ec);
+  }
+  TemporaryIni(const TemporaryIni&) = delete;
+  TemporaryIni& operator=(const TemporaryIni&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+/// What the program knows of each node: when and where its scan was taken.
+struct NodeInfo {
+  double timestamp = 0.0;
+  gasp::Isometry3 T_robot_camera = gasp::Isometry3::Identity();
+};
+
+NodeInfo infoOf(const mrpt::obs::CObservation3DRangeScan::Ptr& scan) {
+  NodeInfo info;
+  if (!scan) return info;
+  info.timestamp = mrpt::Clock::toDouble(scan->timestamp);
+  info.T_robot_camera = gasp::frameFromObservation(*scan, "scan").T_robot_camera;
+  return info;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"gasp-graphslam: MRPT's graph-SLAM engine (3D) over a rawlog of depth scans with GASP's node and "
+               "edge registration deciders and optimiser"};
+  std::string rawlog_path, ini_path, out_path, graph_path, report_dir, gt_path;
+  std::string node_reg = "CGaspOdometryNRD", edge_reg = "CGaspLoopClosureERD", optimizer = "CGaspPoseGraphGSO";
+  bool list_regs = false, list_optimizers = false, print_ini = false;
+  app.add_option("--rawlog", rawlog_path, "MRPT rawlog with CObservation3DRangeScan (format #1 or #2)");
+  app.add_option("--ini", ini_path, "configuration (default: the built-in one, see --print-ini)");
+  app.add_option("--node-reg", node_reg, "node registration decider (--list-regs)")->capture_default_str();
+  app.add_option("--edge-reg", edge_reg, "edge registration decider (--list-regs)")->capture_default_str();
+  app.add_option("--optimizer", optimizer, "graph optimiser (--list-optimizers)")->capture_default_str();
+  app.add_option("--out", out_path, "the nodes' depth-camera trajectory (TUM format, world = the first node's robot frame)");
+  app.add_option("--graph", graph_path, "the graph (MRPT VERTEX3/EDGE3, robot frames)");
+  app.add_option("--report-dir", report_dir, "directory for the engine's reports (MRPT's .log files: classes, timings)");
+  app.add_option("--gt", gt_path, "ground truth (TUM format) to evaluate the nodes' trajectory against");
+  app.add_flag("--list-regs", list_regs, "list the node and edge registration deciders for 3D graphs");
+  app.add_flag("--list-optimizers", list_optimizers, "list the optimisers");
+  app.add_flag("--print-ini", print_ini, "print the default configuration");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+
+  gasp::graphslam::GaspOptionsChecker checker;
+  if (print_ini) std::cout << gasp::tools::kDefaultGraphSlamIni;
+  if (list_regs) checker.dumpRegistrarsToConsole("all");
+  if (list_optimizers) checker.dumpOptimizersToConsole();
+  if (print_ini || list_regs || list_optimizers) return 0;
+  if (rawlog_path.empty()) {
+    std::cerr << "error: give --rawlog FILE\n";
+    return 2;
+  }
+  if (!checker.checkRegistrationDeciderExists(node_reg, "node") || !checker.node_regs_map.count(node_reg)) {
+    std::cerr << "error: no node registration decider '" << node_reg << "' for 3D graphs (see --list-regs)\n";
+    return 2;
+  }
+  if (!checker.checkRegistrationDeciderExists(edge_reg, "edge") || !checker.edge_regs_map.count(edge_reg)) {
+    std::cerr << "error: no edge registration decider '" << edge_reg << "' for 3D graphs (see --list-regs)\n";
+    return 2;
+  }
+  if (!checker.checkOptimizerExists(optimizer) || !checker.optimizers_map.count(optimizer)) {
+    std::cerr << "error: no optimiser '" << optimizer << "' for 3D graphs (see --list-optimizers)\n";
+    return 2;
+  }
+
+  try {
+    if (!mrpt::system::fileExists(rawlog_path)) throw gasp::Error("cannot open rawlog " + rawlog_path);
+    if (!ini_path.empty() && !mrpt::system::fileExists(ini_path)) throw gasp::Error("cannot open configuration " + ini_path);
+    std::unique_ptr<TemporaryIni> default_ini;
+    if (ini_path.empty()) {
+      default_ini = std::make_unique<TemporaryIni>();
+      ini_path = default_ini->path();
+    }
+    const gasp::Trajectory gt = gt_path.empty() ? gasp::Trajectory{} : gasp::readTumTrajectory(gt_path);
+    // The checker's factories return new objects; the engine does not own them.
+    std::unique_ptr<mrpt::graphslam::deciders::CNodeRegistrationDecider<Graph3D>> nrd(checker.node_regs_map[node_reg]());
+    std::unique_ptr<mrpt::graphslam::deciders::CEdgeRegistrationDecider<Graph3D>> erd(checker.edge_regs_map[edge_reg]());
+    std::unique_ptr<mrpt::graphslam::optimizers::CGraphSlamOptimizer<Graph3D>> gso(checker.optimizers_map[optimizer]());
+    const auto engine_ptr = gasp::graphslam::makeGraphSlamEngine(ini_path, rawlog_path, *nrd, *erd, *gso);
+    auto& engine = *engine_ptr;
+
+    mrpt::io::CFileGZInputStream file;
+    if (!file.open(rawlog_path)) throw gasp::Error("cannot open rawlog " + rawlog_path);
+    auto archive = mrpt::serialization::archiveFrom(file);
+    mrpt::obs::CActionCollection::Ptr action;
+    mrpt::obs::CSensoryFrame::Ptr observations;
+    mrpt::obs::CObservation::Ptr observation;
+    std::size_t entry = 0, steps = 0, scans = 0;
+    mrpt::obs::CObservation3DRangeScan::Ptr first_scan;
+    std::vector<NodeInfo> nodes;
+    while (mrpt::obs::CRawlog::getActionObservationPairOrObservation(archive, action, observations, observation, entry)) {
+      // A sensory frame without an action before it (GASP's rawlogs): no odometry increment.
+      if (observations && !action) action = std::make_shared<mrpt::obs::CActionCollection>();
+      const auto scan = gasp::graphslam::depthScanOf(observations, observation, "");
+      if (scan) ++scans;
+      if (scan && !first_scan) first_scan = scan;
+      engine._execGraphSlamStep(action, observations, observation, entry);
+      ++steps;
+      // New nodes: the root takes the first scan, the newest the scan of this step.
+      const std::size_t n = engine.getGraph().nodeCount();
+      while (nodes.size() < n) nodes.push_back(nodes.empty() ? infoOf(first_scan) : infoOf(scan));
+      if (steps % 100 == 0)
+        std::fprintf(stderr, "entry %zu: %zu nodes, %zu edges\n", entry, n, engine.getGraph().edgeCount());
+    }
+    if (scans == 0) throw gasp::Error(rawlog_path + ": no CObservation3DRangeScan in the rawlog");
+
+    auto* gasp_nrd = dynamic_cast<gasp::graphslam::CGaspOdometryNRD*>(nrd.get());
+    auto* gasp_erd = dynamic_cast<gasp::graphslam::CGaspLoopClosureERD*>(erd.get());
+    auto* gasp_gso = dynamic_cast<gasp::graphslam::CGaspPoseGraphGSO*>(gso.get());
+    if (gasp_gso) gasp_gso->optimizeNow();
+    if (gasp_nrd && gasp_nrd->odometry()) {  // exact timestamps and mountings of the keyframes
+      for (std::size_t i = 0; i < nodes.size() && i < gasp_nrd->nodeFrames().size(); ++i) {
+        nodes[i].timestamp = gasp_nrd->odometry()->frames()[gasp_nrd->nodeFrames()[i]].timestamp;
+        nodes[i].T_robot_camera = gasp_nrd->nodeRobotCamera()[i];
+      }
+    }
+    const Graph3D& graph = engine.getGraph();
+    gasp::Trajectory trajectory;
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      trajectory.push_back({nodes[i].timestamp, gasp::fromCPose3D(graph.nodes.at(i)) * nodes[i].T_robot_camera});
+
+    if (!out_path.empty())
+      gasp::writeTumTrajectory(out_path, trajectory, "node (keyframe) depth-camera trajectory by gasp-graphslam");
+    if (!graph_path.empty()) engine.saveGraph(&graph_path);
+    if (!report_dir.empty()) {
+      std::filesystem::create_directories(report_dir);
+      engine.generateReportFiles(report_dir);
+    }
+
+    std::printf("rawlog_entries: %zu\n", steps);
+    std::printf("scans: %zu\n", scans);
+    std::printf("deciders: %s, %s, %s\n", node_reg.c_str(), edge_reg.c_str(), optimizer.c_str());
+    std::printf("nodes: %zu\n", graph.nodeCount());
+    std::printf("edges: %zu\n", graph.edgeCount());
+    if (gasp_nrd) {
+      std::printf("break_edges: %zu\n", gasp_nrd->breakEdges());
+      if (gasp_nrd->skippedScans() > 0) std::printf("skipped_scans: %zu\n", gasp_nrd->skippedScans());
+    }
+    if (gasp_erd) {
+      std::size_t relocalisations = 0, tried = 0;
+      for (const auto& a : gasp_erd->attempts()) {
+        relocalisations += a.accepted && a.relocalisation ? 1 : 0;
+        tried += a.relocalisation ? 0 : 1;
+      }
+      std::printf("loop_closures: %zu (%zu registrations tried; %zu relocalisations)\n",
+                  gasp_erd->insertedEdges() - relocalisations, tried, relocalisations);
+    }
+    if (gasp_gso)
+      std::printf("optimisations: %zu (%.1f ms in all; %zu loop closures removed)\n", gasp_gso->optimisations(),
+                  gasp_gso->optimisationMs(), gasp_gso->droppedEdges());
+    if (!out_path.empty()) std::printf("trajectory: %s\n", out_path.c_str());
+    if (!graph_path.empty()) std::printf("graph: %s\n", graph_path.c_str());
+    gasp::tools::printEvaluation(gt, trajectory);
+    if (gasp_nrd && gasp_nrd->breakEdges() > 0) return 3;
+  } catch (const std::exception& e) {  // gasp::Error, MRPT's (configuration, rawlog), filesystem
+    std::cerr << "error: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}
