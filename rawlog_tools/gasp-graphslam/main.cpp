@@ -151,7 +151,7 @@ int main(int argc, char** argv) {
     std::vector<NodeInfo> nodes;
     while (mrpt::obs::CRawlog::getActionObservationPairOrObservation(archive, action, observations, observation, entry)) {
       // A sensory frame without an action before it (GASP's rawlogs): no odometry increment.
-      if (observations && !action) action = std::make_shared<mrpt::obs::CActionCollection>();
+      if (observations && (!action || action->size() == 0)) action = gasp::graphslam::noMotionAction();
       const auto scan = gasp::graphslam::depthScanOf(observations, observation, "");
       if (scan) ++scans;
       if (scan && !first_scan) first_scan = scan;

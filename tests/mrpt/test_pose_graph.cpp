@@ -159,3 +159,45 @@ TEST(PoseGraph, ItsTextFileLoadsBackIntoMrpt) {
         }
   }
 }
+
+TEST(PoseGraph, AnEdgeConvertsBackToTheConstraintItCameFrom) {
+  // Camera frames on two different mountings; a random pose and a random positive definite
+  // information: edgeFromConstraint() then constraintFromEdge() gives them back (first order
+  // conversions, exact inverses of each other up to the Jacobian's differences).
+  std::mt19937 rng(11);
+  std::normal_distribution<double> g(0.0, 1.0);
+  const Isometry3 S_from = mountedCamera();
+  const Isometry3 S_to = pose(0.1, -0.05, 0.3, 20.0, Eigen::Vector3d(1, 2, 3).normalized()) * mountedCamera();
+  for (int trial = 0; trial < 20; ++trial) {
+    gasp::PoseConstraint c;
+    c.from = 3;
+    c.to = 9;
+    c.T_from_to = pose(g(rng), g(rng), g(rng), 40.0 * g(rng), Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized());
+    Eigen::Matrix<double, 6, 6> A;
+    for (int r = 0; r < 6; ++r)
+      for (int k = 0; k < 6; ++k) A(r, k) = g(rng);
+    c.information = A * A.transpose() + 10.0 * Eigen::Matrix<double, 6, 6>::Identity();
+    const auto edge = gasp::edgeFromConstraint(c, S_from, S_to);
+    ASSERT_TRUE(edge.has_value());
+    // The edge is the pose between the robot frames.
+    EXPECT_TRUE(gasp::fromCPose3D(edge->mean).isApprox(S_from * c.T_from_to * S_to.inverse(), 1e-9));
+    const auto back = gasp::constraintFromEdge(c.from, c.to, *edge, S_from, S_to);
+    ASSERT_TRUE(back.has_value());
+    EXPECT_EQ(back->from, 3u);
+    EXPECT_EQ(back->to, 9u);
+    EXPECT_TRUE(back->T_from_to.isApprox(c.T_from_to, 1e-9));
+    EXPECT_LT((back->information - c.information).norm(), 1e-5 * c.information.norm()) << "trial " << trial;
+  }
+}
+
+TEST(PoseGraph, AnEdgeWithoutAPositiveDefiniteInformationGivesNoConstraint) {
+  mrpt::poses::CPose3DPDFGaussianInf edge;
+  edge.cov_inv.setZero();
+  EXPECT_FALSE(gasp::constraintFromEdge(0, 1, edge, Isometry3::Identity(), Isometry3::Identity()).has_value());
+  edge.cov_inv.setIdentity();
+  edge.cov_inv(2, 2) = std::nan("");
+  EXPECT_FALSE(gasp::constraintFromEdge(0, 1, edge, Isometry3::Identity(), Isometry3::Identity()).has_value());
+  edge.cov_inv.setIdentity();
+  edge.cov_inv(5, 5) = -1.0;
+  EXPECT_FALSE(gasp::constraintFromEdge(0, 1, edge, Isometry3::Identity(), Isometry3::Identity()).has_value());
+}

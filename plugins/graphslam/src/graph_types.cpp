@@ -1,5 +1,7 @@
 #include "gasp/graphslam/graph_types.h"
 
+#include <mrpt/obs/CActionRobotMovement3D.h>
+
 #include <Eigen/Eigenvalues>
 
 namespace gasp::graphslam {
@@ -21,6 +23,13 @@ mrpt::obs::CObservation3DRangeScan::Ptr depthScanOf(const mrpt::obs::CSensoryFra
     if (matches(scan)) return scan;
   }
   return nullptr;
+}
+
+mrpt::obs::CActionCollection::Ptr noMotionAction() {
+  auto actions = std::make_shared<mrpt::obs::CActionCollection>();
+  mrpt::obs::CActionRobotMovement3D still;  // zero pose change, INVALID_TIMESTAMP
+  actions->insert(still);
+  return actions;
 }
 
 bool isBreakEdge(const mrpt::poses::CPose3DPDFGaussianInf& edge) {

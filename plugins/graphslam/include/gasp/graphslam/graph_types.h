@@ -2,6 +2,7 @@
 /// \file graph_types.h What GASP's mrpt::graphslam classes share: the graph type (3D poses with
 /// information matrices), the depth observation of a step, and how a "break" edge is told.
 #include <mrpt/graphs/CNetworkOfPoses.h>
+#include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CObservation.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CSensoryFrame.h>
@@ -19,6 +20,12 @@ using Graph3D = mrpt::graphs::CNetworkOfPoses3DInf;
 mrpt::obs::CObservation3DRangeScan::Ptr depthScanOf(const mrpt::obs::CSensoryFrame::Ptr& observations,
                                                     const mrpt::obs::CObservation::Ptr& observation,
                                                     const std::string& sensor_label);
+
+/// For a sensory frame without an action (rawlog format #1 as GASP's tools write it): one
+/// CActionRobotMovement3D with no motion and no timestamp. CGraphSlamEngine reads the first
+/// action of every format-#1 step (its timestamp, then the sensory frame's; its motion as
+/// odometry) and fails on an empty collection.
+mrpt::obs::CActionCollection::Ptr noMotionAction();
 
 /// A break edge keeps MRPT's graph connected where GASP's odometry lost track (CGraphSlamEngine
 /// computes node poses along a spanning tree from the root, so every node needs a path to it).

@@ -1,0 +1,328 @@
+// GASP's mrpt::graphslam classes in CGraphSlamEngine (gasp/graphslam): a synthetic loop with exact
+// ground truth through the engine, relocalisation after a break, bad scans, the optimiser's
+// removal of a contradicted closure, the options checker and the ini sections.
+#include <gtest/gtest.h>
+
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CSensoryFrame.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gasp/eval/ate.h"
+#include "gasp/graphslam/CGaspLoopClosureERD.h"
+#include "gasp/graphslam/CGaspOdometryNRD.h"
+#include "gasp/graphslam/CGaspPoseGraphGSO.h"
+#include "gasp/graphslam/engine.h"
+#include "gasp/graphslam/options_checker.h"
+#include "gasp/rawlog/observation_conversion.h"
+#include "gasp_test_data.h"
+#include "loop_sequence.h"
+
+namespace {
+
+using gasp::Isometry3;
+using gasp::graphslam::Graph3D;
+
+const char* const kEngineSections =
+    "[GeneralConfiguration]\nclass_verbosity = 3\n"
+    "[VisualizationParameters]\nvisualize_map = 0\nvisualize_odometry_poses = 0\n"
+    "visualize_estimated_trajectory = 0\nvisualize_ground_truth = 0\nvisualize_SLAM_metric = 0\n"
+    "enable_curr_pos_viewport = 0\n"
+    "[CGaspOdometryNRD]\nclass_verbosity = 3\n[CGaspLoopClosureERD]\nclass_verbosity = 3\n"
+    "[CGaspPoseGraphGSO]\nclass_verbosity = 3\n";
+
+std::string writeFile(const std::string& path, const std::string& text) {
+  std::ofstream(path) << text;
+  return path;
+}
+
+/// An MRPT-like mounting: the optical axis along the robot's x, 0.3 m up.
+Isometry3 mounting() {
+  Isometry3 S = Isometry3::Identity();
+  S.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  S.translation() = Eigen::Vector3d(0.1, 0.0, 0.3);
+  return S;
+}
+
+mrpt::obs::CObservation3DRangeScan::Ptr scanOf(const gasp::test::LoopSequence& s, std::size_t i) {
+  gasp::RgbdFrame f;
+  f.timestamp = s.timestamps[i];
+  f.depth_m = s.depth[i];
+  f.depth_intrinsics = s.K;
+  f.T_robot_camera = mounting();
+  return gasp::observationFromFrame(f);
+}
+
+/// The three GASP classes in an engine.
+struct GaspEngine {
+  gasp::graphslam::CGaspOdometryNRD nrd;
+  gasp::graphslam::CGaspLoopClosureERD erd;
+  gasp::graphslam::CGaspPoseGraphGSO gso;
+  std::unique_ptr<gasp::graphslam::GraphSlamEngine> engine;
+  std::size_t entry = 0;
+
+  explicit GaspEngine(const std::string& ini)
+      : engine(gasp::graphslam::makeGraphSlamEngine(ini, "", nrd, erd, gso)) {}
+
+  /// Rawlog format #2: the observation alone.
+  void step(const mrpt::obs::CObservation::Ptr& obs) {
+    mrpt::obs::CActionCollection::Ptr action;
+    mrpt::obs::CSensoryFrame::Ptr sf;
+    mrpt::obs::CObservation::Ptr o = obs;
+    engine->_execGraphSlamStep(action, sf, o, entry);
+    ++entry;
+  }
+  /// Rawlog format #1: an empty action and a sensory frame holding the observation.
+  void stepAsSensoryFrame(const mrpt::obs::CObservation::Ptr& obs) {
+    auto action = gasp::graphslam::noMotionAction();
+    auto sf = std::make_shared<mrpt::obs::CSensoryFrame>();
+    sf->insert(obs);
+    mrpt::obs::CObservation::Ptr none;
+    engine->_execGraphSlamStep(action, sf, none, entry);
+    ++entry;
+  }
+  const Graph3D& graph() const { return engine->getGraph(); }
+};
+
+/// The truth of node i: the camera pose of its odometry frame.
+Isometry3 truthOfNode(const GaspEngine& e, const gasp::test::LoopSequence& s, std::size_t node) {
+  return s.T_world_camera[e.nrd.nodeFrames()[node]];
+}
+
+}  // namespace
+
+TEST(GraphSlamEngine, ClosesTheLoopOfACircleWithGaspsDecidersAndOptimises) {
+  const std::string dir = gasp::test::scratchDir();
+  const auto s = gasp::test::circleSequence(30);
+  GaspEngine e(writeFile(dir + "/g.ini", kEngineSections));
+  for (std::size_t i = 0; i < s.depth.size(); ++i) e.step(scanOf(s, i));
+  e.gso.optimizeNow();
+
+  ASSERT_NE(e.nrd.odometry(), nullptr);
+  EXPECT_EQ(e.nrd.odometry()->trackedCount(), 30u);
+  EXPECT_EQ(e.nrd.breakEdges(), 0u);
+  EXPECT_EQ(e.nrd.skippedScans(), 0u);
+  const std::size_t n = e.graph().nodeCount();
+  EXPECT_EQ(n, e.nrd.odometry()->keyframeCount());
+  ASSERT_EQ(n, e.nrd.nodeFrames().size());
+  ASSERT_GE(n, 5u);
+  ASSERT_GE(e.erd.insertedEdges(), 1u);
+  EXPECT_EQ(e.graph().edgeCount(), n - 1 + e.erd.insertedEdges() - e.gso.droppedEdges());
+
+  // Every edge between non-consecutive nodes is a true loop closure (robot frames).
+  const Isometry3 S_inv = mounting().inverse();
+  std::size_t longest = 0;
+  for (const auto& [ids, edge] : e.graph().edges) {
+    const auto [from, to] = ids;
+    if (to == from + 1) continue;
+    longest = std::max<std::size_t>(longest, to - from);
+    const Isometry3 truth = (truthOfNode(e, s, from) * S_inv).inverse() * (truthOfNode(e, s, to) * S_inv);
+    const Isometry3 err = truth.inverse() * gasp::fromCPose3D(edge.mean);
+    EXPECT_LT(gasp::translationNorm(err), 0.02) << from << " -> " << to;
+    EXPECT_LT(gasp::rotationAngle(err) * 180 / M_PI, 1.0) << from << " -> " << to;
+  }
+  EXPECT_GE(longest, n / 2) << "a closure spans much of the circle";
+
+  // The root stays at the world's origin (the first robot frame); the optimised nodes are within
+  // a centimetre of the truth and no worse than the odometry's keyframes.
+  EXPECT_TRUE(gasp::fromCPose3D(e.graph().nodes.at(0)).isApprox(Isometry3::Identity(), 1e-6));
+  gasp::Trajectory gt, optimised, odometry;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t f = e.nrd.nodeFrames()[i];
+    gt.push_back({s.timestamps[f], s.T_world_camera[f]});
+    optimised.push_back({s.timestamps[f], gasp::fromCPose3D(e.graph().nodes.at(i)) * mounting()});
+    odometry.push_back({s.timestamps[f], e.nrd.odometry()->frames()[f].T_world_camera});
+  }
+  const double ate = gasp::eval::computeAte(gt, optimised).translation.rmse;
+  const double ate_odo = gasp::eval::computeAte(gt, odometry).translation.rmse;
+  std::printf("engine, circle of 30 frames: %zu nodes, %zu loop closures of %zu tried, %zu optimisations; node ATE "
+              "%.4f m (odometry %.4f m)\n",
+              n, e.erd.insertedEdges(), e.erd.attempts().size(), e.gso.optimisations(), ate, ate_odo);
+  EXPECT_LT(ate, 0.01);
+  EXPECT_LE(ate, ate_odo + 1e-4);
+  EXPECT_GE(e.gso.optimisations(), 2u);  // during the run (after closures) and at the end
+}
+
+TEST(GraphSlamEngine, ReadsSensoryFramesAsWellAsObservations) {
+  const std::string dir = gasp::test::scratchDir();
+  const auto s = gasp::test::circleSequence(30);
+  GaspEngine e(writeFile(dir + "/g.ini", kEngineSections));
+  for (std::size_t i = 0; i < 8; ++i) e.stepAsSensoryFrame(scanOf(s, i));
+  ASSERT_NE(e.nrd.odometry(), nullptr);
+  EXPECT_EQ(e.nrd.odometry()->frames().size(), 8u);
+  EXPECT_EQ(e.graph().nodeCount(), e.nrd.odometry()->keyframeCount());
+  EXPECT_GE(e.graph().nodeCount(), 2u);
+}
+
+TEST(GraphSlamEngine, RelocalisesAcrossABreakAndKeepsTheLookAwayNodesApart) {
+  // Frames 12-14 look away: the odometry loses track into that view and back, so the node
+  // decider inserts break edges; the loop closer relocalises the later nodes.
+  const std::string dir = gasp::test::scratchDir();
+  const auto s = gasp::test::circleSequence(30, {12, 13, 14});
+  GaspEngine e(writeFile(dir + "/g.ini", kEngineSections));
+  for (std::size_t i = 0; i < s.depth.size(); ++i) e.step(scanOf(s, i));
+  e.gso.optimizeNow();
+  EXPECT_GE(e.nrd.breakEdges(), 1u);
+  const auto looksAway = [&](std::size_t node) {
+    const std::size_t f = e.nrd.nodeFrames()[node];
+    return f >= 12 && f <= 14;
+  };
+  std::size_t relocalisations = 0;
+  for (const auto& a : e.erd.attempts()) {
+    if (!a.accepted) continue;
+    relocalisations += a.relocalisation ? 1 : 0;
+    EXPECT_EQ(looksAway(a.from), looksAway(a.to)) << a.from << " -> " << a.to;
+  }
+  EXPECT_GE(relocalisations, 1u);
+  // After the relocalisation, the last node is where it truly is relative to the root.
+  const std::size_t last = e.graph().nodeCount() - 1;
+  const Isometry3 S_inv = mounting().inverse();
+  const Isometry3 truth = (truthOfNode(e, s, 0) * S_inv).inverse() * (truthOfNode(e, s, last) * S_inv);
+  const Isometry3 err = truth.inverse() * gasp::fromCPose3D(e.graph().nodes.at(last));
+  EXPECT_LT(gasp::translationNorm(err), 0.03);
+  EXPECT_LT(gasp::rotationAngle(err) * 180 / M_PI, 2.0);
+}
+
+TEST(GraphSlamEngine, BadScansAreSkippedWithoutStoppingTheRun) {
+  const std::string dir = gasp::test::scratchDir();
+  const auto s = gasp::test::circleSequence(30);
+  GaspEngine e(writeFile(dir + "/g.ini", kEngineSections));
+  // No depth at all: no patches, no node, no crash.
+  auto empty = scanOf(s, 0);
+  empty->rangeImage.fill(0);
+  e.step(empty);
+  for (std::size_t i = 1; i < 6; ++i) e.step(scanOf(s, i));
+  // A range image whose size disagrees with the camera; then a timestamp that goes backwards.
+  auto wrong_size = scanOf(s, 6);
+  wrong_size->rangeImage.resize(10, 10);
+  e.step(wrong_size);
+  e.step(scanOf(s, 2));
+  for (std::size_t i = 6; i < 10; ++i) e.step(scanOf(s, i));
+  EXPECT_EQ(e.nrd.skippedScans(), 2u);
+  ASSERT_NE(e.nrd.odometry(), nullptr);
+  EXPECT_EQ(e.nrd.odometry()->frames().size(), 10u);  // the empty frame, 1-5 and 6-9
+  EXPECT_GE(e.graph().nodeCount(), 2u);
+}
+
+TEST(GraphSlamEngine, StartsWithoutWaitingForAKeyPress) {
+  // MRPT 2.5.8's constructor pauses for a key; with a standard input that stays open and never
+  // delivers one (an idle pipe), makeGraphSlamEngine() must still return.
+  const std::string dir = gasp::test::scratchDir();
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  const int saved = ::dup(0);
+  ::dup2(fds[0], 0);
+  {
+    GaspEngine e(writeFile(dir + "/g.ini", kEngineSections));
+    EXPECT_EQ(e.graph().nodeCount(), 0u);
+  }
+  ::dup2(saved, 0);
+  ::close(saved);
+  ::close(fds[0]);
+  ::close(fds[1]);
+}
+
+TEST(CGaspPoseGraphGSO, RemovesAContradictedClosureAndKeepsAConsistentOne) {
+  // Six nodes 0.1 m apart along x; a closure 0 -> 5 that agrees and one 1 -> 4 that is 0.5 m off.
+  Graph3D graph;
+  for (int i = 0; i < 6; ++i) graph.nodes[i] = mrpt::poses::CPose3D(0.1 * i, 0, 0, 0, 0, 0);
+  const auto edge = [](double dx, double information) {
+    mrpt::poses::CPose3DPDFGaussianInf e;
+    e.mean = mrpt::poses::CPose3D(dx, 0, 0, 0, 0, 0);
+    e.cov_inv.setIdentity();
+    e.cov_inv *= information;
+    return e;
+  };
+  for (int i = 0; i < 5; ++i) graph.insertEdge(i, i + 1, edge(0.1, 1e4));
+  graph.insertEdge(0, 5, edge(0.5, 1e4));
+  graph.insertEdge(1, 4, edge(0.8, 1e4));
+  gasp::graphslam::CGaspPoseGraphGSO gso;
+  gso.setGraphPtr(&graph);
+  gso.optimizeNow();
+  EXPECT_EQ(gso.droppedEdges(), 1u);
+  EXPECT_EQ(graph.edges.count({1, 4}), 0u);
+  EXPECT_EQ(graph.edges.count({0, 5}), 1u);
+  EXPECT_EQ(graph.edgeCount(), 6u);
+  EXPECT_NEAR(graph.nodes.at(5).x(), 0.5, 1e-6);
+  EXPECT_NEAR(graph.nodes.at(0).x(), 0.0, 1e-12);  // the gauge: node 0 fixed
+  EXPECT_LT(gso.lastResult().final_chi2, 1e-6);
+}
+
+TEST(GaspOptionsChecker, RegistersGaspsClassesBesideMrptsFor3DGraphs) {
+  gasp::graphslam::GaspOptionsChecker checker;
+  EXPECT_TRUE(checker.checkRegistrationDeciderExists("CGaspOdometryNRD", "node"));
+  EXPECT_TRUE(checker.checkRegistrationDeciderExists("CGaspLoopClosureERD", "edge"));
+  EXPECT_TRUE(checker.checkOptimizerExists("CGaspPoseGraphGSO"));
+  EXPECT_TRUE(checker.checkRegistrationDeciderExists("CFixedIntervalsNRD", "node"));
+  EXPECT_TRUE(checker.checkOptimizerExists("CLevMarqGSO"));
+  EXPECT_FALSE(checker.checkRegistrationDeciderExists("CICPCriteriaNRD", "node"));  // 2D only
+  EXPECT_FALSE(checker.checkOptimizerExists("CEmptyGSO"));  // MRPT maps it to CLevMarqGSO
+  EXPECT_EQ(checker.optimizers_map.count("CEmptyGSO"), 0u);
+  std::unique_ptr<mrpt::graphslam::deciders::CNodeRegistrationDecider<Graph3D>> nrd(
+      checker.node_regs_map.at("CGaspOdometryNRD")());
+  std::unique_ptr<mrpt::graphslam::deciders::CEdgeRegistrationDecider<Graph3D>> erd(
+      checker.edge_regs_map.at("CGaspLoopClosureERD")());
+  std::unique_ptr<mrpt::graphslam::optimizers::CGraphSlamOptimizer<Graph3D>> gso(
+      checker.optimizers_map.at("CGaspPoseGraphGSO")());
+  EXPECT_NE(dynamic_cast<gasp::graphslam::CGaspOdometryNRD*>(nrd.get()), nullptr);
+  EXPECT_NE(dynamic_cast<gasp::graphslam::CGaspLoopClosureERD*>(erd.get()), nullptr);
+  EXPECT_NE(dynamic_cast<gasp::graphslam::CGaspPoseGraphGSO*>(gso.get()), nullptr);
+}
+
+TEST(GraphSlamDeciders, ReadTheirIniSectionsStrictly) {
+  const std::string dir = gasp::test::scratchDir();
+  const std::string ini = writeFile(dir + "/ok.ini",
+                                    "[CGaspOdometryNRD]\nkeyframe_distance_m = 0.2\nsensor_label = KINECT\n"
+                                    "[CGaspLoopClosureERD]\nsearch_radius_m = 0.8\nmax_candidates = 4\nenabled = 0\n"
+                                    "[CGaspPoseGraphGSO]\nmax_iterations = 7\ndrop_chi2 = 0\n");
+  gasp::graphslam::CGaspOdometryNRD nrd;
+  gasp::graphslam::CGaspLoopClosureERD erd;
+  gasp::graphslam::CGaspPoseGraphGSO gso;
+  nrd.loadParams(ini);
+  erd.loadParams(ini);
+  gso.loadParams(ini);
+  EXPECT_DOUBLE_EQ(nrd.params().keyframe_distance_m, 0.2);
+  EXPECT_DOUBLE_EQ(erd.loopParams().search_radius_m, 0.8);
+  EXPECT_EQ(erd.loopParams().max_candidates, 4u);
+  EXPECT_FALSE(erd.loopParams().enabled);
+  EXPECT_EQ(gso.settings().max_iterations, 7);
+  EXPECT_DOUBLE_EQ(gso.dropChi2(), 0.0);
+
+  EXPECT_THROW(nrd.loadParams(writeFile(dir + "/a.ini", "[CGaspOdometryNRD]\nkeyframe_distanse_m = 0.2\n")),
+               std::exception);
+  EXPECT_THROW(nrd.loadParams(writeFile(dir + "/b.ini", "[CGaspOdometryNRD]\nkeyframe_distance_m = -1\n")),
+               std::exception);
+  EXPECT_THROW(erd.loadParams(writeFile(dir + "/c.ini", "[CGaspLoopClosureERD]\nmax_candidates = -2\n")),
+               std::exception);
+  EXPECT_THROW(gso.loadParams(writeFile(dir + "/d.ini", "[CGaspPoseGraphGSO]\nmax_iterations = many\n")),
+               std::exception);
+  EXPECT_THROW(gso.loadParams(dir + "/missing.ini"), std::exception);
+  EXPECT_DOUBLE_EQ(nrd.params().keyframe_distance_m, 0.2);  // a failed load changes nothing
+}
+
+TEST(GraphTypes, BreakEdgesAndDepthScansAreTold) {
+  mrpt::poses::CPose3DPDFGaussianInf e;
+  e.cov_inv.setIdentity();
+  e.cov_inv *= gasp::graphslam::kBreakInformation;
+  EXPECT_TRUE(gasp::graphslam::isBreakEdge(e));
+  e.cov_inv(0, 0) = 1.0;  // one direction constrained: not a break
+  EXPECT_FALSE(gasp::graphslam::isBreakEdge(e));
+
+  const auto s = gasp::test::circleSequence(2);
+  auto scan = scanOf(s, 0);
+  scan->sensorLabel = "KINECT";
+  auto sf = std::make_shared<mrpt::obs::CSensoryFrame>();
+  sf->insert(scan);
+  EXPECT_EQ(gasp::graphslam::depthScanOf(sf, nullptr, ""), scan);
+  EXPECT_EQ(gasp::graphslam::depthScanOf(sf, nullptr, "KINECT"), scan);
+  EXPECT_EQ(gasp::graphslam::depthScanOf(sf, nullptr, "OTHER"), nullptr);
+  EXPECT_EQ(gasp::graphslam::depthScanOf(nullptr, scan, ""), scan);
+  EXPECT_EQ(gasp::graphslam::depthScanOf(nullptr, nullptr, ""), nullptr);
+}

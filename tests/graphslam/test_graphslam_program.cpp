@@ -1,0 +1,150 @@
+// gasp-graphslam end to end: a simulated rawlog, its outputs (trajectory, graph, MRPT's
+// reports), the listings, a real sequence that revisits its places, and the exit codes of bad input.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "gasp/core/tum_trajectory.h"
+#include "gasp_test_data.h"
+#include "program_run.h"
+
+namespace {
+
+using gasp::test::contains;
+using gasp::test::countLinesStartingWith;
+using gasp::test::runProgram;
+
+std::size_t printedCount(const std::string& output, const std::string& key) {
+  const auto pos = output.find("\n" + key);
+  return pos == std::string::npos ? static_cast<std::size_t>(-1) : std::stoul(output.substr(pos + 1 + key.size()));
+}
+
+/// A rawlog (format `format`) of the first `frames` of a simulated room at 5 Hz (by default 16
+/// of 30, every one tracked) in DIR, with its ground truth beside it (DIR/sim_groundtruth.txt).
+std::string simulatedRawlog(const std::string& dir, int format = 2, int frames = 16, int simulated_frames = 30) {
+  auto run = runProgram("gasp-simulate", "--out " + dir + "/simdir --frames " + std::to_string(simulated_frames) + " --rate 5");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  run = runProgram("gasp-tum2rawlog", "--no-rgb --max-frames " + std::to_string(frames) + " --format " + std::to_string(format) + " " + dir + "/simdir " + dir +
+                                          "/sim.rawlog");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  return dir + "/sim.rawlog";
+}
+
+}  // namespace
+
+TEST(GaspGraphSlamProgram, WritesTheTrajectoryGraphAndReports) {
+  const std::string out = gasp::test::scratchDir();
+  const std::string rawlog = simulatedRawlog(out);
+  const auto run = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --out " + out + "/traj.txt --graph " + out +
+                                                    "/g.graph --report-dir " + out + "/report --gt " + out +
+                                                    "/sim_groundtruth.txt");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "\nscans: 16\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "deciders: CGaspOdometryNRD, CGaspLoopClosureERD, CGaspPoseGraphGSO\n"));
+  EXPECT_TRUE(contains(run.output, "\nbreak_edges: 0\n")) << run.output;
+  const std::size_t nodes = printedCount(run.output, "nodes: "), edges = printedCount(run.output, "edges: ");
+  ASSERT_GE(nodes, 2u) << run.output;
+  ASSERT_LE(nodes, 16u) << run.output;
+  EXPECT_EQ(countLinesStartingWith(out + "/g.graph", "VERTEX3 "), nodes);
+  EXPECT_EQ(countLinesStartingWith(out + "/g.graph", "EDGE3 "), edges);
+  EXPECT_EQ(gasp::readTumTrajectory(out + "/traj.txt").size(), nodes);
+  for (const char* f : {"CGraphSlamEngine.log", "node_registrar.log", "edge_registrar.log", "optimizer.log", "timings.log"})
+    EXPECT_TRUE(std::filesystem::exists(out + "/report/" + f)) << f;
+  std::ifstream nrd_log(out + "/report/node_registrar.log");
+  const std::string nrd_text((std::istreambuf_iterator<char>(nrd_log)), std::istreambuf_iterator<char>());
+  EXPECT_TRUE(contains(nrd_text, "GASP depth odometry")) << nrd_text;
+  // The nodes are within a centimetre of the simulator's truth.
+  const auto pos = run.output.find("\nate_rmse_m: ");
+  ASSERT_NE(pos, std::string::npos) << run.output;
+  EXPECT_LT(std::stod(run.output.substr(pos + 13)), 0.01) << run.output;
+}
+
+TEST(GaspGraphSlamProgram, RunsRawlogsOfSensoryFramesAndMrptsOptimiser) {
+  // Format #1 (sensory frames, no actions) and MRPT's CLevMarqGSO.
+  const std::string out = gasp::test::scratchDir();
+  const std::string rawlog = simulatedRawlog(out, 1);
+  const auto run = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --optimizer CLevMarqGSO --out " + out +
+                                                    "/traj.txt");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "\nscans: 16\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "deciders: CGaspOdometryNRD, CGaspLoopClosureERD, CLevMarqGSO\n"));
+  EXPECT_GE(printedCount(run.output, "nodes: "), 2u) << run.output;
+}
+
+TEST(GaspGraphSlamProgram, ListsItsClassesAndPrintsALoadableConfiguration) {
+  const std::string out = gasp::test::scratchDir();
+  auto run = runProgram("gasp-graphslam", "--list-regs");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "CGaspOdometryNRD")) << run.output;
+  EXPECT_TRUE(contains(run.output, "CGaspLoopClosureERD")) << run.output;
+  run = runProgram("gasp-graphslam", "--list-optimizers");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "CGaspPoseGraphGSO")) << run.output;
+  EXPECT_FALSE(contains(run.output, "CEmptyGSO")) << run.output;
+  run = runProgram("gasp-graphslam", "--print-ini > " + out + "/printed.ini");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(countLinesStartingWith(out + "/printed.ini", "[CGaspPoseGraphGSO]"), 1u);
+  // The printed configuration, edited, is what --ini reads.
+  std::ofstream(out + "/printed.ini", std::ios::app) << "\n[CGaspOdometryNRD]\nkeyframe_distance_m = 0.3\n";
+  run = runProgram("gasp-graphslam", "--rawlog " + simulatedRawlog(out) + " --ini " + out + "/printed.ini");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+}
+
+TEST(GaspGraphSlamProgram, SaysWhenTrackingWasLost) {
+  // The room simulated in 20 frames moves faster: one frame is not tracked, the node decider
+  // inserts a break edge; exit 3, and the outputs are still written.
+  const std::string out = gasp::test::scratchDir();
+  const auto run = runProgram("gasp-graphslam", "--rawlog " + simulatedRawlog(out, 2, 20, 20) + " --out " + out + "/t.txt");
+  EXPECT_EQ(run.exit_code, 3) << run.output;
+  EXPECT_TRUE(contains(run.output, "\nbreak_edges: 1\n")) << run.output;
+  EXPECT_EQ(gasp::readTumTrajectory(out + "/t.txt").size(), printedCount(run.output, "nodes: "));
+}
+
+TEST(GaspGraphSlamProgram, BadInputGivesExitCodesAndReasons) {
+  const std::string out = gasp::test::scratchDir();
+  auto run = runProgram("gasp-graphslam", "--rawlog " + out + "/missing.rawlog");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "cannot open rawlog")) << run.output;
+  run = runProgram("gasp-graphslam", "");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  const std::string rawlog = simulatedRawlog(out);
+  run = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --node-reg CICPCriteriaNRD");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_TRUE(contains(run.output, "no node registration decider 'CICPCriteriaNRD'")) << run.output;
+  run = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --optimizer CEmptyGSO");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  run = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --ini " + out + "/missing.ini");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  std::ofstream(out + "/bad.ini") << "[CGaspLoopClosureERD]\nsearch_radius = 0.5\n";
+  run = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --ini " + out + "/bad.ini");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "search_radius")) << run.output;
+  // Not a rawlog; an empty file.
+  std::ofstream(out + "/garbage.rawlog") << "this is not a rawlog at all, just text\n";
+  run = runProgram("gasp-graphslam", "--rawlog " + out + "/garbage.rawlog");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  std::ofstream(out + "/empty.rawlog").close();
+  run = runProgram("gasp-graphslam", "--rawlog " + out + "/empty.rawlog");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "no CObservation3DRangeScan")) << run.output;
+}
+
+TEST(GaspGraphSlamProgram, ClosesLoopsOnFr1Xyz) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_xyz");
+  const std::string out = gasp::test::scratchDir();
+  auto run = runProgram("gasp-tum2rawlog", "--no-rgb --max-frames 240 " + dir + " " + out + "/xyz.rawlog");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  run = runProgram("gasp-graphslam", "--rawlog " + out + "/xyz.rawlog --gt " + out + "/xyz_groundtruth.txt --graph " +
+                                         out + "/g.graph");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  std::printf("%s", run.output.substr(run.output.find("\nrawlog_entries")).c_str());
+  const std::size_t loops = printedCount(run.output, "loop_closures: ");
+  EXPECT_GE(loops, 5u) << run.output;
+  EXPECT_LT(loops, 1000u) << run.output;
+  EXPECT_EQ(countLinesStartingWith(out + "/g.graph", "EDGE3 "), printedCount(run.output, "edges: "));
+  const auto pos = run.output.find("\nate_rmse_m: ");
+  ASSERT_NE(pos, std::string::npos) << run.output;
+  EXPECT_LT(std::stod(run.output.substr(pos + 13)), 0.02) << run.output;
+}
