@@ -5,6 +5,7 @@
 #include <Eigen/Cholesky>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "gasp/core/error.h"
@@ -50,6 +51,9 @@ std::optional<mrpt::poses::CPose3DPDFGaussianInf> edgeFromConstraint(const PoseC
   if (!pdf) return std::nullopt;
   mrpt::poses::CPose3DPDFGaussianInf edge;
   edge.copyFrom(*pdf);
+  for (int r = 0; r < 6; ++r)
+    for (int k = 0; k < 6; ++k)
+      if (!std::isfinite(edge.cov_inv(r, k))) return std::nullopt;  // e.g. at pitch +-90 deg
   return edge;
 }
 

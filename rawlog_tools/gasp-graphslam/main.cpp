@@ -10,6 +10,7 @@
 // (break edges in the graph).
 #include <CLI/CLI.hpp>
 #include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/lazy_load_path.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CRawlog.h>
 #include <mrpt/serialization/archiveFrom_std_streams.h>
@@ -34,6 +35,7 @@
 #include "gasp/graphslam/engine.h"
 #include "gasp/graphslam/options_checker.h"
 #include "gasp/rawlog/observation_conversion.h"
+#include "gasp/rawlog/rawlog_format.h"
 #include "sequence_report.h"
 
 namespace {
@@ -68,11 +70,15 @@ struct NodeInfo {
   gasp::Isometry3 T_robot_camera = gasp::Isometry3::Identity();
 };
 
+/// A scan that cannot be converted keeps what it has (its timestamp; the identity mounting).
 NodeInfo infoOf(const mrpt::obs::CObservation3DRangeScan::Ptr& scan) {
   NodeInfo info;
   if (!scan) return info;
   info.timestamp = mrpt::Clock::toDouble(scan->timestamp);
-  info.T_robot_camera = gasp::frameFromObservation(*scan, "scan").T_robot_camera;
+  try {
+    info.T_robot_camera = gasp::frameFromObservation(*scan, "scan").T_robot_camera;
+  } catch (const gasp::Error&) {
+  }
   return info;
 }
 
@@ -140,6 +146,11 @@ int main(int argc, char** argv) {
     const auto engine_ptr = gasp::graphslam::makeGraphSlamEngine(ini_path, rawlog_path, *nrd, *erd, *gso);
     auto& engine = *engine_ptr;
 
+    if (optimizer == "CLevMarqGSO")
+      std::fprintf(stderr, "warning: MRPT 2.5.8's CLevMarqGSO applies an edge's information to [x y z rx ry rz], not to "
+                           "[x y z yaw pitch roll] as CPose3DPDFGaussianInf declares it (docs/graphslam.md)\n");
+    // Images stored outside the rawlog (<rawlog>_Images/) are found as MRPT's tools find them.
+    mrpt::io::setLazyLoadPathBase(gasp::findRawlogImagesDirectory(rawlog_path));
     mrpt::io::CFileGZInputStream file;
     if (!file.open(rawlog_path)) throw gasp::Error("cannot open rawlog " + rawlog_path);
     auto archive = mrpt::serialization::archiveFrom(file);
@@ -150,16 +161,19 @@ int main(int argc, char** argv) {
     mrpt::obs::CObservation3DRangeScan::Ptr first_scan;
     std::vector<NodeInfo> nodes;
     while (mrpt::obs::CRawlog::getActionObservationPairOrObservation(archive, action, observations, observation, entry)) {
-      // A sensory frame without an action before it (GASP's rawlogs): no odometry increment.
+      // Format #1 with an empty action collection (GASP's rawlogs): the engine reads the first
+      // action of every such step, so it gets one with no motion.
       if (observations && (!action || action->size() == 0)) action = gasp::graphslam::noMotionAction();
       const auto scan = gasp::graphslam::depthScanOf(observations, observation, "");
       if (scan) ++scans;
       if (scan && !first_scan) first_scan = scan;
       engine._execGraphSlamStep(action, observations, observation, entry);
       ++steps;
-      // New nodes: the root takes the first scan, the newest the scan of this step.
+      // New nodes: the root takes the first scan, the newest the scan of this step (GASP's node
+      // decider tells both exactly, below).
       const std::size_t n = engine.getGraph().nodeCount();
-      while (nodes.size() < n) nodes.push_back(nodes.empty() ? infoOf(first_scan) : infoOf(scan));
+      const bool gasp_nodes = dynamic_cast<const gasp::graphslam::CGaspOdometryNRD*>(nrd.get()) != nullptr;
+      while (nodes.size() < n) nodes.push_back(gasp_nodes ? NodeInfo{} : infoOf(nodes.empty() ? first_scan : scan));
       if (steps % 100 == 0)
         std::fprintf(stderr, "entry %zu: %zu nodes, %zu edges\n", entry, n, engine.getGraph().edgeCount());
     }
@@ -169,6 +183,10 @@ int main(int argc, char** argv) {
     auto* gasp_erd = dynamic_cast<gasp::graphslam::CGaspLoopClosureERD*>(erd.get());
     auto* gasp_gso = dynamic_cast<gasp::graphslam::CGaspPoseGraphGSO*>(gso.get());
     if (gasp_gso) gasp_gso->optimizeNow();
+    if (gasp_erd) gasp_erd->syncWithGraph();  // closures the optimiser removed
+    if (engine.getGraph().nodeCount() == 0)
+      throw gasp::Error(rawlog_path + ": no graph: fewer than two nodes were registered (" + std::to_string(scans) +
+                        " scans; with CGaspOdometryNRD, fewer than two keyframes)");
     if (gasp_nrd && gasp_nrd->odometry()) {  // exact timestamps and mountings of the keyframes
       for (std::size_t i = 0; i < nodes.size() && i < gasp_nrd->nodeFrames().size(); ++i) {
         nodes[i].timestamp = gasp_nrd->odometry()->frames()[gasp_nrd->nodeFrames()[i]].timestamp;

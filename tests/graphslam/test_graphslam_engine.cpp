@@ -301,6 +301,11 @@ TEST(GraphSlamDeciders, ReadTheirIniSectionsStrictly) {
                std::exception);
   EXPECT_THROW(erd.loadParams(writeFile(dir + "/c.ini", "[CGaspLoopClosureERD]\nmax_candidates = -2\n")),
                std::exception);
+  EXPECT_THROW(erd.loadParams(writeFile(dir + "/e.ini", "[CGaspLoopClosureERD]\nmin_keyframe_gap = 1\n")),
+               std::exception);
+  erd.loadParams(writeFile(dir + "/f.ini", "[CGaspLoopClosureERD]\nloop_min_inliers = 33\nmin_inliers = 9\n"));
+  EXPECT_EQ(erd.loopParams().min_inliers, 33);           // the loop closer's
+  EXPECT_EQ(erd.pairParams().pose.ransac.min_inliers, 9);  // RANSAC's
   EXPECT_THROW(gso.loadParams(writeFile(dir + "/d.ini", "[CGaspPoseGraphGSO]\nmax_iterations = many\n")),
                std::exception);
   EXPECT_THROW(gso.loadParams(dir + "/missing.ini"), std::exception);

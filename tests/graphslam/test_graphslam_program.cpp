@@ -23,10 +23,11 @@ std::size_t printedCount(const std::string& output, const std::string& key) {
 
 /// A rawlog (format `format`) of the first `frames` of a simulated room at 5 Hz (by default 16
 /// of 30, every one tracked) in DIR, with its ground truth beside it (DIR/sim_groundtruth.txt).
-std::string simulatedRawlog(const std::string& dir, int format = 2, int frames = 16, int simulated_frames = 30) {
+std::string simulatedRawlog(const std::string& dir, int format = 2, int frames = 16, int simulated_frames = 30,
+                            const std::string& options = "") {
   auto run = runProgram("gasp-simulate", "--out " + dir + "/simdir --frames " + std::to_string(simulated_frames) + " --rate 5");
   EXPECT_EQ(run.exit_code, 0) << run.output;
-  run = runProgram("gasp-tum2rawlog", "--no-rgb --max-frames " + std::to_string(frames) + " --format " + std::to_string(format) + " " + dir + "/simdir " + dir +
+  run = runProgram("gasp-tum2rawlog", "--no-rgb " + options + " --max-frames " + std::to_string(frames) + " --format " + std::to_string(format) + " " + dir + "/simdir " + dir +
                                           "/sim.rawlog");
   EXPECT_EQ(run.exit_code, 0) << run.output;
   return dir + "/sim.rawlog";
@@ -92,6 +93,17 @@ TEST(GaspGraphSlamProgram, ListsItsClassesAndPrintsALoadableConfiguration) {
   EXPECT_EQ(run.exit_code, 0) << run.output;
 }
 
+TEST(GaspGraphSlamProgram, FindsImagesStoredBesideTheRawlog) {
+  // gasp-tum2rawlog --external: the depth images in sim_Images/, found from any working directory.
+  const std::string out = gasp::test::scratchDir();
+  const std::string rawlog = simulatedRawlog(out, 2, 8, 30, "--external");
+  ASSERT_TRUE(std::filesystem::exists(out + "/sim_Images"));
+  const auto run = runProgram("gasp-graphslam", "--rawlog " + rawlog);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_GE(printedCount(run.output, "nodes: "), 2u) << run.output;
+  EXPECT_FALSE(contains(run.output, "skipped_scans")) << run.output;
+}
+
 TEST(GaspGraphSlamProgram, SaysWhenTrackingWasLost) {
   // The room simulated in 20 frames moves faster: one frame is not tracked, the node decider
   // inserts a break edge; exit 3, and the outputs are still written.
@@ -121,6 +133,10 @@ TEST(GaspGraphSlamProgram, BadInputGivesExitCodesAndReasons) {
   run = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --ini " + out + "/bad.ini");
   EXPECT_EQ(run.exit_code, 1) << run.output;
   EXPECT_TRUE(contains(run.output, "search_radius")) << run.output;
+  // One scan: one keyframe, no graph.
+  run = runProgram("gasp-graphslam", "--rawlog " + simulatedRawlog(out, 2, 1));
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "no graph")) << run.output;
   // Not a rawlog; an empty file.
   std::ofstream(out + "/garbage.rawlog") << "this is not a rawlog at all, just text\n";
   run = runProgram("gasp-graphslam", "--rawlog " + out + "/garbage.rawlog");

@@ -27,6 +27,8 @@ CGaspLoopClosureERD::CGaspLoopClosureERD() {
 void CGaspLoopClosureERD::setParams(const PairParams& pair, const LoopClosureParams& loop) {
   validate(pair);
   validate(loop);
+  // A closure between consecutive nodes would share its key with the node decider's edge.
+  if (loop.min_keyframe_gap < 2) throw Error("CGaspLoopClosureERD: min_keyframe_gap must be at least 2");
   pair_ = pair;
   loop_ = loop;
 }
@@ -50,7 +52,15 @@ bool CGaspLoopClosureERD::updateState(mrpt::obs::CActionCollection::Ptr /*action
                                       mrpt::obs::CObservation::Ptr observation) {
   m_just_inserted_lc = false;
   if (auto scan = depthScanOf(observations, observation, sensor_label_)) {
-    if (!first_scan_) first_scan_ = scan;
+    // The root's scan: the first with surface patches, as the odometry's origin is.
+    if (!first_scan_ && nodes_.empty()) {
+      try {
+        const RgbdFrame frame = frameFromObservation(*scan, "scan '" + scan->sensorLabel + "'");
+        if (!makeDepthView(frame.depth_m, frame.depth_intrinsics, pair_.superpixels).segmentation.patches.empty())
+          first_scan_ = scan;
+      } catch (const Error&) {
+      }
+    }
     last_scan_ = scan;
   }
   const std::size_t n = m_graph->nodeCount();
@@ -82,6 +92,24 @@ std::vector<PoseConstraint> CGaspLoopClosureERD::treeConstraints() const {
   return tree;
 }
 
+void CGaspLoopClosureERD::syncWithGraph() {
+  std::vector<PoseConstraint> present;
+  std::vector<std::size_t> present_attempt;
+  for (std::size_t j = 0; j < closures_.size(); ++j) {
+    const PoseConstraint& c = closures_[j];
+    if (m_graph && m_graph->edges.count({c.from, c.to})) {
+      present.push_back(c);
+      present_attempt.push_back(closure_attempt_[j]);
+      continue;
+    }
+    LoopClosureAttempt& a = attempts_[closure_attempt_[j]];
+    a.accepted = false;
+    a.reason = "removed from the graph by the optimiser";
+  }
+  closures_.swap(present);
+  closure_attempt_.swap(present_attempt);
+}
+
 void CGaspLoopClosureERD::insert(const PoseConstraint& c) {
   const auto edge = edgeFromConstraint(c, nodes_[c.from].T_robot_camera, nodes_[c.to].T_robot_camera);
   if (!edge) {
@@ -91,18 +119,14 @@ void CGaspLoopClosureERD::insert(const PoseConstraint& c) {
   }
   m_graph->insertEdge(c.from, c.to, *edge);
   closures_.push_back(c);
-  ++inserted_;
+  closure_attempt_.push_back(attempts_.size() - 1);
   m_just_inserted_lc = true;
   MRPT_LOG_INFO_STREAM("loop closure " << c.from << " -> " << c.to << " (" << c.inliers << " inliers)");
 }
 
 void CGaspLoopClosureERD::closeLoops(std::size_t k) {
   const std::size_t n = nodes_.size();
-  // An optimiser may have removed closures (CGaspPoseGraphGSO drops contradicted ones).
-  std::vector<PoseConstraint> present;
-  for (const PoseConstraint& c : closures_)
-    if (m_graph->edges.count({c.from, c.to})) present.push_back(c);
-  closures_.swap(present);
+  syncWithGraph();
   std::vector<std::size_t> with_view;  // the nodes that can be registered, ascending (k last)
   std::vector<Isometry3> T_world_camera(n, Isometry3::Identity());
   for (std::size_t i = 0; i < n; ++i) {
@@ -139,7 +163,7 @@ void CGaspLoopClosureERD::closeLoops(std::size_t k) {
 }
 
 void CGaspLoopClosureERD::getEdgesStats(std::map<std::string, int>* edge_type_to_num) const {
-  if (edge_type_to_num) (*edge_type_to_num)["lc"] = static_cast<int>(inserted_);
+  if (edge_type_to_num) (*edge_type_to_num)["lc"] = static_cast<int>(closures_.size());
 }
 
 void CGaspLoopClosureERD::loadParams(const std::string& source_fname) {
@@ -149,7 +173,7 @@ void CGaspLoopClosureERD::loadParams(const std::string& source_fname) {
   PairParams pair = pair_;
   LoopClosureParams loop = loop_;
   const std::set<std::string> own = {"enabled", "search_radius_m", "max_axis_angle_deg", "min_keyframe_gap",
-                                     "max_candidates", "min_inliers", "gate_chi2", "relocalisation_candidates",
+                                     "max_candidates", "loop_min_inliers", "gate_chi2", "relocalisation_candidates",
                                      "relocalisation_min_inliers", "sensor_label", "class_verbosity"};
   readPairParams(cfg, kSection, pair, own);
   int enabled = loop.enabled ? 1 : 0, gap = static_cast<int>(loop.min_keyframe_gap),
@@ -159,7 +183,7 @@ void CGaspLoopClosureERD::loadParams(const std::string& source_fname) {
   readValue(cfg, kSection, "max_axis_angle_deg", loop.max_axis_angle_deg);
   readValue(cfg, kSection, "min_keyframe_gap", gap);
   readValue(cfg, kSection, "max_candidates", candidates);
-  readValue(cfg, kSection, "min_inliers", loop.min_inliers);
+  readValue(cfg, kSection, "loop_min_inliers", loop.min_inliers);
   readValue(cfg, kSection, "gate_chi2", loop.gate_chi2);
   readValue(cfg, kSection, "relocalisation_candidates", reloc);
   readValue(cfg, kSection, "relocalisation_min_inliers", loop.relocalisation_min_inliers);
@@ -189,7 +213,7 @@ void CGaspLoopClosureERD::printParams() const {
             << "max_axis_angle_deg         = " << loop_.max_axis_angle_deg << '\n'
             << "min_keyframe_gap           = " << loop_.min_keyframe_gap << '\n'
             << "max_candidates             = " << loop_.max_candidates << '\n'
-            << "min_inliers                = " << loop_.min_inliers << '\n'
+            << "loop_min_inliers           = " << loop_.min_inliers << '\n'
             << "gate_chi2                  = " << loop_.gate_chi2 << '\n'
             << "relocalisation_candidates  = " << loop_.relocalisation_candidates << '\n'
             << "relocalisation_min_inliers = " << loop_.relocalisation_min_inliers << '\n'
@@ -201,11 +225,11 @@ void CGaspLoopClosureERD::getDescriptiveReport(std::string* report_str) const {
   std::size_t relocalisations = 0;
   for (const auto& a : attempts_) relocalisations += a.accepted && a.relocalisation ? 1 : 0;
   std::ostringstream ss;
-  ss << "GASP loop closures: " << attempts_.size() << " registrations tried, " << inserted_ << " edges inserted ("
-     << relocalisations << " relocalisations)\n";
+  ss << "GASP loop closures: " << attempts_.size() << " registrations tried, " << closures_.size()
+     << " edges in the graph (" << relocalisations << " relocalisations)\n";
   for (const auto& a : attempts_)
     ss << "  " << a.from << " -> " << a.to << (a.relocalisation ? " (relocalisation)" : "") << ": "
-       << (a.accepted ? "inserted" : a.reason) << ", " << a.inliers << " inliers\n";
+       << (a.accepted ? "in the graph" : a.reason) << ", " << a.inliers << " inliers\n";
   *report_str += ss.str();
 }
 

@@ -2,7 +2,8 @@
 /// \file CGaspLoopClosureERD.h mrpt::graphslam edge registration decider (ERD): GASP loop
 /// closures and relocalisations between the graph's nodes, with any node registration decider.
 ///
-/// Each node gets the depth scan of the step that registered it (the root: the first scan), which
+/// Each node gets the depth scan of the step that registered it (the root: the first scan with
+/// surface patches, as the odometry's origin), which
 /// is segmented once and kept. For each new node, GASP registers it with no initial guess to
 /// earlier nodes chosen as gasp-slam chooses keyframes (loop_closure.h): nearby nodes of the same
 /// piece of the graph, and the latest nodes of other pieces (relocalisation). A loop closure is
@@ -12,8 +13,8 @@
 /// pose between the robot frames with GASP's edge information in [x y z yaw pitch roll].
 ///
 /// Parameters: ini section [CGaspLoopClosureERD] (docs/graphslam.md): the pair keys of
-/// params_io.h, search_radius_m, max_axis_angle_deg, min_keyframe_gap, max_candidates,
-/// min_inliers, gate_chi2, relocalisation_candidates, relocalisation_min_inliers, sensor_label,
+/// params_io.h (whose min_inliers is RANSAC's), search_radius_m, max_axis_angle_deg,
+/// min_keyframe_gap (at least 2), max_candidates, loop_min_inliers, gate_chi2, relocalisation_candidates, relocalisation_min_inliers, sensor_label,
 /// class_verbosity.
 #include <mrpt/graphslam/interfaces/CEdgeRegistrationDecider.h>
 
@@ -47,14 +48,19 @@ class CGaspLoopClosureERD : public mrpt::graphslam::deciders::CEdgeRegistrationD
   /// "lc": loop closures and relocalisations inserted.
   void getEdgesStats(std::map<std::string, int>* edge_type_to_num) const override;
 
-  /// Throws gasp::Error for invalid parameters.
+  /// Throws gasp::Error for invalid parameters (and a min_keyframe_gap below 2).
   void setParams(const PairParams& pair, const LoopClosureParams& loop);
   const PairParams& pairParams() const { return pair_; }
   const LoopClosureParams& loopParams() const { return loop_; }
   void setSensorLabel(const std::string& label) { sensor_label_ = label; }
-  /// Every registration tried, in order (from, to: node IDs).
+  /// Every registration tried, in order (from, to: node IDs); `accepted` while its edge is in
+  /// the graph (as of the last syncWithGraph()).
   const std::vector<LoopClosureAttempt>& attempts() const { return attempts_; }
-  std::size_t insertedEdges() const { return inserted_; }
+  /// Loop closures and relocalisations in the graph (as of the last syncWithGraph()).
+  std::size_t insertedEdges() const { return closures_.size(); }
+  /// Forgets the closures an optimiser removed from the graph (their attempts: not accepted,
+  /// with the reason). Runs before each search; call it before reading the counts at the end.
+  void syncWithGraph();
 
  private:
   struct Node {
@@ -72,9 +78,9 @@ class CGaspLoopClosureERD : public mrpt::graphslam::deciders::CEdgeRegistrationD
   std::string sensor_label_;
   mrpt::obs::CObservation3DRangeScan::Ptr first_scan_, last_scan_;
   std::vector<Node> nodes_;
-  std::vector<PoseConstraint> closures_;  ///< inserted, between camera frames
+  std::vector<PoseConstraint> closures_;  ///< in the graph, between camera frames
+  std::vector<std::size_t> closure_attempt_;  ///< for each closure, its index in attempts_
   std::vector<LoopClosureAttempt> attempts_;
-  std::size_t inserted_ = 0;
 };
 
 }  // namespace gasp::graphslam
