@@ -143,6 +143,9 @@ int main(int argc, char** argv) {
     std::unique_ptr<mrpt::graphslam::deciders::CNodeRegistrationDecider<Graph3D>> nrd(checker.node_regs_map[node_reg]());
     std::unique_ptr<mrpt::graphslam::deciders::CEdgeRegistrationDecider<Graph3D>> erd(checker.edge_regs_map[edge_reg]());
     std::unique_ptr<mrpt::graphslam::optimizers::CGraphSlamOptimizer<Graph3D>> gso(checker.optimizers_map[optimizer]());
+    auto* gasp_nrd = dynamic_cast<gasp::graphslam::CGaspOdometryNRD*>(nrd.get());
+    auto* gasp_erd = dynamic_cast<gasp::graphslam::CGaspLoopClosureERD*>(erd.get());
+    auto* gasp_gso = dynamic_cast<gasp::graphslam::CGaspPoseGraphGSO*>(gso.get());
     const auto engine_ptr = gasp::graphslam::makeGraphSlamEngine(ini_path, rawlog_path, *nrd, *erd, *gso);
     auto& engine = *engine_ptr;
 
@@ -172,16 +175,12 @@ int main(int argc, char** argv) {
       // New nodes: the root takes the first scan, the newest the scan of this step (GASP's node
       // decider tells both exactly, below).
       const std::size_t n = engine.getGraph().nodeCount();
-      const bool gasp_nodes = dynamic_cast<const gasp::graphslam::CGaspOdometryNRD*>(nrd.get()) != nullptr;
-      while (nodes.size() < n) nodes.push_back(gasp_nodes ? NodeInfo{} : infoOf(nodes.empty() ? first_scan : scan));
+      while (nodes.size() < n) nodes.push_back(gasp_nrd ? NodeInfo{} : infoOf(nodes.empty() ? first_scan : scan));
       if (steps % 100 == 0)
         std::fprintf(stderr, "entry %zu: %zu nodes, %zu edges\n", entry, n, engine.getGraph().edgeCount());
     }
     if (scans == 0) throw gasp::Error(rawlog_path + ": no CObservation3DRangeScan in the rawlog");
 
-    auto* gasp_nrd = dynamic_cast<gasp::graphslam::CGaspOdometryNRD*>(nrd.get());
-    auto* gasp_erd = dynamic_cast<gasp::graphslam::CGaspLoopClosureERD*>(erd.get());
-    auto* gasp_gso = dynamic_cast<gasp::graphslam::CGaspPoseGraphGSO*>(gso.get());
     if (gasp_gso) gasp_gso->optimizeNow();
     if (gasp_erd) gasp_erd->syncWithGraph();  // closures the optimiser removed
     if (engine.getGraph().nodeCount() == 0)

@@ -33,18 +33,18 @@ void CGaspLoopClosureERD::setParams(const PairParams& pair, const LoopClosurePar
   loop_ = loop;
 }
 
-void CGaspLoopClosureERD::addNode(const mrpt::obs::CObservation3DRangeScan::Ptr& scan) {
+CGaspLoopClosureERD::Node CGaspLoopClosureERD::nodeOf(const mrpt::obs::CObservation3DRangeScan::Ptr& scan,
+                                                       std::string* error) const {
   Node node;
-  if (scan) {
-    try {
-      const RgbdFrame frame = frameFromObservation(*scan, "scan '" + scan->sensorLabel + "'");
-      node.T_robot_camera = frame.T_robot_camera;
-      node.view = makeDepthView(frame.depth_m, frame.depth_intrinsics, pair_.superpixels);
-    } catch (const Error& e) {
-      MRPT_LOG_WARN_STREAM("node " << nodes_.size() << " has no view: " << e.what());
-    }
+  if (!scan) return node;
+  try {
+    const RgbdFrame frame = frameFromObservation(*scan, "scan '" + scan->sensorLabel + "'");
+    node.T_robot_camera = frame.T_robot_camera;
+    node.view = makeDepthView(frame.depth_m, frame.depth_intrinsics, pair_.superpixels);
+  } catch (const Error& e) {
+    if (error) *error = e.what();
   }
-  nodes_.push_back(std::move(node));
+  return node;
 }
 
 bool CGaspLoopClosureERD::updateState(mrpt::obs::CActionCollection::Ptr /*action*/,
@@ -52,24 +52,28 @@ bool CGaspLoopClosureERD::updateState(mrpt::obs::CActionCollection::Ptr /*action
                                       mrpt::obs::CObservation::Ptr observation) {
   m_just_inserted_lc = false;
   if (auto scan = depthScanOf(observations, observation, sensor_label_)) {
-    // The root's scan: the first with surface patches, as the odometry's origin is.
-    if (!first_scan_ && nodes_.empty()) {
-      try {
-        const RgbdFrame frame = frameFromObservation(*scan, "scan '" + scan->sensorLabel + "'");
-        if (!makeDepthView(frame.depth_m, frame.depth_intrinsics, pair_.superpixels).segmentation.patches.empty())
-          first_scan_ = scan;
-      } catch (const Error&) {
-      }
+    // The root: the first scan with surface patches, as the odometry's origin is (segmented
+    // once, kept until the root is registered).
+    if (!root_ && nodes_.empty()) {
+      Node candidate = nodeOf(scan, nullptr);
+      if (candidate.view && !candidate.view->segmentation.patches.empty()) root_ = std::move(candidate);
     }
     last_scan_ = scan;
   }
   const std::size_t n = m_graph->nodeCount();
   if (n <= nodes_.size()) return true;
-  // The root takes the first scan; the newest node the scan of this step; any other node added
-  // in the same step has none.
+  // The root takes its scan; the newest node the scan of this step; any other node added in the
+  // same step has none.
   while (nodes_.size() < n) {
     const std::size_t id = nodes_.size();
-    addNode(id == 0 ? first_scan_ : id + 1 == n ? last_scan_ : nullptr);
+    if (id == 0) {
+      nodes_.push_back(root_ ? std::move(*root_) : Node{});
+      root_.reset();
+      continue;
+    }
+    std::string error;
+    nodes_.push_back(id + 1 == n ? nodeOf(last_scan_, &error) : Node{});
+    if (!error.empty()) MRPT_LOG_WARN_STREAM("node " << id << " has no view: " << error);
   }
   if (loop_.enabled && nodes_.back().view) closeLoops(n - 1);
   return true;

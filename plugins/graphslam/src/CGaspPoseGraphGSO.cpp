@@ -19,7 +19,12 @@ namespace gasp::graphslam {
 
 namespace {
 const char* const kSection = "CGaspPoseGraphGSO";
+
+/// Edges beyond a spanning tree: the loop closures of a connected graph.
+std::size_t extraEdges(const Graph3D& g) {
+  return g.edgeCount() + 1 > g.nodeCount() ? g.edgeCount() + 1 - g.nodeCount() : 0;
 }
+}  // namespace
 
 CGaspPoseGraphGSO::CGaspPoseGraphGSO() {
   this->initializeLoggers(kSection);
@@ -37,8 +42,7 @@ void CGaspPoseGraphGSO::setSettings(const PoseGraphSettings& settings, double dr
 bool CGaspPoseGraphGSO::updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensoryFrame::Ptr,
                                     mrpt::obs::CObservation::Ptr) {
   just_optimised_ = false;
-  const std::size_t n = m_graph->nodeCount(), e = m_graph->edgeCount();
-  const std::size_t extra = e + 1 > n ? e + 1 - n : 0;  // edges beyond a spanning tree
+  const std::size_t n = m_graph->nodeCount(), extra = extraEdges(*m_graph);
   pending_ = pending_ || extra > seen_extra_edges_;
   seen_extra_edges_ = extra;
   const bool new_node = n != seen_nodes_;
@@ -90,7 +94,7 @@ void CGaspPoseGraphGSO::optimizeNow() {
     ++dropped_;
   }
   for (std::size_t i = 0; i < n; ++i) m_graph->nodes[i] = toCPose3D(T_world_node[i]);
-  seen_extra_edges_ = m_graph->edgeCount() + 1 > n ? m_graph->edgeCount() + 1 - n : 0;
+  seen_extra_edges_ = extraEdges(*m_graph);
   just_optimised_ = true;
   optimisation_ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   MRPT_LOG_INFO_STREAM("optimised " << n << " nodes: chi-square " << last_.initial_chi2 << " -> " << last_.final_chi2);

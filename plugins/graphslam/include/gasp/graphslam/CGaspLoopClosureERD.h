@@ -67,7 +67,9 @@ class CGaspLoopClosureERD : public mrpt::graphslam::deciders::CEdgeRegistrationD
     std::optional<DepthView> view;  ///< empty when no scan could be given to the node
     Isometry3 T_robot_camera = Isometry3::Identity();
   };
-  void addNode(const mrpt::obs::CObservation3DRangeScan::Ptr& scan);
+  /// The scan's mounting and segmented view (no view without a scan, or when it cannot be
+  /// converted: then `error` says why).
+  Node nodeOf(const mrpt::obs::CObservation3DRangeScan::Ptr& scan, std::string* error) const;
   void closeLoops(std::size_t k);
   /// The decider's edges i -> i+1 (not breaks) as constraints between camera frames.
   std::vector<PoseConstraint> treeConstraints() const;
@@ -76,7 +78,8 @@ class CGaspLoopClosureERD : public mrpt::graphslam::deciders::CEdgeRegistrationD
   PairParams pair_;
   LoopClosureParams loop_;
   std::string sensor_label_;
-  mrpt::obs::CObservation3DRangeScan::Ptr first_scan_, last_scan_;
+  std::optional<Node> root_;  ///< the root's node until the root is registered
+  mrpt::obs::CObservation3DRangeScan::Ptr last_scan_;
   std::vector<Node> nodes_;
   std::vector<PoseConstraint> closures_;  ///< in the graph, between camera frames
   std::vector<std::size_t> closure_attempt_;  ///< for each closure, its index in attempts_
