@@ -9,11 +9,8 @@
 // Exit codes: 0 done, 1 bad input, 2 usage error, 3 written, but GASP's odometry lost track
 // (break edges in the graph).
 #include <CLI/CLI.hpp>
-#include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/lazy_load_path.h>
 #include <mrpt/obs/CActionCollection.h>
-#include <mrpt/obs/CRawlog.h>
-#include <mrpt/serialization/archiveFrom_std_streams.h>
 #include <mrpt/system/filesystem.h>
 
 #include <unistd.h>
@@ -35,6 +32,7 @@
 #include "gasp/graphslam/engine.h"
 #include "gasp/graphslam/options_checker.h"
 #include "gasp/rawlog/observation_conversion.h"
+#include "gasp/rawlog/rawlog_entries.h"
 #include "gasp/rawlog/rawlog_format.h"
 #include "sequence_report.h"
 
@@ -154,16 +152,13 @@ int main(int argc, char** argv) {
                            "[x y z yaw pitch roll] as CPose3DPDFGaussianInf declares it (docs/graphslam.md)\n");
     // Images stored outside the rawlog (<rawlog>_Images/) are found as MRPT's tools find them.
     mrpt::io::setLazyLoadPathBase(gasp::findRawlogImagesDirectory(rawlog_path));
-    mrpt::io::CFileGZInputStream file;
-    if (!file.open(rawlog_path)) throw gasp::Error("cannot open rawlog " + rawlog_path);
-    auto archive = mrpt::serialization::archiveFrom(file);
-    mrpt::obs::CActionCollection::Ptr action;
-    mrpt::obs::CSensoryFrame::Ptr observations;
-    mrpt::obs::CObservation::Ptr observation;
-    std::size_t entry = 0, steps = 0, scans = 0;
+    gasp::RawlogEntries entries(rawlog_path);  // a truncated or corrupt file is an error, not an early end
+    std::size_t steps = 0, scans = 0;
     mrpt::obs::CObservation3DRangeScan::Ptr first_scan;
     std::vector<NodeInfo> nodes;
-    while (mrpt::obs::CRawlog::getActionObservationPairOrObservation(archive, action, observations, observation, entry)) {
+    while (auto next_entry = entries.next()) {
+      auto [action, observations, observation] = *next_entry;
+      std::size_t entry = entries.objectsRead();
       // Format #1 with an empty action collection (GASP's rawlogs): the engine reads the first
       // action of every such step, so it gets one with no motion.
       if (observations && (!action || action->size() == 0)) action = gasp::graphslam::noMotionAction();
@@ -177,7 +172,7 @@ int main(int argc, char** argv) {
       const std::size_t n = engine.getGraph().nodeCount();
       while (nodes.size() < n) nodes.push_back(gasp_nrd ? NodeInfo{} : infoOf(nodes.empty() ? first_scan : scan));
       if (steps % 100 == 0)
-        std::fprintf(stderr, "entry %zu: %zu nodes, %zu edges\n", entry, n, engine.getGraph().edgeCount());
+        std::fprintf(stderr, "entry %zu: %zu nodes, %zu edges\n", entries.objectsRead(), n, engine.getGraph().edgeCount());
     }
     if (scans == 0) throw gasp::Error(rawlog_path + ": no CObservation3DRangeScan in the rawlog");
 

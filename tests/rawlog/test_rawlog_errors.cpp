@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 #include <mrpt/core/Clock.h>
 #include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/io/CFileOutputStream.h>
+#include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/serialization/CArchive.h>
@@ -12,6 +14,7 @@
 #include <string>
 
 #include "gasp/core/error.h"
+#include "gasp/rawlog/rawlog_entries.h"
 #include "gasp/rawlog/rawlog_reader.h"
 #include "gasp/rawlog/rawlog_writer.h"
 #include "gasp_test_data.h"
@@ -167,5 +170,128 @@ TEST(RawlogErrors, TruncatedRawlogIsReportedAsCorrupt) {
     FAIL() << "expected gasp::Error for the truncated third observation";
   } catch (const gasp::Error& e) {
     EXPECT_TRUE(contains(e.what(), "cut.rawlog") && contains(e.what(), "truncated")) << e.what();
+  }
+}
+
+namespace {
+
+/// The gasp::Error message of reading every entry of the rawlog, or "" when it did not throw.
+std::string entriesError(const std::string& path, std::size_t* entries_read = nullptr) {
+  std::size_t count = 0;
+  try {
+    gasp::RawlogEntries entries(path);
+    while (entries.next()) ++count;
+  } catch (const gasp::Error& e) {
+    if (entries_read) *entries_read = count;
+    return e.what();
+  }
+  if (entries_read) *entries_read = count;
+  return "";
+}
+
+}  // namespace
+
+TEST(RawlogEntries, ReadsBothFormatsAsMrptsEngineDoes) {
+  const std::string dir = gasp::test::scratchDir();
+  for (const auto format : {gasp::RawlogFormat::ActionsSensoryFrames, gasp::RawlogFormat::Observations}) {
+    const std::string path = dir + "/f" + std::to_string(static_cast<int>(format)) + ".rawlog";
+    {
+      gasp::RawlogWriter writer(path, {format, false, 1});
+      for (int i = 0; i < 3; ++i) writer.write(gasp::test::syntheticFrame(1.0 + i));
+    }
+    gasp::RawlogEntries entries(path);
+    for (int i = 0; i < 3; ++i) {
+      const auto entry = entries.next();
+      ASSERT_TRUE(entry.has_value()) << i;
+      if (format == gasp::RawlogFormat::ActionsSensoryFrames) {
+        ASSERT_TRUE(entry->action && entry->observations) << i;
+        EXPECT_FALSE(entry->observation);
+        EXPECT_EQ(entry->observations->size(), 1u);
+        EXPECT_EQ(entries.objectsRead(), 2u * (i + 1));
+      } else {
+        ASSERT_TRUE(entry->observation) << i;
+        EXPECT_FALSE(entry->action || entry->observations);
+        EXPECT_EQ(entries.objectsRead(), i + 1u);
+      }
+    }
+    EXPECT_FALSE(entries.next().has_value());
+    EXPECT_FALSE(entries.next().has_value());  // the end stays the end
+  }
+}
+
+TEST(RawlogEntries, TruncatedFilesAreErrorsNotAnEarlyEnd) {
+  // MRPT's getActionObservationPairOrObservation() reads a cut file as a shorter one; here the
+  // cut is an error, compressed or plain, whichever format.
+  const std::string dir = gasp::test::scratchDir();
+  for (const int level : {0, 1}) {
+    for (const auto format : {gasp::RawlogFormat::ActionsSensoryFrames, gasp::RawlogFormat::Observations}) {
+      const std::string path = dir + "/cut_" + std::to_string(level) + "_" + std::to_string(static_cast<int>(format)) + ".rawlog";
+      {
+        gasp::RawlogWriter writer(path, {format, false, level});
+        for (int i = 0; i < 3; ++i) writer.write(gasp::test::syntheticFrame(1.0 + i));
+      }
+      std::filesystem::resize_file(path, std::filesystem::file_size(path) * 5 / 6);
+      std::size_t read = 0;
+      const std::string msg = entriesError(path, &read);
+      EXPECT_TRUE(contains(msg, path) && contains(msg, "truncated")) << level << ' ' << msg;
+      // Plain: the two whole entries before the cut; compressed, the cut falls earlier.
+      if (level == 0) {
+        EXPECT_EQ(read, 2u) << msg;
+      }
+      EXPECT_LT(read, 3u) << level << ' ' << msg;
+      // GASP's scan reader says the same.
+      EXPECT_TRUE(contains(readError(path), "truncated")) << level << ' ' << readError(path);
+    }
+  }
+  // A format-#1 file that ends after an action.
+  const std::string path = dir + "/action_only.rawlog";
+  {
+    mrpt::io::CFileGZOutputStream out(path);
+    auto ar = mrpt::serialization::archiveFrom(out);
+    mrpt::obs::CActionCollection action;
+    ar << action;
+  }
+  const std::string msg = entriesError(path);
+  EXPECT_TRUE(contains(msg, "ends after an action")) << msg;
+}
+
+TEST(RawlogEntries, AnUnknownClassIsNamed) {
+  // An odometry observation whose class name is changed to one no library registers (as a
+  // rawlog written with a plugin's observation class, read without the plugin).
+  const std::string path = gasp::test::scratchDir() + "/unknown.rawlog";
+  {
+    mrpt::io::CFileOutputStream out(path);  // plain, so that the class name can be edited
+    auto ar = mrpt::serialization::archiveFrom(out);
+    mrpt::obs::CObservation3DRangeScan scan;
+    scan.hasRangeImage = true;
+    scan.cameraParams.ncols = 4;
+    scan.cameraParams.nrows = 3;
+    scan.cameraParams.setIntrinsicParamsFromValues(5.0, 5.0, 1.5, 1.0);
+    scan.rangeImage_setSize(3, 4);
+    scan.rangeImage.fill(1234);
+    mrpt::obs::CObservationOdometry odo;
+    ar << scan << odo;
+  }
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const auto at = bytes.find("CObservationOdometry");
+  ASSERT_NE(at, std::string::npos);
+  bytes.replace(at, 20, "CObservationOdometrZ");
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+
+  const std::string msg = entriesError(path);
+  EXPECT_TRUE(contains(msg, "object #1") && contains(msg, "CObservationOdometrZ") &&
+              contains(msg, "does not know"))
+      << msg;
+  gasp::RawlogReader reader(path);
+  EXPECT_TRUE(reader.next().has_value());  // the scan before it
+  try {
+    reader.next();
+    FAIL() << "expected gasp::Error for the unknown class";
+  } catch (const gasp::Error& e) {
+    EXPECT_TRUE(contains(e.what(), "CObservationOdometrZ")) << e.what();
   }
 }

@@ -19,9 +19,10 @@ namespace gasp {
 /// findRawlogImagesDirectory(path) ("<name>_Images" beside the rawlog), whatever the working
 /// directory.
 ///
-/// Errors (gasp::Error, naming the file): missing file; empty file; not a rawlog or corrupt
-/// stream (the MRPT message is included); a rawlog without any CObservation3DRangeScan (reported
-/// by next() at the end, listing the types found); a scan without range image.
+/// Errors (gasp::Error, naming the file): those of RawlogObjects (missing or empty file, not a
+/// rawlog, a truncated or corrupt stream, a class no loaded library registers); a rawlog without
+/// any CObservation3DRangeScan (reported by next() at the end, listing the types found); a scan
+/// without range image.
 class RawlogReader {
  public:
   /// Opens the rawlog and reads its first object (so that empty or garbage files fail here).

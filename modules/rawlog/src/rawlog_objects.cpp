@@ -1,0 +1,91 @@
+#include "gasp/rawlog/rawlog_objects.h"
+
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <exception>
+#include <filesystem>
+
+#include "gasp/core/error.h"
+
+namespace gasp {
+
+struct RawlogObjects::Impl {
+  mrpt::io::CFileGZInputStream file;
+  bool at_end = false;
+};
+
+namespace {
+
+/// The useful line of an MRPT exception ("==== MRPT exception ====\nMessage:  ...\n<trace>").
+std::string mrptMessage(const std::exception& e) {
+  const std::string what = e.what();
+  const auto m = what.find("Message:");
+  if (m == std::string::npos) return what;
+  auto begin = what.find_first_not_of(' ', m + 8);
+  if (begin == std::string::npos) begin = m + 8;
+  return what.substr(begin, what.find('\n', begin) - begin);
+}
+
+/// "X" of MRPT's "Stored object has class 'X' which is not registered!", or "".
+std::string unregisteredClass(const std::string& message) {
+  if (message.find("not registered") == std::string::npos) return "";
+  const auto open = message.find('\'');
+  const auto close = open == std::string::npos ? open : message.find('\'', open + 1);
+  return close == std::string::npos ? "" : message.substr(open + 1, close - open - 1);
+}
+
+}  // namespace
+
+std::string rawlogClassName(const mrpt::serialization::CSerializable& object) {
+  const std::string full = object.GetRuntimeClass()->className;
+  const auto colon = full.rfind("::");
+  return colon == std::string::npos ? full : full.substr(colon + 2);
+}
+
+RawlogObjects::RawlogObjects(const std::string& path) : path_(path), impl_(std::make_unique<Impl>()) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw Error("rawlog '" + path + "': file not found");
+  if (fs::is_directory(path, ec)) throw Error("rawlog '" + path + "': is a directory, not a file");
+  if (fs::file_size(path, ec) == 0) throw Error("rawlog '" + path + "': empty file (0 bytes)");
+  try {
+    if (!impl_->file.open(path)) throw Error("rawlog '" + path + "': cannot open the file");
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error("rawlog '" + path + "': cannot open the file: " + e.what());
+  }
+}
+
+RawlogObjects::~RawlogObjects() = default;
+RawlogObjects::RawlogObjects(RawlogObjects&&) noexcept = default;
+RawlogObjects& RawlogObjects::operator=(RawlogObjects&&) noexcept = default;
+
+mrpt::serialization::CSerializable::Ptr RawlogObjects::next() {
+  while (!impl_->at_end) {
+    mrpt::serialization::CSerializable::Ptr object;
+    try {
+      auto archive = mrpt::serialization::archiveFrom(impl_->file);
+      object = archive.ReadObject();
+    } catch (const mrpt::serialization::CExceptionEOF&) {  // nothing more between two objects
+      impl_->at_end = true;
+      break;
+    } catch (const std::exception& e) {
+      const std::string message = mrptMessage(e);
+      const std::string unknown = unregisteredClass(message);
+      if (!unknown.empty())
+        throw Error("rawlog '" + path_ + "': object #" + std::to_string(objects_read_) + " is a '" + unknown +
+                    "', a class this program does not know (from a newer MRPT or a plugin not loaded); the "
+                    "objects after it cannot be read");
+      if (objects_read_ == 0) throw Error("rawlog '" + path_ + "': not an MRPT rawlog, or a corrupt or truncated one: " + message);
+      throw Error("rawlog '" + path_ + "': corrupt or truncated stream after " + std::to_string(objects_read_) +
+                  " objects: " + message);
+    }
+    ++objects_read_;
+    if (object) return object;  // MRPT writes a null pointer as an object too: skipped
+  }
+  return nullptr;
+}
+
+}  // namespace gasp
