@@ -71,6 +71,9 @@ int main(int argc, char** argv) {
   app.add_option("--keyframe-gap", params.loop.min_keyframe_gap, "candidates at least this many keyframes back")->capture_default_str();
   app.add_option("--relocalisation-candidates", params.loop.relocalisation_candidates,
                  "registrations to other pieces of the graph per new keyframe (0 = off)")->capture_default_str();
+  app.add_option("--relocalisation-agreeing", params.loop.relocalisation_agreeing,
+                 "relocalisations that must agree before two pieces of the graph are joined (1 = the first joins)")
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -28,7 +28,7 @@ std::string formatted(const char* fmt, double a, double b) {
 }  // namespace
 
 DepthSlam::DepthSlam(const SlamParams& params, const Isometry3& T_world_first)
-    : params_(params), odometry_((validate(params), params.odometry), T_world_first) {}
+    : params_(params), odometry_((validate(params), params.odometry), T_world_first), votes_(params.loop) {}
 
 const OdometryFrame& DepthSlam::addFrame(double timestamp, const cv::Mat& depth_m, const CameraIntrinsics& intrinsics) {
   const OdometryFrame& f = odometry_.addFrame(timestamp, depth_m, intrinsics);  // throws: nothing added
@@ -80,22 +80,32 @@ void DepthSlam::closeLoops(std::size_t k) {
     for (const std::size_t cand : relocalisationCandidates(keyframes_, roots, params_.loop)) {
       if (roots[cand] == roots[k]) continue;  // joined by an earlier candidate
       PoseConstraint c;
-      LoopClosureAttempt a = tryPair(cand, k, true, c);
-      a.accepted = a.reason.empty();
-      attempts_.push_back(std::move(a));
-      if (attempts_.back().accepted) {
-        // Move the later piece (the larger root) rigidly onto the closure, so the optimiser
-        // starts at the answer and the piece holding frame 0 keeps its place (the gauge).
-        const Isometry3 T_fix = T_world_frame_[cand] * c.T_from_to * T_world_frame_[k].inverse();
-        const std::size_t moved = std::max(roots[cand], roots[k]);
-        const Isometry3 T_move = roots[k] == moved ? T_fix : T_fix.inverse();
-        for (std::size_t i = 0; i < n; ++i)
-          if (roots[i] == moved) T_world_frame_[i] = T_move * T_world_frame_[i];
-        loop_closures_.push_back(c);
-        loop_attempt_.push_back(attempts_.size() - 1);
-        taken = true;
-        roots = pieceRoots(n, constraints());
+      attempts_.push_back(tryPair(cand, k, true, c));
+      if (!attempts_.back().reason.empty()) continue;
+      // A vote: the pieces are joined when enough votes agree (relocalisation.h).
+      const RelocalisationVotes::Decision d = votes_.offer(c, attempts_.size() - 1, odometry_.constraints(), n, roots);
+      attempts_.back().gate_chi2 = d.chi2;
+      if (!d.join) {
+        attempts_.back().reason = d.reason;
+        continue;
       }
+      // Move the later piece (the larger root) rigidly onto the newest vote, so the optimiser
+      // starts near the answer and the piece holding frame 0 keeps its place (the gauge).
+      const Isometry3 T_fix = T_world_frame_[cand] * c.T_from_to * T_world_frame_[k].inverse();
+      const std::size_t moved = std::max(roots[cand], roots[k]);
+      const Isometry3 T_move = roots[k] == moved ? T_fix : T_fix.inverse();
+      for (std::size_t i = 0; i < n; ++i)
+        if (roots[i] == moved) T_world_frame_[i] = T_move * T_world_frame_[i];
+      for (const RelocalisationVotes::Vote& v : d.votes) {
+        attempts_[v.attempt].accepted = true;
+        attempts_[v.attempt].reason.clear();
+        loop_closures_.push_back(v.constraint);
+        loop_attempt_.push_back(v.attempt);
+      }
+      taken = true;
+      roots = pieceRoots(n, constraints());
+      for (const RelocalisationVotes::Vote& v : votes_.removeJoined(roots))
+        attempts_[v.attempt].reason = "not used: its pieces were joined by other votes";
     }
   }
   if (taken) optimise();

@@ -31,6 +31,7 @@ void CGaspLoopClosureERD::setParams(const PairParams& pair, const LoopClosurePar
   if (loop.min_keyframe_gap < 2) throw Error("CGaspLoopClosureERD: min_keyframe_gap must be at least 2");
   pair_ = pair;
   loop_ = loop;
+  votes_ = RelocalisationVotes(loop);
 }
 
 CGaspLoopClosureERD::Node CGaspLoopClosureERD::nodeOf(const mrpt::obs::CObservation3DRangeScan::Ptr& scan,
@@ -114,18 +115,19 @@ void CGaspLoopClosureERD::syncWithGraph() {
   closure_attempt_.swap(present_attempt);
 }
 
-void CGaspLoopClosureERD::insert(const PoseConstraint& c) {
+void CGaspLoopClosureERD::insert(const PoseConstraint& c, std::size_t attempt) {
   const auto edge = edgeFromConstraint(c, nodes_[c.from].T_robot_camera, nodes_[c.to].T_robot_camera);
   if (!edge) {
-    attempts_.back().accepted = false;
-    attempts_.back().reason = "its information is not positive definite";
+    attempts_[attempt].accepted = false;
+    attempts_[attempt].reason = "its information is not positive definite";
     return;
   }
   m_graph->insertEdge(c.from, c.to, *edge);
   closures_.push_back(c);
-  closure_attempt_.push_back(attempts_.size() - 1);
+  closure_attempt_.push_back(attempt);
   m_just_inserted_lc = true;
-  MRPT_LOG_INFO_STREAM("loop closure " << c.from << " -> " << c.to << " (" << c.inliers << " inliers)");
+  MRPT_LOG_INFO_STREAM((attempts_[attempt].relocalisation ? "relocalisation " : "loop closure ")
+                       << c.from << " -> " << c.to << " (" << c.inliers << " inliers)");
 }
 
 void CGaspLoopClosureERD::closeLoops(std::size_t k) {
@@ -150,19 +152,30 @@ void CGaspLoopClosureERD::closeLoops(std::size_t k) {
     if (a.reason.empty()) gateLoopClosure(c, composeAlongTree(tree, n, cand, k), loop_, a);
     a.accepted = a.reason.empty();
     attempts_.push_back(std::move(a));
-    if (attempts_.back().accepted) insert(c);
+    if (attempts_.back().accepted) insert(c, attempts_.size() - 1);
   }
   if (loop_.relocalisation_candidates == 0) return;
   roots = pieceRoots(n, links());
   for (const std::size_t cand : relocalisationCandidates(with_view, roots, loop_)) {
     if (roots[cand] == roots[k]) continue;  // joined by an earlier candidate
     PoseConstraint c;
-    LoopClosureAttempt a = registerLoopClosure(*nodes_[cand].view, *nodes_[k].view, cand, k, true, pair_, loop_, c);
-    a.accepted = a.reason.empty();
-    attempts_.push_back(std::move(a));
-    if (!attempts_.back().accepted) continue;
-    insert(c);
+    attempts_.push_back(registerLoopClosure(*nodes_[cand].view, *nodes_[k].view, cand, k, true, pair_, loop_, c));
+    if (!attempts_.back().reason.empty()) continue;
+    // A vote: the pieces are joined when enough votes agree (relocalisation.h).
+    const RelocalisationVotes::Decision d = votes_.offer(c, attempts_.size() - 1, tree, n, roots);
+    attempts_.back().gate_chi2 = d.chi2;
+    if (!d.join) {
+      attempts_.back().reason = d.reason;
+      continue;
+    }
+    for (const RelocalisationVotes::Vote& v : d.votes) {
+      attempts_[v.attempt].accepted = true;
+      attempts_[v.attempt].reason.clear();
+      insert(v.constraint, v.attempt);
+    }
     roots = pieceRoots(n, links());
+    for (const RelocalisationVotes::Vote& v : votes_.removeJoined(roots))
+      attempts_[v.attempt].reason = "not used: its pieces were joined by other votes";
   }
 }
 
@@ -178,10 +191,12 @@ void CGaspLoopClosureERD::loadParams(const std::string& source_fname) {
   LoopClosureParams loop = loop_;
   const std::set<std::string> own = {"enabled", "search_radius_m", "max_axis_angle_deg", "min_keyframe_gap",
                                      "max_candidates", "loop_min_inliers", "gate_chi2", "relocalisation_candidates",
-                                     "relocalisation_min_inliers", "sensor_label", "class_verbosity"};
+                                     "relocalisation_min_inliers", "relocalisation_agreeing", "sensor_label",
+                                     "class_verbosity"};
   readPairParams(cfg, kSection, pair, own);
   int enabled = loop.enabled ? 1 : 0, gap = static_cast<int>(loop.min_keyframe_gap),
-      candidates = static_cast<int>(loop.max_candidates), reloc = static_cast<int>(loop.relocalisation_candidates);
+      candidates = static_cast<int>(loop.max_candidates), reloc = static_cast<int>(loop.relocalisation_candidates),
+      agreeing = static_cast<int>(loop.relocalisation_agreeing);
   readValue(cfg, kSection, "enabled", enabled);
   readValue(cfg, kSection, "search_radius_m", loop.search_radius_m);
   readValue(cfg, kSection, "max_axis_angle_deg", loop.max_axis_angle_deg);
@@ -191,16 +206,20 @@ void CGaspLoopClosureERD::loadParams(const std::string& source_fname) {
   readValue(cfg, kSection, "gate_chi2", loop.gate_chi2);
   readValue(cfg, kSection, "relocalisation_candidates", reloc);
   readValue(cfg, kSection, "relocalisation_min_inliers", loop.relocalisation_min_inliers);
+  readValue(cfg, kSection, "relocalisation_agreeing", agreeing);
   int verbosity = static_cast<int>(getMinLoggingLevel());
   readValue(cfg, kSection, "class_verbosity", verbosity);
   if (enabled != 0 && enabled != 1) THROW_EXCEPTION_FMT("[%s] enabled: must be 0 or 1", kSection);
-  if (gap < 0 || candidates < 0 || reloc < 0)
-    THROW_EXCEPTION_FMT("[%s]: min_keyframe_gap, max_candidates and relocalisation_candidates must not be negative",
-                        kSection);
+  if (gap < 0 || candidates < 0 || reloc < 0 || agreeing < 0)
+    THROW_EXCEPTION_FMT(
+        "[%s]: min_keyframe_gap, max_candidates, relocalisation_candidates and relocalisation_agreeing must not be "
+        "negative",
+        kSection);
   loop.enabled = enabled == 1;
   loop.min_keyframe_gap = static_cast<std::size_t>(gap);
   loop.max_candidates = static_cast<std::size_t>(candidates);
   loop.relocalisation_candidates = static_cast<std::size_t>(reloc);
+  loop.relocalisation_agreeing = static_cast<std::size_t>(agreeing);
   try {
     setParams(pair, loop);
   } catch (const Error& e) {
@@ -221,6 +240,7 @@ void CGaspLoopClosureERD::printParams() const {
             << "gate_chi2                  = " << loop_.gate_chi2 << '\n'
             << "relocalisation_candidates  = " << loop_.relocalisation_candidates << '\n'
             << "relocalisation_min_inliers = " << loop_.relocalisation_min_inliers << '\n'
+            << "relocalisation_agreeing    = " << loop_.relocalisation_agreeing << '\n'
             << "sensor_label               = " << (sensor_label_.empty() ? "(any)" : sensor_label_) << '\n';
 }
 

@@ -25,6 +25,7 @@
 #include "gasp/odometry/pose_constraint.h"
 #include "gasp/pipeline/depth_view.h"
 #include "gasp/slam/loop_closure.h"
+#include "gasp/slam/relocalisation.h"
 #include "gasp/slam/slam_params.h"
 
 namespace gasp {
@@ -71,6 +72,7 @@ class DepthSlam {
   std::vector<PoseConstraint> loop_closures_;
   std::vector<std::size_t> loop_attempt_;       ///< for each loop closure, its index in attempts_
   std::vector<LoopClosureAttempt> attempts_;
+  RelocalisationVotes votes_;                   ///< relocalisations waiting for agreement
   std::size_t optimisations_ = 0;
   double optimisation_ms_ = 0.0;
 };

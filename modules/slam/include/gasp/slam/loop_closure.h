@@ -23,8 +23,9 @@ struct LoopClosureAttempt {
   bool relocalisation = false;  ///< `from` was in another piece of the graph: no pose prior
   bool accepted = false;        ///< in the graph (false also when dropped after an optimisation)
   int inliers = 0;              ///< RANSAC inliers (0 without an estimate)
-  /// The consistency statistic against the odometry (loop closures; NaN for relocalisations and
-  /// when the registration gave no estimate).
+  /// The consistency statistic: against the odometry (loop closures), or the least against the
+  /// waiting relocalisations between the same pieces (relocalisations, relocalisation.h); NaN
+  /// when there was nothing to check against or the registration gave no estimate.
   double gate_chi2 = std::numeric_limits<double>::quiet_NaN();
   double registration_ms = 0.0;
   std::string reason;  ///< why it was not taken, or dropped

@@ -32,9 +32,14 @@ struct LoopClosureParams {
   /// Relocalisation: when the odometry lost track and the graph fell into pieces, each new
   /// keyframe is also registered, with no pose prior, to the latest keyframes of the other
   /// pieces (at most this many); a success with at least `relocalisation_min_inliers` inliers
-  /// joins the pieces. 0 = off.
+  /// is a vote. 0 = off.
   std::size_t relocalisation_candidates = 3;
   int relocalisation_min_inliers = 40;
+  /// Two pieces are joined when this many votes link them consistently (relocalisation.h: each
+  /// waiting vote predicts the new one through the odometry inside the two pieces, within
+  /// gate_chi2). 1: the first vote joins them, as a single registration with no pose prior
+  /// that the optimised graph can never contradict.
+  std::size_t relocalisation_agreeing = 2;
 };
 
 struct SlamParams {

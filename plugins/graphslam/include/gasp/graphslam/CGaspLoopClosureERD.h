@@ -9,13 +9,13 @@
 /// piece of the graph, and the latest nodes of other pieces (relocalisation). A loop closure is
 /// inserted when it agrees with the prediction along the node registration decider's edges (the
 /// edges i -> i+1) within both uncertainties (a chi-square gate); a relocalisation needs more
-/// inliers. Break edges (graph_types.h) do not join pieces. Inserted edges: the registration's
+/// inliers, and joins two pieces once relocalisation_agreeing of them agree (relocalisation.h). Break edges (graph_types.h) do not join pieces. Inserted edges: the registration's
 /// pose between the robot frames with GASP's edge information in [x y z yaw pitch roll].
 ///
 /// Parameters: ini section [CGaspLoopClosureERD] (docs/graphslam.md): the pair keys of
 /// params_io.h (whose min_inliers is RANSAC's), search_radius_m, max_axis_angle_deg,
-/// min_keyframe_gap (at least 2), max_candidates, loop_min_inliers, gate_chi2, relocalisation_candidates, relocalisation_min_inliers, sensor_label,
-/// class_verbosity.
+/// min_keyframe_gap (at least 2), max_candidates, loop_min_inliers, gate_chi2, relocalisation_candidates, relocalisation_min_inliers,
+/// relocalisation_agreeing, sensor_label, class_verbosity.
 #include <mrpt/graphslam/interfaces/CEdgeRegistrationDecider.h>
 
 #include <cstddef>
@@ -29,6 +29,7 @@
 #include "gasp/pipeline/depth_view.h"
 #include "gasp/pipeline/pair_registration.h"
 #include "gasp/slam/loop_closure.h"
+#include "gasp/slam/relocalisation.h"
 #include "gasp/slam/slam_params.h"
 
 namespace gasp::graphslam {
@@ -73,7 +74,8 @@ class CGaspLoopClosureERD : public mrpt::graphslam::deciders::CEdgeRegistrationD
   void closeLoops(std::size_t k);
   /// The decider's edges i -> i+1 (not breaks) as constraints between camera frames.
   std::vector<PoseConstraint> treeConstraints() const;
-  void insert(const PoseConstraint& c_camera);
+  /// Inserts the edge of `c_camera`, the closure of attempts_[attempt].
+  void insert(const PoseConstraint& c_camera, std::size_t attempt);
 
   PairParams pair_;
   LoopClosureParams loop_;
@@ -84,6 +86,7 @@ class CGaspLoopClosureERD : public mrpt::graphslam::deciders::CEdgeRegistrationD
   std::vector<PoseConstraint> closures_;  ///< in the graph, between camera frames
   std::vector<std::size_t> closure_attempt_;  ///< for each closure, its index in attempts_
   std::vector<LoopClosureAttempt> attempts_;
+  RelocalisationVotes votes_{LoopClosureParams{}};  ///< relocalisations waiting for agreement
 };
 
 }  // namespace gasp::graphslam

@@ -1,0 +1,121 @@
+#include "gasp/slam/relocalisation.h"
+
+#include <Eigen/Cholesky>
+
+#include <cmath>
+#include <cstdio>
+
+#include "gasp/core/error.h"
+#include "gasp/core/pose_perturbation.h"
+
+namespace gasp {
+
+namespace {
+
+/// a then b: T = T_a T_b, S = S_a + Ad(T_a) S_b Ad(T_a)^T (left perturbations, first order).
+RelativePoseEstimate then(const RelativePoseEstimate& a, const RelativePoseEstimate& b) {
+  RelativePoseEstimate out;
+  const Matrix6d Ad = adjoint(a.T_a_b);
+  out.T_a_b = a.T_a_b * b.T_a_b;
+  out.covariance = a.covariance + Ad * b.covariance * Ad.transpose();
+  out.edges = a.edges + b.edges;
+  return out;
+}
+
+/// The constraint as an estimate, from -> to or (inverted) to -> from.
+RelativePoseEstimate estimateOf(const PoseConstraint& h, bool inverted) {
+  const Eigen::LDLT<Matrix6d> ldlt(h.information);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || !(ldlt.vectorD().array() > 0.0).all() ||
+      !h.information.allFinite())
+    throw Error("relocalisation " + std::to_string(h.from) + " -> " + std::to_string(h.to) +
+                ": the information is not positive definite");
+  RelativePoseEstimate e;
+  e.T_a_b = h.T_from_to;
+  e.covariance = ldlt.solve(Matrix6d::Identity());
+  e.edges = 1;
+  if (inverted) {
+    // Exp(x) T -> T^-1 Exp(-x) = Exp(-Ad(T^-1) x) T^-1.
+    e.T_a_b = h.T_from_to.inverse();
+    const Matrix6d Ad = adjoint(e.T_a_b);
+    e.covariance = Ad * e.covariance * Ad.transpose();
+  }
+  return e;
+}
+
+std::string formatted(const char* fmt, double a, double b) {
+  char buf[200];
+  std::snprintf(buf, sizeof buf, fmt, a, b);
+  return buf;
+}
+
+}  // namespace
+
+std::optional<RelativePoseEstimate> predictThroughRelocalisation(const std::vector<PoseConstraint>& tree,
+                                                                 std::size_t frame_count, const PoseConstraint& h,
+                                                                 std::size_t from, std::size_t to) {
+  // Either from ~ h.from and h.to ~ to, or from ~ h.to and h.from ~ to (~: a path in the tree).
+  for (const bool inverted : {false, true}) {
+    const std::size_t near_from = inverted ? h.to : h.from, near_to = inverted ? h.from : h.to;
+    const auto first = composeAlongTree(tree, frame_count, from, near_from);
+    if (!first) continue;
+    const auto last = composeAlongTree(tree, frame_count, near_to, to);
+    if (!last) continue;
+    return then(then(*first, estimateOf(h, inverted)), *last);
+  }
+  return std::nullopt;
+}
+
+RelocalisationVotes::Decision RelocalisationVotes::offer(const PoseConstraint& c, std::size_t attempt,
+                                                         const std::vector<PoseConstraint>& tree,
+                                                         std::size_t frame_count,
+                                                         const std::vector<std::size_t>& roots) {
+  if (c.from >= roots.size() || c.to >= roots.size())
+    throw Error("relocalisation " + std::to_string(c.from) + " -> " + std::to_string(c.to) + ": a frame out of range");
+  Decision d;
+  const std::size_t needed = params_.relocalisation_agreeing;
+  std::vector<std::size_t> agreeing;  // positions in waiting_
+  if (needed > 1) {
+    const Matrix6d S_meas = c.information.ldlt().solve(Matrix6d::Identity());
+    const auto samePieces = [&](const PoseConstraint& h) {
+      const std::size_t a = roots[h.from], b = roots[h.to], x = roots[c.from], y = roots[c.to];
+      return (a == x && b == y) || (a == y && b == x);
+    };
+    for (std::size_t i = 0; i < waiting_.size(); ++i) {
+      const PoseConstraint& h = waiting_[i].constraint;
+      if (!samePieces(h)) continue;
+      const auto prediction = predictThroughRelocalisation(tree, frame_count, h, c.from, c.to);
+      if (!prediction) continue;
+      const Vector6d xi = leftPerturbation(c.T_from_to, prediction->T_a_b);
+      const double chi2 = xi.dot((prediction->covariance + S_meas).ldlt().solve(xi));
+      if (!(chi2 >= d.chi2)) d.chi2 = chi2;  // the least (NaN at first)
+      if (chi2 <= params_.gate_chi2) agreeing.push_back(i);
+    }
+  }
+  if (agreeing.size() + 1 >= needed) {
+    d.join = true;
+    for (std::size_t k = agreeing.size(); k-- > 0;) {  // from the back, so positions stay valid
+      d.votes.insert(d.votes.begin(), waiting_[agreeing[k]]);
+      waiting_.erase(waiting_.begin() + static_cast<std::ptrdiff_t>(agreeing[k]));
+    }
+    d.votes.push_back({c, attempt});
+    return d;
+  }
+  waiting_.push_back({c, attempt});
+  d.reason = formatted("waits for %.0f more agreeing relocalisation(s) between these pieces", double(needed - 1 - agreeing.size()), 0.0);
+  if (std::isfinite(d.chi2) && agreeing.empty())
+    d.reason += formatted(" (disagrees with the waiting ones: least chi-square %.1f > %.2f)", d.chi2, params_.gate_chi2);
+  return d;
+}
+
+std::vector<RelocalisationVotes::Vote> RelocalisationVotes::removeJoined(const std::vector<std::size_t>& roots) {
+  std::vector<Vote> removed, kept;
+  for (Vote& v : waiting_) {
+    const bool joined = v.constraint.from < roots.size() && v.constraint.to < roots.size() &&
+                        roots[v.constraint.from] == roots[v.constraint.to];
+    (joined ? removed : kept).push_back(std::move(v));
+  }
+  waiting_.swap(kept);
+  return removed;
+}
+
+}  // namespace gasp
