@@ -6,6 +6,7 @@
 #include <string>
 
 #include "gasp/odometry/odometry_params.h"
+#include "cli.h"
 #include "gasp/rawlog/depth_sequence.h"
 
 namespace gasp::tools {
@@ -17,18 +18,25 @@ inline void addSequenceOptions(CLI::App& app, DepthSequenceOptions& input, std::
   app.add_option("--sensor", input.sensor_label, "with --rawlog: only the scans with this sensorLabel")->needs(rawlog);
   app.add_option("--gt", gt_path, "with --rawlog: a TUM trajectory of the camera (optical frame), e.g. the "
                                   "OUT_groundtruth.txt gasp-tum2rawlog writes")->needs(rawlog);
-  app.add_option("--first", input.first, "first frame used (index among the input's frames)")->capture_default_str();
-  app.add_option("--max-frames", input.max_frames, "at most this many frames (0 = all)")->capture_default_str();
-  app.add_option("--every", input.every, "use every N-th frame (a wider baseline between frames)")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--first", input.first, "first frame used (index among the input's frames)")
+      ->capture_default_str()
+      ->check(atLeast(0));
+  app.add_option("--max-frames", input.max_frames, "at most this many frames (0 = all)")->capture_default_str()->check(atLeast(0));
+  app.add_option("--every", input.every, "use every N-th frame (a wider baseline between frames)")->capture_default_str()->check(atLeast(1));
 }
 
 /// --keyframe-distance, --keyframe-angle, --rolling-shutter.
 inline void addOdometryOptions(CLI::App& app, OdometryParams& params) {
-  app.add_option("--keyframe-distance", params.keyframe_distance_m, "new keyframe beyond this distance from the last [m]")->capture_default_str();
-  app.add_option("--keyframe-angle", params.keyframe_angle_deg, "new keyframe beyond this rotation from the last [deg]")->capture_default_str();
+  app.add_option("--keyframe-distance", params.keyframe_distance_m, "new keyframe beyond this distance from the last [m]")
+      ->capture_default_str()
+      ->check(above(0));
+  app.add_option("--keyframe-angle", params.keyframe_angle_deg, "new keyframe beyond this rotation from the last [deg]")
+      ->capture_default_str()
+      ->check(above(0));
   app.add_option("--rolling-shutter", params.rolling_shutter_readout_s,
                  "deskew each frame for a rolling-shutter readout of S seconds with the last step's velocity (TUM Kinect: 0.03; 0 = off)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(within(-1, 1));
 }
 
 }  // namespace gasp::tools

@@ -12,7 +12,6 @@
 // Exit codes: 0 pose estimated, 1 bad input, 2 usage error, 3 no association, 4 associations but
 // no pose estimate (the reason is printed).
 #include <CLI/CLI.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -25,11 +24,13 @@
 #include "gasp/association/association_quality.h"
 #include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
+#include "gasp/core/image_file.h"
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/core/tum_dataset.h"
 #include "gasp/pipeline/pair_registration.h"
 #include "gasp/pipeline/rolling_shutter_deskew.h"
 #include "gasp/rawlog/rawlog_reader.h"
+#include "cli.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"gasp-associate: patch-to-patch associations and the relative pose between two depth views, from geometry alone"};
@@ -43,8 +44,10 @@ int main(int argc, char** argv) {
                                 "an MRPT rawlog: views A and B are its --from-th and --to-th CObservation3DRangeScan "
                                 "(counting from 0; other objects are skipped)")
                      ->excludes(tum);
-  auto* from_opt = app.add_option("--from", from, "index of view A in depth.txt order (--rawlog: among its 3D range scans)");
-  auto* to_opt = app.add_option("--to", to, "index of view B in depth.txt order (--rawlog: among its 3D range scans)");
+  auto* from_opt = app.add_option("--from", from, "index of view A in depth.txt order (--rawlog: among its 3D range scans)")
+                       ->check(gasp::tools::atLeast(0));
+  auto* to_opt = app.add_option("--to", to, "index of view B in depth.txt order (--rawlog: among its 3D range scans)")
+                     ->check(gasp::tools::atLeast(0));
   std::string sensor_label;
   app.add_option("--sensor", sensor_label, "with --rawlog: count only the scans with this sensorLabel")->needs(rawlog);
   app.add_option("--gt", gt_path,
@@ -55,10 +58,16 @@ int main(int argc, char** argv) {
   auto* db = app.add_option("--depth-b", depth_b_path, "view B: a 16-bit depth PNG")->excludes(tum)->excludes(rawlog);
   da->needs(db);
   db->needs(da);
-  app.add_option("--depth-scale", depth_scale, "raw depth units per metre (with --depth-a/-b)")->capture_default_str()->excludes(rawlog);
+  app.add_option("--depth-scale", depth_scale, "raw depth units per metre (with --depth-a/-b)")
+      ->capture_default_str()
+      ->check(gasp::tools::above(0))
+      ->excludes(rawlog);
   double gt_offset = 0.0;
   app.add_option("--gt-offset", gt_offset,
-                 "with --tum: look ground truth up at depth timestamp + OFFSET [s] (as gasp-pairs)")->capture_default_str()->excludes(rawlog);
+                 "with --tum: look ground truth up at depth timestamp + OFFSET [s] (as gasp-pairs)")
+      ->capture_default_str()
+      ->check(gasp::tools::within(-60, 60))
+      ->excludes(rawlog);
   bool no_undistort = false;
   app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored")->excludes(rawlog);
   app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: the folder's; ros for PNGs)")->excludes(rawlog);
@@ -98,7 +107,9 @@ int main(int argc, char** argv) {
       throw CLI::ValidationError("--from and --to need --tum or --rawlog");
     if ((!tum_dir.empty() || !rawlog_path.empty()) && (from_opt->count() == 0 || to_opt->count() == 0))
       throw CLI::ValidationError("--tum and --rawlog need --from I and --to J");
-    if (!std::isfinite(deskew.readout_s)) throw CLI::ValidationError("--rolling-shutter must be a finite time in seconds");
+    if (!std::isfinite(deskew.readout_s) || std::abs(deskew.readout_s) > 1.0)
+      throw CLI::ValidationError("--rolling-shutter must be a finite time of at most 1 s (either sign)");
+    if (!out_path.empty()) gasp::requireImageWriter(out_path, "--out picture");
     if (!model_error.empty()) {
       params.model_error = {model_error[0], model_error[1]};
       try {
@@ -109,6 +120,9 @@ int main(int argc, char** argv) {
     }
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;  // --help: 0; any usage error: 2
+  } catch (const gasp::Error& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return 2;
   }
   if (tum_dir.empty() && rawlog_path.empty() && depth_a_path.empty()) {
     std::cerr << "error: give --tum DIR --from I --to J, --rawlog FILE --from I --to J, or --depth-a A.png --depth-b B.png\n";
@@ -223,10 +237,11 @@ int main(int argc, char** argv) {
     const cv::Mat picture = gasp::drawAssociations(pva->depth_m, pva->segmentation, pva->intrinsics, pvb->depth_m,
                                                    pvb->segmentation, pvb->intrinsics,
                                                    r.association.associations, correct);
-    if (!cv::imwrite(out_path, picture)) throw gasp::Error("cannot write the picture " + out_path);
+    gasp::writeImage(out_path, picture, "picture");
     std::printf("picture: %s\n", out_path.c_str());
     if (r.association.associations.empty()) {
-      std::printf("no associations: %s\n", r.association.reason.c_str());
+      std::printf("no associations: %s\n",
+                  r.association.reason.empty() ? r.pose.reason.c_str() : r.association.reason.c_str());
       std::printf("pose: none (%s)\n", r.pose.reason.c_str());
       return 3;
     }
@@ -273,7 +288,7 @@ int main(int argc, char** argv) {
       const gasp::Isometry3 E = T_b_a_true->inverse() * T;
       std::printf("pose_error: %.4f m %.3f deg\n", gasp::translationNorm(E), gasp::rotationAngle(E) * 180.0 / M_PI);
     }
-  } catch (const gasp::Error& e) {
+  } catch (const std::exception& e) {  // gasp::Error, and anything a library throws
     std::cerr << "error: " << e.what() << '\n';
     return 1;
   }

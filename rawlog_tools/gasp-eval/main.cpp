@@ -1,7 +1,7 @@
 // gasp-eval: trajectory accuracy with the TUM RGB-D benchmark's definitions.
 //   gasp-eval ate --gt GT.txt --est EST.txt [--max-dt 0.02] [--offset 0] [--scale 1] [--aligned OUT.txt]
 //   gasp-eval rpe --gt GT.txt --est EST.txt [--delta 1 --delta-unit frames|s] [--max-dt 0.02]
-// Exit codes: 0 success, 1 bad input (message on stderr), 2 usage error (CLI11).
+// Exit codes: 0 success, 1 bad input (message on stderr), 2 usage error.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -11,6 +11,7 @@
 #include "gasp/core/error.h"
 #include "gasp/eval/ate.h"
 #include "gasp/eval/rpe.h"
+#include "cli.h"
 
 namespace {
 
@@ -37,16 +38,16 @@ int main(int argc, char** argv) {
   for (auto* sub : {ate, rpe}) {
     sub->add_option("--gt", gt_path, "ground-truth trajectory (TUM format)")->required()->check(CLI::ExistingFile);
     sub->add_option("--est", est_path, "estimated trajectory (TUM format)")->required()->check(CLI::ExistingFile);
-    sub->add_option("--max-dt", max_dt, "timestamp association window [s]")->capture_default_str();
-    sub->add_option("--offset", offset, "time offset added to the estimate [s]")->capture_default_str();
-    sub->add_option("--scale", scale, "scale applied to the estimate's translations")->capture_default_str();
+    sub->add_option("--max-dt", max_dt, "timestamp association window [s]")->capture_default_str()->check(gasp::tools::above(0));
+    sub->add_option("--offset", offset, "time offset added to the estimate [s]")->capture_default_str()->check(gasp::tools::finite());
+    sub->add_option("--scale", scale, "scale applied to the estimate's translations")->capture_default_str()->check(gasp::tools::above(0));
   }
   ate->add_option("--aligned", aligned_path, "write the estimate, aligned to the ground truth, as a TUM file");
-  rpe->add_option("--delta", delta, "step between the poses of a pair")->capture_default_str();
+  rpe->add_option("--delta", delta, "step between the poses of a pair")->capture_default_str()->check(gasp::tools::above(0));
   rpe->add_option("--delta-unit", delta_unit, "unit of --delta: frames (f) or seconds (s)")
       ->check(CLI::IsMember({"frames", "f", "s"}))
       ->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;
 
   try {
     const auto gt = gasp::readTumTrajectory(gt_path);
@@ -78,7 +79,7 @@ int main(int argc, char** argv) {
       printStats("translational_error", r.translation, "m");
       printStats("rotational_error", r.rotation_deg, "deg");
     }
-  } catch (const gasp::Error& e) {
+  } catch (const std::exception& e) {  // gasp::Error, and anything a library throws
     std::cerr << "error: " << e.what() << '\n';
     return 1;
   }

@@ -34,6 +34,7 @@
 #include "gasp/rawlog/observation_conversion.h"
 #include "gasp/rawlog/rawlog_entries.h"
 #include "gasp/rawlog/rawlog_format.h"
+#include "cli.h"
 #include "sequence_report.h"
 
 namespace {
@@ -226,7 +227,7 @@ int main(int argc, char** argv) {
     gasp::tools::printEvaluation(gt, trajectory);
     if (gasp_nrd && gasp_nrd->breakEdges() > 0) return 3;
   } catch (const std::exception& e) {  // gasp::Error, MRPT's (configuration, rawlog), filesystem
-    std::cerr << "error: " << e.what() << '\n';
+    std::cerr << "error: " << gasp::tools::errorMessage(e) << '\n';
     return 1;
   }
   return 0;

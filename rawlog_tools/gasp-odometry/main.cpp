@@ -19,6 +19,7 @@
 #include "gasp/mrpt/pose_graph.h"
 #include "gasp/odometry/odometry.h"
 #include "gasp/rawlog/depth_sequence.h"
+#include "cli.h"
 #include "sequence_options.h"
 #include "sequence_report.h"
 
@@ -33,11 +34,7 @@ int main(int argc, char** argv) {
   app.add_option("--graph", graph_path, "pose graph to write (MRPT VERTEX3/EDGE3 text; --rawlog: robot frames from the scans' sensorPose)");
   app.add_option("--frames-csv", frames_csv, "one line per frame: tracked, keyframe, reference, patches, inliers, times, reason");
   gasp::tools::addOdometryOptions(app, params);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;  // --help: 0; any usage error: 2
-  }
+  if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;
   if (input.tum_dir.empty() && input.rawlog_path.empty()) {
     std::cerr << "error: give --tum DIR or --rawlog FILE\n";
     return 2;
@@ -45,6 +42,8 @@ int main(int argc, char** argv) {
 
   try {
     gasp::validate(params);
+    const std::string missing = gasp::tools::missingOutputFolder({{"--out", out_path}, {"--graph", graph_path}, {"--frames-csv", frames_csv}});
+    if (!missing.empty()) throw gasp::Error(missing);  // before the run, not after it
     gasp::DepthOdometry odometry(params);
     gasp::DepthSequence sequence(input);
     const gasp::Trajectory gt = gt_path.empty() ? sequence.groundTruth() : gasp::readTumTrajectory(gt_path);
@@ -73,7 +72,7 @@ int main(int argc, char** argv) {
       return 3;
     }
   } catch (const std::exception& e) {  // gasp::Error, and MRPT's when the graph cannot be written
-    std::cerr << "error: " << e.what() << '\n';
+    std::cerr << "error: " << gasp::tools::errorMessage(e) << '\n';
     return 1;
   }
   return 0;

@@ -29,6 +29,7 @@
 #include "gasp/association/association_picture.h"
 #include "gasp/association/association_quality.h"
 #include "gasp/core/error.h"
+#include "gasp/core/image_file.h"
 #include "gasp/core/tum_dataset.h"
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/eval/pair_protocol.h"
@@ -36,6 +37,7 @@
 #include "gasp/pipeline/pair_registration.h"
 #include "gasp/pipeline/rolling_shutter_deskew.h"
 #include "gasp/pipeline/visibility_check.h"
+#include "cli.h"
 #ifdef GASP_HAVE_BASELINES
 #include "gasp/baselines/baseline_registration.h"
 #include "gasp/baselines/epipolar_rotation.h"
@@ -194,8 +196,11 @@ int main(int argc, char** argv) {
   std::vector<std::size_t> picture_pair;
   std::size_t starts_every = 10, max_pairs = 0;
   app.add_option("--tum", tum_dir, "TUM RGB-D folder")->required();
-  app.add_option("--skips", skips, "frame skips (in depth.txt order)")->delimiter(',')->capture_default_str();
-  app.add_option("--starts-every", starts_every, "start frames 0, N, 2N, ...")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--skips", skips, "frame skips (in depth.txt order)")
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(gasp::tools::atLeast(1));
+  app.add_option("--starts-every", starts_every, "start frames 0, N, 2N, ...")->capture_default_str()->check(gasp::tools::atLeast(1));
   app.add_option("--method", methods,
                  "gasp (full pipeline), gasp-norefine (RANSAC only); baselines (when built): fpfh, shot, cshot, sift, dsift, "
                  "gicp (PCL's GICP from the identity), gasp-gicp (GICP from GASP's pose)")
@@ -206,10 +211,10 @@ int main(int argc, char** argv) {
   double depth_scale = gasp::kTumDepthUnitsPerMetre;
   app.add_option("--depth-scale", depth_scale, "raw depth units per metre (TUM: 5000; a calibrated depth scale divides it)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  app.add_option("--csv", csv_path, "write the table as CSV (rows with scored pairs only)");
-  app.add_option("--pairs-csv", pairs_csv_path, "write one line per pair and method");
-  app.add_option("--max-pairs", max_pairs, "at most this many pairs per skip (0 = all)");
+      ->check(gasp::tools::above(0));
+  app.add_option("--csv", csv_path, "write the table as CSV (rows with scored pairs only)")->check(gasp::tools::nonEmpty());
+  app.add_option("--pairs-csv", pairs_csv_path, "write one line per pair and method")->check(gasp::tools::nonEmpty());
+  app.add_option("--max-pairs", max_pairs, "at most this many pairs per skip (0 = all)")->check(gasp::tools::atLeast(0));
   app.add_option("--picture", picture_pair, "also draw the pair I,J for every method (not scored)")
       ->delimiter(',')->expected(2);
   app.add_option("--picture-prefix", picture_prefix, "pictures go to PREFIX<method>.<format>")->capture_default_str();
@@ -221,7 +226,7 @@ int main(int argc, char** argv) {
   gasp::PairParams base;
   app.add_option("--k", base.association.feature_sets.neighbourhood.k, "association neighbourhood size (0 = full view)")->capture_default_str();
   double area_cm2 = base.superpixels.target_patch_area_m2 * 1e4;
-  app.add_option("--area-cm2", area_cm2, "GASP: target patch area [cm^2]")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--area-cm2", area_cm2, "GASP: target patch area [cm^2]")->capture_default_str()->check(gasp::tools::above(0));
   app.add_flag("--step-borders", base.superpixels.step_borders, "GASP: segment with the step borders (SuperpixelParams::step_borders; off by default)");
   app.add_option("--candidates", base.association.candidates, "KD-tree candidates per patch (C)")->capture_default_str();
   app.add_option("--lambda", base.association.lambda, "gating on the normalised edit distance")->capture_default_str();
@@ -244,7 +249,7 @@ int main(int argc, char** argv) {
   app.add_option("--edge-weight", base.edges.weight, "GASP: weight of an edge term")->capture_default_str();
   app.add_option("--wide-edge-gates", base.wide_edge_gate_factor,
                  "GASP: second refinement, when few edge points are paired, with edge gates this many times wider (0 = none, else >= 1)")->capture_default_str()->check(CLI::NonNegativeNumber);
-  app.add_option("--edge-step", base.edges.pixel_step, "GASP: one source edge pixel per (N/2)^2 image block")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--edge-step", base.edges.pixel_step, "GASP: one source edge pixel per (N/2)^2 image block")->capture_default_str()->check(gasp::tools::above(0));
   app.add_option("--dense-rounds", base.dense_rounds, "dense projective refinement rounds (0 = none)")->capture_default_str();
   app.add_option("--dense-max-rounds", base.dense_max_rounds,
                  "at most this many dense rounds in all: after --dense-rounds, more at the last gate until the pose stops moving (<= --dense-rounds: exactly --dense-rounds)")
@@ -273,7 +278,7 @@ int main(int argc, char** argv) {
   app.add_option("--rgb-contrast", epipolar.contrast_threshold,
                  "--rgb-rotation-check: SIFT contrast threshold (lower finds more features in flat images)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(gasp::tools::above(0));
 #endif
   gasp::DeskewParams deskew;
   auto* rolling_shutter_option = app.add_option("--rolling-shutter", deskew.readout_s,
@@ -290,7 +295,9 @@ int main(int argc, char** argv) {
   double gt_offset = 0.0;
   app.add_option("--gt-offset", gt_offset,
                  "look ground truth up at depth timestamp + OFFSET [s] (nearest within 0.02 s; TUM fr1 depth lags "
-                 "the motion capture: -0.03 fits best, docs/pipeline.md)")->capture_default_str();
+                 "the motion capture: -0.03 fits best, docs/pipeline.md)")
+      ->capture_default_str()
+      ->check(gasp::tools::within(-60, 60));
   std::vector<double> model_error;
   app.add_option("--model-error", model_error,
                  "T_M,R_DEG: GASP's model error per axis, added to the claimed pose's covariance for the edge information "
@@ -307,7 +314,8 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
     for (const double v : gt_frame_rotation_deg)
-      if (!std::isfinite(v)) throw CLI::ValidationError("--gt-frame-rotation must be three finite angles in degrees");
+      if (!(std::abs(v) <= 360.0))
+        throw CLI::ValidationError("--gt-frame-rotation must be three angles in degrees, each within +-360");
     if (!model_error.empty()) {
       base.model_error = {model_error[0], model_error[1]};
       try {
@@ -317,7 +325,8 @@ int main(int argc, char** argv) {
       }
     }
     if (pictures_only && picture_pair.empty()) throw CLI::ValidationError("--pictures-only needs --picture I,J");
-    if (!std::isfinite(deskew.readout_s)) throw CLI::ValidationError("--rolling-shutter must be a finite time in seconds");
+    if (!std::isfinite(deskew.readout_s) || std::abs(deskew.readout_s) > 1.0)
+      throw CLI::ValidationError("--rolling-shutter must be a finite time of at most 1 s (either sign)");
     if (polish_reference && pairs_csv_path.empty())
       throw CLI::ValidationError("--polish-reference writes its columns to the --pairs-csv file: give --pairs-csv");
     if (rgb_rotation_check && pairs_csv_path.empty())
@@ -587,7 +596,7 @@ int main(int argc, char** argv) {
         Picture pic;
         const MethodRun run = runMethod(method, i, j, &pic, T_gt);
         const std::string path = picture_prefix + method + "." + picture_format;
-        if (!cv::imwrite(path, pic.image)) throw gasp::Error("cannot write the picture " + path);
+        gasp::writeImage(path, pic.image, "picture");
         std::printf("picture %s: %s, %zu associations/matches, %zu correct by ground truth", method.c_str(),
                     path.c_str(), pic.shown, pic.correct);
         if (run.estimated && T_gt) {
@@ -729,8 +738,10 @@ int main(int argc, char** argv) {
         for (const auto& [stage, ms] : run.stage_ms) stage_ms[method][stage].push_back(ms);
         by_method[method].push_back(o);
         if (pairs_csv) {
-          pairs_csv << skip << ',' << method << ',' << i << ',' << j << ',' << (o.estimated ? 1 : 0) << ','
-                    << o.t_err_m << ',' << o.r_err_deg << ',' << o.ms << ',' << run.associations << ',' << run.inliers
+          pairs_csv << skip << ',' << method << ',' << i << ',' << j << ',' << (o.estimated ? 1 : 0) << ',';
+          if (o.estimated) pairs_csv << o.t_err_m << ',' << o.r_err_deg;  // no error without an estimate
+          else pairs_csv << ',';
+          pairs_csv << ',' << o.ms << ',' << run.associations << ',' << run.inliers
                     << ',' << run.violation_ratio << ',' << run.occluded_ratio << ',' << run.consistent << ',' << run.occluded << ','
                     << run.violations << ',' << run.one_way << ',' << run.guided_support << ',' << (run.finer_scale ? 1 : 0)
                     << ',' << (run.slide_moved ? 1 : 0) << ',' << run.dense_terms << ',' << run.dense_rounds << ',';
@@ -791,9 +802,17 @@ int main(int argc, char** argv) {
           std::printf("%-6zu %-14s n/a (no rgb: %zu pairs left out)\n", skip, method.c_str(), na->second);
           continue;
         }
+        if (s.pairs == 0) {  // no start frame with ground truth for this skip: nothing scored
+          std::printf("%-6zu %-14s %6zu  no pair with ground truth for both frames\n", skip, method.c_str(), s.pairs);
+          continue;
+        }
         rows.push_back(s);
-        std::printf("%-6zu %-14s %6zu %6zu %10.4f %11.3f %8.1f %13.1f %10.1f", s.skip, s.method.c_str(), s.pairs,
-                    s.failed, s.rmse_t_m, s.rmse_r_deg, s.fail_pct, s.within_pct, s.median_ms);
+        if (std::isfinite(s.rmse_t_m))
+          std::printf("%-6zu %-14s %6zu %6zu %10.4f %11.3f %8.1f %13.1f %10.1f", s.skip, s.method.c_str(), s.pairs,
+                      s.failed, s.rmse_t_m, s.rmse_r_deg, s.fail_pct, s.within_pct, s.median_ms);
+        else  // every pair failed: there is no error to average
+          std::printf("%-6zu %-14s %6zu %6zu %10s %11s %8.1f %13.1f %10.1f", s.skip, s.method.c_str(), s.pairs, s.failed,
+                      "n/a", "n/a", s.fail_pct, s.within_pct, s.median_ms);
         if (na != no_rgb.end()) std::printf("  (%zu of %zu pairs without rgb left out)", na->second, pairs_per_skip[skip]);
         std::printf("\n");
       }

@@ -4,7 +4,6 @@
 // [%] against skip, one coloured line per method (legend at the right). Skips are placed at even
 // spacing in the order they appear. Exit codes: 0 done, 1 bad input, 2 usage error.
 #include <CLI/CLI.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -12,10 +11,13 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <sstream>
 
 #include "gasp/core/error.h"
+#include "gasp/core/image_file.h"
+#include "cli.h"
 
 namespace {
 
@@ -41,12 +43,33 @@ std::vector<Row> readCsv(const std::string& path) {
     std::vector<std::string> c;
     for (std::string cell; std::getline(ss, cell, ',');) c.push_back(cell);
     if (c.size() < 7) throw gasp::Error(path + ":" + std::to_string(n) + ": expected 9 columns");
+    // A number, or NaN for an empty RMSE cell (every pair of that skip failed: nothing to plot).
+    const auto number = [&](const std::string& cell, bool may_be_empty) {
+      if (cell.empty() && may_be_empty) return std::numeric_limits<double>::quiet_NaN();
+      double v = 0;
+      try {
+        std::size_t used = 0;
+        v = std::stod(cell, &used);
+        if (used != cell.size()) throw std::invalid_argument(cell);
+      } catch (const std::exception&) {
+        throw gasp::Error(path + ":" + std::to_string(n) + ": '" + cell + "' is not a number");
+      }
+      if (!std::isfinite(v)) throw gasp::Error(path + ":" + std::to_string(n) + ": '" + cell + "' is not finite");
+      return v;
+    };
+    Row r;
     try {
-      rows.push_back({std::stoul(c[0]), c[1], std::stod(c[4]), std::stod(c[5]), std::stod(c[6])});
+      r.skip = std::stoul(c[0]);
     } catch (const std::exception&) {
-      throw gasp::Error(path + ":" + std::to_string(n) + ": not a number");
+      throw gasp::Error(path + ":" + std::to_string(n) + ": '" + c[0] + "' is not a skip");
     }
+    r.method = c[1];
+    r.rmse_t = number(c[4], true);
+    r.rmse_r = number(c[5], true);
+    r.fail = number(c[6], false);
+    rows.push_back(r);
   }
+  if (rows.empty()) throw gasp::Error(path + ": no rows (only the header)");
   return rows;
 }
 
@@ -66,7 +89,8 @@ void panel(cv::Mat& img, cv::Rect box, const std::string& title, const std::vect
   const int left = 50, bottom = 36, top = 26, right = 12;
   const cv::Rect plot(box.x + left, box.y + top, box.width - left - right, box.height - top - bottom);
   double vmax = 0;
-  for (const auto& r : rows) vmax = std::max(vmax, r.*field);
+  for (const auto& r : rows)
+    if (std::isfinite(r.*field)) vmax = std::max(vmax, r.*field);
   vmax = vmax > 0 ? vmax * 1.1 : 1.0;
   cv::rectangle(img, plot, cv::Scalar(0, 0, 0), 1);
   cv::putText(img, title, {box.x + left, box.y + 18}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
@@ -91,7 +115,7 @@ void panel(cv::Mat& img, cv::Rect box, const std::string& title, const std::vect
     std::vector<cv::Point> pts;
     for (std::size_t k = 0; k < skips.size(); ++k)
       for (const auto& r : rows)
-        if (r.method == methods[m] && r.skip == skips[k])
+        if (r.method == methods[m] && r.skip == skips[k] && std::isfinite(r.*field))  // no RMSE: no point
           pts.emplace_back(xOf(k), plot.y + plot.height - static_cast<int>(std::lround(plot.height * (r.*field) / vmax)));
     const cv::Scalar c = kColours[m % kColours.size()];
     for (std::size_t p = 1; p < pts.size(); ++p) cv::line(img, pts[p - 1], pts[p], c, 2, cv::LINE_AA);
@@ -107,12 +131,14 @@ int main(int argc, char** argv) {
   std::string out, caption;
   app.add_option("--csv", csvs, "gasp-pairs --csv tables, one row of panels each")->required()->delimiter(',');
   app.add_option("--title", titles, "a title per CSV (default: the file name)");
-  app.add_option("--out", out, "the PNG to write")->required();
+  app.add_option("--out", out, "the PNG to write")->required()->check(gasp::tools::nonEmpty());
   app.add_option("--caption", caption, "a line at the bottom (e.g. the command that made the data)");
+  if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;
   try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    gasp::requireImageWriter(out, "--out figure");  // a usage error, before the work
+  } catch (const gasp::Error& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return 2;
   }
   try {
     const int panel_w = 330, panel_h = 230, legend_w = 165, row_title = 22;
@@ -141,9 +167,9 @@ int main(int argc, char** argv) {
     }
     if (!caption.empty())
       cv::putText(img, caption, {8, height - 10}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(60, 60, 60), 1, cv::LINE_AA);
-    if (!cv::imwrite(out, img)) throw gasp::Error("cannot write " + out);
+    gasp::writeImage(out, img, "figure");
     std::printf("figure: %s\n", out.c_str());
-  } catch (const gasp::Error& e) {
+  } catch (const std::exception& e) {  // gasp::Error, and anything a library throws
     std::cerr << "error: " << e.what() << '\n';
     return 1;
   }

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "gasp/rawlog/rawlog_to_tum.h"
+#include "cli.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Convert the CObservation3DRangeScan of an MRPT rawlog into a TUM RGB-D folder (depth.txt, "
@@ -22,8 +23,8 @@ int main(int argc, char** argv) {
   app.add_option("--gt", options.ground_truth_path,
                  "a TUM trajectory of the camera poses to copy to groundtruth.txt (e.g. gasp-tum2rawlog's OUT_groundtruth.txt)");
   app.add_flag("--no-rgb", no_rgb, "do not write the colour images");
-  app.add_option("--max-frames", options.max_frames, "convert at most N scans (0 = all)");
-  CLI11_PARSE(app, argc, argv);
+  app.add_option("--max-frames", options.max_frames, "convert at most N scans (0 = all)")->check(gasp::tools::atLeast(0));
+  if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;
   options.with_rgb = !no_rgb;
   try {
     const auto s = gasp::convertRawlogToTum(rawlog, out_dir, options);

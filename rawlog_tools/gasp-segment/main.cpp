@@ -4,7 +4,6 @@
 // Prints `patches: N`, `coverage: C`, dropped pixels, patch-area statistics and time per stage.
 // Exit codes: 0 success, 1 bad input (message on stderr), 2 usage error.
 #include <CLI/CLI.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -14,10 +13,12 @@
 #include <numeric>
 
 #include "gasp/core/error.h"
+#include "gasp/core/image_file.h"
 #include "gasp/core/tum_dataset.h"
 #include "gasp/superpixels/depth_superpixels.h"
 #include "gasp/superpixels/patch_repeatability.h"
 #include "gasp/superpixels/segmentation_picture.h"
+#include "cli.h"
 
 namespace {
 
@@ -41,8 +42,7 @@ void report(const gasp::SuperpixelSegmentation& seg) {
 }
 
 void writePicture(const std::string& path, const cv::Mat& depth, const gasp::SuperpixelSegmentation& seg) {
-  if (!cv::imwrite(path, gasp::drawSegmentation(depth, seg)))
-    throw gasp::Error("cannot write picture '" + path + "'");
+  gasp::writeImage(path, gasp::drawSegmentation(depth, seg), "picture");
 }
 
 /// Repeatability of patches over pairs (i, i + skip); prints one line per pair and the mean.
@@ -59,12 +59,18 @@ int measurePairs(const gasp::TumDataset& ds, const gasp::SuperpixelParams& param
     const auto sb = gasp::segmentDepthSuperpixels(depth_b, ds.intrinsics(), params);
     const auto r = gasp::measureRepeatability(sa, sb, depth_b, ds.intrinsics(),
                                               gasp::relativePose(*fb.T_world_camera, *fa.T_world_camera));
+    if (r.in_overlap == 0) {  // nothing to repeat: not a score of 0
+      std::printf("pair: %zu %zu patches %zu %zu in_overlap 0 repeatability n/a\n", i, i + skip, sa.patches.size(),
+                  sb.patches.size());
+      continue;
+    }
     std::printf("pair: %zu %zu patches %zu %zu in_overlap %d repeated %d repeatability %.3f\n", i, i + skip,
                 sa.patches.size(), sb.patches.size(), r.in_overlap, r.repeated, r.fraction());
     sum += r.fraction();
     ++pairs;
   }
-  if (pairs == 0) throw gasp::Error("no pair of frames with ground truth at skip " + std::to_string(skip));
+  if (pairs == 0)
+    throw gasp::Error("no pair of frames with ground truth and patches in their overlap at skip " + std::to_string(skip));
   std::printf("pairs: %d\nmean_repeatability: %.3f\n", pairs, sum / pairs);
   return 0;
 }
@@ -83,15 +89,17 @@ int main(int argc, char** argv) {
   app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored");
   app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: ros for --depth; the folder's for --tum)");
   app.add_option("--depth-scale", depth_scale, "raw depth units per metre")->capture_default_str();
-  app.add_option("--area-cm2", area_cm2, "target patch area [cm^2] (default from SuperpixelParams)");
+  app.add_option("--area-cm2", area_cm2, "target patch area [cm^2] (default from SuperpixelParams)")
+      ->check(gasp::tools::above(0));
   bool step_borders = false;
   app.add_flag("--step-borders", step_borders, "place borders at steps between parallel planes (SuperpixelParams::step_borders; off by default)");
-  app.add_option("--every", every, "with --tum: segment every N-th frame")->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_option("--every", every, "with --tum: segment every N-th frame")->check(gasp::tools::atLeast(1))->capture_default_str();
   app.add_option("--pairs", pair_skip, "with --tum: measure patch repeatability on pairs (i, i+SKIP) "
                  "of frames with ground truth, i every --every frames, instead of writing pictures")
-      ->check(CLI::PositiveNumber);
+      ->check(gasp::tools::atLeast(1))
+      ->needs(tum_opt);
   app.add_option("--out", out, "picture (PNG) for --depth; output folder for --tum");
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;
   if (depth_path.empty() && tum_dir.empty()) {
     std::cerr << "error: give --depth FILE.png or --tum DIR\n";
     return 2;
@@ -99,6 +107,14 @@ int main(int argc, char** argv) {
   if (out.empty() && pair_skip == 0) {
     std::cerr << "error: --out is required (except with --pairs)\n";
     return 2;
+  }
+  if (!depth_path.empty()) {
+    try {
+      gasp::requireImageWriter(out, "--out picture");  // a usage error, before the work
+    } catch (const gasp::Error& e) {
+      std::cerr << "error: " << e.what() << '\n';
+      return 2;
+    }
   }
   try {
     gasp::SuperpixelParams params;
@@ -121,8 +137,12 @@ int main(int argc, char** argv) {
     opt.undistort = !no_undistort;
     opt.depth_units_per_metre = depth_scale;
     const auto ds = gasp::TumDataset::open(tum_dir, opt);
+    if (ds.size() == 0) throw gasp::Error(tum_dir + ": no frames in depth.txt");
     if (pair_skip > 0) return measurePairs(ds, params, static_cast<std::size_t>(pair_skip), static_cast<std::size_t>(every));
-    std::filesystem::create_directories(out);
+    std::error_code ec;
+    std::filesystem::create_directories(out, ec);
+    if (ec || !std::filesystem::is_directory(out))
+      throw gasp::Error("cannot create the output folder '" + out + "'" + (ec ? ": " + ec.message() : " (a file of that name exists)"));
     for (std::size_t i = 0; i < ds.size(); i += static_cast<std::size_t>(every)) {
       const cv::Mat depth = ds.loadDepth(i);
       const auto seg = gasp::segmentDepthSuperpixels(depth, ds.intrinsics(), params);
@@ -133,7 +153,7 @@ int main(int argc, char** argv) {
       writePicture(out + name, depth, seg);
     }
     std::printf("pictures: %s\n", out.c_str());
-  } catch (const gasp::Error& e) {
+  } catch (const std::exception& e) {  // gasp::Error, and anything a library throws
     std::cerr << "error: " << e.what() << '\n';
     return 1;
   }

@@ -24,6 +24,7 @@
 #include "gasp/rawlog/depth_sequence.h"
 #include "gasp/slam/depth_slam.h"
 #include "gasp/slam/point_map.h"
+#include "cli.h"
 #include "sequence_options.h"
 #include "sequence_report.h"
 
@@ -60,25 +61,28 @@ int main(int argc, char** argv) {
   app.add_option("--graph", graph_path, "pose graph to write: odometry and loop-closure edges at the optimised poses (MRPT VERTEX3/EDGE3, robot frames)");
   app.add_option("--simplemap", simplemap_path, "the keyframes' scans at their optimised poses as an MRPT simple map (for observations2map)");
   app.add_option("--cloud", cloud_path, "a point map of the keyframes at their optimised poses (PLY, one point per voxel)");
-  app.add_option("--voxel", voxel_m, "voxel size of --cloud [m]")->capture_default_str();
+  app.add_option("--voxel", voxel_m, "voxel size of --cloud [m], 0.001 to 10")->capture_default_str();
   app.add_option("--cloud-max-depth", cloud_max_depth_m, "depth beyond which points are left out of --cloud [m]")->capture_default_str();
   app.add_option("--frames-csv", frames_csv, "one line per frame: tracked, keyframe, reference, patches, inliers, times, reason");
   app.add_option("--loops-csv", loops_csv, "one line per loop-closure registration: keyframes, accepted, inliers, gate chi-square, reason");
   gasp::tools::addOdometryOptions(app, params.odometry);
   app.add_flag("--no-loop-closures", no_loops, "odometry only (no loop closures, no optimisation)");
   app.add_option("--search-radius", params.loop.search_radius_m, "loop-closure candidates within this distance [m]")->capture_default_str();
-  app.add_option("--loop-candidates", params.loop.max_candidates, "registrations per new keyframe")->capture_default_str();
-  app.add_option("--keyframe-gap", params.loop.min_keyframe_gap, "candidates at least this many keyframes back")->capture_default_str();
+  app.add_option("--loop-candidates", params.loop.max_candidates, "registrations per new keyframe")
+      ->capture_default_str()
+      ->check(gasp::tools::atLeast(0));
+  app.add_option("--keyframe-gap", params.loop.min_keyframe_gap, "candidates at least this many keyframes back")
+      ->capture_default_str()
+      ->check(gasp::tools::atLeast(1));
   app.add_option("--relocalisation-candidates", params.loop.relocalisation_candidates,
-                 "registrations to other pieces of the graph per new keyframe (0 = off)")->capture_default_str();
+                 "registrations to other pieces of the graph per new keyframe (0 = off)")
+      ->capture_default_str()
+      ->check(gasp::tools::atLeast(0));
   app.add_option("--relocalisation-agreeing", params.loop.relocalisation_agreeing,
                  "relocalisations that must agree before two pieces of the graph are joined (1 = the first joins)")
-      ->capture_default_str();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;  // --help: 0; any usage error: 2
-  }
+      ->capture_default_str()
+      ->check(gasp::tools::atLeast(1));
+  if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;
   if (input.tum_dir.empty() && input.rawlog_path.empty()) {
     std::cerr << "error: give --tum DIR or --rawlog FILE\n";
     return 2;
@@ -88,6 +92,10 @@ int main(int argc, char** argv) {
   try {
     gasp::validate(params);
     const gasp::VoxelPointMap probe(voxel_m, cloud_max_depth_m);  // the cloud's options, checked before the run
+    const std::string missing = gasp::tools::missingOutputFolder(
+        {{"--out", out_path}, {"--odometry-out", odometry_out}, {"--graph", graph_path}, {"--frames-csv", frames_csv},
+         {"--loops-csv", loops_csv}, {"--simplemap", simplemap_path}, {"--cloud", cloud_path}});
+    if (!missing.empty()) throw gasp::Error(missing);  // before the run, not after it
     gasp::DepthSequence sequence(input);
     const gasp::Trajectory gt = gt_path.empty() ? sequence.groundTruth() : gasp::readTumTrajectory(gt_path);
     std::optional<gasp::DepthSlam> slam;
@@ -136,6 +144,9 @@ int main(int argc, char** argv) {
         map.insert(keyframes[i].depth_m, keyframes[i].depth_intrinsics, keyframe_poses[i]);
       map.writePly(cloud_path);
       std::printf("cloud: %s (%zu points, voxel %.3f m)\n", cloud_path.c_str(), map.size(), voxel_m);
+      if (map.pointsOutside() > 0)
+        std::fprintf(stderr, "warning: %zu points lie beyond the voxel grid (+-2^20 voxels) and are not in the cloud\n",
+                     map.pointsOutside());
     }
 
     gasp::tools::printOdometrySummary(slam->odometry());
@@ -155,7 +166,7 @@ int main(int argc, char** argv) {
     if (lost > 0) std::printf("not_tracked: %zu frames (poses predicted; reasons in --frames-csv)\n", lost);
     if (lost > 0 || slam->pieceCount() > 1) return 3;
   } catch (const std::exception& e) {  // gasp::Error, and MRPT's when an output cannot be written
-    std::cerr << "error: " << e.what() << '\n';
+    std::cerr << "error: " << gasp::tools::errorMessage(e) << '\n';
     return 1;
   }
   return 0;

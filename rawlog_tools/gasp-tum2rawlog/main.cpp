@@ -7,6 +7,7 @@
 #include <string>
 
 #include "gasp/rawlog/tum_to_rawlog.h"
+#include "cli.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Convert a TUM RGB-D folder into an MRPT rawlog of CObservation3DRangeScan; the "
@@ -29,9 +30,9 @@ int main(int argc, char** argv) {
   app.add_flag("--no-rgb", no_rgb, "do not store the rgb images");
   bool no_undistort = false;
   app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored");
-  app.add_option("--max-frames", max_frames, "convert at most N frames (0 = all)");
+  app.add_option("--max-frames", max_frames, "convert at most N frames (0 = all)")->check(gasp::tools::atLeast(0));
   app.add_flag("--external", external, "store depth and rgb in OUT_Images/ (MRPT external storage)");
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;
 
   try {
     gasp::TumToRawlogOptions options;

@@ -53,3 +53,33 @@ TEST(CameraIntrinsics, MalformedFileNamesFileAndLine) {
   EXPECT_THROW(CameraIntrinsics::load(path), gasp::Error);  // negative focal length
   EXPECT_THROW(CameraIntrinsics::load(path + ".missing"), gasp::Error);
 }
+
+TEST(CameraIntrinsics, SizesAreWholePixelsAndKeysAppearOnce) {
+  const std::string path = gasp::test::scratchDir() + "/k.txt";
+  const auto message = [&](const std::string& text) {
+    std::ofstream(path) << text;
+    try {
+      CameraIntrinsics::load(path);
+    } catch (const gasp::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string rest = "fx: 500\nfy: 500\ncx: 320\ncy: 240\n";
+  EXPECT_NE(message("width: 99999999999\nheight: 480\n" + rest).find(path + ":1: width must be a whole number"),
+            std::string::npos);
+  EXPECT_NE(message("width: 640.5\nheight: 480\n" + rest).find("whole number"), std::string::npos);
+  EXPECT_NE(message("width: 640\nheight: 480\n" + rest + "fx: 400\n").find(path + ":7: key 'fx' appears twice"),
+            std::string::npos);
+  EXPECT_EQ(message("width: 640\nheight: 480\n" + rest), "");
+  // Neither a preset nor a file: the message lists the presets.
+  try {
+    CameraIntrinsics::fromPresetOrFile("fr9");
+    FAIL() << "expected an error";
+  } catch (const gasp::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("neither a preset (fr1, fr2, fr3, ros)"), std::string::npos) << e.what();
+  }
+  CameraIntrinsics k;
+  k.width = 100000;
+  EXPECT_THROW(k.validate(), gasp::Error);
+}

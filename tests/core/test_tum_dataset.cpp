@@ -94,6 +94,16 @@ TEST(TumDataset, MissingAndMalformedInputs) {
   } catch (const gasp::Error& e) {
     EXPECT_NE(std::string(e.what()).find("depth.txt:3"), std::string::npos) << e.what();
   }
+  // A repeated or earlier timestamp would pair the wrong ground truth: an error naming the line.
+  for (const char* list : {"1.0 depth/1.png\n1.0 depth/2.png\n", "2.0 depth/1.png\n1.0 depth/2.png\n"}) {
+    std::ofstream(dir + "/depth.txt") << list;
+    try {
+      gasp::TumDataset::open(dir);
+      FAIL() << list;
+    } catch (const gasp::Error& e) {
+      EXPECT_NE(std::string(e.what()).find("depth.txt:2: timestamp 1.0 is not after"), std::string::npos) << e.what();
+    }
+  }
   std::ofstream(dir + "/depth.txt") << "1.0 depth/1.png\n";
   const auto ds = gasp::TumDataset::open(dir);
   EXPECT_EQ(ds.size(), 1u);

@@ -50,5 +50,18 @@ TEST(GaspEvalProgram, BadInputExitsNonZeroWithMessage) {
   r = run("rpe --gt " + dir + "/gt.txt --est " + dir + "/gt.txt --delta-unit parsecs");
   EXPECT_NE(r.exit_code, 0);
   r = run("");
-  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.exit_code, 2);  // usage errors are 2, whatever CLI11's own code
+  // Non-finite or non-positive option values are usage errors, never a NaN printed with exit 0.
+  for (const char* option : {"--scale nan", "--scale inf", "--scale 0", "--scale -1", "--max-dt nan", "--max-dt -1",
+                             "--offset nan"}) {
+    r = run("ate --gt " + dir + "/gt.txt --est " + dir + "/gt.txt " + option);
+    EXPECT_EQ(r.exit_code, 2) << option << '\n' << r.output;
+    r = run("rpe --gt " + dir + "/gt.txt --est " + dir + "/gt.txt " + option);
+    EXPECT_EQ(r.exit_code, 2) << option << '\n' << r.output;
+  }
+  // A position beyond 1e8 m loses its centimetres in double precision: refused, naming the line.
+  std::ofstream(dir + "/huge.txt") << "1.0 0 0 0 0 0 0 1\n2.0 1e300 0 0 0 0 0 1\n";
+  r = run("rpe --gt " + dir + "/gt.txt --est " + dir + "/huge.txt");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("huge.txt:2: translation"), std::string::npos) << r.output;
 }

@@ -53,5 +53,9 @@ TEST(PairProtocol, SummaryCountsFailuresAndWrongEstimatesInFull) {
   EXPECT_EQ(csvRow(s), "10,gasp,3,1,0.0354,2.236,33.3,33.3,50.0");
   const auto empty = summarise({}, 10, "gasp");
   EXPECT_EQ(empty.pairs, 0u);
-  EXPECT_EQ(empty.rmse_t_m, 0.0);
+  EXPECT_TRUE(std::isnan(empty.rmse_t_m));
+  // Every pair failed: no RMSE (not 0, which would read as perfect), empty cells in the CSV.
+  const auto failed = summarise({o[2]}, 10, "gasp");
+  EXPECT_TRUE(std::isnan(failed.rmse_t_m) && std::isnan(failed.rmse_r_deg));
+  EXPECT_EQ(csvRow(failed), "10,gasp,1,1,,,100.0,0.0,30.0");
 }

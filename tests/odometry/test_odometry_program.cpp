@@ -142,8 +142,16 @@ TEST(GaspOdometryProgram, BadInputExitsWith1OrAUsageCode) {
                                         "/no/such/folder/g.graph");
   EXPECT_EQ(run.exit_code, 1) << run.output;
   EXPECT_TRUE(contains(run.output, "error: ") && contains(run.output, "g.graph")) << run.output;
+  EXPECT_TRUE(contains(run.output, "does not exist")) << run.output;  // said before the run, in one line
+  EXPECT_FALSE(contains(run.output, "MRPT exception")) << run.output;
+  // Option values out of range are usage errors, said plainly (no wrap-round of negative counts).
   run = runProgram("gasp-odometry", "--tum " + sim + " --out " + out + "/t.txt --keyframe-angle 0");
-  EXPECT_EQ(run.exit_code, 1) << run.output;
-  EXPECT_TRUE(contains(run.output, "keyframe_angle_deg")) << run.output;
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_TRUE(contains(run.output, "--keyframe-angle: must be greater than 0")) << run.output;
+  run = runProgram("gasp-odometry", "--tum " + sim + " --out " + out + "/t.txt --first -1");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_TRUE(contains(run.output, "--first: must be at least 0 (got -1)")) << run.output;
+  run = runProgram("gasp-odometry", "--tum " + sim + " --out " + out + "/t.txt --rolling-shutter 1e9");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
   EXPECT_FALSE(std::filesystem::exists(out + "/t.txt"));
 }

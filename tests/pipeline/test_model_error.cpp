@@ -59,6 +59,8 @@ TEST(ModelError, BadInputThrows) {
   EXPECT_THROW(informationWithModelError(I, ModelError{-0.001, 0.5}), Error);
   EXPECT_THROW(informationWithModelError(I, ModelError{0.005, std::numeric_limits<double>::quiet_NaN()}), Error);
   EXPECT_THROW(informationWithModelError(I, ModelError{0.005, std::numeric_limits<double>::infinity()}), Error);
+  EXPECT_THROW(informationWithModelError(I, ModelError{1e155, 1.0}), Error);  // its square would swamp the rest
+  EXPECT_THROW(informationWithModelError(I, ModelError{0.01, 200.0}), Error);
   Matrix6 bad = I;
   bad(2, 2) = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(informationWithModelError(bad, ModelError{}), Error);

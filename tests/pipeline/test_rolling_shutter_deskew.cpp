@@ -145,6 +145,10 @@ TEST(RollingShutterDeskew, BadParametersThrow) {
   EXPECT_THROW(gasp::deskewWithNeighbours(depth, K, view, view, 0.0, params), gasp::Error);
   params.readout_s = std::nan("");
   EXPECT_THROW(gasp::deskewWithNeighbours(depth, K, view, view, 0.066, params), gasp::Error);
+  params.readout_s = 1e9;  // a frame is read out within its frame period, not in years
+  EXPECT_THROW(gasp::validate(params), gasp::Error);
+  params.readout_s = -0.03;  // bottom-up readouts are allowed
+  EXPECT_NO_THROW(gasp::validate(params));
   params.readout_s = 0.03;
   params.max_rate_radps = 0.0;
   EXPECT_THROW(gasp::validate(params), gasp::Error);

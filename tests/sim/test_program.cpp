@@ -48,6 +48,18 @@ TEST(SimProgram, BadInputFailsWithAMessage) {
   EXPECT_NE(r.output.find("--out"), std::string::npos) << r.output;
   r = runSimulate("--frames eight --out " + tmp + "/x", tmp);  // CLI11 usage error
   EXPECT_NE(r.status, 0);
+  // Rates whose microsecond timestamps would collide, and frame counts beyond the limit, are
+  // refused before anything is written; a negative seed does not wrap round.
+  r = runSimulate("--rate 1e7 --out " + tmp + "/fast", tmp);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("rate_hz must be between"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(tmp + "/fast/depth.txt"));
+  r = runSimulate("--frames 100000 --out " + tmp + "/long", tmp);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("frames must be at most 20000"), std::string::npos) << r.output;
+  r = runSimulate("--seed -1 --out " + tmp + "/seed", tmp);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--seed: must be at least 0"), std::string::npos) << r.output;
 }
 
 TEST(SimProgram, WritesASequenceAndSummary) {

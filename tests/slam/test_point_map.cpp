@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include "gasp/core/error.h"
@@ -61,6 +62,21 @@ TEST(VoxelPointMap, BadInputIsAnError) {
   const auto k = smallCamera();
   EXPECT_THROW(gasp::VoxelPointMap(0.0), gasp::Error);
   EXPECT_THROW(gasp::VoxelPointMap(std::nan("")), gasp::Error);
+  // Below 1 mm the +-2^20-voxel grid would silently drop everything beyond a metre; above 10 m
+  // a voxel is no map.
+  EXPECT_THROW(gasp::VoxelPointMap(1e-6), gasp::Error);
+  EXPECT_THROW(gasp::VoxelPointMap(1e300), gasp::Error);
+  EXPECT_THROW(gasp::VoxelPointMap(0.01, std::numeric_limits<double>::infinity()), gasp::Error);
+  {
+    // A point beyond the grid is counted, not silently lost.
+    gasp::VoxelPointMap tiny(0.001);
+    gasp::CameraIntrinsics kk;
+    gasp::Isometry3 far = gasp::Isometry3::Identity();
+    far.translation().x() = 5000.0;  // 5 km: beyond +-1048 m at 1 mm
+    tiny.insert(cv::Mat(kk.height, kk.width, CV_32FC1, cv::Scalar(1.0)), kk, far);
+    EXPECT_EQ(tiny.size(), 0u);
+    EXPECT_EQ(tiny.pointsOutside(), static_cast<std::size_t>(kk.width * kk.height));
+  }
   gasp::VoxelPointMap map;
   EXPECT_THROW(map.insert(cv::Mat(10, 10, CV_32FC1, cv::Scalar(1.0)), k, gasp::Isometry3::Identity()), gasp::Error);
   gasp::Isometry3 bad = gasp::Isometry3::Identity();

@@ -20,8 +20,8 @@ bool CameraIntrinsics::project(const Eigen::Vector3d& p, double& u, double& v) c
 
 void CameraIntrinsics::validate() const {
   auto positive = [](double x) { return std::isfinite(x) && x > 0.0; };
-  if (width <= 0 || height <= 0)
-    throw Error("camera intrinsics: image size must be positive, got " + std::to_string(width) +
+  if (width <= 0 || height <= 0 || width > kMaxImageSide || height > kMaxImageSide)
+    throw Error("camera intrinsics: image size must be from 1 to " + std::to_string(kMaxImageSide) + " pixels, got " + std::to_string(width) +
                 "x" + std::to_string(height));
   if (!positive(fx) || !positive(fy))
     throw Error("camera intrinsics: focal lengths must be positive and finite");
@@ -61,6 +61,8 @@ CameraIntrinsics CameraIntrinsics::fromPresetOrFile(const std::string& s) {
                                    "freiburg1", "freiburg2", "freiburg3"};
   for (const char* p : kPresets)
     if (s == p) return fromPreset(s);
+  if (!std::ifstream(s).good())
+    throw Error("intrinsics '" + s + "': neither a preset (fr1, fr2, fr3, ros) nor a file that can be opened");
   return load(s);
 }
 
@@ -78,6 +80,14 @@ CameraIntrinsics CameraIntrinsics::load(const std::string& path) {
     if (values.size() != expected)
       throw Error(path + ":" + std::to_string(line_no) + ": key '" + key + "' expects " +
                   std::to_string(expected) + " number(s)");
+    if (seen.count(key))
+      throw Error(path + ":" + std::to_string(line_no) + ": key '" + key + "' appears twice");
+    if (key == "width" || key == "height") {
+      // A whole number of pixels, within what a camera has (before the cast to int).
+      if (!(values[0] >= 1 && values[0] <= kMaxImageSide) || values[0] != std::floor(values[0]))
+        throw Error(path + ":" + std::to_string(line_no) + ": " + key + " must be a whole number of pixels from 1 to " +
+                    std::to_string(kMaxImageSide) + ", got " + trim(line.substr(colon + 1)));
+    }
     if (key == "width") k.width = static_cast<int>(values[0]);
     else if (key == "height") k.height = static_cast<int>(values[0]);
     else if (key == "fx") k.fx = values[0];

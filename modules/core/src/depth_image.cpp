@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "gasp/core/error.h"
+#include "gasp/core/image_file.h"
 
 namespace gasp {
 
@@ -45,9 +46,7 @@ cv::Mat depthToRaw(const cv::Mat& depth_m, double units_per_metre) {
 }
 
 cv::Mat loadDepthRaw(const std::string& path, int expected_width, int expected_height) {
-  if (!std::ifstream(path).good()) throw Error("depth image '" + path + "' cannot be opened");
-  const cv::Mat img = cv::imread(path, cv::IMREAD_ANYDEPTH | cv::IMREAD_ANYCOLOR);
-  if (img.empty()) throw Error("depth image '" + path + "' is not a readable image");
+  const cv::Mat img = readImage(path, cv::IMREAD_ANYDEPTH | cv::IMREAD_ANYCOLOR, "depth image");
   if (img.depth() != CV_16U)
     throw Error("depth image '" + path + "' must be 16-bit (got " +
                 (img.depth() == CV_8U ? std::string("8-bit") : "type " + std::to_string(img.depth())) +
@@ -70,13 +69,7 @@ cv::Mat loadDepth(const std::string& path, double units_per_metre, int expected_
 
 void saveDepth(const std::string& path, const cv::Mat& depth_m, double units_per_metre) {
   const cv::Mat raw = depthToRaw(depth_m, units_per_metre);
-  bool ok = false;
-  try {
-    ok = cv::imwrite(path, raw);
-  } catch (const cv::Exception& e) {
-    throw Error("cannot write depth image '" + path + "': " + e.what());
-  }
-  if (!ok) throw Error("cannot write depth image '" + path + "'");
+  writeImage(path, raw, "depth image");
 }
 
 std::size_t countValidDepth(const cv::Mat& depth_m) {

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "gasp/core/error.h"
+#include "gasp/core/image_file.h"
 #include "gasp/core/text_file.h"
 
 namespace fs = std::filesystem;
@@ -23,6 +24,10 @@ std::vector<std::pair<double, std::string>> readTumFileList(const std::string& p
       throw Error(path + ":" + std::to_string(line_no) + ": expected 'timestamp filename', got '" +
                   line + "'");
     const auto v = parseNumbers(stamp, path, line_no);
+    // TUM's lists are in time order; a repeated or earlier stamp would pair the wrong ground truth.
+    if (!entries.empty() && !(v.at(0) > entries.back().first))
+      throw Error(path + ":" + std::to_string(line_no) + ": timestamp " + stamp +
+                  " is not after the previous line's; the list must be in strictly increasing time order");
     entries.emplace_back(v.at(0), file);
   });
   return entries;
@@ -136,8 +141,7 @@ cv::Mat TumDataset::loadDepth(std::size_t i) const {
 cv::Mat TumDataset::loadRgb(std::size_t i) const {
   const auto& f = frame(i);
   if (!f.rgb_path) return {};
-  cv::Mat img = cv::imread(*f.rgb_path, cv::IMREAD_COLOR);
-  if (img.empty()) throw Error("rgb image '" + *f.rgb_path + "' is missing or unreadable");
+  cv::Mat img = readImage(*f.rgb_path, cv::IMREAD_COLOR, "rgb image");
   if (img.cols != intrinsics_.width || img.rows != intrinsics_.height)
     throw Error("rgb image '" + *f.rgb_path + "' is " + std::to_string(img.cols) + "x" + std::to_string(img.rows) +
                 ", the depth images are " + std::to_string(intrinsics_.width) + "x" + std::to_string(intrinsics_.height));

@@ -19,6 +19,12 @@ Trajectory readTumTrajectory(const std::string& path) {
       throw Error(path + ":" + std::to_string(line_no) +
                   ": expected 8 numbers 'timestamp tx ty tz qx qy qz qw', got " +
                   std::to_string(v.size()));
+    // Beyond 1e8 m (a thousand times the Earth's radius) differences of positions lose their
+    // centimetres in double precision: not a trajectory GASP can evaluate.
+    for (int k = 1; k <= 3; ++k)
+      if (std::abs(v[k]) > 1e8)
+        throw Error(path + ":" + std::to_string(line_no) + ": translation " + std::to_string(v[k]) +
+                    " m is beyond 1e8 m: not a position");
     StampedPose p;
     p.timestamp = v[0];
     try {

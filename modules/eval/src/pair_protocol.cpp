@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 
 #include "gasp/core/error.h"
@@ -43,7 +44,9 @@ SkipSummary summarise(const std::vector<PairOutcome>& outcomes, std::size_t skip
     sum_r += o.r_err_deg * o.r_err_deg;
     within += o.t_err_m <= kWithinTranslationM && o.r_err_deg <= kWithinRotationDeg;
   }
-  if (estimated > 0) {
+  if (estimated == 0) {  // no estimate, no error to speak of (not an error of 0)
+    s.rmse_t_m = s.rmse_r_deg = std::numeric_limits<double>::quiet_NaN();
+  } else {
     s.rmse_t_m = std::sqrt(sum_t / static_cast<double>(estimated));
     s.rmse_r_deg = std::sqrt(sum_r / static_cast<double>(estimated));
   }
@@ -62,9 +65,12 @@ std::string csvHeader() {
 }
 
 std::string csvRow(const SkipSummary& s) {
+  char rmse[64] = ",";  // empty cells without an estimate
+  if (std::isfinite(s.rmse_t_m) && std::isfinite(s.rmse_r_deg))
+    std::snprintf(rmse, sizeof rmse, "%.4f,%.3f", s.rmse_t_m, s.rmse_r_deg);
   char buf[256];
-  std::snprintf(buf, sizeof buf, "%zu,%s,%zu,%zu,%.4f,%.3f,%.1f,%.1f,%.1f", s.skip, s.method.c_str(), s.pairs,
-                s.failed, s.rmse_t_m, s.rmse_r_deg, s.fail_pct, s.within_pct, s.median_ms);
+  std::snprintf(buf, sizeof buf, "%zu,%s,%zu,%zu,%s,%.1f,%.1f,%.1f", s.skip, s.method.c_str(), s.pairs, s.failed, rmse,
+                s.fail_pct, s.within_pct, s.median_ms);
   return buf;
 }
 

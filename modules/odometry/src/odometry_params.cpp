@@ -18,8 +18,8 @@ void validate(const OdometryParams& params) {
   requirePositive(params.keyframe_angle_deg, "keyframe_angle_deg");
   requirePositive(params.max_speed_mps, "max_speed_mps");
   requirePositive(params.max_rate_radps, "max_rate_radps");
-  if (!std::isfinite(params.rolling_shutter_readout_s))
-    throw Error("odometry: rolling_shutter_readout_s must be finite");
+  if (!std::isfinite(params.rolling_shutter_readout_s) || std::abs(params.rolling_shutter_readout_s) > 1.0)
+    throw Error("odometry: rolling_shutter_readout_s must be a finite time of at most 1 s (either sign)");
   validate(params.pair);
 }
 

@@ -9,9 +9,11 @@
 namespace gasp {
 
 void validate(const ModelError& e) {
-  if (!(e.sigma_t_m >= 0.0) || !std::isfinite(e.sigma_t_m)) throw Error("ModelError: sigma_t_m must be finite and >= 0");
-  if (!(e.sigma_r_deg >= 0.0) || !std::isfinite(e.sigma_r_deg))
-    throw Error("ModelError: sigma_r_deg must be finite and >= 0");
+  // Above 100 m or 180 deg a standard deviation says nothing more, and its square would swamp
+  // the information in double precision.
+  if (!(e.sigma_t_m >= 0.0 && e.sigma_t_m <= 100.0)) throw Error("ModelError: sigma_t_m must be from 0 to 100 m");
+  if (!(e.sigma_r_deg >= 0.0 && e.sigma_r_deg <= 180.0))
+    throw Error("ModelError: sigma_r_deg must be from 0 to 180 deg");
 }
 
 Eigen::Matrix<double, 6, 6> informationWithModelError(const Eigen::Matrix<double, 6, 6>& information,

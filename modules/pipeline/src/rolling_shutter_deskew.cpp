@@ -11,7 +11,9 @@
 namespace gasp {
 
 void validate(const DeskewParams& params) {
-  if (!std::isfinite(params.readout_s)) throw Error("deskew: readout_s must be finite");
+  // A frame is read out within its frame period; a second is far beyond any depth camera.
+  if (!std::isfinite(params.readout_s) || std::abs(params.readout_s) > 1.0)
+    throw Error("deskew: readout_s must be a finite time of at most 1 s (either sign)");
   if (!(params.max_speed_mps > 0.0) || !std::isfinite(params.max_speed_mps))
     throw Error("deskew: max_speed_mps must be positive");
   if (!(params.max_rate_radps > 0.0) || !std::isfinite(params.max_rate_radps))

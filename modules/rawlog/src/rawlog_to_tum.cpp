@@ -13,6 +13,7 @@
 
 #include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
+#include "gasp/core/image_file.h"
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/rawlog/frame_convention.h"
 #include "gasp/rawlog/rawlog_reader.h"
@@ -37,15 +38,7 @@ void makeDir(const fs::path& dir) {
     throw Error("cannot create folder '" + dir.string() + "'" + (ec ? ": " + ec.message() : std::string()));
 }
 
-void writeImage(const fs::path& path, const cv::Mat& image) {
-  bool ok = false;
-  try {
-    ok = cv::imwrite(path.string(), image);
-  } catch (const cv::Exception& e) {
-    throw Error("cannot write '" + path.string() + "': " + e.what());
-  }
-  if (!ok) throw Error("cannot write '" + path.string() + "'");
-}
+void writeImage(const fs::path& path, const cv::Mat& image) { gasp::writeImage(path.string(), image, "image"); }
 
 /// What one conversion created, removed again when it fails (no half-written folder is left).
 class CreatedPaths {

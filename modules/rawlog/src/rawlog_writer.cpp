@@ -12,6 +12,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "gasp/core/error.h"
+#include "gasp/core/image_file.h"
 #include "gasp/rawlog/observation_conversion.h"
 
 namespace gasp {
@@ -80,8 +81,7 @@ void RawlogWriter::write(const RgbdFrame& frame) {
     }
     if (obs->hasIntensityImage) {
       const std::string rgb_name = base + "_rgb.png";
-      if (!cv::imwrite(images_dir_ + "/" + rgb_name, frame.rgb))
-        throw Error("rawlog '" + path_ + "': cannot write '" + images_dir_ + "/" + rgb_name + "'");
+      writeImage(images_dir_ + "/" + rgb_name, frame.rgb, "rawlog '" + path_ + "': external rgb image");
       obs->intensityImage.setExternalStorage(rgb_name);
     }
   }

@@ -49,8 +49,14 @@ CameraPath makeCameraPath(const CameraPathOptions& options) {
   if (options.frames < kMinPathFrames)
     throw Error("camera path: frames must be at least " + std::to_string(kMinPathFrames) + ", got " +
                 std::to_string(options.frames));
-  if (!(std::isfinite(options.rate_hz) && options.rate_hz > 0.0))
-    throw Error("camera path: rate_hz must be positive, got " + std::to_string(options.rate_hz));
+  if (options.frames > kMaxPathFrames)
+    throw Error("camera path: frames must be at most " + std::to_string(kMaxPathFrames) + ", got " +
+                std::to_string(options.frames));
+  // Timestamps are written in microseconds: frames must be at least that far apart, and the last
+  // stamp must keep them (a double holds about 15 significant digits).
+  if (!(std::isfinite(options.rate_hz) && options.rate_hz >= kMinRateHz && options.rate_hz <= kMaxRateHz))
+    throw Error("camera path: rate_hz must be between " + std::to_string(kMinRateHz) + " and " +
+                std::to_string(kMaxRateHz) + " Hz, got " + std::to_string(options.rate_hz));
   if (!std::isfinite(options.start_time_s))
     throw Error("camera path: start_time_s must be finite");
 

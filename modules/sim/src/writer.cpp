@@ -10,6 +10,7 @@
 
 #include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
+#include "gasp/core/image_file.h"
 
 namespace fs = std::filesystem;
 
@@ -38,13 +39,7 @@ void closeText(std::ofstream& out, const fs::path& path) {
 }
 
 void writeLabels(const fs::path& path, const cv::Mat& labels) {
-  bool ok = false;
-  try {
-    ok = cv::imwrite(path.string(), labels);
-  } catch (const cv::Exception& e) {
-    throw Error("cannot write label image '" + path.string() + "': " + e.what());
-  }
-  if (!ok) throw Error("cannot write label image '" + path.string() + "'");
+  writeImage(path.string(), labels, "label image");
 }
 
 void writeSceneInfo(const fs::path& path, const Simulation& sim) {

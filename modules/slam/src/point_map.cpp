@@ -14,8 +14,11 @@
 namespace gasp {
 
 VoxelPointMap::VoxelPointMap(double voxel_m, double max_depth_m) : voxel_m_(voxel_m), max_depth_m_(max_depth_m) {
-  if (!(voxel_m > 0.0) || !std::isfinite(voxel_m)) throw Error("point map: the voxel size must be positive and finite");
-  if (!(max_depth_m > 0.0)) throw Error("point map: the maximum depth must be positive");
+  // The grid holds +-2^20 voxels per axis: +-1 km at the smallest voxel.
+  if (!(voxel_m >= kMinVoxelM && voxel_m <= kMaxVoxelM))
+    throw Error("point map: the voxel size must be from 0.001 to 10 m");
+  if (!(max_depth_m > 0.0) || !std::isfinite(max_depth_m))
+    throw Error("point map: the maximum depth must be positive and finite");
 }
 
 void VoxelPointMap::insert(const cv::Mat& depth_m, const CameraIntrinsics& intrinsics, const Isometry3& T_world_camera) {
@@ -40,7 +43,10 @@ void VoxelPointMap::insert(const cv::Mat& depth_m, const CameraIntrinsics& intri
       const std::int64_t v = static_cast<std::int64_t>(cell) + kHalf;
       key = (key << 21) | (v & kMask);
     }
-    if (!inside) continue;
+    if (!inside) {
+      ++outside_;
+      continue;
+    }
     Cell& c = voxels_[key];
     if (c.count == 0) c.order = voxels_.size() - 1;
     c.sum += p;

@@ -10,6 +10,9 @@ namespace gasp {
 /// The distortion coefficients (OpenCV order k1 k2 p1 p2 k3) are not applied by unproject() /
 /// project(): images are resampled to the pinhole camera first (undistortion.h; TumDataset does
 /// it when the coefficients are non-zero).
+/// Largest image side accepted [px] (intrinsics files, validate()).
+constexpr int kMaxImageSide = 20000;
+
 struct CameraIntrinsics {
   int width = 640;   ///< image width [px]
   int height = 480;  ///< image height [px]
@@ -24,7 +27,8 @@ struct CameraIntrinsics {
   /// Pixel coordinates of a point in the camera frame; false when behind the camera.
   bool project(const Eigen::Vector3d& p_camera, double& u, double& v) const;
 
-  /// Throws gasp::Error when a size or focal length is not positive or not finite.
+  /// Throws gasp::Error when a size is not 1 to kMaxImageSide, a focal length not positive and
+  /// finite, or the principal point not finite.
   void validate() const;
 
   static CameraIntrinsics tumFreiburg1();  ///< fx 517.3 fy 516.5 cx 318.6 cy 255.3 (+ distortion)

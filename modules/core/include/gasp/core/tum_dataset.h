@@ -22,7 +22,8 @@ struct TumFrame {
   std::optional<Isometry3> T_world_camera;  ///< ground truth, nearest in time within max_dt
 };
 
-/// A `timestamp filename` list (depth.txt, rgb.txt); '#' lines skipped; errors name file:line.
+/// A `timestamp filename` list (depth.txt, rgb.txt) in strictly increasing time order; '#' lines
+/// skipped; errors (malformed lines, a repeated or earlier timestamp) name file:line.
 std::vector<std::pair<double, std::string>> readTumFileList(const std::string& path);
 
 class TumDataset {

@@ -41,7 +41,7 @@ struct SkipSummary {
   std::size_t skip = 0;
   std::string method;
   std::size_t pairs = 0, failed = 0;
-  double rmse_t_m = 0, rmse_r_deg = 0;  ///< over the estimates (0 when none)
+  double rmse_t_m = 0, rmse_r_deg = 0;  ///< over the estimates (NaN when there is none)
   double fail_pct = 0;
   double within_pct = 0;  ///< share of ALL pairs with an estimate within 5 cm and 2 deg [%]
   double median_ms = 0;
@@ -54,7 +54,7 @@ inline constexpr double kWithinTranslationM = 0.05, kWithinRotationDeg = 2.0;
 SkipSummary summarise(const std::vector<PairOutcome>& outcomes, std::size_t skip, const std::string& method);
 
 /// CSV header and row, columns skip,method,pairs,failed,rmse_t_m,rmse_r_deg,fail_pct,
-/// within_5cm_2deg_pct,median_ms.
+/// within_5cm_2deg_pct,median_ms; the two RMSE cells are empty when no pair was estimated.
 std::string csvHeader();
 std::string csvRow(const SkipSummary& s);
 

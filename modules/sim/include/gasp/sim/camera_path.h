@@ -41,12 +41,17 @@ struct CameraPathOptions {
 
 /// Fewest frames makeCameraPath() accepts (each segment needs at least one step).
 constexpr int kMinPathFrames = 8;
+/// Most frames (about 6 GB of depth and rgb PNGs for a TUM folder).
+constexpr int kMaxPathFrames = 20000;
+/// Frame rates accepted [Hz]: timestamps in microseconds stay distinct and short.
+constexpr double kMinRateHz = 0.001;
+constexpr double kMaxRateHz = 10000.0;
 
 /// The path through five waypoints (world z up): segments wide_baseline, partial_overlap,
 /// occluder_appears and roll_180 get 30%, 25%, 20% and 25% of the frames. Between waypoints the
 /// position is interpolated linearly, the look-at orientation by slerp, and the roll about the
 /// optical axis linearly (so the 180-degree roll is not short-cut). Throws gasp::Error when
-/// frames < kMinPathFrames or the rate is not positive.
+/// frames is outside [kMinPathFrames, kMaxPathFrames] or the rate outside [kMinRateHz, kMaxRateHz].
 CameraPath makeCameraPath(const CameraPathOptions& options = {});
 
 /// Optical camera pose at `position` looking at `target` with world `up` (image y points down),

@@ -15,9 +15,14 @@
 
 namespace gasp {
 
+/// Voxel sizes a VoxelPointMap accepts [m].
+constexpr double kMinVoxelM = 0.001;
+constexpr double kMaxVoxelM = 10.0;
+
 class VoxelPointMap {
  public:
-  /// Throws gasp::Error unless voxel_m is positive and finite.
+  /// Throws gasp::Error unless voxel_m is within [kMinVoxelM, kMaxVoxelM] and max_depth_m
+  /// positive and finite.
   explicit VoxelPointMap(double voxel_m = 0.01, double max_depth_m = 4.0);
 
   /// Adds a depth image [m] (CV_32FC1, 0 or NaN = no data; lens distortion in the intrinsics is
@@ -27,6 +32,8 @@ class VoxelPointMap {
   void insert(const cv::Mat& depth_m, const CameraIntrinsics& intrinsics, const Isometry3& T_world_camera);
 
   std::size_t size() const { return voxels_.size(); }
+  /// Points left out because they lie beyond the grid (+-2^20 voxels per axis from the origin).
+  std::size_t pointsOutside() const { return outside_; }
   /// One point per occupied voxel, the mean of the points in it [m], in insertion order of the voxels.
   std::vector<Eigen::Vector3f> points() const;
   /// Writes the points as an ASCII PLY (x y z float vertices). Throws gasp::Error when it cannot.
@@ -41,6 +48,7 @@ class VoxelPointMap {
   double voxel_m_;
   double max_depth_m_;
   std::unordered_map<std::int64_t, Cell> voxels_;
+  std::size_t outside_ = 0;
 };
 
 }  // namespace gasp

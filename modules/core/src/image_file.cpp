@@ -1,0 +1,52 @@
+#include "gasp/core/image_file.h"
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <fstream>
+
+#include "gasp/core/error.h"
+
+namespace gasp {
+
+namespace {
+
+/// The first line of an OpenCV exception's message (its `err`, without file and line).
+std::string openCvMessage(const cv::Exception& e) { return e.err.empty() ? e.what() : e.err; }
+
+}  // namespace
+
+void requireImageWriter(const std::string& path, const std::string& what) {
+  bool ok = false;
+  try {
+    ok = !path.empty() && cv::haveImageWriter(path);
+  } catch (const cv::Exception&) {
+    ok = false;
+  }
+  if (!ok)
+    throw Error(what + " '" + path + "': no image format for this file name; use .png, .jpg, .bmp, .tif or .ppm");
+}
+
+void writeImage(const std::string& path, const cv::Mat& image, const std::string& what) {
+  requireImageWriter(path, what);
+  bool ok = false;
+  try {
+    ok = cv::imwrite(path, image);
+  } catch (const cv::Exception& e) {
+    throw Error("cannot write " + what + " '" + path + "': " + openCvMessage(e));
+  }
+  if (!ok) throw Error("cannot write " + what + " '" + path + "'");
+}
+
+cv::Mat readImage(const std::string& path, int flags, const std::string& what) {
+  if (!std::ifstream(path).good()) throw Error(what + " '" + path + "' cannot be opened");
+  cv::Mat image;
+  try {
+    image = cv::imread(path, flags);
+  } catch (const cv::Exception& e) {
+    throw Error(what + " '" + path + "' is not a readable image: " + openCvMessage(e));
+  }
+  if (image.empty()) throw Error(what + " '" + path + "' is not a readable image");
+  return image;
+}
+
+}  // namespace gasp

@@ -1,0 +1,135 @@
+#pragma once
+/// \file cli.h What every GASP program does with its command line: exit codes (0 for --help, 2
+/// for any usage error, whatever CLI11's own code) and validators with plain messages.
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace gasp::tools {
+
+/// Parses the command line. Returns -1 when the program should go on, else its exit code: 0
+/// after --help, 2 after a usage error (CLI11 prints the message).
+inline int parseCommandLine(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  return -1;
+}
+
+namespace detail {
+inline std::string shortNumber(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+/// The option's value as a finite number, or "" with `error` set.
+inline bool finiteValue(const std::string& text, double& v, std::string& error) {
+  try {
+    std::size_t used = 0;
+    v = std::stod(text, &used);
+    if (used != text.size()) throw std::invalid_argument(text);
+  } catch (const std::exception&) {
+    error = "not a number: '" + text + "'";
+    return false;
+  }
+  if (!std::isfinite(v)) {
+    error = "must be a finite number (got " + text + ")";
+    return false;
+  }
+  return true;
+}
+}  // namespace detail
+
+/// A finite number >= lo ("must be at least 1 (got 0)"). On unsigned options, `atLeast(0)` keeps
+/// CLI11 from wrapping "-1" round to 18446744073709551615.
+inline CLI::Validator atLeast(double lo) {
+  return CLI::Validator(
+      [lo](std::string& text) -> std::string {
+        double v = 0;
+        std::string error;
+        if (!detail::finiteValue(text, v, error)) return error;
+        if (v < lo) return "must be at least " + detail::shortNumber(lo) + " (got " + text + ")";
+        return {};
+      },
+      ">= " + detail::shortNumber(lo));
+}
+
+/// A finite number > lo.
+inline CLI::Validator above(double lo) {
+  return CLI::Validator(
+      [lo](std::string& text) -> std::string {
+        double v = 0;
+        std::string error;
+        if (!detail::finiteValue(text, v, error)) return error;
+        if (!(v > lo)) return "must be greater than " + detail::shortNumber(lo) + " (got " + text + ")";
+        return {};
+      },
+      "> " + detail::shortNumber(lo));
+}
+
+/// A finite number in [lo, hi].
+inline CLI::Validator within(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        double v = 0;
+        std::string error;
+        if (!detail::finiteValue(text, v, error)) return error;
+        if (v < lo || v > hi)
+          return "must be between " + detail::shortNumber(lo) + " and " + detail::shortNumber(hi) + " (got " + text + ")";
+        return {};
+      },
+      "in [" + detail::shortNumber(lo) + ", " + detail::shortNumber(hi) + "]");
+}
+
+/// A non-empty value (a file name given as "" would silently write nothing).
+inline CLI::Validator nonEmpty() {
+  return CLI::Validator([](std::string& text) -> std::string { return text.empty() ? "must not be empty" : ""; },
+                        "non-empty");
+}
+
+/// Any finite number (NaN and infinities refused).
+inline CLI::Validator finite() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double v = 0;
+        std::string error;
+        return detail::finiteValue(text, v, error) ? std::string() : error;
+      },
+      "finite");
+}
+
+/// An exception's message for "error: ...": MRPT's exceptions carry a banner and a stack trace,
+/// of which only the "Message:" line is kept.
+inline std::string errorMessage(const std::exception& e) {
+  const std::string what = e.what();
+  const auto m = what.find("Message:");
+  if (m == std::string::npos) return what;
+  auto begin = what.find_first_not_of(' ', m + 8);
+  if (begin == std::string::npos) begin = m + 8;
+  return what.substr(begin, what.find('\n', begin) - begin);
+}
+
+/// The output files' folders exist, checked before a long run: returns "" or the first problem
+/// ("--graph '/nope/g.graph': the folder '/nope' does not exist"). Empty paths (option not
+/// given) are skipped.
+inline std::string missingOutputFolder(const std::vector<std::pair<std::string, std::string>>& option_paths) {
+  namespace fs = std::filesystem;
+  for (const auto& [option, path] : option_paths) {
+    if (path.empty()) continue;
+    const fs::path parent = fs::path(path).parent_path();
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) return option + " '" + path + "': is a folder, not a file";
+    if (!parent.empty() && !fs::is_directory(parent, ec))
+      return option + " '" + path + "': the folder '" + parent.string() + "' does not exist";
+  }
+  return {};
+}
+
+}  // namespace gasp::tools
