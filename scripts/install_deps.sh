@@ -13,6 +13,7 @@ PACKAGES=(
   libpcl-dev                        # baselines of the pair benchmark: FPFH, SHOT, colour SHOT
   libtbb-dev                        # parallel loops
   libcli11-dev                      # command-line parsing of the programs
+  zlib1g-dev                        # rawlogs' gzip streams checked to their end
   libgtest-dev libgmock-dev         # tests
   libbenchmark-dev                  # benchmarks
   python3                           # the summary scripts (scripts/*.py) and their test

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "gasp/core/error.h"
 #include "gasp/rawlog/rawlog_entries.h"
@@ -242,6 +243,44 @@ TEST(RawlogEntries, TruncatedFilesAreErrorsNotAnEarlyEnd) {
       // GASP's scan reader says the same.
       EXPECT_TRUE(contains(readError(path), "truncated")) << level << ' ' << readError(path);
     }
+  }
+  // Cut anywhere: plain files at tenths of their length, gzip files likewise and without their
+  // 8-byte trailer (MRPT's reader takes all of these for the end of the file).
+  for (const int level : {0, 1}) {
+    const std::string whole = dir + "/whole_" + std::to_string(level) + ".rawlog";
+    {
+      gasp::RawlogWriter writer(whole, {gasp::RawlogFormat::Observations, false, level});
+      for (int i = 0; i < 3; ++i) writer.write(gasp::test::syntheticFrame(1.0 + i));
+    }
+    const auto size = std::filesystem::file_size(whole);
+    std::vector<std::uintmax_t> cuts;
+    for (int tenth = 1; tenth < 10; ++tenth) cuts.push_back(size * tenth / 10);
+    cuts.push_back(size - 1);
+    if (level > 0) cuts.push_back(size - 8);  // no gzip trailer
+    for (const auto cut : cuts) {
+      const std::string path = dir + "/cut.rawlog";
+      std::filesystem::copy_file(whole, path, std::filesystem::copy_options::overwrite_existing);
+      std::filesystem::resize_file(path, cut);
+      std::size_t read = 0;
+      const std::string msg = entriesError(path, &read);
+      EXPECT_TRUE(contains(msg, "truncated") || contains(msg, "empty")) << level << " cut at " << cut << ": " << msg;
+      // A gzip file cut in its trailer holds every entry; the error comes after the last.
+      if (level == 0 || cut < size - 8) {
+        EXPECT_LT(read, 3u) << level << " cut at " << cut;
+      }
+    }
+  }
+  {
+    // A gzip file whose checksum fails (its content may be damaged anywhere).
+    const std::string path = dir + "/crc.rawlog";
+    std::filesystem::copy_file(dir + "/whole_1.rawlog", path);
+    std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(static_cast<std::streamoff>(std::filesystem::file_size(path) - 8));
+    f.put('\x5a');
+    f.close();
+    const std::string msg = entriesError(path);
+    EXPECT_TRUE(contains(msg, "corrupt or truncated gzip stream")) << msg;
+    EXPECT_TRUE(contains(readError(path), "corrupt or truncated gzip stream")) << readError(path);
   }
   // A format-#1 file that ends after an action.
   const std::string path = dir + "/action_only.rawlog";
