@@ -30,6 +30,7 @@
 #include "gasp/graphslam/CGaspOdometryNRD.h"
 #include "gasp/graphslam/CGaspPoseGraphGSO.h"
 #include "gasp/graphslam/engine.h"
+#include "gasp/graphslam/ini_check.h"
 #include "gasp/graphslam/options_checker.h"
 #include "gasp/rawlog/observation_conversion.h"
 #include "gasp/rawlog/rawlog_entries.h"
@@ -132,6 +133,15 @@ int main(int argc, char** argv) {
   try {
     if (!mrpt::system::fileExists(rawlog_path)) throw gasp::Error("cannot open rawlog " + rawlog_path);
     if (!ini_path.empty() && !mrpt::system::fileExists(ini_path)) throw gasp::Error("cannot open configuration " + ini_path);
+    if (!ini_path.empty()) {
+      if (std::filesystem::is_directory(ini_path)) throw gasp::Error("configuration " + ini_path + " is a folder");
+      // MRPT's reader passes over malformed lines and unread sections silently.
+      const auto check = gasp::graphslam::checkGraphSlamIni(ini_path);
+      if (!check.error.empty()) throw gasp::Error(check.error);
+      for (const auto& s : check.unknown_sections)
+        std::fprintf(stderr, "warning: %s: section [%s] is read by no decider (misspelt?); its keys are ignored\n",
+                     ini_path.c_str(), s.c_str());
+    }
     std::unique_ptr<TemporaryIni> default_ini;
     if (ini_path.empty()) {
       default_ini = std::make_unique<TemporaryIni>();

@@ -38,6 +38,8 @@ int main(int argc, char** argv) {
     if (s.sensor_pose_dropped > 0)
       std::cout << "robot frame:         " << s.sensor_pose_dropped
                 << " scans with a sensorPose not kept (a TUM folder holds camera poses only)\n";
+    if (s.frames_without_depth > 0)
+      std::cout << "without depth:       " << s.frames_without_depth << " frames (no depth pixel from 0 to 13.107 m)\n";
     if (s.pixels_beyond_range > 0)
       std::cout << "beyond 13.107 m:     " << s.pixels_beyond_range << " depth pixels written as 0 (no data)\n";
     std::cout << "intrinsics:          fx " << K.fx << " fy " << K.fy << " cx " << K.cx << " cy " << K.cy << " ("

@@ -15,11 +15,13 @@
 #include <string>
 #include <vector>
 
+#include "gasp/core/error.h"
 #include "gasp/eval/ate.h"
 #include "gasp/graphslam/CGaspLoopClosureERD.h"
 #include "gasp/graphslam/CGaspOdometryNRD.h"
 #include "gasp/graphslam/CGaspPoseGraphGSO.h"
 #include "gasp/graphslam/engine.h"
+#include "gasp/graphslam/ini_check.h"
 #include "gasp/graphslam/options_checker.h"
 #include "gasp/rawlog/observation_conversion.h"
 #include "gasp_test_data.h"
@@ -274,6 +276,25 @@ TEST(GaspOptionsChecker, RegistersGaspsClassesBesideMrptsFor3DGraphs) {
   EXPECT_NE(dynamic_cast<gasp::graphslam::CGaspOdometryNRD*>(nrd.get()), nullptr);
   EXPECT_NE(dynamic_cast<gasp::graphslam::CGaspLoopClosureERD*>(erd.get()), nullptr);
   EXPECT_NE(dynamic_cast<gasp::graphslam::CGaspPoseGraphGSO*>(gso.get()), nullptr);
+}
+
+TEST(GraphSlamIni, MalformedLinesAndUnreadSectionsAreFound) {
+  const std::string dir = gasp::test::scratchDir();
+  auto c = gasp::graphslam::checkGraphSlamIni(writeFile(dir + "/ok.ini", "# comment\n; also\n\n[GeneralConfiguration]\n"
+                                                                                "output_dir_fname = x\n[CGaspOdometryNRD]\n"
+                                                                                "keyframe_distance_m=0.2\n"));
+  EXPECT_TRUE(c.error.empty()) << c.error;
+  EXPECT_TRUE(c.unknown_sections.empty());
+  c = gasp::graphslam::checkGraphSlamIni(writeFile(dir + "/typo.ini", "[CGaspLoopClosureRD]\nenabled = 0\n[CGaspPoseGraphGSO]\n"
+                                                                          "max_iterations 7\n"));
+  EXPECT_NE(c.error.find("typo.ini:4: neither a [section] nor 'key = value'"), std::string::npos) << c.error;
+  ASSERT_EQ(c.unknown_sections.size(), 1u);
+  EXPECT_EQ(c.unknown_sections[0], "CGaspLoopClosureRD");
+  c = gasp::graphslam::checkGraphSlamIni(writeFile(dir + "/garbage.ini", "this is not an ini file\n"));
+  EXPECT_NE(c.error.find("garbage.ini:1"), std::string::npos) << c.error;
+  c = gasp::graphslam::checkGraphSlamIni(writeFile(dir + "/section.ini", "[CGaspOdometryNRD\n"));
+  EXPECT_NE(c.error.find("section.ini:1: a section needs [NAME]"), std::string::npos) << c.error;
+  EXPECT_THROW(gasp::graphslam::checkGraphSlamIni(dir + "/missing.ini"), gasp::Error);
 }
 
 TEST(GraphSlamDeciders, ReadTheirIniSectionsStrictly) {

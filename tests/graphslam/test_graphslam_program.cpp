@@ -135,6 +135,10 @@ TEST(GaspGraphSlamProgram, BadInputGivesExitCodesAndReasons) {
   EXPECT_EQ(run.exit_code, 2) << run.output;
   run = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --ini " + out + "/missing.ini");
   EXPECT_EQ(run.exit_code, 1) << run.output;
+  std::ofstream(out + "/garbage.ini") << "not an ini file\n";
+  run = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --ini " + out + "/garbage.ini");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "garbage.ini:1: neither a [section]")) << run.output;
   std::ofstream(out + "/bad.ini") << "[CGaspLoopClosureERD]\nsearch_radius = 0.5\n";
   run = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --ini " + out + "/bad.ini");
   EXPECT_EQ(run.exit_code, 1) << run.output;

@@ -167,6 +167,36 @@ TEST(ObservationConversion, BadInputsThrow) {
   obs->cameraParams.ncols = 640;
   EXPECT_THROW(gasp::frameFromObservation(*obs), gasp::Error);  // size disagrees with K
 
+  // What would otherwise pass as a quiet NaN or a hang: a NaN or absurd sensorPose, a principal
+  // point far off the image, an intensity image of another size than its camera.
+  const auto message = [](const mrpt::obs::CObservation3DRangeScan& o) {
+    try {
+      gasp::frameFromObservation(o, "scan");
+    } catch (const gasp::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  {
+    auto bad = gasp::observationFromFrame(gasp::test::syntheticFrame(0.0));
+    bad->sensorPose.x(std::nan(""));
+    EXPECT_NE(message(*bad).find("sensorPose is not finite"), std::string::npos) << message(*bad);
+    bad->sensorPose.x(1e20);
+    EXPECT_NE(message(*bad).find("sensorPose"), std::string::npos) << message(*bad);
+  }
+  {
+    auto bad = gasp::observationFromFrame(gasp::test::syntheticFrame(0.0));
+    bad->cameraParams.setIntrinsicParamsFromValues(bad->cameraParams.fx(), bad->cameraParams.fy(), 1e12,
+                                                  bad->cameraParams.cy());
+    EXPECT_NE(message(*bad).find("principal point"), std::string::npos) << message(*bad);
+  }
+  {
+    auto bad = gasp::observationFromFrame(gasp::test::syntheticFrame(0.0));
+    ASSERT_TRUE(bad->hasIntensityImage);
+    bad->cameraParamsIntensity.ncols *= 2;
+    EXPECT_NE(message(*bad).find("intensity image is"), std::string::npos) << message(*bad);
+  }
+
   gasp::RgbdFrame f = gasp::test::syntheticFrame(0.0);
   f.depth_intrinsics.width = 65;
   EXPECT_THROW(gasp::observationFromFrame(f), gasp::Error);

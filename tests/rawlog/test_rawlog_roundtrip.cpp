@@ -111,6 +111,19 @@ TEST(RawlogRoundTrip, ExternalStorageResolvedRelativeToTheRawlogNotTheWorkingDir
   EXPECT_TRUE(gasp::test::sameMat(frames[0].depth_raw, f.depth_raw));
   EXPECT_TRUE(gasp::test::sameMat(frames[0].rgb, f.rgb));
 
+  // A cut or damaged external file (MRPT loads what it can of it) gives a gasp::Error naming it.
+  const std::string bin = dir + "/b/cam_Images/RGBD_000000_depth.bin";
+  fs::copy_file(bin, dir + "/whole.bin");
+  fs::resize_file(bin, fs::file_size(bin) / 2);
+  try {
+    gasp::readRawlogFrames(dir + "/b/cam.rawlog");
+    FAIL() << "expected gasp::Error";
+  } catch (const gasp::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("RGBD_000000_depth.bin"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+  }
+  fs::copy_file(dir + "/whole.bin", bin, fs::copy_options::overwrite_existing);
+  EXPECT_EQ(gasp::readRawlogFrames(dir + "/b/cam.rawlog").size(), 1u);
   // A missing external file gives a gasp::Error naming it.
   fs::remove(dir + "/b/cam_Images/RGBD_000000_depth.bin");
   try {

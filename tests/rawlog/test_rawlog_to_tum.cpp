@@ -3,6 +3,7 @@
 // is an error that says what is wrong.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -11,6 +12,7 @@
 #include "gasp/core/error.h"
 #include "gasp/core/tum_dataset.h"
 #include "gasp/core/tum_trajectory.h"
+#include "gasp/rawlog/rawlog_reader.h"
 #include "gasp/rawlog/rawlog_to_tum.h"
 #include "gasp/rawlog/rawlog_writer.h"
 #include "gasp/rawlog/tum_to_rawlog.h"
@@ -144,6 +146,32 @@ TEST(RawlogToTum, BadInputIsAnErrorThatSaysWhat) {
   EXPECT_NE(errorMessage([&] { gasp::convertRawlogToTum(dir + "/two.rawlog", dir + "/c", bad_gt); }).find("bad_gt.txt"),
             std::string::npos);
   EXPECT_FALSE(fs::exists(dir + "/c/depth.txt"));
+  // Files of the folder that exist already are not overwritten (nor removed on failure).
+  const auto first = gasp::RawlogReader(dir + "/two.rawlog").next();
+  char name[64];
+  std::snprintf(name, sizeof name, "%.6f.png", first->timestamp);
+  fs::create_directories(dir + "/e/depth");
+  std::ofstream(dir + "/e/depth/" + name) << "mine";
+  EXPECT_NE(errorMessage([&] { gasp::convertRawlogToTum(dir + "/two.rawlog", dir + "/e"); }).find("exists already"),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(dir + "/e/depth/" + name));
+  // Scans out of time order, or without any depth, are errors.
+  {
+    gasp::RawlogWriter writer(dir + "/backwards.rawlog");
+    writer.write(gasp::test::syntheticFrame(2.0));
+    writer.write(gasp::test::syntheticFrame(1.0));
+  }
+  EXPECT_NE(errorMessage([&] { gasp::convertRawlogToTum(dir + "/backwards.rawlog", dir + "/f"); }).find("not after the previous"),
+            std::string::npos);
+  {
+    gasp::RawlogWriter writer(dir + "/nodepth.rawlog");
+    gasp::RgbdFrame blank = gasp::test::syntheticFrame(1.0);
+    blank.depth_raw.setTo(0);
+    blank.depth_m.setTo(0);
+    writer.write(blank);
+  }
+  EXPECT_NE(errorMessage([&] { gasp::convertRawlogToTum(dir + "/nodepth.rawlog", dir + "/g"); }).find("none of the 1 scans"),
+            std::string::npos);
   // max_frames.
   gasp::RawlogToTumOptions one;
   one.max_frames = 1;

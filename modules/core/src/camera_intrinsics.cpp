@@ -25,8 +25,13 @@ void CameraIntrinsics::validate() const {
                 "x" + std::to_string(height));
   if (!positive(fx) || !positive(fy))
     throw Error("camera intrinsics: focal lengths must be positive and finite");
-  if (!std::isfinite(cx) || !std::isfinite(cy))
-    throw Error("camera intrinsics: principal point must be finite");
+  // Within an image size of the image: further out the pixels' rays are nearly parallel to the
+  // image plane, and the segmentation's lattice would grow without bound.
+  if (!(cx >= -width && cx <= 2.0 * width) || !(cy >= -height && cy <= 2.0 * height))
+    throw Error("camera intrinsics: the principal point must lie within an image size of the image, got (" +
+                std::to_string(cx) + ", " + std::to_string(cy) + ")");
+  for (const double d : distortion)
+    if (!std::isfinite(d)) throw Error("camera intrinsics: the distortion coefficients must be finite");
 }
 
 CameraIntrinsics CameraIntrinsics::tumFreiburg1() {

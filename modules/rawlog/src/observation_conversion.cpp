@@ -5,7 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <exception>
+#include <fstream>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <string>
@@ -14,6 +17,7 @@
 #include "gasp/core/error.h"
 #include "gasp/core/undistortion.h"
 #include "gasp/rawlog/frame_convention.h"
+#include "gzip_content.h"
 
 namespace gasp {
 namespace {
@@ -138,6 +142,22 @@ RgbdFrame frameFromObservation(const mrpt::obs::CObservation3DRangeScan& obs,
   if (!obs.hasRangeImage)
     throw Error(what + ": CObservation3DRangeScan '" + obs.sensorLabel +
                 "' has no range image (hasRangeImage = false); GASP needs depth");
+  if (obs.rangeImage_isExternallyStored()) {
+    // MRPT loads what it can of a cut or damaged file: its header (rows, cols as uint32) must be
+    // followed by all their uint16 values, and the gzip stream must be whole.
+    const std::string file = obs.rangeImage_getExternalStorageFileAbsolutePath("");
+    if (std::ifstream(file).good()) {
+      const auto content = detail::readGzipContent(file, what + ": external range image", 8);
+      std::uint32_t rows = 0, cols = 0;
+      if (content.head.size() == 8) {
+        std::memcpy(&rows, content.head.data(), 4);
+        std::memcpy(&cols, content.head.data() + 4, 4);
+      }
+      if (content.head.size() < 8 || content.length != 8 + 2ull * rows * cols)
+        throw Error(what + ": external range image '" + file + "' is cut or damaged: " + std::to_string(content.length) +
+                    " bytes for a " + std::to_string(rows) + " x " + std::to_string(cols) + " image");
+    }
+  }
   try {
     obs.load();
   } catch (const std::exception& e) {
@@ -161,7 +181,11 @@ RgbdFrame frameFromObservation(const mrpt::obs::CObservation3DRangeScan& obs,
     throw Error(what + ": range image is " + std::to_string(w) + "x" + std::to_string(h) +
                 " but cameraParams say " + std::to_string(f.depth_intrinsics.width) + "x" +
                 std::to_string(f.depth_intrinsics.height));
-  f.depth_intrinsics.validate();
+  try {
+    f.depth_intrinsics.validate();
+  } catch (const Error& e) {
+    throw Error(what + ": cameraParams: " + e.what());
+  }
 
   const cv::Mat raw = rangeImageToMat(obs.rangeImage);
   const double units_per_metre = unitsPerMetre(obs.rangeUnits);
@@ -177,6 +201,17 @@ RgbdFrame frameFromObservation(const mrpt::obs::CObservation3DRangeScan& obs,
   if (obs.hasIntensityImage) {
     f.rgb = intensityToBgr(obs.intensityImage, what);
     f.rgb_intrinsics = fromMrptCamera(obs.cameraParamsIntensity);
+    if (!f.rgb.empty() && (f.rgb.cols != f.rgb_intrinsics.width || f.rgb.rows != f.rgb_intrinsics.height))
+      throw Error(what + ": intensity image is " + std::to_string(f.rgb.cols) + "x" + std::to_string(f.rgb.rows) +
+                  " but cameraParamsIntensity say " + std::to_string(f.rgb_intrinsics.width) + "x" +
+                  std::to_string(f.rgb_intrinsics.height));
+  }
+  // A pose with NaN would compare unequal to itself ("another sensorPose than the first").
+  for (const auto* pose : {&obs.sensorPose, &obs.relativePoseIntensityWRTDepth}) {
+    const auto m = pose->getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>().asEigen();
+    if (!m.allFinite() || m.block<3, 1>(0, 3).cwiseAbs().maxCoeff() > 1e8)
+      throw Error(what + ": " + (pose == &obs.sensorPose ? "sensorPose" : "relativePoseIntensityWRTDepth") +
+                  " is not finite or beyond 1e8 m");
   }
   const Isometry3 T_mrpt_optical = mrptCameraFromOptical();
   f.T_depth_rgb = T_mrpt_optical.inverse() * fromCPose3D(obs.relativePoseIntensityWRTDepth);

@@ -2,14 +2,13 @@
 
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/serialization/CArchive.h>
-#include <zlib.h>
 
-#include <array>
 #include <cstdint>
 #include <exception>
 #include <filesystem>
 
 #include "gasp/core/error.h"
+#include "gzip_content.h"
 
 namespace gasp {
 
@@ -28,25 +27,6 @@ std::string mrptMessage(const std::exception& e) {
   auto begin = what.find_first_not_of(' ', m + 8);
   if (begin == std::string::npos) begin = m + 8;
   return what.substr(begin, what.find('\n', begin) - begin);
-}
-
-/// The length of the file's content (uncompressed, for gzip; gzread reads plain files as they
-/// are), read through zlib to the end so that a damaged or cut gzip stream (CRC error, no
-/// trailer) is an error: CFileGZInputStream reports those as the end of the file.
-std::uint64_t contentLength(const std::string& path) {
-  gzFile f = gzopen(path.c_str(), "rb");
-  if (!f) throw Error("rawlog '" + path + "': cannot open the file");
-  std::array<char, 1 << 16> buffer{};
-  std::uint64_t total = 0;
-  int n = 0;
-  while ((n = gzread(f, buffer.data(), static_cast<unsigned>(buffer.size()))) > 0) total += static_cast<std::uint64_t>(n);
-  int code = Z_OK;
-  const std::string message = gzerror(f, &code);  // zlib also ends a read quietly at a cut trailer
-  const int closed = gzclose(f);                  // ... and reports a bad checksum here
-  if (n < 0 || code != Z_OK || closed != Z_OK)
-    throw Error("rawlog '" + path + "': corrupt or truncated gzip stream" +
-                (message.empty() || code == Z_OK ? std::string(" (checksum or trailer)") : ": " + message));
-  return total;
 }
 
 /// "X" of MRPT's "Stored object has class 'X' which is not registered!", or "".
@@ -95,7 +75,7 @@ mrpt::serialization::CSerializable::Ptr RawlogObjects::next() {
       // The end, if the object was to start where the content ends. MRPT also throws "EOF" for
       // an object cut short, and CFileGZInputStream ends early at a damaged gzip stream.
       impl_->at_end = true;
-      const std::uint64_t length = contentLength(path_);  // throws for a damaged gzip stream
+      const std::uint64_t length = detail::readGzipContent(path_, "rawlog").length;  // throws for a damaged gzip stream
       if (start != length)
         throw Error("rawlog '" + path_ + "': corrupt or truncated stream after " + std::to_string(objects_read_) +
                     " objects: the next object, at byte " + std::to_string(start) + " of " + std::to_string(length) +

@@ -77,6 +77,7 @@ RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std:
   created.dir(root);
   RawlogToTumSummary s;
   std::set<std::string> stamps;
+  double last_timestamp = 0.0;
   std::ofstream depth_txt, rgb_txt;
   constexpr double kMaxUnits = std::numeric_limits<std::uint16_t>::max();  // depthToRaw() writes 0 beyond
   while (auto f = reader.next()) {
@@ -103,12 +104,23 @@ RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std:
     }
     const std::string t = stamp(f->timestamp);
     if (!stamps.insert(t).second) throw Error(rawlog_path + ": two scans at timestamp " + t);
+    // TUM's lists are in time order (GASP's readers refuse anything else).
+    if (s.frames_written > 0 && !(f->timestamp > last_timestamp))
+      throw Error(rawlog_path + ": scan " + std::to_string(reader.scansRead() - 1) + " at " + t +
+                  " is not after the previous one: a TUM folder's frames are in time order");
+    last_timestamp = f->timestamp;
+    std::size_t written_pixels = 0;
     for (int r = 0; r < f->depth_m.rows; ++r)
       for (int c = 0; c < f->depth_m.cols; ++c) {
         const float z = f->depth_m.at<float>(r, c);
-        s.pixels_beyond_range += isValidDepth(z) && std::round(z * kTumDepthUnitsPerMetre) > kMaxUnits;
+        const bool beyond = isValidDepth(z) && std::round(z * kTumDepthUnitsPerMetre) > kMaxUnits;
+        s.pixels_beyond_range += beyond;
+        written_pixels += isValidDepth(z) && !beyond;
       }
+    s.frames_without_depth += written_pixels == 0;
     s.sensor_pose_dropped += !f->T_robot_camera.isApprox(mrptCameraFromOptical(), 1e-12);
+    for (const fs::path& p : {root / "depth" / (t + ".png"), root / "rgb" / (t + ".png")})
+      if (fs::exists(p)) throw Error("'" + p.string() + "' exists already: write into a new folder");
     created.file(root / "depth" / (t + ".png"));
     saveDepth((root / "depth" / (t + ".png")).string(), f->depth_m, kTumDepthUnitsPerMetre);
     depth_txt << t << " depth/" << t << ".png\n";
@@ -138,6 +150,9 @@ RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std:
     throw Error(rawlog_path + ": no CObservation3DRangeScan" +
                 (options.sensor_label.empty() ? std::string() : " with sensor label '" + options.sensor_label + "'") +
                 " (other objects: " + reader.skippedSummary() + ")");
+  if (s.frames_without_depth == s.frames_written)
+    throw Error(rawlog_path + ": none of the " + std::to_string(s.frames_written) +
+                " scans has a depth GASP can write (0 to 13.107 m; rangeUnits and the range image give none)");
   depth_txt.close();
   if (!depth_txt) throw Error("error while writing '" + (root / "depth.txt").string() + "'");
   if (rgb_txt.is_open()) {

@@ -36,6 +36,7 @@ struct RawlogToTumSummary {
   std::size_t rgb_not_registered = 0;      ///< colour images left out: not registered to the depth
   std::size_t frames_other_sensor = 0;     ///< scans of another sensorLabel, skipped
   std::size_t pixels_beyond_range = 0;     ///< depth pixels beyond 13.107 m, written as 0 (no data)
+  std::size_t frames_without_depth = 0;    ///< frames written with no depth pixel at all
   /// Scans whose sensorPose is not the identity: their robot frame is not kept (the folder's
   /// poses are the camera's).
   std::size_t sensor_pose_dropped = 0;
@@ -48,8 +49,9 @@ struct RawlogToTumSummary {
 /// Writes the folder (created if missing; it must not already hold a depth.txt, rgb.txt,
 /// groundtruth.txt or intrinsics.txt). On failure what this call wrote is removed again. Throws
 /// gasp::Error: unreadable rawlog, no 3D range scan (of the label), several labels without
-/// sensor_label, depth cameras that change within the sensor, two scans with the same timestamp,
-/// an unreadable trajectory, an unwritable folder.
+/// sensor_label, depth cameras that change within the sensor, two scans with the same timestamp
+/// or out of time order, no scan with any depth to write, a file of the folder that exists
+/// already, an unreadable trajectory, an unwritable folder.
 RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std::string& out_dir,
                                       const RawlogToTumOptions& options = {});
 
