@@ -132,6 +132,8 @@ int main(int argc, char** argv) {
 
   try {
     if (!mrpt::system::fileExists(rawlog_path)) throw gasp::Error("cannot open rawlog " + rawlog_path);
+    const std::string missing = gasp::tools::missingOutputFolder({{"--out", out_path}, {"--graph", graph_path}});
+    if (!missing.empty()) throw gasp::Error(missing);  // before the run, not after it
     if (!ini_path.empty() && !mrpt::system::fileExists(ini_path)) throw gasp::Error("cannot open configuration " + ini_path);
     if (!ini_path.empty()) {
       if (std::filesystem::is_directory(ini_path)) throw gasp::Error("configuration " + ini_path + " is a folder");

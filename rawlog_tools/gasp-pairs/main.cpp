@@ -216,7 +216,7 @@ int main(int argc, char** argv) {
   app.add_option("--pairs-csv", pairs_csv_path, "write one line per pair and method")->check(gasp::tools::nonEmpty());
   app.add_option("--max-pairs", max_pairs, "at most this many pairs per skip (0 = all)")->check(gasp::tools::atLeast(0));
   app.add_option("--picture", picture_pair, "also draw the pair I,J for every method (not scored)")
-      ->delimiter(',')->expected(2);
+      ->delimiter(',')->expected(2)->check(gasp::tools::atLeast(0));
   app.add_option("--picture-prefix", picture_prefix, "pictures go to PREFIX<method>.<format>")->capture_default_str();
   std::string picture_format = "png";
   app.add_option("--picture-format", picture_format, "png or jpg (smaller files)")
@@ -224,17 +224,17 @@ int main(int argc, char** argv) {
   bool pictures_only = false;
   app.add_flag("--pictures-only", pictures_only, "draw the --picture pair and stop (no benchmark)");
   gasp::PairParams base;
-  app.add_option("--k", base.association.feature_sets.neighbourhood.k, "association neighbourhood size (0 = full view)")->capture_default_str();
+  app.add_option("--k", base.association.feature_sets.neighbourhood.k, "association neighbourhood size (0 = full view)")->capture_default_str()->check(gasp::tools::atLeast(0));
   double area_cm2 = base.superpixels.target_patch_area_m2 * 1e4;
   app.add_option("--area-cm2", area_cm2, "GASP: target patch area [cm^2]")->capture_default_str()->check(gasp::tools::above(0));
   app.add_flag("--step-borders", base.superpixels.step_borders, "GASP: segment with the step borders (SuperpixelParams::step_borders; off by default)");
-  app.add_option("--candidates", base.association.candidates, "KD-tree candidates per patch (C)")->capture_default_str();
+  app.add_option("--candidates", base.association.candidates, "KD-tree candidates per patch (C)")->capture_default_str()->check(gasp::tools::atLeast(1));
   app.add_option("--lambda", base.association.lambda, "gating on the normalised edit distance")->capture_default_str();
   app.add_option("--distinctiveness", base.association.distinctiveness_ratio,
                  "ratio test: keep a best partner only when its D_hat < R x the second best (1 = off)")
       ->capture_default_str();
   app.add_flag("!--no-mutual", base.association.mutual_check, "keep one-way best partners too (no mutual check)");
-  app.add_option("--min-inliers", base.pose.ransac.min_inliers, "RANSAC: fewer inliers give no estimate (all methods)")->capture_default_str();
+  app.add_option("--min-inliers", base.pose.ransac.min_inliers, "RANSAC: fewer inliers give no estimate (all methods)")->capture_default_str()->check(gasp::tools::atLeast(3));
   app.add_option("--one-way-max-violation", base.one_way_max_violation_ratio,
                  "GASP: visibility check violation limit for poses from the one-way fallback")->capture_default_str()->check(CLI::Range(0.0, 1.0));
   app.add_option("--max-occluded", base.visibility.max_occluded_ratio,
@@ -250,7 +250,7 @@ int main(int argc, char** argv) {
   app.add_option("--wide-edge-gates", base.wide_edge_gate_factor,
                  "GASP: second refinement, when few edge points are paired, with edge gates this many times wider (0 = none, else >= 1)")->capture_default_str()->check(CLI::NonNegativeNumber);
   app.add_option("--edge-step", base.edges.pixel_step, "GASP: one source edge pixel per (N/2)^2 image block")->capture_default_str()->check(gasp::tools::above(0));
-  app.add_option("--dense-rounds", base.dense_rounds, "dense projective refinement rounds (0 = none)")->capture_default_str();
+  app.add_option("--dense-rounds", base.dense_rounds, "dense projective refinement rounds (0 = none)")->capture_default_str()->check(gasp::tools::atLeast(0));
   app.add_option("--dense-max-rounds", base.dense_max_rounds,
                  "at most this many dense rounds in all: after --dense-rounds, more at the last gate until the pose stops moving (<= --dense-rounds: exactly --dense-rounds)")
       ->capture_default_str()
@@ -340,6 +340,11 @@ int main(int argc, char** argv) {
     for (const auto& m : methods)
       if (std::find(unique.begin(), unique.end(), m) == unique.end()) unique.push_back(m);
     methods = unique;
+  }
+  if (const std::string missing = gasp::tools::missingOutputFolder({{"--csv", csv_path}, {"--pairs-csv", pairs_csv_path}});
+      !missing.empty()) {
+    std::cerr << "error: " << missing << '\n';  // before the benchmark, not after it
+    return 2;
   }
   try {
     base.superpixels.target_patch_area_m2 = area_cm2 * 1e-4;

@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
   bool no_undistort = false;
   app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored");
   app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: ros for --depth; the folder's for --tum)");
-  app.add_option("--depth-scale", depth_scale, "raw depth units per metre")->capture_default_str();
+  app.add_option("--depth-scale", depth_scale, "raw depth units per metre")->capture_default_str()->check(gasp::tools::above(0));
   app.add_option("--area-cm2", area_cm2, "target patch area [cm^2] (default from SuperpixelParams)")
       ->check(gasp::tools::above(0));
   bool step_borders = false;

@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "gasp/core/error.h"
+#include "gasp/sim/camera_path.h"
 #include "gasp/sim/scene.h"
 #include "gasp/sim/writer.h"
 #include "cli.h"
@@ -21,12 +22,15 @@ int main(int argc, char** argv) {
                "ground truth as a TUM RGB-D folder"};
   app.add_option("--scene", options.scene, "Scene name (see --list-scenes)")->capture_default_str();
   app.add_option("--out", out_dir, "Output folder (created if needed)");
-  app.add_option("--frames", options.frames, "Number of frames (8 to 20000)")->capture_default_str();
+  app.add_option("--frames", options.frames, "Number of frames (8 to 20000)")
+      ->capture_default_str()
+      ->check(gasp::tools::within(gasp::sim::kMinPathFrames, gasp::sim::kMaxPathFrames));
   app.add_option("--seed", options.seed, "Noise seed")->capture_default_str()->check(gasp::tools::atLeast(0));
   app.add_option("--rate", options.rate_hz,
                  "Frame rate [Hz]: the timestamps' spacing (the path is the same; at 30 Hz the 60-frame path moves up to "
                  "3 m/s and 6 rad/s, at 5 Hz a sixth of that); 0.001 to 10000")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(gasp::tools::within(gasp::sim::kMinRateHz, gasp::sim::kMaxRateHz));
   app.add_flag("--no-noise", no_noise, "Exact ray-cast depth: no noise, quantisation or dropouts");
   app.add_flag("--list-scenes", list_scenes, "List the scenes and exit");
   if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;

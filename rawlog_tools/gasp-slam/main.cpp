@@ -61,13 +61,19 @@ int main(int argc, char** argv) {
   app.add_option("--graph", graph_path, "pose graph to write: odometry and loop-closure edges at the optimised poses (MRPT VERTEX3/EDGE3, robot frames)");
   app.add_option("--simplemap", simplemap_path, "the keyframes' scans at their optimised poses as an MRPT simple map (for observations2map)");
   app.add_option("--cloud", cloud_path, "a point map of the keyframes at their optimised poses (PLY, one point per voxel)");
-  app.add_option("--voxel", voxel_m, "voxel size of --cloud [m], 0.001 to 10")->capture_default_str();
-  app.add_option("--cloud-max-depth", cloud_max_depth_m, "depth beyond which points are left out of --cloud [m]")->capture_default_str();
+  app.add_option("--voxel", voxel_m, "voxel size of --cloud [m], 0.001 to 10")
+      ->capture_default_str()
+      ->check(gasp::tools::within(gasp::kMinVoxelM, gasp::kMaxVoxelM));
+  app.add_option("--cloud-max-depth", cloud_max_depth_m, "depth beyond which points are left out of --cloud [m]")
+      ->capture_default_str()
+      ->check(gasp::tools::above(0));
   app.add_option("--frames-csv", frames_csv, "one line per frame: tracked, keyframe, reference, patches, inliers, times, reason");
   app.add_option("--loops-csv", loops_csv, "one line per loop-closure registration: keyframes, accepted, inliers, gate chi-square, reason");
   gasp::tools::addOdometryOptions(app, params.odometry);
   app.add_flag("--no-loop-closures", no_loops, "odometry only (no loop closures, no optimisation)");
-  app.add_option("--search-radius", params.loop.search_radius_m, "loop-closure candidates within this distance [m]")->capture_default_str();
+  app.add_option("--search-radius", params.loop.search_radius_m, "loop-closure candidates within this distance [m]")
+      ->capture_default_str()
+      ->check(gasp::tools::above(0));
   app.add_option("--loop-candidates", params.loop.max_candidates, "registrations per new keyframe")
       ->capture_default_str()
       ->check(gasp::tools::atLeast(0));

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "gasp/core/error.h"
@@ -80,6 +81,30 @@ TEST(RelocalisationPrediction, ThroughTheOdometryOfBothPieces) {
   EXPECT_THROW(gasp::predictThroughRelocalisation(tree, 12, singular, 2, 8), gasp::Error);
 }
 
+TEST(RelocalisationPrediction, EqualsTheCompositionAlongTheTreeTheVoteCompletes) {
+  // With the vote as one more edge the odometry stays a tree (it ends in a piece's first frame),
+  // so composeAlongTree gives the same pose and covariance -- either way round.
+  auto tree = odometry();
+  for (std::size_t i = 0; i < tree.size(); ++i)  // unequal covariances, so a missing adjoint shows
+    tree[i].information = gasp::Matrix6d(gasp::Vector6d(1e4, 2e4, 5e3, 1e5, 3e4, 2e5).asDiagonal()) * (1.0 + i);
+  for (const PoseConstraint& h : {constraint(1, 5), constraint(7, 0)}) {
+    PoseConstraint vote = h;
+    vote.information = gasp::Matrix6d(gasp::Vector6d(4e3, 1e4, 2e4, 5e4, 1e5, 7e4).asDiagonal());
+    auto with_vote = tree;
+    with_vote.push_back(vote);
+    for (const auto& [from, to] : {std::pair<std::size_t, std::size_t>{2, 8}, {8, 3}, {4, 9}}) {
+      const auto p = gasp::predictThroughRelocalisation(tree, 12, vote, from, to);
+      const auto q = gasp::composeAlongTree(with_vote, 12, from, to);
+      ASSERT_TRUE(p && q) << h.from << " -> " << h.to << ", " << from << " -> " << to;
+      EXPECT_TRUE(p->T_a_b.isApprox(q->T_a_b, 1e-12));
+      EXPECT_TRUE(p->covariance.isApprox(q->covariance, 1e-9))
+          << h.from << " -> " << h.to << ", " << from << " -> " << to << "\n"
+          << p->covariance << "\n\n"
+          << q->covariance;
+    }
+  }
+}
+
 TEST(RelocalisationVotes, TwoAgreeingVotesJoinAndAWrongOneIsLeftOut) {
   const auto tree = odometry();
   const auto roots = gasp::pieceRoots(12, tree);  // 0, 5, 10
@@ -138,6 +163,13 @@ TEST(RelocalisationVotes, VotesTheOtherWayRoundAndTheNumberNeeded) {
   EXPECT_FALSE(three.offer(constraint(2, 7), 1, tree, 12, roots).join);
   EXPECT_EQ(three.offer(constraint(4, 9), 2, tree, 12, roots).votes.size(), 3u);
   EXPECT_THROW(three.offer(constraint(4, 30), 3, tree, 12, roots), gasp::Error);
+  // A vote whose information is not positive definite is refused, not queued.
+  PoseConstraint singular = constraint(3, 8);
+  singular.information.setZero();
+  const auto refused = three.offer(singular, 4, tree, 12, roots);
+  EXPECT_FALSE(refused.join);
+  EXPECT_NE(refused.reason.find("not positive definite"), std::string::npos) << refused.reason;
+  EXPECT_TRUE(three.waiting().empty());
   p.relocalisation_agreeing = 0;
   EXPECT_THROW(gasp::validate(p), gasp::Error);
 }

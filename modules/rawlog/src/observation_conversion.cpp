@@ -143,8 +143,9 @@ RgbdFrame frameFromObservation(const mrpt::obs::CObservation3DRangeScan& obs,
     throw Error(what + ": CObservation3DRangeScan '" + obs.sensorLabel +
                 "' has no range image (hasRangeImage = false); GASP needs depth");
   if (obs.rangeImage_isExternallyStored()) {
-    // MRPT loads what it can of a cut or damaged file: its header (rows, cols as uint32) must be
-    // followed by all their uint16 values, and the gzip stream must be whole.
+    // MRPT loads what it can of a cut or damaged file. The gzip stream must be whole; in MRPT 2's
+    // layout (rows, cols as uint32, then the uint16 values; older rawlogs store a serialized
+    // matrix, `rawlog-edit --txt-externals` text) all rows x cols values must be there.
     const std::string file = obs.rangeImage_getExternalStorageFileAbsolutePath("");
     if (std::ifstream(file).good()) {
       const auto content = detail::readGzipContent(file, what + ": external range image", 8);
@@ -153,7 +154,8 @@ RgbdFrame frameFromObservation(const mrpt::obs::CObservation3DRangeScan& obs,
         std::memcpy(&rows, content.head.data(), 4);
         std::memcpy(&cols, content.head.data() + 4, 4);
       }
-      if (content.head.size() < 8 || content.length != 8 + 2ull * rows * cols)
+      const bool mrpt2_layout = rows == obs.cameraParams.nrows && cols == obs.cameraParams.ncols;
+      if (mrpt2_layout && content.length != 8 + 2ull * rows * cols)
         throw Error(what + ": external range image '" + file + "' is cut or damaged: " + std::to_string(content.length) +
                     " bytes for a " + std::to_string(rows) + " x " + std::to_string(cols) + " image");
     }

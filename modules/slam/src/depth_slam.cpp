@@ -71,6 +71,7 @@ void DepthSlam::closeLoops(std::size_t k) {
       if (attempts_.back().accepted) {
         loop_closures_.push_back(c);
         loop_attempt_.push_back(attempts_.size() - 1);
+        loop_group_.push_back(0);
         taken = true;
       }
     }
@@ -96,11 +97,13 @@ void DepthSlam::closeLoops(std::size_t k) {
       const Isometry3 T_move = roots[k] == moved ? T_fix : T_fix.inverse();
       for (std::size_t i = 0; i < n; ++i)
         if (roots[i] == moved) T_world_frame_[i] = T_move * T_world_frame_[i];
+      ++vote_groups_;
       for (const RelocalisationVotes::Vote& v : d.votes) {
         attempts_[v.attempt].accepted = true;
         attempts_[v.attempt].reason.clear();
         loop_closures_.push_back(v.constraint);
         loop_attempt_.push_back(v.attempt);
+        loop_group_.push_back(vote_groups_);
       }
       taken = true;
       roots = pieceRoots(n, constraints());
@@ -134,12 +137,28 @@ void DepthSlam::optimise() {
       if (chi2 > worst_chi2) worst = j, worst_chi2 = chi2;
     }
     if (worst == loop_closures_.size()) break;
-    LoopClosureAttempt& a = attempts_[loop_attempt_[worst]];
-    a.accepted = false;
-    a.reason = formatted("dropped: the optimised graph contradicts it (chi-square %.1f > %.2f)", worst_chi2,
-                         params_.loop.gate_chi2);
-    loop_closures_.erase(loop_closures_.begin() + static_cast<std::ptrdiff_t>(worst));
-    loop_attempt_.erase(loop_attempt_.begin() + static_cast<std::ptrdiff_t>(worst));
+    std::vector<std::size_t> drop{worst};
+    // The votes that joined two pieces go together once fewer than relocalisation_agreeing are
+    // left: one of them alone would be the unchecked join the votes exist to prevent.
+    if (const std::size_t group = loop_group_[worst]; group != 0) {
+      std::vector<std::size_t> rest;
+      for (std::size_t j = 0; j < loop_closures_.size(); ++j)
+        if (j != worst && loop_group_[j] == group) rest.push_back(j);
+      if (rest.size() < params_.loop.relocalisation_agreeing) drop.insert(drop.end(), rest.begin(), rest.end());
+    }
+    for (const std::size_t j : drop) {
+      LoopClosureAttempt& a = attempts_[loop_attempt_[j]];
+      a.accepted = false;
+      a.reason = j == worst ? formatted("dropped: the optimised graph contradicts it (chi-square %.1f > %.2f)",
+                                        worst_chi2, params_.loop.gate_chi2)
+                            : "dropped: a vote it joined two pieces with was contradicted, too few are left";
+    }
+    std::sort(drop.rbegin(), drop.rend());  // erase from the back, so the positions stay valid
+    for (const std::size_t j : drop) {
+      loop_closures_.erase(loop_closures_.begin() + static_cast<std::ptrdiff_t>(j));
+      loop_attempt_.erase(loop_attempt_.begin() + static_cast<std::ptrdiff_t>(j));
+      loop_group_.erase(loop_group_.begin() + static_cast<std::ptrdiff_t>(j));
+    }
   }
   optimisation_ms_ += msSince(t0);
 }

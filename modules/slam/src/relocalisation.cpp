@@ -72,6 +72,12 @@ RelocalisationVotes::Decision RelocalisationVotes::offer(const PoseConstraint& c
   if (c.from >= roots.size() || c.to >= roots.size())
     throw Error("relocalisation " + std::to_string(c.from) + " -> " + std::to_string(c.to) + ": a frame out of range");
   Decision d;
+  const Eigen::LDLT<Matrix6d> ldlt(c.information);
+  if (!c.information.allFinite() || ldlt.info() != Eigen::Success || !ldlt.isPositive() ||
+      !(ldlt.vectorD().array() > 0.0).all()) {
+    d.reason = "its information is not positive definite: not a vote";
+    return d;
+  }
   const std::size_t needed = params_.relocalisation_agreeing;
   std::vector<std::size_t> agreeing;  // positions in waiting_
   if (needed > 1) {

@@ -27,9 +27,13 @@ IniCheck checkGraphSlamIni(const std::string& path) {
   if (!in) throw Error("cannot open configuration " + path);
   IniCheck check;
   std::string line;
+  bool continued = false;  // the previous line ended with '\': this one belongs to it
   for (int n = 1; std::getline(in, line); ++n) {
     const std::string t = trimmed(line);
-    if (t.empty() || t[0] == '#' || t[0] == ';' || t.rfind("//", 0) == 0) continue;
+    const bool was_continued = continued;
+    continued = !t.empty() && t.back() == '\\';
+    // MRPT's CConfigFile also takes "@define NAME VALUE" lines and lines continued with '\'.
+    if (was_continued || t.empty() || t[0] == '#' || t[0] == ';' || t[0] == '@' || t.rfind("//", 0) == 0) continue;
     if (t.front() == '[') {
       if (t.back() != ']' || t.size() < 3) {
         if (check.error.empty()) check.error = path + ":" + std::to_string(n) + ": a section needs [NAME], got '" + t + "'";

@@ -71,6 +71,8 @@ class DepthSlam {
   std::map<std::size_t, DepthView> keyframe_views_;
   std::vector<PoseConstraint> loop_closures_;
   std::vector<std::size_t> loop_attempt_;       ///< for each loop closure, its index in attempts_
+  std::vector<std::size_t> loop_group_;         ///< for each loop closure, its votes' group (0: none)
+  std::size_t vote_groups_ = 0;
   std::vector<LoopClosureAttempt> attempts_;
   RelocalisationVotes votes_;                   ///< relocalisations waiting for agreement
   std::size_t optimisations_ = 0;
