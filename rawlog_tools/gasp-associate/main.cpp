@@ -72,15 +72,17 @@ int main(int argc, char** argv) {
   app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored")->excludes(rawlog);
   app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: the folder's; ros for PNGs)")->excludes(rawlog);
   app.add_option("--out", out_path, "association picture (default: associations_I_J.png, or associations.png for PNGs)");
-  app.add_option("--k", params.association.feature_sets.neighbourhood.k, "neighbourhood size (0 = full view)")->capture_default_str();
-  app.add_option("--candidates", params.association.candidates, "KD-tree candidates per patch (C)")->capture_default_str();
-  app.add_option("--lambda", params.association.lambda, "gating on the normalised edit distance")->capture_default_str();
+  app.add_option("--k", params.association.feature_sets.neighbourhood.k, "neighbourhood size (0 = full view)")->capture_default_str()->check(gasp::tools::atLeast(0));
+  app.add_option("--candidates", params.association.candidates, "KD-tree candidates per patch (C)")->capture_default_str()->check(gasp::tools::atLeast(1));
+  app.add_option("--lambda", params.association.lambda, "gating on the normalised edit distance")->capture_default_str()->check(gasp::tools::within(0, 1));
   app.add_option("--distinctiveness", params.association.distinctiveness_ratio,
                  "ratio test: keep a best partner only when its D_hat < R x the second best (1 = off)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(gasp::tools::above(0))
+      ->check(gasp::tools::within(0, 1));
   double theta_dev_deg = params.association.match.theta_dev_rad * 180.0 / M_PI;
-  app.add_option("--r-dev", params.association.match.r_dev_m, "match tolerance of the distance components [m]")->capture_default_str();
-  app.add_option("--theta-dev", theta_dev_deg, "match tolerance of the angle components [deg]")->capture_default_str();
+  app.add_option("--r-dev", params.association.match.r_dev_m, "match tolerance of the distance components [m]")->capture_default_str()->check(gasp::tools::above(0));
+  app.add_option("--theta-dev", theta_dev_deg, "match tolerance of the angle components [deg]")->capture_default_str()->check(gasp::tools::above(0));
   app.add_flag("!--no-mutual", params.association.mutual_check, "keep one-way best partners too (no mutual check)");
   app.add_flag("!--no-refine", params.refine, "RANSAC pose only (no point-to-plane refinement)");
   app.add_flag("!--no-slide-scan", params.slide_scan.enabled,

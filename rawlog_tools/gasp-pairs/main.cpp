@@ -229,10 +229,12 @@ int main(int argc, char** argv) {
   app.add_option("--area-cm2", area_cm2, "GASP: target patch area [cm^2]")->capture_default_str()->check(gasp::tools::above(0));
   app.add_flag("--step-borders", base.superpixels.step_borders, "GASP: segment with the step borders (SuperpixelParams::step_borders; off by default)");
   app.add_option("--candidates", base.association.candidates, "KD-tree candidates per patch (C)")->capture_default_str()->check(gasp::tools::atLeast(1));
-  app.add_option("--lambda", base.association.lambda, "gating on the normalised edit distance")->capture_default_str();
+  app.add_option("--lambda", base.association.lambda, "gating on the normalised edit distance")->capture_default_str()->check(gasp::tools::within(0, 1));
   app.add_option("--distinctiveness", base.association.distinctiveness_ratio,
                  "ratio test: keep a best partner only when its D_hat < R x the second best (1 = off)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(gasp::tools::above(0))
+      ->check(gasp::tools::within(0, 1));
   app.add_flag("!--no-mutual", base.association.mutual_check, "keep one-way best partners too (no mutual check)");
   app.add_option("--min-inliers", base.pose.ransac.min_inliers, "RANSAC: fewer inliers give no estimate (all methods)")->capture_default_str()->check(gasp::tools::atLeast(3));
   app.add_option("--one-way-max-violation", base.one_way_max_violation_ratio,

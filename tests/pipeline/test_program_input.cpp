@@ -81,6 +81,12 @@ TEST(ImagePrograms, AnOutputNameWithoutImageFormatIsAUsageError) {
   EXPECT_EQ(run.exit_code, 0) << run.output;
   run = runProgram("gasp-segment", "--depth " + a + " --out " + dir + "/seg.png --area-cm2 0");
   EXPECT_EQ(run.exit_code, 2) << run.output;
+  // Association options out of their range are usage errors too (not a failure after the work).
+  for (const char* option : {"--lambda nan", "--lambda 2", "--candidates 0", "--k -1", "--r-dev 0", "--theta-dev -5",
+                             "--distinctiveness 0", "--distinctiveness 1.5"}) {
+    run = runProgram("gasp-associate", "--depth-a " + a + " --depth-b " + a + " --out " + dir + "/p.png " + option);
+    EXPECT_EQ(run.exit_code, 2) << option << '\n' << run.output;
+  }
 }
 
 TEST(ImagePrograms, AnImageClaimingBillionsOfPixelsIsAnErrorNamingTheFile) {
