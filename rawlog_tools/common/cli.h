@@ -5,7 +5,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <exception>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -103,17 +102,6 @@ inline CLI::Validator finite() {
         return detail::finiteValue(text, v, error) ? std::string() : error;
       },
       "finite");
-}
-
-/// An exception's message for "error: ...": MRPT's exceptions carry a banner and a stack trace,
-/// of which only the "Message:" line is kept.
-inline std::string errorMessage(const std::exception& e) {
-  const std::string what = e.what();
-  const auto m = what.find("Message:");
-  if (m == std::string::npos) return what;
-  auto begin = what.find_first_not_of(' ', m + 8);
-  if (begin == std::string::npos) begin = m + 8;
-  return what.substr(begin, what.find('\n', begin) - begin);
 }
 
 /// The output files' folders exist, checked before a long run: returns "" or the first problem

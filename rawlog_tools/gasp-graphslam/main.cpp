@@ -239,7 +239,7 @@ int main(int argc, char** argv) {
     gasp::tools::printEvaluation(gt, trajectory);
     if (gasp_nrd && gasp_nrd->breakEdges() > 0) return 3;
   } catch (const std::exception& e) {  // gasp::Error, MRPT's (configuration, rawlog), filesystem
-    std::cerr << "error: " << gasp::tools::errorMessage(e) << '\n';
+    std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';
     return 1;
   }
   return 0;

@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
       return 3;
     }
   } catch (const std::exception& e) {  // gasp::Error, and MRPT's when the graph cannot be written
-    std::cerr << "error: " << gasp::tools::errorMessage(e) << '\n';
+    std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';
     return 1;
   }
   return 0;

@@ -172,7 +172,7 @@ int main(int argc, char** argv) {
     if (lost > 0) std::printf("not_tracked: %zu frames (poses predicted; reasons in --frames-csv)\n", lost);
     if (lost > 0 || slam->pieceCount() > 1) return 3;
   } catch (const std::exception& e) {  // gasp::Error, and MRPT's when an output cannot be written
-    std::cerr << "error: " << gasp::tools::errorMessage(e) << '\n';
+    std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';
     return 1;
   }
   return 0;

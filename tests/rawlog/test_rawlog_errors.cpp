@@ -33,6 +33,19 @@ std::string readError(const std::string& path) {
   return "";
 }
 
+/// A 4 x 3 scan at 1.234 m (rangeUnits 1 mm).
+mrpt::obs::CObservation3DRangeScan tinyScan() {
+  mrpt::obs::CObservation3DRangeScan scan;
+  scan.hasRangeImage = true;
+  scan.cameraParams.ncols = 4;
+  scan.cameraParams.nrows = 3;
+  scan.cameraParams.setIntrinsicParamsFromValues(5.0, 5.0, 1.5, 1.0);
+  scan.rangeImage_setSize(3, 4);
+  scan.rangeImage.fill(1234);
+  scan.rangeUnits = 0.001f;
+  return scan;
+}
+
 bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
@@ -88,15 +101,7 @@ TEST(RawlogErrors, OtherObservationsAreSkippedAndCounted) {
     auto ar = mrpt::serialization::archiveFrom(out);
     mrpt::obs::CObservationOdometry odo;
     ar << odo;
-    mrpt::obs::CObservation3DRangeScan scan;
-    scan.hasRangeImage = true;
-    scan.cameraParams.ncols = 4;
-    scan.cameraParams.nrows = 3;
-    scan.cameraParams.setIntrinsicParamsFromValues(5.0, 5.0, 1.5, 1.0);
-    scan.rangeImage_setSize(3, 4);
-    scan.rangeImage.fill(1234);
-    scan.rangeUnits = 0.001f;
-    ar << scan << odo;
+    ar << tinyScan() << odo;
   }
   gasp::RawlogReader reader(path);
   const auto f = reader.next();
@@ -301,15 +306,8 @@ TEST(RawlogEntries, AnUnknownClassIsNamed) {
   {
     mrpt::io::CFileOutputStream out(path);  // plain, so that the class name can be edited
     auto ar = mrpt::serialization::archiveFrom(out);
-    mrpt::obs::CObservation3DRangeScan scan;
-    scan.hasRangeImage = true;
-    scan.cameraParams.ncols = 4;
-    scan.cameraParams.nrows = 3;
-    scan.cameraParams.setIntrinsicParamsFromValues(5.0, 5.0, 1.5, 1.0);
-    scan.rangeImage_setSize(3, 4);
-    scan.rangeImage.fill(1234);
     mrpt::obs::CObservationOdometry odo;
-    ar << scan << odo;
+    ar << tinyScan() << odo;
   }
   std::string bytes;
   {

@@ -19,16 +19,6 @@ struct RawlogObjects::Impl {
 
 namespace {
 
-/// The useful line of an MRPT exception ("==== MRPT exception ====\nMessage:  ...\n<trace>").
-std::string mrptMessage(const std::exception& e) {
-  const std::string what = e.what();
-  const auto m = what.find("Message:");
-  if (m == std::string::npos) return what;
-  auto begin = what.find_first_not_of(' ', m + 8);
-  if (begin == std::string::npos) begin = m + 8;
-  return what.substr(begin, what.find('\n', begin) - begin);
-}
-
 /// "X" of MRPT's "Stored object has class 'X' which is not registered!", or "".
 std::string unregisteredClass(const std::string& message) {
   if (message.find("not registered") == std::string::npos) return "";
@@ -82,7 +72,7 @@ mrpt::serialization::CSerializable::Ptr RawlogObjects::next() {
                     ", ends early");
       break;
     } catch (const std::exception& e) {
-      const std::string message = mrptMessage(e);
+      const std::string message = exceptionMessage(e);
       const std::string unknown = unregisteredClass(message);
       if (!unknown.empty())
         throw Error("rawlog '" + path_ + "': object #" + std::to_string(objects_read_) + " is a '" + unknown +

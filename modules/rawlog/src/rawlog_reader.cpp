@@ -28,7 +28,6 @@ RawlogReader::RawlogReader(const std::string& path) : path_(path) {
   // Read the first object now so that empty and garbage files fail at open.
   const auto first = impl_->objects.next();
   if (!first) throw Error("rawlog '" + path + "': empty rawlog (no MRPT object in the file)");
-  ++objects_read_;
   if (auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(first)) {
     format_ = RawlogFormat::ActionsSensoryFrames;
     for (const auto& o : *sf) impl_->pending.push_back(o);
@@ -76,7 +75,6 @@ std::optional<RgbdFrame> RawlogReader::next() {
       impl_->at_end = true;
       continue;
     }
-    ++objects_read_;
     impl_->after_action = static_cast<bool>(std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(obj));
     if (auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(obj)) {
       for (const auto& o : *sf) impl_->pending.push_back(o);

@@ -8,8 +8,6 @@
 
 namespace gasp {
 
-namespace {
-
 Matrix6d covarianceOf(const PoseConstraint& c) {
   const Eigen::LDLT<Matrix6d> ldlt(c.information);
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || !(ldlt.vectorD().array() > 0.0).all() ||
@@ -18,8 +16,6 @@ Matrix6d covarianceOf(const PoseConstraint& c) {
                 std::to_string(c.to) + " is not positive definite");
   return ldlt.solve(Matrix6d::Identity());
 }
-
-}  // namespace
 
 double edgeChi2(const Isometry3& T_world_from, const Isometry3& T_world_to, const PoseConstraint& c) {
   const Vector6d xi = leftPerturbation(T_world_from.inverse() * T_world_to, c.T_from_to);

@@ -24,14 +24,9 @@ RelativePoseEstimate then(const RelativePoseEstimate& a, const RelativePoseEstim
 
 /// The constraint as an estimate, from -> to or (inverted) to -> from.
 RelativePoseEstimate estimateOf(const PoseConstraint& h, bool inverted) {
-  const Eigen::LDLT<Matrix6d> ldlt(h.information);
-  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || !(ldlt.vectorD().array() > 0.0).all() ||
-      !h.information.allFinite())
-    throw Error("relocalisation " + std::to_string(h.from) + " -> " + std::to_string(h.to) +
-                ": the information is not positive definite");
   RelativePoseEstimate e;
   e.T_a_b = h.T_from_to;
-  e.covariance = ldlt.solve(Matrix6d::Identity());
+  e.covariance = covarianceOf(h);  // throws for an information that is not positive definite
   e.edges = 1;
   if (inverted) {
     // Exp(x) T -> T^-1 Exp(-x) = Exp(-Ad(T^-1) x) T^-1.
@@ -72,16 +67,16 @@ RelocalisationVotes::Decision RelocalisationVotes::offer(const PoseConstraint& c
   if (c.from >= roots.size() || c.to >= roots.size())
     throw Error("relocalisation " + std::to_string(c.from) + " -> " + std::to_string(c.to) + ": a frame out of range");
   Decision d;
-  const Eigen::LDLT<Matrix6d> ldlt(c.information);
-  if (!c.information.allFinite() || ldlt.info() != Eigen::Success || !ldlt.isPositive() ||
-      !(ldlt.vectorD().array() > 0.0).all()) {
+  Matrix6d S_meas;
+  try {
+    S_meas = covarianceOf(c);
+  } catch (const Error&) {
     d.reason = "its information is not positive definite: not a vote";
     return d;
   }
   const std::size_t needed = params_.relocalisation_agreeing;
   std::vector<std::size_t> agreeing;  // positions in waiting_
   if (needed > 1) {
-    const Matrix6d S_meas = c.information.ldlt().solve(Matrix6d::Identity());
     const auto samePieces = [&](const PoseConstraint& h) {
       const std::size_t a = roots[h.from], b = roots[h.to], x = roots[c.from], y = roots[c.to];
       return (a == x && b == y) || (a == y && b == x);

@@ -1,5 +1,6 @@
 #pragma once
 /// \file error.h The one exception type GASP throws for bad input and I/O failures.
+#include <exception>
 #include <stdexcept>
 #include <string>
 
@@ -11,5 +12,16 @@ class Error : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+/// An exception's message in one line: MRPT's exceptions carry a banner ("==== MRPT exception
+/// ====") and a stack trace, of which only the "Message:" line is kept; others are as they are.
+inline std::string exceptionMessage(const std::exception& e) {
+  const std::string what = e.what();
+  const auto m = what.find("Message:");
+  if (m == std::string::npos) return what;
+  auto begin = what.find_first_not_of(' ', m + 8);
+  if (begin == std::string::npos) begin = m + 8;
+  return what.substr(begin, what.find('\n', begin) - begin);
+}
 
 }  // namespace gasp

@@ -53,7 +53,6 @@ class RawlogReader {
   std::string images_dir_;
   RawlogFormat format_ = RawlogFormat::Observations;
   std::size_t scans_read_ = 0;
-  std::size_t objects_read_ = 0;
   std::map<std::string, std::size_t> skipped_;
   std::unique_ptr<Impl> impl_;
 };

@@ -13,6 +13,10 @@
 
 namespace gasp {
 
+/// The constraint's covariance, its information's inverse; throws gasp::Error when the
+/// information is not finite and positive definite.
+Matrix6d covarianceOf(const PoseConstraint& c);
+
 /// The constraint's chi-square at the poses given: xi^T Lambda xi with
 /// T_from^-1 T_to = Exp(xi) c.T_from_to, Lambda = c.information.
 double edgeChi2(const Isometry3& T_world_from, const Isometry3& T_world_to, const PoseConstraint& c);
