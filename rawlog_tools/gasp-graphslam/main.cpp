@@ -3,6 +3,7 @@
 // MRPT ones the options checker knows (gasp/graphslam/options_checker.h).
 //   gasp-graphslam --rawlog FILE [--ini FILE] [--node-reg NAME] [--edge-reg NAME] [--optimizer NAME]
 //                  [--out TRAJ.txt] [--graph G.graph] [--report-dir DIR] [--gt TRAJ.txt]
+//                  [--simplemap MAP.simplemap] [--cloud MAP.ply] [--voxel 0.01] [--cloud-max-depth 4]
 //   gasp-graphslam --list-regs | --list-optimizers | --print-ini
 // Runs without a window. After the last step the graph is optimised once more (CGaspPoseGraphGSO),
 // because the engine re-derives node poses along a spanning tree at every node it registers.
@@ -20,6 +21,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,9 +34,11 @@
 #include "gasp/graphslam/engine.h"
 #include "gasp/graphslam/ini_check.h"
 #include "gasp/graphslam/options_checker.h"
+#include "gasp/mrpt/keyframe_map.h"
 #include "gasp/rawlog/observation_conversion.h"
 #include "gasp/rawlog/rawlog_entries.h"
 #include "gasp/rawlog/rawlog_format.h"
+#include "gasp/slam/point_map.h"
 #include "cli.h"
 #include "sequence_report.h"
 
@@ -64,19 +68,28 @@ class TemporaryIni {
   std::string path_;
 };
 
-/// What the program knows of each node: when and where its scan was taken.
+/// What the program knows of each node: when and where its scan was taken, and the scan's depth
+/// when a map is asked for (--simplemap, --cloud).
 struct NodeInfo {
   double timestamp = 0.0;
   gasp::Isometry3 T_robot_camera = gasp::Isometry3::Identity();
+  std::optional<gasp::RgbdFrame> frame;
 };
 
-/// A scan that cannot be converted keeps what it has (its timestamp; the identity mounting).
-NodeInfo infoOf(const mrpt::obs::CObservation3DRangeScan::Ptr& scan) {
+/// A scan that cannot be converted keeps what it has (its timestamp; the identity mounting; no
+/// depth for the map).
+NodeInfo infoOf(const mrpt::obs::CObservation3DRangeScan::Ptr& scan, bool keep_depth) {
   NodeInfo info;
   if (!scan) return info;
   info.timestamp = mrpt::Clock::toDouble(scan->timestamp);
   try {
-    info.T_robot_camera = gasp::frameFromObservation(*scan, "scan").T_robot_camera;
+    gasp::RgbdFrame frame = gasp::frameFromObservation(*scan, "scan");
+    info.T_robot_camera = frame.T_robot_camera;
+    if (keep_depth) {
+      frame.rgb.release();  // the map keeps depth only
+      frame.depth_raw.release();
+      info.frame = std::move(frame);
+    }
   } catch (const gasp::Error&) {
   }
   return info;
@@ -87,7 +100,8 @@ NodeInfo infoOf(const mrpt::obs::CObservation3DRangeScan::Ptr& scan) {
 int main(int argc, char** argv) {
   CLI::App app{"gasp-graphslam: MRPT's graph-SLAM engine (3D) over a rawlog of depth scans with GASP's node and "
                "edge registration deciders and optimiser"};
-  std::string rawlog_path, ini_path, out_path, graph_path, report_dir, gt_path;
+  std::string rawlog_path, ini_path, out_path, graph_path, report_dir, gt_path, simplemap_path, cloud_path;
+  double voxel_m = 0.01, cloud_max_depth_m = 4.0;
   std::string node_reg = "CGaspOdometryNRD", edge_reg = "CGaspLoopClosureERD", optimizer = "CGaspPoseGraphGSO";
   bool list_regs = false, list_optimizers = false, print_ini = false;
   app.add_option("--rawlog", rawlog_path, "MRPT rawlog with CObservation3DRangeScan (format #1 or #2)");
@@ -99,6 +113,14 @@ int main(int argc, char** argv) {
   app.add_option("--graph", graph_path, "the graph (MRPT VERTEX3/EDGE3, robot frames)");
   app.add_option("--report-dir", report_dir, "directory for the engine's reports (MRPT's .log files: classes, timings)");
   app.add_option("--gt", gt_path, "ground truth (TUM format) to evaluate the nodes' trajectory against");
+  app.add_option("--simplemap", simplemap_path, "the nodes' scans at their optimised poses as an MRPT simple map (for observations2map)");
+  app.add_option("--cloud", cloud_path, "a point map of the nodes' scans at their optimised poses (PLY, one point per voxel)");
+  app.add_option("--voxel", voxel_m, "voxel size of --cloud [m], 0.001 to 10")
+      ->capture_default_str()
+      ->check(gasp::tools::within(gasp::kMinVoxelM, gasp::kMaxVoxelM));
+  app.add_option("--cloud-max-depth", cloud_max_depth_m, "depth beyond which points are left out of --cloud [m]")
+      ->capture_default_str()
+      ->check(gasp::tools::above(0));
   app.add_flag("--list-regs", list_regs, "list the node and edge registration deciders for 3D graphs");
   app.add_flag("--list-optimizers", list_optimizers, "list the optimisers");
   app.add_flag("--print-ini", print_ini, "print the default configuration");
@@ -132,7 +154,8 @@ int main(int argc, char** argv) {
 
   try {
     if (!mrpt::system::fileExists(rawlog_path)) throw gasp::Error("cannot open rawlog " + rawlog_path);
-    const std::string missing = gasp::tools::missingOutputFolder({{"--out", out_path}, {"--graph", graph_path}});
+    const std::string missing = gasp::tools::missingOutputFolder(
+        {{"--out", out_path}, {"--graph", graph_path}, {"--simplemap", simplemap_path}, {"--cloud", cloud_path}});
     if (!missing.empty()) throw gasp::Error(missing);  // before the run, not after it
     if (!ini_path.empty() && !mrpt::system::fileExists(ini_path)) throw gasp::Error("cannot open configuration " + ini_path);
     if (!ini_path.empty()) {
@@ -169,6 +192,10 @@ int main(int argc, char** argv) {
     std::size_t steps = 0, scans = 0;
     mrpt::obs::CObservation3DRangeScan::Ptr first_scan;
     std::vector<NodeInfo> nodes;
+    const bool keep_depth = !simplemap_path.empty() || !cloud_path.empty();
+    // GASP's node decider: the scan of each keyframe, in node order (the root's is known a step
+    // before the root enters the graph, with the second node).
+    std::vector<std::optional<gasp::RgbdFrame>> keyframe_depth;
     while (auto next_entry = entries.next()) {
       auto [action, observations, observation] = *next_entry;
       std::size_t entry = entries.objectsRead();
@@ -183,7 +210,9 @@ int main(int argc, char** argv) {
       // New nodes: the root takes the first scan, the newest the scan of this step (GASP's node
       // decider tells both exactly, below).
       const std::size_t n = engine.getGraph().nodeCount();
-      while (nodes.size() < n) nodes.push_back(gasp_nrd ? NodeInfo{} : infoOf(nodes.empty() ? first_scan : scan));
+      while (nodes.size() < n) nodes.push_back(gasp_nrd ? NodeInfo{} : infoOf(nodes.empty() ? first_scan : scan, keep_depth));
+      while (gasp_nrd && keep_depth && keyframe_depth.size() < gasp_nrd->nodeFrames().size())
+        keyframe_depth.push_back(infoOf(scan, true).frame);  // a keyframe is made at its own scan
       if (steps % 100 == 0)
         std::fprintf(stderr, "entry %zu: %zu nodes, %zu edges\n", entries.objectsRead(), n, engine.getGraph().edgeCount());
     }
@@ -198,6 +227,7 @@ int main(int argc, char** argv) {
       for (std::size_t i = 0; i < nodes.size() && i < gasp_nrd->nodeFrames().size(); ++i) {
         nodes[i].timestamp = gasp_nrd->odometry()->frames()[gasp_nrd->nodeFrames()[i]].timestamp;
         nodes[i].T_robot_camera = gasp_nrd->nodeRobotCamera()[i];
+        if (i < keyframe_depth.size()) nodes[i].frame = std::move(keyframe_depth[i]);
       }
     }
     const Graph3D& graph = engine.getGraph();
@@ -211,6 +241,30 @@ int main(int argc, char** argv) {
     if (!report_dir.empty()) {
       std::filesystem::create_directories(report_dir);
       engine.generateReportFiles(report_dir);
+    }
+    std::vector<gasp::RgbdFrame> map_frames;  // for --simplemap and --cloud: nodes with a converted scan
+    std::vector<gasp::Isometry3> map_poses;
+    for (std::size_t i = 0; i < nodes.size() && keep_depth; ++i) {
+      if (!nodes[i].frame) continue;
+      map_poses.push_back(trajectory[i].T_world_camera);
+      map_frames.push_back(std::move(*nodes[i].frame));
+    }
+    if (keep_depth && map_frames.size() < nodes.size())
+      std::fprintf(stderr, "warning: %zu of %zu nodes have no depth scan that could be converted; the map leaves them out\n",
+                   nodes.size() - map_frames.size(), nodes.size());
+    if (!simplemap_path.empty()) {
+      gasp::saveSimpleMap(gasp::keyframeSimpleMap(map_frames, map_poses), simplemap_path);
+      std::printf("simplemap: %s (%zu nodes)\n", simplemap_path.c_str(), map_frames.size());
+    }
+    if (!cloud_path.empty()) {
+      gasp::VoxelPointMap map(voxel_m, cloud_max_depth_m);
+      for (std::size_t i = 0; i < map_frames.size(); ++i)
+        map.insert(map_frames[i].depth_m, map_frames[i].depth_intrinsics, map_poses[i]);
+      map.writePly(cloud_path);
+      std::printf("cloud: %s (%zu points, voxel %.3f m)\n", cloud_path.c_str(), map.size(), voxel_m);
+      if (map.pointsOutside() > 0)
+        std::fprintf(stderr, "warning: %zu points lie beyond the voxel grid (+-2^20 voxels) and are not in the cloud\n",
+                     map.pointsOutside());
     }
 
     std::printf("rawlog_entries: %zu\n", steps);

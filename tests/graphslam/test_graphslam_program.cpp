@@ -2,11 +2,17 @@
 // reports), the listings, a real sequence that revisits its places, and the exit codes of bad input.
 #include <gtest/gtest.h>
 
+#include <mrpt/maps/CSimpleMap.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPose3DPDF.h>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include "gasp/core/tum_trajectory.h"
+#include "gasp/rawlog/observation_conversion.h"
 #include "gasp_test_data.h"
 #include "program_run.h"
 
@@ -60,6 +66,43 @@ TEST(GaspGraphSlamProgram, WritesTheTrajectoryGraphAndReports) {
   const auto pos = run.output.find("\nate_rmse_m: ");
   ASSERT_NE(pos, std::string::npos) << run.output;
   EXPECT_LT(std::stod(run.output.substr(pos + 13)), 0.01) << run.output;
+}
+
+TEST(GaspGraphSlamProgram, WritesAMapOfTheNodesScansAtTheirOptimisedPoses) {
+  const std::string out = gasp::test::scratchDir();
+  const std::string rawlog = simulatedRawlog(out);
+  const auto run = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --out " + out + "/traj.txt --simplemap " + out +
+                                                    "/map.simplemap --cloud " + out + "/map.ply --voxel 0.02");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::size_t nodes = printedCount(run.output, "nodes: ");
+  ASSERT_GE(nodes, 2u) << run.output;
+  EXPECT_TRUE(contains(run.output, "simplemap: " + out + "/map.simplemap (" + std::to_string(nodes) + " nodes)"))
+      << run.output;
+  EXPECT_GT(printedCount(run.output, "cloud: " + out + "/map.ply ("), 1000u) << run.output;
+  EXPECT_FALSE(contains(run.output, "warning")) << run.output;
+  // Node i of the map is the scan the node was registered at (its timestamp), at the node's
+  // optimised robot pose: with the scan's own mounting it gives the written camera trajectory.
+  const auto traj = gasp::readTumTrajectory(out + "/traj.txt");
+  ASSERT_EQ(traj.size(), nodes);
+  mrpt::maps::CSimpleMap map;
+  ASSERT_TRUE(map.loadFromFile(out + "/map.simplemap"));
+  ASSERT_EQ(map.size(), nodes);
+  for (std::size_t i = 0; i < nodes; ++i) {
+    const auto [pose, sf] = map.get(i);
+    ASSERT_TRUE(pose && sf) << i;
+    const auto scan = sf->getObservationByClass<mrpt::obs::CObservation3DRangeScan>();
+    ASSERT_TRUE(scan) << i;
+    const gasp::RgbdFrame frame = gasp::frameFromObservation(*scan, "map scan");
+    EXPECT_NEAR(frame.timestamp, traj[i].timestamp, 1e-4) << i;
+    const gasp::Isometry3 T_world_camera = gasp::fromCPose3D(pose->getMeanVal()) * frame.T_robot_camera;
+    EXPECT_TRUE(T_world_camera.isApprox(traj[i].T_world_camera, 1e-4)) << i;
+  }
+  // Output folders are checked before the run.
+  const auto bad = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --cloud /nonexistent-dir/m.ply");
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_TRUE(contains(bad.output, "--cloud")) << bad.output;
+  const auto voxel = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --cloud " + out + "/m.ply --voxel 0");
+  EXPECT_EQ(voxel.exit_code, 2) << voxel.output;
 }
 
 TEST(GaspGraphSlamProgram, RunsRawlogsOfSensoryFramesAndMrptsOptimiser) {
