@@ -26,6 +26,7 @@
 #include <optional>
 #include <set>
 
+#include "gasp/core/stopwatch.h"
 #include "gasp/association/association_picture.h"
 #include "gasp/association/association_quality.h"
 #include "gasp/core/error.h"
@@ -48,8 +49,8 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using gasp::msSince;
 
-double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;

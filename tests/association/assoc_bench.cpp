@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "gasp/core/stopwatch.h"
 #include "gasp/association/association_quality.h"
 #include "gasp/association/banded_distance.h"
 #include "gasp/association/view_association.h"
@@ -30,9 +31,7 @@
 
 namespace {
 
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
+using gasp::msSince;
 
 /// CPU time of the process [ms] (all threads): less sensitive to other load than wall time.
 double cpuMs() { return 1000.0 * static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }

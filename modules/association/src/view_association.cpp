@@ -1,3 +1,4 @@
+#include "gasp/core/stopwatch.h"
 #include "gasp/association/view_association.h"
 
 #include <nanoflann.hpp>
@@ -99,10 +100,6 @@ inline std::uint32_t signatureDistance(const std::uint8_t* x, const std::uint8_t
   for (std::size_t k = 0; k < kSignatureStride; ++k) d += static_cast<std::uint32_t>(std::abs(int{x[k]} - int{y[k]}));
   return d;
 #endif
-}
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace

@@ -1,3 +1,4 @@
+#include "gasp/core/stopwatch.h"
 #include "gasp/baselines/baseline_registration.h"
 
 #include <chrono>
@@ -7,10 +8,6 @@
 namespace gasp::baselines {
 
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 DescribedKeypoints describe(const RgbdImage& view, BaselineMethod method, const BaselineParams& params) {
   switch (method) {

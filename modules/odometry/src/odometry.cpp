@@ -1,3 +1,4 @@
+#include "gasp/core/stopwatch.h"
 #include "gasp/odometry/odometry.h"
 
 #include <chrono>
@@ -13,10 +14,6 @@
 namespace gasp {
 
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 /// The camera's motion over dt at a constant twist (first order in the translation, as twistBetween()).
 Isometry3 stepOf(const CameraTwist& twist, double dt) {

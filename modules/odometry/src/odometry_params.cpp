@@ -7,17 +7,11 @@
 
 namespace gasp {
 
-namespace {
-void requirePositive(double v, const char* name) {
-  if (!(v > 0.0) || !std::isfinite(v)) throw Error(std::string("odometry: ") + name + " must be positive and finite");
-}
-}  // namespace
-
 void validate(const OdometryParams& params) {
-  requirePositive(params.keyframe_distance_m, "keyframe_distance_m");
-  requirePositive(params.keyframe_angle_deg, "keyframe_angle_deg");
-  requirePositive(params.max_speed_mps, "max_speed_mps");
-  requirePositive(params.max_rate_radps, "max_rate_radps");
+  requirePositive(params.keyframe_distance_m, "odometry: keyframe_distance_m");
+  requirePositive(params.keyframe_angle_deg, "odometry: keyframe_angle_deg");
+  requirePositive(params.max_speed_mps, "odometry: max_speed_mps");
+  requirePositive(params.max_rate_radps, "odometry: max_rate_radps");
   if (!std::isfinite(params.rolling_shutter_readout_s) || std::abs(params.rolling_shutter_readout_s) > 1.0)
     throw Error("odometry: rolling_shutter_readout_s must be a finite time of at most 1 s (either sign)");
   validate(params.pair);

@@ -1,3 +1,4 @@
+#include "gasp/core/stopwatch.h"
 #include "gasp/pipeline/pair_registration.h"
 
 #include <tbb/parallel_invoke.h>
@@ -16,10 +17,6 @@
 namespace gasp {
 
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 std::vector<PatchCorrespondence> toCorrespondences(const std::vector<PatchAssociation>& associations,
                                                    const SuperpixelSegmentation& a, const SuperpixelSegmentation& b) {

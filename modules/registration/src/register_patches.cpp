@@ -1,3 +1,4 @@
+#include "gasp/core/stopwatch.h"
 #include "gasp/registration/register_patches.h"
 
 #include <chrono>
@@ -9,10 +10,6 @@ namespace gasp {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 std::vector<PatchCorrespondence> subset(const std::vector<PatchCorrespondence>& c, const std::vector<int>& indices) {
   std::vector<PatchCorrespondence> out;

@@ -1,3 +1,5 @@
+#include "gasp/core/format.h"
+#include "gasp/core/stopwatch.h"
 #include "gasp/slam/depth_slam.h"
 
 #include <Eigen/Cholesky>
@@ -12,20 +14,6 @@
 #include "gasp/slam/pose_graph.h"
 
 namespace gasp {
-
-namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-std::string formatted(const char* fmt, double a, double b) {
-  char buf[200];
-  std::snprintf(buf, sizeof buf, fmt, a, b);
-  return buf;
-}
-
-}  // namespace
 
 DepthSlam::DepthSlam(const SlamParams& params, const Isometry3& T_world_first)
     : params_(params), odometry_((validate(params), params.odometry), T_world_first), votes_(params.loop) {}

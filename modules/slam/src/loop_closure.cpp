@@ -1,3 +1,4 @@
+#include "gasp/core/format.h"
 #include "gasp/slam/loop_closure.h"
 
 #include <Eigen/Cholesky>
@@ -12,16 +13,6 @@
 #include "gasp/core/pose_perturbation.h"
 
 namespace gasp {
-
-namespace {
-
-std::string formatted(const char* fmt, double a, double b) {
-  char buf[200];
-  std::snprintf(buf, sizeof buf, fmt, a, b);
-  return buf;
-}
-
-}  // namespace
 
 std::vector<std::size_t> loopCandidates(const std::vector<std::size_t>& keyframes,
                                         const std::vector<Isometry3>& T_world_frame,
@@ -103,7 +94,7 @@ LoopClosureAttempt registerLoopClosure(const DepthView& from_view, const DepthVi
   if (!r.pose.success) {
     a.reason = "no estimate: " + r.pose.reason;
   } else if (r.pose.num_inliers < min_inliers) {
-    a.reason = formatted("%.0f inliers, fewer than %.0f", r.pose.num_inliers, min_inliers);
+    a.reason = formatted("%d inliers, fewer than %d", r.pose.num_inliers, min_inliers);
   }
   c = PoseConstraint{};
   c.from = from;
@@ -126,7 +117,7 @@ void gateLoopClosure(const PoseConstraint& c, const std::optional<RelativePoseEs
       a.reason = formatted("disagrees with the odometry: chi-square %.1f > %.2f", a.gate_chi2, params.gate_chi2);
   } else if (a.inliers < params.relocalisation_min_inliers) {
     // Joined only through other loop closures: no odometry path to check it against.
-    a.reason = formatted("no odometry path to check against, and %.0f inliers, fewer than %.0f", a.inliers,
+    a.reason = formatted("no odometry path to check against, and %d inliers, fewer than %d", a.inliers,
                          params.relocalisation_min_inliers);
   }
 }

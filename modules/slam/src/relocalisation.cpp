@@ -1,3 +1,4 @@
+#include "gasp/core/format.h"
 #include "gasp/slam/relocalisation.h"
 
 #include <Eigen/Cholesky>
@@ -35,12 +36,6 @@ RelativePoseEstimate estimateOf(const PoseConstraint& h, bool inverted) {
     e.covariance = Ad * e.covariance * Ad.transpose();
   }
   return e;
-}
-
-std::string formatted(const char* fmt, double a, double b) {
-  char buf[200];
-  std::snprintf(buf, sizeof buf, fmt, a, b);
-  return buf;
 }
 
 }  // namespace
@@ -102,7 +97,7 @@ RelocalisationVotes::Decision RelocalisationVotes::offer(const PoseConstraint& c
     return d;
   }
   waiting_.push_back({c, attempt});
-  d.reason = formatted("waits for %.0f more agreeing relocalisation(s) between these pieces", double(needed - 1 - agreeing.size()), 0.0);
+  d.reason = formatted("waits for %zu more agreeing relocalisation(s) between these pieces", needed - 1 - agreeing.size());
   if (std::isfinite(d.chi2) && agreeing.empty())
     d.reason += formatted(" (disagrees with the waiting ones: least chi-square %.1f > %.2f)", d.chi2, params_.gate_chi2);
   return d;

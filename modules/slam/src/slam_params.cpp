@@ -7,16 +7,10 @@
 
 namespace gasp {
 
-namespace {
-void requirePositive(double v, const char* name) {
-  if (!(v > 0.0) || !std::isfinite(v)) throw Error(std::string("loop closure: ") + name + " must be positive and finite");
-}
-}  // namespace
-
 void validate(const LoopClosureParams& p) {
-  requirePositive(p.search_radius_m, "search_radius_m");
-  requirePositive(p.max_axis_angle_deg, "max_axis_angle_deg");
-  requirePositive(p.gate_chi2, "gate_chi2");
+  requirePositive(p.search_radius_m, "loop closure: search_radius_m");
+  requirePositive(p.max_axis_angle_deg, "loop closure: max_axis_angle_deg");
+  requirePositive(p.gate_chi2, "loop closure: gate_chi2");
   if (p.min_keyframe_gap < 1) throw Error("loop closure: min_keyframe_gap must be at least 1");
   if (p.min_inliers < 3 || p.relocalisation_min_inliers < 3)
     throw Error("loop closure: min_inliers and relocalisation_min_inliers must be at least 3");

@@ -1,5 +1,6 @@
 #pragma once
 /// \file error.h The one exception type GASP throws for bad input and I/O failures.
+#include <cmath>
 #include <exception>
 #include <stdexcept>
 #include <string>
@@ -12,6 +13,12 @@ class Error : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+/// Throws Error("<name> must be positive and finite") unless v is (NaN fails too), for the
+/// parameter validators; `name` says whose parameter it is (e.g. "odometry: max_speed_mps").
+inline void requirePositive(double v, const std::string& name) {
+  if (!(v > 0.0) || !std::isfinite(v)) throw Error(name + " must be positive and finite");
+}
 
 /// An exception's message in one line: MRPT's exceptions carry a banner ("==== MRPT exception
 /// ====") and a stack trace, of which only the "Message:" line is kept; others are as they are.
