@@ -10,6 +10,8 @@
 // has no rgb: those rows say "n/a (no rgb)" and count the pairs left out.
 // Time per pair = description of both views (segmentation for GASP; measured once per frame and
 // charged to every pair using it) + association or matching + pose stages; image loading excluded.
+// --roll-target DEG turns each pair's target image by a quarter or half turn (the camera rolled
+// about its optical axis; GASP's methods only) and scores against the reference rolled alike.
 // Exit codes: 0 done, 1 bad input, 2 usage error, 4 no pair with ground truth.
 #include <CLI/CLI.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -26,6 +28,7 @@
 #include <optional>
 #include <set>
 
+#include "gasp/core/camera_roll.h"
 #include "gasp/core/stopwatch.h"
 #include "gasp/association/association_picture.h"
 #include "gasp/association/association_quality.h"
@@ -118,14 +121,20 @@ class FrameCache {
     gasp::DepthView view;
     double ms = 0;
   };
-  const GaspView& gaspView(std::size_t i, const gasp::SuperpixelParams& params) {
-    auto it = gasp_.find(i);
+  /// Frame i segmented; turned clockwise by `turn_deg` first (camera_roll.h), a view of its own.
+  const GaspView& gaspView(std::size_t i, const gasp::SuperpixelParams& params, int turn_deg = 0) {
+    auto it = gasp_.find({i, turn_deg});
     if (it != gasp_.end()) return it->second;
-    const cv::Mat depth = filter_ ? filter_(i, ds_.loadDepth(i)) : ds_.loadDepth(i);
+    cv::Mat depth = filter_ ? filter_(i, ds_.loadDepth(i)) : ds_.loadDepth(i);
+    gasp::CameraIntrinsics K = ds_.intrinsics();
+    if (turn_deg != 0) {
+      depth = gasp::turnImage(depth, turn_deg);
+      K = gasp::turnIntrinsics(K, turn_deg);
+    }
     const auto t0 = Clock::now();
-    GaspView v{gasp::makeDepthView(depth, ds_.intrinsics(), params), 0.0};
+    GaspView v{gasp::makeDepthView(depth, K, params), 0.0};
     v.ms = msSince(t0);
-    return gasp_.emplace(i, std::move(v)).first->second;
+    return gasp_.emplace(std::make_pair(i, turn_deg), std::move(v)).first->second;
   }
 
 #ifdef GASP_HAVE_BASELINES
@@ -160,7 +169,7 @@ class FrameCache {
 #endif
 
   void dropBefore(std::size_t first) {
-    gasp_.erase(gasp_.begin(), gasp_.lower_bound(first));
+    gasp_.erase(gasp_.begin(), gasp_.lower_bound(std::make_pair(first, -1)));
 #ifdef GASP_HAVE_BASELINES
     rgbd_.erase(rgbd_.begin(), rgbd_.lower_bound(first));
     described_.erase(described_.begin(), described_.lower_bound(std::make_pair(first, -1)));
@@ -170,7 +179,7 @@ class FrameCache {
  private:
   const gasp::TumDataset& ds_;
   DepthFilter filter_;
-  std::map<std::size_t, GaspView> gasp_;
+  std::map<std::pair<std::size_t, int>, GaspView> gasp_;  ///< (frame, turn) -> view
 #ifdef GASP_HAVE_BASELINES
   std::map<std::size_t, gasp::baselines::RgbdImage> rgbd_;
   std::map<std::pair<std::size_t, int>, gasp::baselines::DescribedKeypoints> described_;
@@ -295,6 +304,13 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"neighbours", "truth"}))
       ->needs(rolling_shutter_option)
       ->capture_default_str();
+  int roll_target = 0;
+  app.add_option("--roll-target", roll_target,
+                 "GASP: turn each pair's target view (frame I+skip) by DEG clockwise (0, 90, 180, 270) before "
+                 "segmenting it, and score against the reference rolled the same way: the camera rolled about its "
+                 "optical axis, on real data (gasp and gasp-norefine only)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({0, 90, 180, 270}));
   double gt_offset = 0.0;
   app.add_option("--gt-offset", gt_offset,
                  "look ground truth up at depth timestamp + OFFSET [s] (nearest within 0.02 s; TUM fr1 depth lags "
@@ -332,6 +348,13 @@ int main(int argc, char** argv) {
       throw CLI::ValidationError("--rolling-shutter must be a finite time of at most 1 s (either sign)");
     if (polish_reference && pairs_csv_path.empty())
       throw CLI::ValidationError("--polish-reference writes its columns to the --pairs-csv file: give --pairs-csv");
+    if (roll_target != 0) {
+      for (const auto& m : methods)
+        if (m != "gasp" && m != "gasp-norefine")
+          throw CLI::ValidationError("--roll-target: GASP's methods only (gasp, gasp-norefine), not " + m);
+      if (polish_reference || rgb_rotation_check)
+        throw CLI::ValidationError("--roll-target: not with --polish-reference or --rgb-rotation-check");
+    }
     if (rgb_rotation_check && pairs_csv_path.empty())
       throw CLI::ValidationError("--rgb-rotation-check writes its columns to the --pairs-csv file: give --pairs-csv");
   } catch (const CLI::ParseError& e) {
@@ -376,6 +399,12 @@ int main(int argc, char** argv) {
       return T;
     };
     auto truth = [&](std::size_t i) { return turnedBack(ds.groundTruthOf(i, gt_offset)); };
+    // The reference T_target_source of pair (i, j), the target's camera rolled by --roll-target.
+    const gasp::Isometry3 T_rolled_target = gasp::turnRotation(roll_target);
+    auto pairTruth = [&](std::size_t i, std::size_t j) -> std::optional<gasp::Isometry3> {
+      if (!truth(i) || !truth(j)) return std::nullopt;
+      return gasp::Isometry3(T_rolled_target * gasp::relativePose(*truth(j), *truth(i)));
+    };
     auto needsColour = [](const std::string& method) {
       return method == "cshot" || method == "sift" || method == "dsift";
     };
@@ -424,7 +453,7 @@ int main(int argc, char** argv) {
         gasp::PairParams params = base;
         params.refine = method != "gasp-norefine";
         const auto& va = cache.gaspView(i, params.superpixels);
-        const auto& vb = cache.gaspView(j, params.superpixels);
+        const auto& vb = cache.gaspView(j, params.superpixels, roll_target);
         const auto t0 = Clock::now();
         const auto r = gasp::registerViews(va.view, vb.view, params);
         const double reg_ms = msSince(t0);
@@ -590,8 +619,7 @@ int main(int argc, char** argv) {
     if (!picture_pair.empty()) {
       const std::size_t i = picture_pair[0], j = picture_pair[1];
       if (i >= ds.size() || j >= ds.size()) throw gasp::Error("--picture: frame index beyond the folder's frames");
-      std::optional<gasp::Isometry3> T_gt;
-      if (truth(i) && truth(j)) T_gt = gasp::relativePose(*truth(j), *truth(i));
+      const std::optional<gasp::Isometry3> T_gt = pairTruth(i, j);
       for (const auto& method : methods) {
         if (needsColour(method) && (!hasRgb(i) || !hasRgb(j))) {
           std::printf("picture %s: n/a (no rgb)\n", method.c_str());
@@ -724,7 +752,7 @@ int main(int argc, char** argv) {
     for (const auto& [i, skip] : all) {
       cache.dropBefore(i);
       const std::size_t j = i + skip;
-      const gasp::Isometry3 T_gt = gasp::relativePose(*truth(j), *truth(i));
+      const gasp::Isometry3 T_gt = *pairTruth(i, j);
       // The reference polished by GICP (once per pair): how far the depth pulls it, and where to.
       const std::optional<gasp::Isometry3> T_ref_icp =
           polish_reference ? polish(i, j, T_gt) : std::nullopt;
@@ -831,6 +859,9 @@ int main(int argc, char** argv) {
       for (const auto& [stage, v] : st->second) std::printf(" %s %.1f", stage.c_str(), median(v));
       std::printf("\n");
     }
+    if (roll_target != 0)
+      std::printf("roll_target: %d deg clockwise (each pair's target view turned; scored against the rolled reference)\n",
+                  roll_target);
     if (deskew.readout_s != 0.0) {
       std::printf("rolling_shutter: readout %.4f s, velocity from %s, %zu of %zu frames deskewed", deskew.readout_s,
                   twist_from.c_str(), deskewed.size(), deskew_frames.size());
