@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "gasp/core/stopwatch.h"
 #include "gasp/mrpt/CSuperpixelMap.h"
 #include "gasp/mrpt/params_io.h"
 #include "gasp/rawlog/observation_conversion.h"
@@ -152,7 +153,7 @@ mrpt::poses::CPose3DPDF::Ptr CGaspAligner::Align3DPDF(const mrpt::maps::CMetricM
     }
   }
   if (!best.success && best.reason.empty()) best.reason = "no view pair gave an estimate";
-  best.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  best.time_ms = msSince(t0);
   best.executionTime = best.time_ms / 1000.0;
   report(outInfo, best);
   if (!best.success) {

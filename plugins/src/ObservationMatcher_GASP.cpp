@@ -7,6 +7,7 @@
 #include <chrono>
 
 #include "gasp/core/error.h"
+#include "gasp/core/stopwatch.h"
 #include "gasp/mrpt/params_io.h"
 #include "gasp/mrpt/pose_covariance.h"
 #include "gasp/rawlog/observation_conversion.h"
@@ -65,7 +66,7 @@ MatchConstraint ObservationMatcher_GASP::match(const mrpt::obs::CObservation& a,
     c.T_a_b = toCPose3D(S_a * r.pose.T_target_source * fb.T_robot_camera.inverse());
     c.information = informationInFrame(r.edge_information, S_a);
   }
-  c.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  c.time_ms = msSince(t0);
   return c;
 }
 

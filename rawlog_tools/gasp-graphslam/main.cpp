@@ -86,8 +86,7 @@ NodeInfo infoOf(const mrpt::obs::CObservation3DRangeScan::Ptr& scan, bool keep_d
     gasp::RgbdFrame frame = gasp::frameFromObservation(*scan, "scan");
     info.T_robot_camera = frame.T_robot_camera;
     if (keep_depth) {
-      frame.rgb.release();  // the map keeps depth only
-      frame.depth_raw.release();
+      frame.rgb.release();  // the map keeps depth only (the raw values as stored, for the simple map)
       info.frame = std::move(frame);
     }
   } catch (const gasp::Error&) {
@@ -190,6 +189,9 @@ int main(int argc, char** argv) {
     mrpt::io::setLazyLoadPathBase(gasp::findRawlogImagesDirectory(rawlog_path));
     gasp::RawlogEntries entries(rawlog_path);  // a truncated or corrupt file is an error, not an early end
     std::size_t steps = 0, scans = 0;
+    // The scans the deciders use (their sensor_label; GASP's node decider's first): the nodes'
+    // scans for the map are found by the same rule.
+    const std::string sensor_label = gasp_nrd ? gasp_nrd->sensorLabel() : (gasp_erd ? gasp_erd->sensorLabel() : "");
     mrpt::obs::CObservation3DRangeScan::Ptr first_scan;
     std::vector<NodeInfo> nodes;
     const bool keep_depth = !simplemap_path.empty() || !cloud_path.empty();
@@ -202,7 +204,7 @@ int main(int argc, char** argv) {
       // Format #1 with an empty action collection (GASP's rawlogs): the engine reads the first
       // action of every such step, so it gets one with no motion.
       if (observations && (!action || action->size() == 0)) action = gasp::graphslam::noMotionAction();
-      const auto scan = gasp::graphslam::depthScanOf(observations, observation, "");
+      const auto scan = gasp::graphslam::depthScanOf(observations, observation, sensor_label);
       if (scan) ++scans;
       if (scan && !first_scan) first_scan = scan;
       engine._execGraphSlamStep(action, observations, observation, entry);
@@ -216,7 +218,9 @@ int main(int argc, char** argv) {
       if (steps % 100 == 0)
         std::fprintf(stderr, "entry %zu: %zu nodes, %zu edges\n", entries.objectsRead(), n, engine.getGraph().edgeCount());
     }
-    if (scans == 0) throw gasp::Error(rawlog_path + ": no CObservation3DRangeScan in the rawlog");
+    if (scans == 0)
+      throw gasp::Error(rawlog_path + ": no CObservation3DRangeScan in the rawlog" +
+                        (sensor_label.empty() ? std::string() : " with sensorLabel '" + sensor_label + "'"));
 
     if (gasp_gso) gasp_gso->optimizeNow();
     if (gasp_erd) gasp_erd->syncWithGraph();  // closures the optimiser removed

@@ -308,7 +308,7 @@ int main(int argc, char** argv) {
   app.add_option("--roll-target", roll_target,
                  "GASP: turn each pair's target view (frame I+skip) by DEG clockwise (0, 90, 180, 270) before "
                  "segmenting it, and score against the reference rolled the same way: the camera rolled about its "
-                 "optical axis, on real data (gasp and gasp-norefine only)")
+                 "optical axis, on real data (gasp and gasp-norefine only; --pairs-csv's motion columns include the roll)")
       ->capture_default_str()
       ->check(CLI::IsMember({0, 90, 180, 270}));
   double gt_offset = 0.0;

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <mrpt/maps/CSimpleMap.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CRawlog.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose3DPDF.h>
@@ -103,6 +105,50 @@ TEST(GaspGraphSlamProgram, WritesAMapOfTheNodesScansAtTheirOptimisedPoses) {
   EXPECT_TRUE(contains(bad.output, "--cloud")) << bad.output;
   const auto voxel = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --cloud " + out + "/m.ply --voxel 0");
   EXPECT_EQ(voxel.exit_code, 2) << voxel.output;
+}
+
+TEST(GaspGraphSlamProgram, TheMapTakesTheScansOfTheDecidersSensor) {
+  // Two depth sensors in every sensory frame, the other one first: with sensor_label = RGBD the
+  // deciders use GASP's own scans, and so must the map (the other sensor's scans are 10 ms later).
+  const std::string out = gasp::test::scratchDir();
+  mrpt::obs::CRawlog one, two;
+  ASSERT_TRUE(one.loadFromRawLogFile(simulatedRawlog(out, 1, 8)));
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    if (one.getType(i) == mrpt::obs::CRawlog::etActionCollection) {
+      two.insert(*one.getAsAction(i));
+      continue;
+    }
+    const auto sf = one.getAsObservations(i);
+    const auto scan = sf->getObservationByClass<mrpt::obs::CObservation3DRangeScan>();
+    ASSERT_TRUE(scan);
+    ASSERT_EQ(scan->sensorLabel, "RGBD");
+    auto other = std::make_shared<mrpt::obs::CObservation3DRangeScan>(*scan);
+    other->sensorLabel = "OTHER";
+    other->timestamp = mrpt::Clock::fromDouble(mrpt::Clock::toDouble(scan->timestamp) + 0.01);
+    mrpt::obs::CSensoryFrame both;
+    both.insert(other);
+    both.insert(scan);
+    two.insert(both);
+  }
+  ASSERT_TRUE(two.saveToRawLogFile(out + "/two.rawlog"));
+  std::ofstream(out + "/rgbd.ini") << "[CGaspOdometryNRD]\nsensor_label = RGBD\n[CGaspLoopClosureERD]\nsensor_label = RGBD\n";
+  const auto run = runProgram("gasp-graphslam", "--rawlog " + out + "/two.rawlog --ini " + out + "/rgbd.ini --out " +
+                                                    out + "/traj.txt --simplemap " + out + "/map.simplemap");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "\nscans: 8\n")) << run.output;
+  const auto traj = gasp::readTumTrajectory(out + "/traj.txt");
+  mrpt::maps::CSimpleMap map;
+  ASSERT_TRUE(map.loadFromFile(out + "/map.simplemap"));
+  ASSERT_EQ(map.size(), traj.size());
+  ASSERT_GE(traj.size(), 2u);
+  for (std::size_t i = 0; i < traj.size(); ++i) {
+    const auto [pose, sf] = map.get(i);
+    ASSERT_TRUE(pose && sf) << i;
+    const auto scan = sf->getObservationByClass<mrpt::obs::CObservation3DRangeScan>();
+    ASSERT_TRUE(scan) << i;
+    EXPECT_EQ(scan->sensorLabel, "RGBD") << i;
+    EXPECT_NEAR(mrpt::Clock::toDouble(scan->timestamp), traj[i].timestamp, 1e-4) << i;
+  }
 }
 
 TEST(GaspGraphSlamProgram, RunsRawlogsOfSensoryFramesAndMrptsOptimiser) {

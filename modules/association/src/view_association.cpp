@@ -1,4 +1,3 @@
-#include "gasp/core/stopwatch.h"
 #include "gasp/association/view_association.h"
 
 #include <nanoflann.hpp>
@@ -19,6 +18,7 @@
 
 #include "gasp/association/banded_distance.h"
 #include "gasp/core/error.h"
+#include "gasp/core/stopwatch.h"
 
 namespace gasp {
 

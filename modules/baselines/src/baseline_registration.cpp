@@ -1,9 +1,9 @@
-#include "gasp/core/stopwatch.h"
 #include "gasp/baselines/baseline_registration.h"
 
 #include <chrono>
 
 #include "gasp/core/error.h"
+#include "gasp/core/stopwatch.h"
 
 namespace gasp::baselines {
 

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "gasp/core/error.h"
+#include "gasp/core/stopwatch.h"
 #include "pixel_keypoints.h"
 
 namespace gasp::baselines {
@@ -36,7 +37,7 @@ DescribedKeypoints describeDenseSift(const RgbdImage& view, const DenseSiftParam
   cv::SIFT::create()->compute(grey, keypoints, descriptors);
   if (keypoints.empty()) descriptors.create(0, 128, CV_32F);
   DescribedKeypoints out = liftPixelKeypoints(view, keypoints, descriptors, params.surface);
-  out.describe_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  out.describe_ms = msSince(t0);
   return out;
 }
 

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "gasp/core/error.h"
+#include "gasp/core/stopwatch.h"
 #include "surface_cloud.h"
 
 namespace gasp::baselines {
@@ -129,7 +130,7 @@ DescribedKeypoints describePointFeatures(const RgbdImage& view, PointFeatureType
       break;
     }
   }
-  out.describe_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  out.describe_ms = msSince(t0);
   return out;
 }
 

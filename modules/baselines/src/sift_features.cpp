@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "gasp/core/error.h"
+#include "gasp/core/stopwatch.h"
 #include "pixel_keypoints.h"
 
 namespace gasp::baselines {
@@ -25,7 +26,7 @@ DescribedKeypoints describeSift(const RgbdImage& view, const SiftParams& params)
   sift->detectAndCompute(grey, cv::noArray(), keypoints, descriptors);
   if (keypoints.empty()) descriptors.create(0, 128, CV_32F);
   DescribedKeypoints out = liftPixelKeypoints(view, keypoints, descriptors, params.surface);
-  out.describe_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  out.describe_ms = msSince(t0);
   return out;
 }
 

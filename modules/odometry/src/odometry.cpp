@@ -1,4 +1,3 @@
-#include "gasp/core/stopwatch.h"
 #include "gasp/odometry/odometry.h"
 
 #include <chrono>
@@ -8,6 +7,7 @@
 
 #include "gasp/core/error.h"
 #include "gasp/core/pose_perturbation.h"
+#include "gasp/core/stopwatch.h"
 #include "gasp/core/undistortion.h"
 #include "gasp/pipeline/pair_registration.h"
 

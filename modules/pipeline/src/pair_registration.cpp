@@ -1,4 +1,3 @@
-#include "gasp/core/stopwatch.h"
 #include "gasp/pipeline/pair_registration.h"
 
 #include <tbb/parallel_invoke.h>
@@ -11,8 +10,9 @@
 #include <memory>
 
 #include "gasp/core/error.h"
-#include "dense_refinement.h"
+#include "gasp/core/stopwatch.h"
 #include "gasp/superpixels/depth_superpixels.h"
+#include "dense_refinement.h"
 
 namespace gasp {
 

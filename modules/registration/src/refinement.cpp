@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "gasp/core/error.h"
+#include "gasp/core/stopwatch.h"
 #include "pose_problem.h"
 
 namespace gasp {
@@ -79,7 +80,7 @@ RegistrationResult refinePose(const std::vector<PatchCorrespondence>& correspond
   out.unobservable_directions = std::move(analysis.unobservable_directions);
   out.reason = std::move(analysis.reason);
   out.success = !out.degenerate;
-  out.refine_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  out.refine_ms = msSince(start);
   return out;
 }
 

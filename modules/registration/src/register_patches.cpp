@@ -1,9 +1,9 @@
-#include "gasp/core/stopwatch.h"
 #include "gasp/registration/register_patches.h"
 
 #include <chrono>
 
 #include "gasp/core/error.h"
+#include "gasp/core/stopwatch.h"
 #include "gasp/registration/inlier_criterion.h"
 
 namespace gasp {

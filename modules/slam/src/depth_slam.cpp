@@ -1,15 +1,14 @@
-#include "gasp/core/format.h"
-#include "gasp/core/stopwatch.h"
 #include "gasp/slam/depth_slam.h"
 
 #include <Eigen/Cholesky>
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <utility>
 
 #include "gasp/core/error.h"
+#include "gasp/core/format.h"
+#include "gasp/core/stopwatch.h"
 #include "gasp/pipeline/pair_registration.h"
 #include "gasp/slam/pose_graph.h"
 

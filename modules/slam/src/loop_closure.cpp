@@ -1,4 +1,3 @@
-#include "gasp/core/format.h"
 #include "gasp/slam/loop_closure.h"
 
 #include <Eigen/Cholesky>
@@ -6,11 +5,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <utility>
 
 #include "gasp/core/error.h"
+#include "gasp/core/format.h"
 #include "gasp/core/pose_perturbation.h"
+#include "gasp/core/stopwatch.h"
 
 namespace gasp {
 
@@ -88,7 +88,7 @@ LoopClosureAttempt registerLoopClosure(const DepthView& from_view, const DepthVi
   a.relocalisation = relocalisation;
   const auto t0 = std::chrono::steady_clock::now();
   const PairResult r = registerViews(to_view, from_view, pair);
-  a.registration_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  a.registration_ms = msSince(t0);
   a.inliers = r.pose.success ? r.pose.num_inliers : 0;
   const int min_inliers = relocalisation ? params.relocalisation_min_inliers : params.min_inliers;
   if (!r.pose.success) {

@@ -1,12 +1,11 @@
-#include "gasp/core/format.h"
 #include "gasp/slam/relocalisation.h"
 
 #include <Eigen/Cholesky>
 
 #include <cmath>
-#include <cstdio>
 
 #include "gasp/core/error.h"
+#include "gasp/core/format.h"
 #include "gasp/core/pose_perturbation.h"
 
 namespace gasp {

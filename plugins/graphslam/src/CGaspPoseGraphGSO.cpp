@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gasp/core/error.h"
+#include "gasp/core/stopwatch.h"
 #include "gasp/mrpt/params_io.h"
 #include "gasp/mrpt/pose_graph.h"
 #include "gasp/rawlog/observation_conversion.h"
@@ -96,7 +97,7 @@ void CGaspPoseGraphGSO::optimizeNow() {
   for (std::size_t i = 0; i < n; ++i) m_graph->nodes[i] = toCPose3D(T_world_node[i]);
   seen_extra_edges_ = extraEdges(*m_graph);
   just_optimised_ = true;
-  optimisation_ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  optimisation_ms_ += msSince(t0);
   MRPT_LOG_INFO_STREAM("optimised " << n << " nodes: chi-square " << last_.initial_chi2 << " -> " << last_.final_chi2);
 }
 

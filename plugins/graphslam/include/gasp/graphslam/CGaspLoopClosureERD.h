@@ -54,6 +54,8 @@ class CGaspLoopClosureERD : public mrpt::graphslam::deciders::CEdgeRegistrationD
   const PairParams& pairParams() const { return pair_; }
   const LoopClosureParams& loopParams() const { return loop_; }
   void setSensorLabel(const std::string& label) { sensor_label_ = label; }
+  /// The 3D range scans used: those with this sensorLabel (empty: the first of any step).
+  const std::string& sensorLabel() const { return sensor_label_; }
   /// Every registration tried, in order (from, to: node IDs); `accepted` while its edge is in
   /// the graph (as of the last syncWithGraph()).
   const std::vector<LoopClosureAttempt>& attempts() const { return attempts_; }

@@ -47,6 +47,8 @@ class CGaspOdometryNRD : public mrpt::graphslam::deciders::CNodeRegistrationDeci
   void setParams(const OdometryParams& params);
   const OdometryParams& params() const { return params_; }
   void setSensorLabel(const std::string& label) { sensor_label_ = label; }
+  /// The 3D range scans used: those with this sensorLabel (empty: the first of any step).
+  const std::string& sensorLabel() const { return sensor_label_; }
   /// nullptr before the first scan.
   const DepthOdometry* odometry() const { return odometry_ ? &*odometry_ : nullptr; }
   /// For each node, the odometry's frame index (= the scan's position among the scans used).
