@@ -34,12 +34,11 @@
 #include "gasp/graphslam/engine.h"
 #include "gasp/graphslam/ini_check.h"
 #include "gasp/graphslam/options_checker.h"
-#include "gasp/mrpt/keyframe_map.h"
 #include "gasp/rawlog/observation_conversion.h"
 #include "gasp/rawlog/rawlog_entries.h"
 #include "gasp/rawlog/rawlog_format.h"
-#include "gasp/slam/point_map.h"
 #include "cli.h"
+#include "map_output.h"
 #include "sequence_report.h"
 
 namespace {
@@ -99,8 +98,8 @@ NodeInfo infoOf(const mrpt::obs::CObservation3DRangeScan::Ptr& scan, bool keep_d
 int main(int argc, char** argv) {
   CLI::App app{"gasp-graphslam: MRPT's graph-SLAM engine (3D) over a rawlog of depth scans with GASP's node and "
                "edge registration deciders and optimiser"};
-  std::string rawlog_path, ini_path, out_path, graph_path, report_dir, gt_path, simplemap_path, cloud_path;
-  double voxel_m = 0.01, cloud_max_depth_m = 4.0;
+  std::string rawlog_path, ini_path, out_path, graph_path, report_dir, gt_path;
+  gasp::tools::MapOutputOptions map_output;
   std::string node_reg = "CGaspOdometryNRD", edge_reg = "CGaspLoopClosureERD", optimizer = "CGaspPoseGraphGSO";
   bool list_regs = false, list_optimizers = false, print_ini = false;
   app.add_option("--rawlog", rawlog_path, "MRPT rawlog with CObservation3DRangeScan (format #1 or #2)");
@@ -112,14 +111,7 @@ int main(int argc, char** argv) {
   app.add_option("--graph", graph_path, "the graph (MRPT VERTEX3/EDGE3, robot frames)");
   app.add_option("--report-dir", report_dir, "directory for the engine's reports (MRPT's .log files: classes, timings)");
   app.add_option("--gt", gt_path, "ground truth (TUM format) to evaluate the nodes' trajectory against");
-  app.add_option("--simplemap", simplemap_path, "the nodes' scans at their optimised poses as an MRPT simple map (for observations2map)");
-  app.add_option("--cloud", cloud_path, "a point map of the nodes' scans at their optimised poses (PLY, one point per voxel)");
-  app.add_option("--voxel", voxel_m, "voxel size of --cloud [m], 0.001 to 10")
-      ->capture_default_str()
-      ->check(gasp::tools::within(gasp::kMinVoxelM, gasp::kMaxVoxelM));
-  app.add_option("--cloud-max-depth", cloud_max_depth_m, "depth beyond which points are left out of --cloud [m]")
-      ->capture_default_str()
-      ->check(gasp::tools::above(0));
+  gasp::tools::addMapOutputOptions(app, map_output, "nodes");
   app.add_flag("--list-regs", list_regs, "list the node and edge registration deciders for 3D graphs");
   app.add_flag("--list-optimizers", list_optimizers, "list the optimisers");
   app.add_flag("--print-ini", print_ini, "print the default configuration");
@@ -154,7 +146,7 @@ int main(int argc, char** argv) {
   try {
     if (!mrpt::system::fileExists(rawlog_path)) throw gasp::Error("cannot open rawlog " + rawlog_path);
     const std::string missing = gasp::tools::missingOutputFolder(
-        {{"--out", out_path}, {"--graph", graph_path}, {"--simplemap", simplemap_path}, {"--cloud", cloud_path}});
+        {{"--out", out_path}, {"--graph", graph_path}, {"--simplemap", map_output.simplemap_path}, {"--cloud", map_output.cloud_path}});
     if (!missing.empty()) throw gasp::Error(missing);  // before the run, not after it
     if (!ini_path.empty() && !mrpt::system::fileExists(ini_path)) throw gasp::Error("cannot open configuration " + ini_path);
     if (!ini_path.empty()) {
@@ -194,7 +186,7 @@ int main(int argc, char** argv) {
     const std::string sensor_label = gasp_nrd ? gasp_nrd->sensorLabel() : (gasp_erd ? gasp_erd->sensorLabel() : "");
     mrpt::obs::CObservation3DRangeScan::Ptr first_scan;
     std::vector<NodeInfo> nodes;
-    const bool keep_depth = !simplemap_path.empty() || !cloud_path.empty();
+    const bool keep_depth = map_output.wanted();
     // GASP's node decider: the scan of each keyframe, in node order (the root's is known a step
     // before the root enters the graph, with the second node).
     std::vector<std::optional<gasp::RgbdFrame>> keyframe_depth;
@@ -256,20 +248,7 @@ int main(int argc, char** argv) {
     if (keep_depth && map_frames.size() < nodes.size())
       std::fprintf(stderr, "warning: %zu of %zu nodes have no depth scan that could be converted; the map leaves them out\n",
                    nodes.size() - map_frames.size(), nodes.size());
-    if (!simplemap_path.empty()) {
-      gasp::saveSimpleMap(gasp::keyframeSimpleMap(map_frames, map_poses), simplemap_path);
-      std::printf("simplemap: %s (%zu nodes)\n", simplemap_path.c_str(), map_frames.size());
-    }
-    if (!cloud_path.empty()) {
-      gasp::VoxelPointMap map(voxel_m, cloud_max_depth_m);
-      for (std::size_t i = 0; i < map_frames.size(); ++i)
-        map.insert(map_frames[i].depth_m, map_frames[i].depth_intrinsics, map_poses[i]);
-      map.writePly(cloud_path);
-      std::printf("cloud: %s (%zu points, voxel %.3f m)\n", cloud_path.c_str(), map.size(), voxel_m);
-      if (map.pointsOutside() > 0)
-        std::fprintf(stderr, "warning: %zu points lie beyond the voxel grid (+-2^20 voxels) and are not in the cloud\n",
-                     map.pointsOutside());
-    }
+    gasp::tools::writeMapOutputs(map_output, map_frames, map_poses, "nodes");
 
     std::printf("rawlog_entries: %zu\n", steps);
     std::printf("scans: %zu\n", scans);

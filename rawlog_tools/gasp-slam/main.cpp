@@ -19,12 +19,12 @@
 
 #include "gasp/core/error.h"
 #include "gasp/core/tum_trajectory.h"
-#include "gasp/mrpt/keyframe_map.h"
 #include "gasp/mrpt/pose_graph.h"
 #include "gasp/rawlog/depth_sequence.h"
 #include "gasp/slam/depth_slam.h"
 #include "gasp/slam/point_map.h"
 #include "cli.h"
+#include "map_output.h"
 #include "sequence_options.h"
 #include "sequence_report.h"
 
@@ -51,22 +51,15 @@ int main(int argc, char** argv) {
   CLI::App app{"gasp-slam: a map built offline from a depth sequence with GASP: odometry, loop closures between "
                "keyframes and the optimised pose graph"};
   gasp::DepthSequenceOptions input;
-  std::string gt_path, out_path, odometry_out, graph_path, frames_csv, loops_csv, simplemap_path, cloud_path;
-  double voxel_m = 0.01, cloud_max_depth_m = 4.0;
+  std::string gt_path, out_path, odometry_out, graph_path, frames_csv, loops_csv;
+  gasp::tools::MapOutputOptions map_output;
   bool no_loops = false;
   gasp::SlamParams params;
   gasp::tools::addSequenceOptions(app, input, gt_path);
   app.add_option("--out", out_path, "optimised trajectory to write (TUM format: timestamp tx ty tz qx qy qz qw of the depth camera)")->required();
   app.add_option("--odometry-out", odometry_out, "the odometry's trajectory before loop closures (TUM format, same world)");
   app.add_option("--graph", graph_path, "pose graph to write: odometry and loop-closure edges at the optimised poses (MRPT VERTEX3/EDGE3, robot frames)");
-  app.add_option("--simplemap", simplemap_path, "the keyframes' scans at their optimised poses as an MRPT simple map (for observations2map)");
-  app.add_option("--cloud", cloud_path, "a point map of the keyframes at their optimised poses (PLY, one point per voxel)");
-  app.add_option("--voxel", voxel_m, "voxel size of --cloud [m], 0.001 to 10")
-      ->capture_default_str()
-      ->check(gasp::tools::within(gasp::kMinVoxelM, gasp::kMaxVoxelM));
-  app.add_option("--cloud-max-depth", cloud_max_depth_m, "depth beyond which points are left out of --cloud [m]")
-      ->capture_default_str()
-      ->check(gasp::tools::above(0));
+  gasp::tools::addMapOutputOptions(app, map_output, "keyframes");
   app.add_option("--frames-csv", frames_csv, "one line per frame: tracked, keyframe, reference, patches, inliers, times, reason");
   app.add_option("--loops-csv", loops_csv, "one line per loop-closure registration: keyframes, accepted, inliers, gate chi-square, reason");
   gasp::tools::addOdometryOptions(app, params.odometry);
@@ -97,17 +90,17 @@ int main(int argc, char** argv) {
 
   try {
     gasp::validate(params);
-    const gasp::VoxelPointMap probe(voxel_m, cloud_max_depth_m);  // the cloud's options, checked before the run
+    const gasp::VoxelPointMap probe(map_output.voxel_m, map_output.cloud_max_depth_m);  // checked before the run
     const std::string missing = gasp::tools::missingOutputFolder(
         {{"--out", out_path}, {"--odometry-out", odometry_out}, {"--graph", graph_path}, {"--frames-csv", frames_csv},
-         {"--loops-csv", loops_csv}, {"--simplemap", simplemap_path}, {"--cloud", cloud_path}});
+         {"--loops-csv", loops_csv}, {"--simplemap", map_output.simplemap_path}, {"--cloud", map_output.cloud_path}});
     if (!missing.empty()) throw gasp::Error(missing);  // before the run, not after it
     gasp::DepthSequence sequence(input);
     const gasp::Trajectory gt = gt_path.empty() ? sequence.groundTruth() : gasp::readTumTrajectory(gt_path);
     std::optional<gasp::DepthSlam> slam;
     gasp::Isometry3 T_robot_camera = gasp::Isometry3::Identity();
     std::vector<gasp::RgbdFrame> keyframes;  // for --simplemap and --cloud
-    const bool keep_keyframes = !simplemap_path.empty() || !cloud_path.empty();
+    const bool keep_keyframes = map_output.wanted();
     while (std::optional<gasp::RgbdFrame> frame = sequence.next()) {
       if (!slam) {
         // World = the first frame's robot frame: the first camera sits at its sensorPose.
@@ -140,20 +133,7 @@ int main(int argc, char** argv) {
     std::vector<gasp::Isometry3> keyframe_poses;
     for (const auto& f : frames)
       if (f.keyframe && keep_keyframes) keyframe_poses.push_back(slam->poses()[f.index]);
-    if (!simplemap_path.empty()) {
-      gasp::saveSimpleMap(gasp::keyframeSimpleMap(keyframes, keyframe_poses), simplemap_path);
-      std::printf("simplemap: %s (%zu keyframes)\n", simplemap_path.c_str(), keyframes.size());
-    }
-    if (!cloud_path.empty()) {
-      gasp::VoxelPointMap map(voxel_m, cloud_max_depth_m);
-      for (std::size_t i = 0; i < keyframes.size(); ++i)
-        map.insert(keyframes[i].depth_m, keyframes[i].depth_intrinsics, keyframe_poses[i]);
-      map.writePly(cloud_path);
-      std::printf("cloud: %s (%zu points, voxel %.3f m)\n", cloud_path.c_str(), map.size(), voxel_m);
-      if (map.pointsOutside() > 0)
-        std::fprintf(stderr, "warning: %zu points lie beyond the voxel grid (+-2^20 voxels) and are not in the cloud\n",
-                     map.pointsOutside());
-    }
+    gasp::tools::writeMapOutputs(map_output, keyframes, keyframe_poses, "keyframes");
 
     gasp::tools::printOdometrySummary(slam->odometry());
     std::size_t tried = 0, relocalisations = 0;

@@ -1,0 +1,32 @@
+#pragma once
+/// \file map_output.h The map outputs gasp-slam and gasp-graphslam share: --simplemap, --cloud,
+/// --voxel, --cloud-max-depth, and writing them from scans at their optimised poses.
+#include <CLI/CLI.hpp>
+
+#include <string>
+#include <vector>
+
+#include "gasp/core/pose.h"
+#include "gasp/rawlog/rgbd_frame.h"
+
+namespace gasp::tools {
+
+struct MapOutputOptions {
+  std::string simplemap_path;  ///< MRPT simple map to write; empty: none
+  std::string cloud_path;      ///< voxel point cloud (PLY) to write; empty: none
+  double voxel_m = 0.01;
+  double cloud_max_depth_m = 4.0;
+  /// True when a map is asked for (the scans must then be kept).
+  bool wanted() const { return !simplemap_path.empty() || !cloud_path.empty(); }
+};
+
+/// Adds the four options; `scans` names what the map holds in the help ("keyframes", "nodes").
+void addMapOutputOptions(CLI::App& app, MapOutputOptions& options, const std::string& scans);
+
+/// Writes what `options` asks for from frames[i] at T_world_camera[i] and prints the lines
+/// "simplemap: PATH (N <scans>)" and "cloud: PATH (N points, voxel V m)" (a warning on stderr for
+/// points beyond the voxel grid). Throws gasp::Error when a file cannot be written.
+void writeMapOutputs(const MapOutputOptions& options, const std::vector<RgbdFrame>& frames,
+                     const std::vector<Isometry3>& T_world_camera, const std::string& scans);
+
+}  // namespace gasp::tools
