@@ -51,6 +51,7 @@ void pairFields(P& p, F&& f) {
   f("dense_rounds", p.dense_rounds);
   f("dense_max_rounds", p.dense_max_rounds);
   f("dense_converged_m", p.dense_converged_m);
+  f("dense_extrapolation_max", p.dense_extrapolation_max);
   f("refine", p.refine);
   f("retry_area_factor", p.retry_area_factor);
   f("slide_scan", p.slide_scan.enabled);

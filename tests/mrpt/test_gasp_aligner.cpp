@@ -164,9 +164,12 @@ TEST(GaspAligner, BadInputGivesClearErrors) {
   EXPECT_EQ(aligner.options.params.association.candidates, 30);
   // The converged dense rounds' limits are keys too; invalid values are refused by name.
   EXPECT_NO_THROW(aligner.options.loadFromConfigFile(
-      mrpt::config::CConfigFileMemory("[A]\ndense_max_rounds=5\ndense_converged_m=0.004\n"), "A"));
+      mrpt::config::CConfigFileMemory("[A]\ndense_max_rounds=5\ndense_converged_m=0.004\ndense_extrapolation_max=2.5\n"), "A"));
   EXPECT_EQ(aligner.options.params.dense_max_rounds, 5);
   EXPECT_DOUBLE_EQ(aligner.options.params.dense_converged_m, 0.004);
+  EXPECT_DOUBLE_EQ(aligner.options.params.dense_extrapolation_max, 2.5);
+  EXPECT_THROW(aligner.options.loadFromConfigFile(mrpt::config::CConfigFileMemory("[A]\ndense_extrapolation_max=-1\n"), "A"),
+               std::exception);
   try {
     aligner.options.loadFromConfigFile(mrpt::config::CConfigFileMemory("[A]\ndense_converged_m=-1\n"), "A");
     ADD_FAILURE() << "a negative dense_converged_m accepted";

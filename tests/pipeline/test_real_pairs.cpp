@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "gasp/core/camera_roll.h"
 #include "gasp/core/tum_dataset.h"
 #include "gasp/pipeline/pair_registration.h"
 #include "gasp_test_data.h"
@@ -190,6 +191,37 @@ TEST(RealPairs, WideEdgeGatesStopTheCabinetSlide) {
   const PairResult c = registerViews(d.a, d.b, narrow);
   ASSERT_TRUE(c.pose.success) << c.pose.reason;
   EXPECT_LT(translationError(d, c), 0.05);
+}
+
+TEST(RealPairs, ARolledCabinetPairNeedsMoreThanEightRounds) {
+  // fr3_cabinet_kf keyframes 10 -> 12 with the target view turned by 180 deg (the camera rolled
+  // about its optical axis; docs/benchmarks.md "Camera roll on real data"). The patch pose rests
+  // on 11 RANSAC inliers and is 14 cm / 8 deg off. Eight plain rounds (the former limit) stopped
+  // 5.4 cm / 3.3 deg off, a claimed pose. The 16 rounds of today's limit end within the cabinet
+  // benchmark's 3 cm / 1.5 deg but still moving (the rounds at the last gate swing about the
+  // reference with steps of several centimetres; docs/pipeline.md "Extrapolated rounds"), and
+  // the result says so: the last round's step is above dense_converged_m.
+  GASP_REQUIRE_DATA(dir, "tum/fr3_cabinet_kf");
+  const auto ds = TumDataset::open(dir);
+  const int turn = 180;
+  const RealPair p{makeDepthView(ds.loadDepth(10), ds.intrinsics()),
+                   makeDepthView(turnImage(ds.loadDepth(12), turn), turnIntrinsics(ds.intrinsics(), turn)),
+                   turnRotation(turn) * relativePose(*ds.frame(12).T_world_camera, *ds.frame(10).T_world_camera)};
+  const PairParams defaults;
+  const PairResult r = registerViews(p.a, p.b);
+  ASSERT_TRUE(r.pose.success) << r.pose.reason;
+  EXPECT_LT(translationError(p, r), 0.03);
+  EXPECT_LT(rotationErrorDeg(p, r), 1.5);
+  EXPECT_EQ(r.dense_rounds_run, defaults.dense_max_rounds);
+  EXPECT_GT(r.dense_last_step_m, defaults.dense_converged_m);
+
+  PairParams eight;
+  eight.dense_extrapolation_max = 0.0;
+  eight.dense_max_rounds = 8;
+  const PairResult short_of = registerViews(p.a, p.b, eight);
+  ASSERT_TRUE(short_of.pose.success) << short_of.pose.reason;
+  EXPECT_GT(translationError(p, short_of), 0.04);
+  EXPECT_EQ(short_of.dense_rounds_run, 8);
 }
 
 }  // namespace

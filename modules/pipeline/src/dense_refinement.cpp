@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "gasp/core/depth_image.h"
 #include "gasp/pipeline/edge_terms.h"
 #include "gasp/pipeline/projective_terms.h"
+#include "gasp/pipeline/step_extrapolation.h"
 #include "gasp/pipeline/visibility_check.h"
 #include "gasp/registration/refinement.h"
 #include "slide_scan.h"
@@ -63,6 +65,7 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
     rounds = DenseRounds{};
     RegistrationResult pose = patch_pose;
     pose.T_target_source = start;
+    std::optional<Isometry3> previous_step;  // the last round's motion, when it was a plain round at the last gate
     for (int round = 0; round < max_rounds; ++round) {
       ProjectiveTermParams proj = params.projective;
       proj.max_distance_m = gateOfRound(round);
@@ -84,8 +87,27 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
         break;
       }
       rounds.last_step_m = rmsStep(pose.T_target_source, next.T_target_source);
+      const Isometry3 step = next.T_target_source * pose.T_target_source.inverse();
       pose = next;
       if (round + 1 >= params.dense_rounds && rounds.last_step_m < params.dense_converged_m) break;
+      // Extrapolation (Besl & McKay 1992, IV-C; step_extrapolation.h): two rounds at the last
+      // gate that move the pose the same way say it creeps; the next round starts ahead along the
+      // last step. Never after the last round: the pose returned is always a refined one.
+      if (round + 1 < params.dense_rounds || round + 1 >= max_rounds || params.dense_extrapolation_max <= 0.0) continue;
+      if (!previous_step) {
+        previous_step = step;
+        continue;
+      }
+      std::vector<Eigen::Vector3d> mapped;
+      mapped.reserve(centroids.size());
+      for (const auto& c : centroids) mapped.push_back(pose.T_target_source * c);
+      const StepExtrapolation jump = extrapolateSteps(*previous_step, step, mapped, params.dense_extrapolation_max);
+      if (jump.factor > 0.0) {
+        pose.T_target_source = jump.jump * pose.T_target_source;
+        previous_step.reset();
+      } else {
+        previous_step = step;
+      }
     }
     return pose;
   };

@@ -2,7 +2,8 @@
 // The pair pipeline's last refinement (docs/pipeline.md, step 4): dense point-to-plane terms from
 // the patches' pixels and point-to-line terms along occluding edges, re-associated over
 // PairParams::dense_rounds rounds with shrinking gates, from the patch pose, then more at the last
-// gate until the pose stops moving (dense_converged_m, dense_max_rounds); with edge terms, when
+// gate until the pose stops moving (dense_converged_m, dense_max_rounds), a round after two steps
+// that agree and shrink starting ahead along them (step_extrapolation.h); with edge terms, when
 // most source edge points find no target edge at the final pose, a second refinement with wider
 // edge gates runs and the pose whose views agree more (visibility_check.h) is kept.
 #include <optional>

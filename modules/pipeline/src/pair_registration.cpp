@@ -81,6 +81,8 @@ void validate(const PairParams& p) {
   if (p.dense_max_rounds < 0) throw Error("PairParams: dense_max_rounds must be >= 0");
   if (!(p.dense_converged_m >= 0) || !std::isfinite(p.dense_converged_m))
     throw Error("PairParams: dense_converged_m must be finite and >= 0");
+  if (!(p.dense_extrapolation_max >= 0) || !std::isfinite(p.dense_extrapolation_max))
+    throw Error("PairParams: dense_extrapolation_max must be finite and >= 0");
   if (p.min_dense_terms < 0) throw Error("PairParams: min_dense_terms must be >= 0");
   if (!(p.retry_area_factor == 0.0 || (p.retry_area_factor >= 0.01 && p.retry_area_factor < 1.0)))
     throw Error("PairParams: retry_area_factor must be 0 (off) or in [0.01, 1)");
