@@ -321,7 +321,8 @@ TEST(FinerScaleRetry, ClaimsNoLookAlikePoseOnRepeatedObjects) {
   // mutual associations align look-alike boxes (90 deg and 8 deg off, 12-18 % violations), which
   // the retry's visibility limit (one_way_max_violation_ratio, 8 %) declines. Loosened to 30 %
   // (the default scale's limit was 30 % until it became 15 %, which declines them too), the wrong
-  // pose is claimed: those limits are what decline it.
+  // pose is claimed: those limits are what decline it. (Since the extrapolated dense rounds,
+  // docs/pipeline.md, 3 -> 13 is registered right at the default scale, 1.4 mm off: see below.)
   for (const auto& [from, to] : {std::pair{33, 43}, std::pair{3, 13}}) {
     const Pair p = makePair("repeated", from, to);
     const PairResult r = registerViews(p.a, p.b);
@@ -337,6 +338,17 @@ TEST(FinerScaleRetry, ClaimsNoLookAlikePoseOnRepeatedObjects) {
     loose.one_way_max_violation_ratio = 0.3;
     loose.visibility.max_violation_ratio = 0.3;
     loose.slide_scan.enabled = false;  // 3 -> 13's loosened pose slid along a box: the scan moves it right
+    if (from == 3) {
+      // The 16 rounds with the extrapolation: the default scale's pose, right; nothing to retry.
+      const PairResult w = registerViews(p.a, p.b, loose);
+      ASSERT_TRUE(w.pose.success) << w.pose.reason;
+      EXPECT_EQ(w.retry_views, nullptr);
+      EXPECT_LT(translationNorm(p.T_b_a.inverse() * w.pose.T_target_source), 0.02);
+      // The former rounds (8, plain) leave the default scale without a pose; the retry's
+      // look-alike is claimed under the loosened limits.
+      loose.dense_max_rounds = 8;
+      loose.dense_extrapolation_max = 0.0;
+    }
     const PairResult w = registerViews(p.a, p.b, loose);
     ASSERT_TRUE(w.pose.success) << from << " -> " << to << ": " << w.pose.reason;
     EXPECT_NE(w.retry_views, nullptr);

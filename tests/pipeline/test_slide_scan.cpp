@@ -29,20 +29,24 @@ TEST(SlideScan, BringsSlidPosesOnTheSparseSceneToTheTruth) {
   // A wall, a floor, one box, one cylinder, one sphere; motions 0.3-1.0 m, 6-21 deg. The RANSAC
   // inliers lie on the floor and the wall, so the patch problem leaves a rotation about the
   // vertical with a translation along the wall free. Three dense rounds stopped 5-21 cm /
-  // 1.1-3.4 deg off on all five pairs (docs/pipeline.md, "Slide scan"); the rounds that run until
-  // the pose stops moving (dense_max_rounds) bring 9 -> 24 and 12 -> 18 within 2 cm on their own,
-  // and stop 2.8-5.3 cm off on the other three, which the scan moves to the truth.
+  // 1.1-3.4 deg off on all five pairs (docs/pipeline.md, "Slide scan"); eight plain rounds
+  // (the former limit) bring 9 -> 24 and 12 -> 18 within 2 cm on their own and stop 2.8-5.3 cm
+  // off on the other three, which the scan moves to the truth. Since the extrapolated rounds
+  // (docs/pipeline.md, "Extrapolated rounds") the rounds alone bring all five within 1 cm.
+  PairParams former;
+  former.dense_max_rounds = 8;
+  former.dense_extrapolation_max = 0.0;
   for (const auto& [from, to, slid_by] :
        {std::tuple{3, 13, 0.04}, std::tuple{6, 12, 0.02}, std::tuple{6, 16, 0.04}}) {
     const Pair p = makePair("sparse", from, to);
-    PairParams off;
+    PairParams off = former;
     off.slide_scan.enabled = false;
     const PairResult slid = registerViews(p.a, p.b, off);
     ASSERT_TRUE(slid.pose.success) << from << " -> " << to << ": " << slid.pose.reason;
     EXPECT_GT(translationError(p, slid), slid_by) << from << " -> " << to << ": without the scan the pose slides";
     EXPECT_FALSE(slid.slide.ran);
 
-    const PairResult r = registerViews(p.a, p.b);
+    const PairResult r = registerViews(p.a, p.b, former);
     ASSERT_TRUE(r.pose.success) << from << " -> " << to << ": " << r.pose.reason;
     EXPECT_TRUE(r.slide.ran && r.slide.moved) << from << " -> " << to << ": " << r.slide.summary();
     EXPECT_LT(translationError(p, r), 0.02) << from << " -> " << to;
@@ -51,12 +55,12 @@ TEST(SlideScan, BringsSlidPosesOnTheSparseSceneToTheTruth) {
     EXPECT_TRUE(r.visibility.passed);
     EXPECT_FALSE(r.wide_edge_pose);
   }
-  for (const auto& [from, to] : {std::pair{9, 24}, std::pair{12, 18}}) {
+  for (const auto& [from, to] : {std::pair{3, 13}, std::pair{6, 12}, std::pair{6, 16}, std::pair{9, 24}, std::pair{12, 18}}) {
     const Pair p = makePair("sparse", from, to);
     const PairResult r = registerViews(p.a, p.b);
     ASSERT_TRUE(r.pose.success) << from << " -> " << to << ": " << r.pose.reason;
     EXPECT_TRUE(r.slide.ran) << from << " -> " << to;
-    EXPECT_LT(translationError(p, r), 0.02) << from << " -> " << to;
+    EXPECT_LT(translationError(p, r), 0.015) << from << " -> " << to;
     EXPECT_LT(rotationErrorDeg(p, r), 1.0) << from << " -> " << to;
   }
 }
@@ -81,9 +85,13 @@ TEST(SlideScan, LeavesARightPoseWhereItIs) {
 TEST(SlideScan, ScansOnlyClaimedPoses) {
   // Repeated boxes 3 -> 13: the dense pose fails the visibility check. Scanned anyway (an earlier
   // version), a look-alike alignment 0.29 m / 7.4 deg off was claimed: a failure stays a failure.
+  // With the former rounds (8, plain): since the extrapolated rounds this pair's dense pose is
+  // right (docs/pipeline.md, "Extrapolated rounds").
   const Pair p = makePair("repeated", 3, 13);
   PairParams params;
   params.retry_area_factor = 0.0;
+  params.dense_max_rounds = 8;
+  params.dense_extrapolation_max = 0.0;
   const PairResult r = registerViews(p.a, p.b, params);
   EXPECT_FALSE(r.pose.success);
   EXPECT_FALSE(r.slide.ran);

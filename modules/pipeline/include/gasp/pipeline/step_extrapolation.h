@@ -10,7 +10,8 @@
 ///   cosine = sum a_i . b_i / sqrt(sum |a_i|^2 sum |b_i|^2),   ratio r = sqrt(sum |b_i|^2 / sum |a_i|^2).
 /// When the steps point the same way (cosine >= min_cosine) and shrink geometrically, the rest of
 /// the iteration sums to B^s with s = r / (1 - r) (the geometric series r + r^2 + ...); s is capped
-/// at max_factor, which is also taken when the steps do not shrink (r >= 1). B^s is B taken s
+/// at max_factor. Steps that do not shrink (r >= 1) are not extrapolated: the iteration is then
+/// running into its basin, not converging (jumping there made a real pair swing). B^s is B taken s
 /// times about the points' centre c: rotation by s times B's angle about B's axis through c, and
 /// s times the displacement of c.
 #include <vector>
