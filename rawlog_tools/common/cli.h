@@ -46,45 +46,44 @@ inline bool finiteValue(const std::string& text, double& v, std::string& error) 
 }
 }  // namespace detail
 
+namespace detail {
+/// A validator of finite numbers: `problem(v, text)` says what is wrong with v, or "".
+template <class Problem>
+CLI::Validator numberValidator(const std::string& description, Problem problem) {
+  return CLI::Validator(
+      [problem](std::string& text) -> std::string {
+        double v = 0;
+        std::string error;
+        if (!finiteValue(text, v, error)) return error;
+        return problem(v, text);
+      },
+      description);
+}
+}  // namespace detail
+
 /// A finite number >= lo ("must be at least 1 (got 0)"). On unsigned options, `atLeast(0)` keeps
 /// CLI11 from wrapping "-1" round to 18446744073709551615.
 inline CLI::Validator atLeast(double lo) {
-  return CLI::Validator(
-      [lo](std::string& text) -> std::string {
-        double v = 0;
-        std::string error;
-        if (!detail::finiteValue(text, v, error)) return error;
-        if (v < lo) return "must be at least " + detail::shortNumber(lo) + " (got " + text + ")";
-        return {};
-      },
-      ">= " + detail::shortNumber(lo));
+  return detail::numberValidator(">= " + detail::shortNumber(lo), [lo](double v, const std::string& text) {
+    return v < lo ? "must be at least " + detail::shortNumber(lo) + " (got " + text + ")" : std::string();
+  });
 }
 
 /// A finite number > lo.
 inline CLI::Validator above(double lo) {
-  return CLI::Validator(
-      [lo](std::string& text) -> std::string {
-        double v = 0;
-        std::string error;
-        if (!detail::finiteValue(text, v, error)) return error;
-        if (!(v > lo)) return "must be greater than " + detail::shortNumber(lo) + " (got " + text + ")";
-        return {};
-      },
-      "> " + detail::shortNumber(lo));
+  return detail::numberValidator("> " + detail::shortNumber(lo), [lo](double v, const std::string& text) {
+    return !(v > lo) ? "must be greater than " + detail::shortNumber(lo) + " (got " + text + ")" : std::string();
+  });
 }
 
 /// A finite number in [lo, hi].
 inline CLI::Validator within(double lo, double hi) {
-  return CLI::Validator(
-      [lo, hi](std::string& text) -> std::string {
-        double v = 0;
-        std::string error;
-        if (!detail::finiteValue(text, v, error)) return error;
-        if (v < lo || v > hi)
-          return "must be between " + detail::shortNumber(lo) + " and " + detail::shortNumber(hi) + " (got " + text + ")";
-        return {};
-      },
-      "in [" + detail::shortNumber(lo) + ", " + detail::shortNumber(hi) + "]");
+  return detail::numberValidator(
+      "in [" + detail::shortNumber(lo) + ", " + detail::shortNumber(hi) + "]", [lo, hi](double v, const std::string& text) {
+        return v < lo || v > hi ? "must be between " + detail::shortNumber(lo) + " and " + detail::shortNumber(hi) +
+                                      " (got " + text + ")"
+                                : std::string();
+      });
 }
 
 /// A non-empty value (a file name given as "" would silently write nothing).
@@ -95,13 +94,7 @@ inline CLI::Validator nonEmpty() {
 
 /// Any finite number (NaN and infinities refused).
 inline CLI::Validator finite() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        double v = 0;
-        std::string error;
-        return detail::finiteValue(text, v, error) ? std::string() : error;
-      },
-      "finite");
+  return detail::numberValidator("finite", [](double, const std::string&) { return std::string(); });
 }
 
 /// The output files' folders exist, checked before a long run: returns "" or the first problem

@@ -340,10 +340,10 @@ TEST(FinerScaleRetry, ClaimsNoLookAlikePoseOnRepeatedObjects) {
     loose.slide_scan.enabled = false;  // 3 -> 13's loosened pose slid along a box: the scan moves it right
     if (from == 3) {
       // The 16 rounds with the extrapolation: the default scale's pose, right; nothing to retry.
-      const PairResult w = registerViews(p.a, p.b, loose);
-      ASSERT_TRUE(w.pose.success) << w.pose.reason;
-      EXPECT_EQ(w.retry_views, nullptr);
-      EXPECT_LT(translationNorm(p.T_b_a.inverse() * w.pose.T_target_source), 0.02);
+      const PairResult right = registerViews(p.a, p.b, loose);
+      ASSERT_TRUE(right.pose.success) << right.pose.reason;
+      EXPECT_EQ(right.retry_views, nullptr);
+      EXPECT_LT(translationNorm(p.T_b_a.inverse() * right.pose.T_target_source), 0.02);
       // The former rounds (8, plain) leave the default scale without a pose; the retry's
       // look-alike is claimed under the loosened limits.
       loose.dense_max_rounds = 8;
