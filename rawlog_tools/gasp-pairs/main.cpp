@@ -261,17 +261,17 @@ int main(int argc, char** argv) {
   app.add_flag("!--no-edge-terms", base.edge_terms, "GASP: no point-to-line terms along occluding edges in the dense rounds");
   app.add_option("--edge-weight", base.edges.weight, "GASP: weight of an edge term")->capture_default_str();
   app.add_option("--wide-edge-gates", base.wide_edge_gate_factor,
-                 "GASP: second refinement, when few edge points are paired, with edge gates this many times wider (0 = none, else >= 1)")->capture_default_str()->check(CLI::NonNegativeNumber);
+                 "GASP: second refinement, when few edge points are paired, with edge gates this many times wider (0 = none, else >= 1)")->capture_default_str()->check(gasp::tools::atLeast(0));
   app.add_option("--edge-step", base.edges.pixel_step, "GASP: one source edge pixel per (N/2)^2 image block")->capture_default_str()->check(gasp::tools::above(0));
   app.add_option("--dense-rounds", base.dense_rounds, "dense projective refinement rounds (0 = none)")->capture_default_str()->check(gasp::tools::atLeast(0));
   app.add_option("--dense-max-rounds", base.dense_max_rounds,
                  "at most this many dense rounds in all: after --dense-rounds, more at the last gate until the pose stops moving (<= --dense-rounds: exactly --dense-rounds)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(gasp::tools::atLeast(0));
   app.add_option("--dense-extrapolation", base.dense_extrapolation_max,
                  "after two dense rounds at the last gate that move the pose the same way, start the next at most this many steps ahead (0 = never)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(gasp::tools::atLeast(0));
   app.add_option("--pixel-step", base.projective.pixel_step, "dense terms: every N-th pixel")->capture_default_str();
   bool polish_reference = false;  // --polish-reference (with the baselines only)
   bool rgb_rotation_check = false;  // --rgb-rotation-check (with the baselines only)

@@ -180,6 +180,13 @@ TEST(GaspPairsProgram, TableAndCsvOnARealFolder) {
   EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 100").exit_code, 4);  // no pair
   EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 1 --depth-scale 0").exit_code, 2);  // usage error
   EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 1 --depth-scale -5000").exit_code, 2);
+  // The dense rounds' options: a plain usage error before any pair, NaN and negatives alike.
+  for (const std::string option : {"--dense-extrapolation nan", "--dense-extrapolation -1", "--dense-max-rounds -2",
+                                   "--wide-edge-gates inf"}) {
+    const ProgramRun r = run("gasp-pairs", "--tum " + dir + " --skips 1 " + option);
+    EXPECT_EQ(r.exit_code, 2) << option << ": " << r.output;
+    EXPECT_NE(r.output.find("must be"), std::string::npos) << option << ": " << r.output;
+  }
 }
 
 // --rolling-shutter: every GASP frame is deskewed with its neighbours' velocity (or the
