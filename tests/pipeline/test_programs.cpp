@@ -183,9 +183,9 @@ TEST(GaspPairsProgram, TableAndCsvOnARealFolder) {
   // The dense rounds' options: a plain usage error before any pair, NaN and negatives alike.
   for (const std::string option : {"--dense-extrapolation nan", "--dense-extrapolation -1", "--dense-max-rounds -2",
                                    "--wide-edge-gates inf"}) {
-    const ProgramRun r = run("gasp-pairs", "--tum " + dir + " --skips 1 " + option);
-    EXPECT_EQ(r.exit_code, 2) << option << ": " << r.output;
-    EXPECT_NE(r.output.find("must be"), std::string::npos) << option << ": " << r.output;
+    const ProgramRun bad = run("gasp-pairs", "--tum " + dir + " --skips 1 " + option);
+    EXPECT_EQ(bad.exit_code, 2) << option << ": " << bad.output;
+    EXPECT_NE(bad.output.find("must be"), std::string::npos) << option << ": " << bad.output;
   }
 }
 
