@@ -52,6 +52,8 @@ void pairFields(P& p, F&& f) {
   f("dense_max_rounds", p.dense_max_rounds);
   f("dense_converged_m", p.dense_converged_m);
   f("dense_extrapolation_max", p.dense_extrapolation_max);
+  f("dense_line_search", p.dense_line_search);
+  f("dense_line_search_halvings", p.dense_line_search_halvings);
   f("refine", p.refine);
   f("retry_area_factor", p.retry_area_factor);
   f("slide_scan", p.slide_scan.enabled);

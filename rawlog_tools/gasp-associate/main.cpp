@@ -277,7 +277,9 @@ int main(int argc, char** argv) {
     }
     std::printf("visibility_violations: %.3f\nvisibility_occluded: %.3f\n", r.visibility.violation_ratio,
                 r.visibility.occluded_ratio);
-    std::printf("dense_rounds: %d (last step %.1f mm)\n", r.dense_rounds_run, 1000.0 * r.dense_last_step_m);
+    std::printf("dense_rounds: %d (last step %.1f mm; line search: %d steps shortened%s)\n", r.dense_rounds_run,
+                1000.0 * r.dense_last_step_m, r.dense_steps_shortened,
+                r.dense_line_search_stopped ? ", stopped the rounds" : "");
     std::printf("dense_terms: %d\nedge_paired_share: %.3f\nwide_edge_pose: %s\n", r.dense_terms, r.edge_paired_share,
                 r.wide_edge_pose ? "yes" : "no");
     std::printf("slide_scan: %s\n", r.slide.summary().c_str());

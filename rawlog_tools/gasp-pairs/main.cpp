@@ -95,6 +95,8 @@ struct MethodRun {
   int dense_terms = 0;      ///< GASP: terms of the last dense round (0: no dense rounds ran)
   int dense_rounds = 0;     ///< GASP: dense rounds run for the final pose (0: none)
   double dense_last_step_m = -1.0;  ///< GASP: RMS motion of the source patches in the last dense round (-1: none)
+  int dense_shortened = 0;  ///< GASP: dense steps the line search shortened
+  bool dense_stopped = false;  ///< GASP: the line search ended the dense rounds
   /// GASP with an estimate and ground truth: the error's NEES under the edge information (PairResult)
   /// and its translation and rotation parts (pose_consistency.h; chi-square with 6, 3 and 3
   /// degrees of freedom if the information were right).
@@ -272,6 +274,8 @@ int main(int argc, char** argv) {
                  "after two dense rounds at the last gate that move the pose the same way, start the next at most this many steps ahead (0 = never)")
       ->capture_default_str()
       ->check(gasp::tools::atLeast(0));
+  app.add_flag("!--no-dense-line-search", base.dense_line_search,
+               "GASP: no line search at the last dense gate (a longer step than the round before is kept even when it scores worse; docs/pipeline.md, \"Line search\")");
   app.add_option("--pixel-step", base.projective.pixel_step, "dense terms: every N-th pixel")->capture_default_str();
   bool polish_reference = false;  // --polish-reference (with the baselines only)
   bool rgb_rotation_check = false;  // --rgb-rotation-check (with the baselines only)
@@ -479,6 +483,8 @@ int main(int argc, char** argv) {
         run.dense_terms = r.dense_terms;
         run.dense_rounds = r.dense_rounds_run;
         run.dense_last_step_m = r.dense_last_step_m;
+        run.dense_shortened = r.dense_steps_shortened;
+        run.dense_stopped = r.dense_line_search_stopped;
         double gicp_ms = 0.0;
 #ifdef GASP_HAVE_BASELINES
         if (method == "gasp-gicp" && r.pose.success) {
@@ -675,7 +681,7 @@ int main(int argc, char** argv) {
     if (!pairs_csv_path.empty()) {
       pairs_csv.open(pairs_csv_path);
       if (!pairs_csv) throw gasp::Error("cannot write " + pairs_csv_path);
-      pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,occluded_ratio,consistent,occluded,violations,one_way,guided_support,finer_scale,slide_moved,dense_terms,dense_rounds,dense_last_step_m,"
+      pairs_csv << "skip,method,from,to,estimated,t_err_m,r_err_deg,ms,associations,inliers,violation_ratio,occluded_ratio,consistent,occluded,violations,one_way,guided_support,finer_scale,slide_moved,dense_terms,dense_rounds,dense_last_step_m,dense_shortened,dense_stopped,"
                     "precision,verified,verified_precision,verified_density,agreement,agreement_truth,tx,ty,tz,qx,qy,qz,qw,"
                     "motion_t_m,motion_r_deg,ref_icp_t_m,ref_icp_r_deg,est_vs_ref_icp_t_m,est_vs_ref_icp_r_deg,"
                     "est_icp_t_m,est_icp_r_deg,icp_est_vs_ref_icp_t_m,icp_est_vs_ref_icp_r_deg,verified_precision_ref_icp,"
@@ -786,7 +792,8 @@ int main(int argc, char** argv) {
           pairs_csv << ',' << o.ms << ',' << run.associations << ',' << run.inliers
                     << ',' << run.violation_ratio << ',' << run.occluded_ratio << ',' << run.consistent << ',' << run.occluded << ','
                     << run.violations << ',' << run.one_way << ',' << run.guided_support << ',' << (run.finer_scale ? 1 : 0)
-                    << ',' << (run.slide_moved ? 1 : 0) << ',' << run.dense_terms << ',' << run.dense_rounds << ',' << run.dense_last_step_m << ',';
+                    << ',' << (run.slide_moved ? 1 : 0) << ',' << run.dense_terms << ',' << run.dense_rounds << ',' << run.dense_last_step_m << ','
+                    << run.dense_shortened << ',' << (run.dense_stopped ? 1 : 0) << ',';
           const auto& fq = run.free_quality;
           const auto& vq = run.verified_quality;
           if (fq) pairs_csv << fq->precision();

@@ -170,6 +170,12 @@ TEST(GaspAligner, BadInputGivesClearErrors) {
   EXPECT_DOUBLE_EQ(aligner.options.params.dense_extrapolation_max, 2.5);
   EXPECT_THROW(aligner.options.loadFromConfigFile(mrpt::config::CConfigFileMemory("[A]\ndense_extrapolation_max=-1\n"), "A"),
                std::exception);
+  EXPECT_NO_THROW(aligner.options.loadFromConfigFile(
+      mrpt::config::CConfigFileMemory("[A]\ndense_line_search=false\ndense_line_search_halvings=1\n"), "A"));
+  EXPECT_FALSE(aligner.options.params.dense_line_search);
+  EXPECT_EQ(aligner.options.params.dense_line_search_halvings, 1);
+  EXPECT_THROW(aligner.options.loadFromConfigFile(mrpt::config::CConfigFileMemory("[A]\ndense_line_search_halvings=-1\n"), "A"),
+               std::exception);
   try {
     aligner.options.loadFromConfigFile(mrpt::config::CConfigFileMemory("[A]\ndense_converged_m=-1\n"), "A");
     ADD_FAILURE() << "a negative dense_converged_m accepted";

@@ -189,6 +189,42 @@ TEST(GaspPairsProgram, TableAndCsvOnARealFolder) {
   }
 }
 
+// The dense rounds' line search: its two pairs-CSV columns, and the flag that turns it off.
+TEST(GaspPairsProgram, DenseLineSearchColumnsAndFlag) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const std::string scratch = gasp::test::scratchDir();
+  const std::string args = "--tum " + dir + " --skips 2 --starts-every 3 --max-pairs 2 --method gasp --pairs-csv ";
+  for (const std::string flag : {"", " --no-dense-line-search"}) {
+    const ProgramRun r = run("gasp-pairs", args + scratch + "/ls.csv" + flag);
+    ASSERT_EQ(r.exit_code, 0) << flag << ": " << r.output;
+    std::ifstream f(scratch + "/ls.csv");
+    std::string header, line;
+    std::getline(f, header);
+    const auto names = splitCsv(header);
+    const auto column = [&](const std::string& name) {
+      const auto it = std::find(names.begin(), names.end(), name);
+      return it == names.end() ? -1 : static_cast<int>(it - names.begin());
+    };
+    const int shortened = column("dense_shortened"), stopped = column("dense_stopped");
+    ASSERT_GE(shortened, 0) << header;
+    ASSERT_EQ(stopped, shortened + 1) << header;
+    EXPECT_EQ(column("dense_last_step_m"), shortened - 1) << header;
+    int rows = 0;
+    while (std::getline(f, line)) {
+      const auto cells = splitCsv(line);
+      ASSERT_GT(cells.size(), static_cast<std::size_t>(stopped)) << line;
+      EXPECT_GE(std::stoi(cells[static_cast<std::size_t>(shortened)]), 0) << line;
+      EXPECT_TRUE(cells[static_cast<std::size_t>(stopped)] == "0" || cells[static_cast<std::size_t>(stopped)] == "1") << line;
+      if (!flag.empty()) {
+        EXPECT_EQ(cells[static_cast<std::size_t>(shortened)], "0") << line;
+        EXPECT_EQ(cells[static_cast<std::size_t>(stopped)], "0") << line;
+      }
+      ++rows;
+    }
+    EXPECT_EQ(rows, 2) << flag;
+  }
+}
+
 // --rolling-shutter: every GASP frame is deskewed with its neighbours' velocity (or the
 // reference's), which moves the estimate; bad values are usage errors.
 TEST(GaspPairsProgram, RollingShutterDeskewsEachFrame) {

@@ -11,6 +11,7 @@
 #include "gasp/pipeline/edge_terms.h"
 #include "gasp/pipeline/projective_terms.h"
 #include "gasp/pipeline/step_extrapolation.h"
+#include "gasp/pipeline/truncated_score.h"
 #include "gasp/pipeline/visibility_check.h"
 #include "gasp/registration/refinement.h"
 #include "slide_scan.h"
@@ -61,24 +62,35 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
     for (const auto& c : centroids) sum2 += (after * c - before * c).squaredNorm();
     return std::sqrt(sum2 / static_cast<double>(centroids.size()));
   };
+  const int first_last_gate_round = static_cast<int>(params.dense_gates_m.size()) - 1;
   auto refineFrom = [&](const Isometry3& start, double edge_gate_factor, DenseRounds& rounds) {
     rounds = DenseRounds{};
     RegistrationResult pose = patch_pose;
     pose.T_target_source = start;
-    std::optional<Isometry3> previous_step;  // the last round's motion, when it was a plain round at the last gate
-    for (int round = 0; round < max_rounds; ++round) {
+    const auto termsAt = [&](const Isometry3& T, int round) {
+      GatedTerms gathered;
       ProjectiveTermParams proj = params.projective;
       proj.max_distance_m = gateOfRound(round);
-      auto terms = projectiveTerms(source, target, pose.T_target_source, proj);
+      gathered.terms = projectiveTerms(source, target, T, proj);
+      gathered.pixel_terms = gathered.terms.size();
+      gathered.pixel_gate_m = proj.max_distance_m;
+      gathered.edge_gate_m = edge_gate_factor * proj.max_distance_m;
       if (edge_targets) {
-        const auto more = edge_targets->terms(source_edges, pose.T_target_source, edge_gate_factor * proj.max_distance_m);
-        terms.insert(terms.end(), more.begin(), more.end());
+        const auto more = edge_targets->terms(source_edges, T, gathered.edge_gate_m);
+        gathered.terms.insert(gathered.terms.end(), more.begin(), more.end());
       }
-      rounds.terms = static_cast<int>(terms.size());
+      return gathered;
+    };
+    RefinementParams refinement = params.pose.refinement;
+    refinement.degeneracy = params.dense_degeneracy;
+    std::optional<Isometry3> previous_step;  // the last round's motion, when it was a plain round at the last gate
+    std::optional<GatedTerms> gathered_ahead;  // the terms at `pose`, when the line search gathered them
+    for (int round = 0; round < max_rounds; ++round) {
+      const GatedTerms gathered = gathered_ahead ? std::move(*gathered_ahead) : termsAt(pose.T_target_source, round);
+      gathered_ahead.reset();
+      rounds.terms = static_cast<int>(gathered.terms.size());
       rounds.run = round + 1;
-      RefinementParams refinement = params.pose.refinement;
-      refinement.degeneracy = params.dense_degeneracy;
-      RegistrationResult next = refinePose(inliers, pose.T_target_source, refinement, terms);
+      RegistrationResult next = refinePose(inliers, pose.T_target_source, refinement, gathered.terms);
       if (!next.success) {
         // The dense problem may be degenerate or fail where the patch problem was not: then no
         // pose is claimed (never a silently weaker one).
@@ -86,8 +98,50 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
         pose = next;
         break;
       }
-      rounds.last_step_m = rmsStep(pose.T_target_source, next.T_target_source);
+      double step_m = rmsStep(pose.T_target_source, next.T_target_source);
+      // Line search (truncated_score.h): at the last gate, a step longer than the round before
+      // must not score worse against the terms gathered where it lands than the pose it leaves
+      // against its own; it is halved up to dense_line_search_halvings times, and when no length
+      // scores better the rounds end at the pose before. (Shrinking steps are left alone: there
+      // the rounds creep, and the extrapolation below acts.)
+      if (params.dense_line_search && round >= first_last_gate_round && step_m >= params.dense_converged_m &&
+          rounds.last_step_m >= 0.0 && step_m > rounds.last_step_m) {
+        const double score_before = truncatedScore(gathered, pose.T_target_source);
+        const Isometry3 full_step = next.T_target_source * pose.T_target_source.inverse();
+        Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+        for (const auto& c : centroids) centre += pose.T_target_source * c;
+        if (!centroids.empty()) centre /= static_cast<double>(centroids.size());
+        Isometry3 landing = next.T_target_source;
+        GatedTerms there = termsAt(landing, round + 1);
+        double fraction = 1.0;
+        for (int halving = 0; truncatedScore(there, landing) < score_before && halving < params.dense_line_search_halvings;
+             ++halving) {
+          fraction *= 0.5;
+          landing = stepPower(full_step, centre, fraction) * pose.T_target_source;
+          there = termsAt(landing, round + 1);
+        }
+        if (truncatedScore(there, landing) < score_before) {
+          rounds.line_search_stopped = true;
+          rounds.last_step_m = 0.0;  // the rounds end where they are: the last round's refined pose
+          break;
+        }
+        if (fraction < 1.0) {
+          // A shortened step: the information, residuals and degeneracy are those at the pose returned.
+          RefinementParams evaluate = refinement;
+          evaluate.max_iterations = 0;
+          RegistrationResult at = refinePose(inliers, landing, evaluate, there.terms);
+          if (!at.success) {
+            rounds.line_search_stopped = true;
+            break;
+          }
+          next = std::move(at);
+          step_m = rmsStep(pose.T_target_source, next.T_target_source);
+          ++rounds.shortened;
+        }
+        gathered_ahead = std::move(there);
+      }
       const Isometry3 step = next.T_target_source * pose.T_target_source.inverse();
+      rounds.last_step_m = step_m;
       pose = next;
       if (round + 1 >= params.dense_rounds && rounds.last_step_m < params.dense_converged_m) break;
       // Extrapolation (Besl & McKay 1992, IV-C; step_extrapolation.h): two rounds at the last
@@ -105,6 +159,7 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
       if (jump.factor > 0.0) {
         pose.T_target_source = jump.jump * pose.T_target_source;
         previous_step.reset();
+        gathered_ahead.reset();
       } else {
         previous_step = step;
       }

@@ -83,6 +83,7 @@ void validate(const PairParams& p) {
     throw Error("PairParams: dense_converged_m must be finite and >= 0");
   if (!(p.dense_extrapolation_max >= 0) || !std::isfinite(p.dense_extrapolation_max))
     throw Error("PairParams: dense_extrapolation_max must be finite and >= 0");
+  if (p.dense_line_search_halvings < 0) throw Error("PairParams: dense_line_search_halvings must be >= 0");
   if (p.min_dense_terms < 0) throw Error("PairParams: min_dense_terms must be >= 0");
   if (!(p.retry_area_factor == 0.0 || (p.retry_area_factor >= 0.01 && p.retry_area_factor < 1.0)))
     throw Error("PairParams: retry_area_factor must be 0 (off) or in [0.01, 1)");
@@ -203,6 +204,8 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
   r.dense_terms = dense.rounds.terms;
   r.dense_rounds_run = dense.rounds.run;
   r.dense_last_step_m = dense.rounds.last_step_m;
+  r.dense_steps_shortened = dense.rounds.shortened;
+  r.dense_line_search_stopped = dense.rounds.line_search_stopped;
   r.wide_edge_pose = dense.wide_edge_pose;
   r.edge_paired_share = dense.edge_paired_share;
   r.slide = dense.slide;

@@ -1,0 +1,33 @@
+#pragma once
+/// \file truncated_score.h The score of a pose against the dense terms gathered at it: the
+/// objective of the dense rounds' line search (dense_refinement.cpp, PairParams::dense_line_search).
+///
+/// The terms of a round are gathered at one pose (projective pixel terms within the gate g, edge
+/// terms within the edge gate); a solve on them can move the pose further than the gate, where
+/// they no longer say where the surfaces are. A step is judged afresh: the terms are gathered
+/// again where it lands and
+///   score(T) = sum_i w_i max(0, g_i^2 - r_i^2),   r_i = n_i . (T p_i - q_i),
+/// with w_i the term's weight and g_i its gate (a truncated quadratic, as in MSAC: Torr and
+/// Zisserman, 2000). A point beyond its gate or on no depth contributes 0, as a point at its gate
+/// would, so a pose gains nothing by losing its worst terms. Larger is better.
+#include <cstddef>
+#include <vector>
+
+#include "gasp/core/pose.h"
+#include "gasp/registration/correspondence.h"
+
+namespace gasp {
+
+/// Dense terms gathered at one pose with their gates: the first `pixel_terms` are pixel terms
+/// (gate pixel_gate_m), the rest edge terms (gate edge_gate_m).
+struct GatedTerms {
+  std::vector<PointToPlane> terms;
+  std::size_t pixel_terms = 0;
+  double pixel_gate_m = 0.0;
+  double edge_gate_m = 0.0;
+};
+
+/// The score above at T_target_source; 0 for no terms. Never throws.
+double truncatedScore(const GatedTerms& gathered, const Isometry3& T_target_source);
+
+}  // namespace gasp
