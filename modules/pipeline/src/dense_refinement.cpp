@@ -85,6 +85,7 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
     refinement.degeneracy = params.dense_degeneracy;
     std::optional<Isometry3> previous_step;  // the last round's motion, when it was a plain round at the last gate
     std::optional<GatedTerms> gathered_ahead;  // the terms at `pose`, when the line search gathered them
+    RegistrationResult last_refined = pose;    // the last round's result (`pose` may be an extrapolated jump from it)
     for (int round = 0; round < max_rounds; ++round) {
       const GatedTerms gathered = gathered_ahead ? std::move(*gathered_ahead) : termsAt(pose.T_target_source, round);
       gathered_ahead.reset();
@@ -101,9 +102,11 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
       double step_m = rmsStep(pose.T_target_source, next.T_target_source);
       // Line search (truncated_score.h): at the last gate, a step longer than the round before
       // must not score worse against the terms gathered where it lands than the pose it leaves
-      // against its own; it is halved up to dense_line_search_halvings times, and when no length
-      // scores better the rounds end at the pose before. (Shrinking steps are left alone: there
-      // the rounds creep, and the extrapolation below acts.)
+      // against its own (an equal score is kept); it is halved up to dense_line_search_halvings
+      // times, and when every length scores worse the rounds end at the last round's refined
+      // pose. (Shrinking steps are left alone: there the rounds creep, and the extrapolation
+      // below acts.)
+      bool shortened = false;
       if (params.dense_line_search && round >= first_last_gate_round && step_m >= params.dense_converged_m &&
           rounds.last_step_m >= 0.0 && step_m > rounds.last_step_m) {
         const double score_before = truncatedScore(gathered, pose.T_target_source);
@@ -113,36 +116,47 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
         if (!centroids.empty()) centre /= static_cast<double>(centroids.size());
         Isometry3 landing = next.T_target_source;
         GatedTerms there = termsAt(landing, round + 1);
+        double score_after = truncatedScore(there, landing);
         double fraction = 1.0;
-        for (int halving = 0; truncatedScore(there, landing) < score_before && halving < params.dense_line_search_halvings;
-             ++halving) {
+        for (int halving = 0; score_after < score_before && halving < params.dense_line_search_halvings; ++halving) {
           fraction *= 0.5;
           landing = stepPower(full_step, centre, fraction) * pose.T_target_source;
           there = termsAt(landing, round + 1);
+          score_after = truncatedScore(there, landing);
         }
-        if (truncatedScore(there, landing) < score_before) {
-          rounds.line_search_stopped = true;
-          rounds.last_step_m = 0.0;  // the rounds end where they are: the last round's refined pose
-          break;
-        }
-        if (fraction < 1.0) {
+        const bool worse = score_after < score_before;
+        std::optional<RegistrationResult> at;
+        if (!worse && fraction < 1.0) {
           // A shortened step: the information, residuals and degeneracy are those at the pose returned.
           RefinementParams evaluate = refinement;
           evaluate.max_iterations = 0;
-          RegistrationResult at = refinePose(inliers, landing, evaluate, there.terms);
-          if (!at.success) {
-            rounds.line_search_stopped = true;
-            break;
-          }
-          next = std::move(at);
+          at = refinePose(inliers, landing, evaluate, there.terms);
+        }
+        if (worse || (at && !at->success)) {
+          // The rounds end at the last refined pose (not at an extrapolated jump from it).
+          rounds.line_search_stopped = true;
+          rounds.last_step_m = 0.0;
+          pose = last_refined;
+          break;
+        }
+        if (at) {
+          next = std::move(*at);
           step_m = rmsStep(pose.T_target_source, next.T_target_source);
           ++rounds.shortened;
+          shortened = true;
         }
         gathered_ahead = std::move(there);
       }
       const Isometry3 step = next.T_target_source * pose.T_target_source.inverse();
       rounds.last_step_m = step_m;
       pose = next;
+      last_refined = pose;
+      // A shortened step is no sign of convergence (the solve wanted to go further), nor a step
+      // to extrapolate (it points where the full step was refused).
+      if (shortened) {
+        previous_step.reset();
+        continue;
+      }
       if (round + 1 >= params.dense_rounds && rounds.last_step_m < params.dense_converged_m) break;
       // Extrapolation (Besl & McKay 1992, IV-C; step_extrapolation.h): two rounds at the last
       // gate that move the pose the same way say it creeps; the next round starts ahead along the

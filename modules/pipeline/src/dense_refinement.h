@@ -21,7 +21,7 @@ struct DenseRounds {
   int run = 0;                ///< rounds run
   double last_step_m = -1.0;  ///< RMS displacement of the source patches in the last round (-1: none succeeded; 0: the line search stopped the rounds)
   int shortened = 0;          ///< steps the line search shortened
-  bool line_search_stopped = false;  ///< no length of the last round's step scored better: the rounds ended before it
+  bool line_search_stopped = false;  ///< every length of the last round's step scored worse: the rounds ended before it
 };
 
 struct DenseOutcome {

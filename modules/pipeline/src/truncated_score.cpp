@@ -1,6 +1,6 @@
 #include "gasp/pipeline/truncated_score.h"
 
-#include <algorithm>
+#include <cmath>
 
 namespace gasp {
 
@@ -10,7 +10,8 @@ double truncatedScore(const GatedTerms& gathered, const Isometry3& T_target_sour
     const PointToPlane& term = gathered.terms[i];
     const double g = i < gathered.pixel_terms ? gathered.pixel_gate_m : gathered.edge_gate_m;
     const double r = term.n_target.dot(T_target_source * term.p_source - term.q_target);
-    score += term.weight * std::max(0.0, g * g - r * r);
+    const double contribution = term.weight * (g * g - r * r);
+    if (std::isfinite(contribution) && contribution > 0.0) score += contribution;
   }
   return score;
 }

@@ -87,10 +87,12 @@ struct PairParams {
   /// Line search at the last gate (truncated_score.h): a round whose step is longer than the
   /// round before must not lower the truncated point-to-plane score -- of the pose against the
   /// terms gathered where the step lands, compared with the pose it leaves against its own
-  /// terms. Otherwise the step is halved, at most dense_line_search_halvings times, and when no
-  /// length scores better the rounds end at the pose before. A rolled cabinet pair whose rounds
-  /// swung 2-8 cm about the reference for 16 rounds converges in 14; synthetic poses 5.6 -> 5.1 mm
-  /// RMSE on the room, the sparse scene's worst 3.1 -> 0.4 cm (docs/pipeline.md, "Line search").
+  /// terms. Otherwise the step is halved, at most dense_line_search_halvings times, and when
+  /// every length scores worse the rounds end at the last round's refined pose. A rolled cabinet
+  /// pair whose rounds swung 2-8 cm about the reference for 16 rounds converges in 15 to where
+  /// the upright pair ends; synthetic room RMSE 5.6 -> 5.1 mm, the sparse scene's worst pose
+  /// 3.1 -> 0.4 cm; cabinet skip 1 1.19 -> 1.15 cm (docs/pipeline.md, "Line search at the last
+  /// gate").
   bool dense_line_search = true;
   int dense_line_search_halvings = 3;  ///< >= 0; 0: a worse step ends the rounds at once
   ProjectiveTermParams projective;  ///< pixel step 8, normals within 20 deg
@@ -202,7 +204,7 @@ struct PairResult {
   std::vector<PatchAssociation> verified;
   int guided_support = -1;  ///< guided associations at the verified pose (-1: stage not reached)
   int dense_terms = 0;  ///< dense terms in the last round
-  int dense_rounds_run = 0;  ///< dense rounds run for the final pose (0: none)
+  int dense_rounds_run = 0;  ///< dense rounds solved for the final pose, a last one whose step the line search refused included (0: none)
   /// The dense rounds ended unobservable (pose.degenerate set by the dense refinement, not by the
   /// view check). The patch problem may have been degenerate as well: a degenerate patch pose with
   /// inliers goes on to the dense rounds, and their verdict is what counts. The finer-scale retry
@@ -212,8 +214,8 @@ struct PairResult {
   /// PairParams::dense_converged_m the rounds converged (-1: no round succeeded).
   double dense_last_step_m = -1.0;
   int dense_steps_shortened = 0;  ///< steps the dense rounds' line search shortened (PairParams::dense_line_search)
-  /// The line search ended the dense rounds: no length of the last step scored better than the
-  /// pose before (dense_last_step_m is then 0).
+  /// The line search ended the dense rounds: every length of the last step scored worse than the
+  /// pose it left (dense_last_step_m is then 0, and the pose is the round before's).
   bool dense_line_search_stopped = false;
   VisibilityCheck visibility;  ///< of the final pose (when one was found)
   bool wide_edge_pose = false;  ///< the final pose came from the wide-edge-gate refinement
