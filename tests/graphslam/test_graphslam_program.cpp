@@ -4,13 +4,16 @@
 
 #include <mrpt/maps/CSimpleMap.h>
 #include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CActionRobotMovement3D.h>
 #include <mrpt/obs/CRawlog.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose3DPDF.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 
 #include "gasp/core/tum_trajectory.h"
@@ -148,6 +151,88 @@ TEST(GaspGraphSlamProgram, TheMapTakesTheScansOfTheDecidersSensor) {
     ASSERT_TRUE(scan) << i;
     EXPECT_EQ(scan->sensorLabel, "RGBD") << i;
     EXPECT_NEAR(mrpt::Clock::toDouble(scan->timestamp), traj[i].timestamp, 1e-4) << i;
+  }
+}
+
+TEST(GaspGraphSlamProgram, MapsWithMrptsOdometryNodeDecider) {
+  // GASP's loop-closure decider and the map with MRPT's own node decider: CFixedIntervalsNRD
+  // over a format-#1 rawlog whose actions carry the robot's motion (here the simulator's truth,
+  // as CActionRobotMovement3D). The map must hold, for every node, the scan of the step that
+  // registered it, at the node's pose.
+  const std::string out = gasp::test::scratchDir();
+  mrpt::obs::CRawlog plain, odometry;
+  ASSERT_TRUE(plain.loadFromRawLogFile(simulatedRawlog(out, 1, 16)));
+  const auto truth = gasp::readTumTrajectory(out + "/sim_groundtruth.txt");
+  ASSERT_FALSE(truth.empty());
+  const auto T_world_camera_at = [&](double t) {
+    for (const auto& p : truth)
+      if (std::abs(p.timestamp - t) < 1e-4) return std::optional<gasp::Isometry3>(p.T_world_camera);
+    return std::optional<gasp::Isometry3>();
+  };
+  std::optional<gasp::Isometry3> previous;  // T_world_robot of the previous scan
+  int moves = 0;
+  for (std::size_t i = 0; i + 1 < plain.size(); i += 2) {
+    ASSERT_EQ(plain.getType(i), mrpt::obs::CRawlog::etActionCollection) << i;
+    const auto sf = plain.getAsObservations(i + 1);
+    const auto scan = sf->getObservationByClass<mrpt::obs::CObservation3DRangeScan>();
+    ASSERT_TRUE(scan) << i;
+    const auto T_world_camera = T_world_camera_at(mrpt::Clock::toDouble(scan->timestamp));
+    ASSERT_TRUE(T_world_camera) << i;
+    // The optical camera's mounting (sensorPose and MRPT's fixed turn to the optical axes).
+    const gasp::Isometry3 T_robot_camera = gasp::frameFromObservation(*scan, "odometry scan").T_robot_camera;
+    const gasp::Isometry3 T_world_robot = *T_world_camera * T_robot_camera.inverse();
+    mrpt::obs::CActionCollection actions;
+    if (previous) {
+      mrpt::obs::CActionRobotMovement3D move;
+      move.poseChange.mean = gasp::toCPose3D(previous->inverse() * T_world_robot);
+      move.poseChange.cov.setIdentity();
+      move.poseChange.cov *= 1e-6;
+      actions.insert(move);
+      ++moves;
+    }
+    odometry.insert(actions);
+    odometry.insert(*sf);
+    previous = T_world_robot;
+  }
+  ASSERT_EQ(moves, 15);
+  ASSERT_TRUE(odometry.saveToRawLogFile(out + "/odometry.rawlog"));
+  // A node every 5 cm or 5 deg of odometry (MRPT's defaults, 0.5 m / 60 deg, would give one or two).
+  std::ofstream(out + "/fixed.ini") << "[NodeRegistrationDeciderParameters]\nregistration_max_distance = 0.05\n"
+                                       "registration_max_angle = 5\n";
+  const auto run = runProgram("gasp-graphslam", "--rawlog " + out + "/odometry.rawlog --ini " + out +
+                                                    "/fixed.ini --node-reg CFixedIntervalsNRD --out " + out +
+                                                    "/traj.txt --simplemap " + out + "/map.simplemap --gt " + out +
+                                                    "/sim_groundtruth.txt");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "deciders: CFixedIntervalsNRD, CGaspLoopClosureERD, CGaspPoseGraphGSO\n")) << run.output;
+  const std::size_t nodes = printedCount(run.output, "nodes: ");
+  ASSERT_GE(nodes, 3u) << run.output;
+  EXPECT_TRUE(contains(run.output, "simplemap: " + out + "/map.simplemap (" + std::to_string(nodes) + " nodes)"))
+      << run.output;
+  const auto pos = run.output.find("\nate_rmse_m: ");
+  ASSERT_NE(pos, std::string::npos) << run.output;
+  EXPECT_LT(std::stod(run.output.substr(pos + 13)), 0.01) << run.output;
+  // The nodes' orientations as well (ATE compares positions only).
+  const auto rpe = run.output.find("\nrpe_1s_rmse: ");
+  ASSERT_NE(rpe, std::string::npos) << run.output;
+  EXPECT_LT(std::stod(run.output.substr(rpe + 14)), 0.01) << run.output;
+  const auto comma = run.output.find(", ", rpe);
+  ASSERT_NE(comma, std::string::npos) << run.output;
+  EXPECT_LT(std::stod(run.output.substr(comma + 2)), 0.5) << run.output;
+  const auto traj = gasp::readTumTrajectory(out + "/traj.txt");
+  ASSERT_EQ(traj.size(), nodes);
+  mrpt::maps::CSimpleMap map;
+  ASSERT_TRUE(map.loadFromFile(out + "/map.simplemap"));
+  ASSERT_EQ(map.size(), nodes);
+  for (std::size_t i = 0; i < nodes; ++i) {
+    const auto [pose, sf] = map.get(i);
+    ASSERT_TRUE(pose && sf) << i;
+    const auto scan = sf->getObservationByClass<mrpt::obs::CObservation3DRangeScan>();
+    ASSERT_TRUE(scan) << i;
+    const gasp::RgbdFrame frame = gasp::frameFromObservation(*scan, "map scan");
+    EXPECT_NEAR(frame.timestamp, traj[i].timestamp, 1e-4) << i;
+    const gasp::Isometry3 T_world_camera = gasp::fromCPose3D(pose->getMeanVal()) * frame.T_robot_camera;
+    EXPECT_TRUE(T_world_camera.isApprox(traj[i].T_world_camera, 1e-4)) << i;
   }
 }
 
