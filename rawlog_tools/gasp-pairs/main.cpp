@@ -275,7 +275,7 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(gasp::tools::atLeast(0));
   app.add_flag("!--no-dense-line-search", base.dense_line_search,
-               "GASP: no line search at the last dense gate (a longer step than the round before is kept even when it scores worse; docs/pipeline.md, \"Line search\")");
+               "GASP: no line search at the last dense gate (a longer step than the round before is kept even when it scores worse; docs/pipeline.md, \"Line search at the last gate\")");
   app.add_option("--pixel-step", base.projective.pixel_step, "dense terms: every N-th pixel")->capture_default_str();
   bool polish_reference = false;  // --polish-reference (with the baselines only)
   bool rgb_rotation_check = false;  // --rgb-rotation-check (with the baselines only)
