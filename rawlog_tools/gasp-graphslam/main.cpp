@@ -233,7 +233,16 @@ int main(int argc, char** argv) {
 
     if (!out_path.empty())
       gasp::writeTumTrajectory(out_path, trajectory, "node (keyframe) depth-camera trajectory by gasp-graphslam");
-    if (!graph_path.empty()) engine.saveGraph(&graph_path);
+    if (!graph_path.empty()) {
+      // The engine's graph as it is, except that an edge with non-finite information (MRPT's
+      // CFixedIntervalsNRD gives its first edge NaN) is written as a break edge: a file of
+      // `nan` information matrices is no graph another tool can read.
+      Graph3D written = graph;
+      if (const std::size_t broken = gasp::graphslam::breakNonFiniteEdges(written))
+        std::fprintf(stderr, "warning: %zu edge(s) with non-finite information from the node decider written as break edges (information %g)\n",
+                     broken, gasp::graphslam::kBreakInformation);
+      written.saveToTextFile(graph_path);
+    }
     if (!report_dir.empty()) {
       std::filesystem::create_directories(report_dir);
       engine.generateReportFiles(report_dir);

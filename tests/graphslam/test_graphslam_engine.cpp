@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -340,6 +341,27 @@ TEST(GraphTypes, BreakEdgesAndDepthScansAreTold) {
   EXPECT_TRUE(gasp::graphslam::isBreakEdge(e));
   e.cov_inv(0, 0) = 1.0;  // one direction constrained: not a break
   EXPECT_FALSE(gasp::graphslam::isBreakEdge(e));
+  mrpt::poses::CPose3DPDFGaussianInf unknown;
+  unknown.cov_inv.setIdentity();
+  unknown.cov_inv(2, 3) = std::numeric_limits<double>::quiet_NaN();  // as MRPT's CFixedIntervalsNRD's first edge
+  EXPECT_TRUE(gasp::graphslam::isBreakEdge(unknown));
+
+  // For graph files: non-finite information becomes a break's; the mean and other edges stay.
+  gasp::graphslam::Graph3D g;
+  g.nodes[0] = mrpt::poses::CPose3D();
+  g.nodes[1] = mrpt::poses::CPose3D(1, 0, 0, 0, 0, 0);
+  g.nodes[2] = mrpt::poses::CPose3D(2, 0, 0, 0, 0, 0);
+  unknown.mean = mrpt::poses::CPose3D(1, 0, 0, 0, 0, 0);
+  g.insertEdge(0, 1, unknown);
+  g.insertEdge(1, 2, e);
+  EXPECT_EQ(gasp::graphslam::breakNonFiniteEdges(g), 1u);
+  const auto& fixed = g.edges.find({0, 1})->second;
+  EXPECT_TRUE(gasp::graphslam::isBreakEdge(fixed));
+  EXPECT_DOUBLE_EQ(fixed.cov_inv(0, 0), gasp::graphslam::kBreakInformation);
+  EXPECT_DOUBLE_EQ(fixed.cov_inv(2, 3), 0.0);
+  EXPECT_DOUBLE_EQ(fixed.mean.x(), 1.0);
+  EXPECT_DOUBLE_EQ(g.edges.find({1, 2})->second.cov_inv(0, 0), 1.0);
+  EXPECT_EQ(gasp::graphslam::breakNonFiniteEdges(g), 0u);
 
   const auto s = gasp::test::circleSequence(2);
   auto scan = scanOf(s, 0);

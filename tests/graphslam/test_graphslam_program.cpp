@@ -202,8 +202,15 @@ TEST(GaspGraphSlamProgram, MapsWithMrptsOdometryNodeDecider) {
   const auto run = runProgram("gasp-graphslam", "--rawlog " + out + "/odometry.rawlog --ini " + out +
                                                     "/fixed.ini --node-reg CFixedIntervalsNRD --out " + out +
                                                     "/traj.txt --simplemap " + out + "/map.simplemap --gt " + out +
-                                                    "/sim_groundtruth.txt");
+                                                    "/sim_groundtruth.txt --graph " + out + "/g.graph");
   ASSERT_EQ(run.exit_code, 0) << run.output;
+  // MRPT's decider gives its first edge NaN information; the graph file has a break edge there.
+  EXPECT_TRUE(contains(run.output, "warning: 1 edge(s) with non-finite information from the node decider written as break edges"))
+      << run.output;
+  std::ifstream graph_file(out + "/g.graph");
+  const std::string graph_text((std::istreambuf_iterator<char>(graph_file)), std::istreambuf_iterator<char>());
+  EXPECT_FALSE(contains(graph_text, "nan")) << graph_text;
+  EXPECT_EQ(countLinesStartingWith(out + "/g.graph", "EDGE3 "), printedCount(run.output, "edges: "));
   EXPECT_TRUE(contains(run.output, "deciders: CFixedIntervalsNRD, CGaspLoopClosureERD, CGaspPoseGraphGSO\n")) << run.output;
   const std::size_t nodes = printedCount(run.output, "nodes: ");
   ASSERT_GE(nodes, 3u) << run.output;

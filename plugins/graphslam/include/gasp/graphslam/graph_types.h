@@ -35,7 +35,14 @@ constexpr double kBreakInformation = 1e-6;
 /// Edges whose information has no eigenvalue above this are breaks: the loop closer does not
 /// count them as links between nodes, and they predict nothing for its gate.
 constexpr double kBreakMaxInformation = 1e-3;
-/// True for a break edge (kBreakMaxInformation).
+/// True for a break edge (kBreakMaxInformation), and for an edge whose information is not finite
+/// (MRPT 2.5.8's CFixedIntervalsNRD gives its first edge NaN information): it constrains nothing
+/// that can be used.
 bool isBreakEdge(const mrpt::poses::CPose3DPDFGaussianInf& edge);
+
+/// Gives every edge of `graph` whose information is not finite the information of a break edge
+/// (kBreakInformation on the diagonal), keeping its mean; returns how many. For graph files
+/// (VERTEX3 / EDGE3) that other tools can read: `nan` is no information matrix.
+std::size_t breakNonFiniteEdges(Graph3D& graph);
 
 }  // namespace gasp::graphslam
