@@ -44,6 +44,27 @@ std::string simulatedRawlog(const std::string& dir, int format = 2, int frames =
   return dir + "/sim.rawlog";
 }
 
+/// OUT/map.simplemap and OUT/traj.txt of a gasp-graphslam run with `nodes` nodes: node i of the
+/// map is the scan the node was registered at (its timestamp), at the node's optimised robot
+/// pose, which with the scan's own mounting gives the written camera trajectory.
+void expectTheMapHoldsEachNodesScan(const std::string& out, std::size_t nodes) {
+  const auto traj = gasp::readTumTrajectory(out + "/traj.txt");
+  ASSERT_EQ(traj.size(), nodes);
+  mrpt::maps::CSimpleMap map;
+  ASSERT_TRUE(map.loadFromFile(out + "/map.simplemap"));
+  ASSERT_EQ(map.size(), nodes);
+  for (std::size_t i = 0; i < nodes; ++i) {
+    const auto [pose, sf] = map.get(i);
+    ASSERT_TRUE(pose && sf) << i;
+    const auto scan = sf->getObservationByClass<mrpt::obs::CObservation3DRangeScan>();
+    ASSERT_TRUE(scan) << i;
+    const gasp::RgbdFrame frame = gasp::frameFromObservation(*scan, "map scan");
+    EXPECT_NEAR(frame.timestamp, traj[i].timestamp, 1e-4) << i;
+    const gasp::Isometry3 T_world_camera = gasp::fromCPose3D(pose->getMeanVal()) * frame.T_robot_camera;
+    EXPECT_TRUE(T_world_camera.isApprox(traj[i].T_world_camera, 1e-4)) << i;
+  }
+}
+
 }  // namespace
 
 TEST(GaspGraphSlamProgram, WritesTheTrajectoryGraphAndReports) {
@@ -85,23 +106,7 @@ TEST(GaspGraphSlamProgram, WritesAMapOfTheNodesScansAtTheirOptimisedPoses) {
       << run.output;
   EXPECT_GT(printedCount(run.output, "cloud: " + out + "/map.ply ("), 1000u) << run.output;
   EXPECT_FALSE(contains(run.output, "warning")) << run.output;
-  // Node i of the map is the scan the node was registered at (its timestamp), at the node's
-  // optimised robot pose: with the scan's own mounting it gives the written camera trajectory.
-  const auto traj = gasp::readTumTrajectory(out + "/traj.txt");
-  ASSERT_EQ(traj.size(), nodes);
-  mrpt::maps::CSimpleMap map;
-  ASSERT_TRUE(map.loadFromFile(out + "/map.simplemap"));
-  ASSERT_EQ(map.size(), nodes);
-  for (std::size_t i = 0; i < nodes; ++i) {
-    const auto [pose, sf] = map.get(i);
-    ASSERT_TRUE(pose && sf) << i;
-    const auto scan = sf->getObservationByClass<mrpt::obs::CObservation3DRangeScan>();
-    ASSERT_TRUE(scan) << i;
-    const gasp::RgbdFrame frame = gasp::frameFromObservation(*scan, "map scan");
-    EXPECT_NEAR(frame.timestamp, traj[i].timestamp, 1e-4) << i;
-    const gasp::Isometry3 T_world_camera = gasp::fromCPose3D(pose->getMeanVal()) * frame.T_robot_camera;
-    EXPECT_TRUE(T_world_camera.isApprox(traj[i].T_world_camera, 1e-4)) << i;
-  }
+  expectTheMapHoldsEachNodesScan(out, nodes);
   // Output folders are checked before the run.
   const auto bad = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --cloud /nonexistent-dir/m.ply");
   EXPECT_EQ(bad.exit_code, 1) << bad.output;
@@ -226,21 +231,7 @@ TEST(GaspGraphSlamProgram, MapsWithMrptsOdometryNodeDecider) {
   const auto comma = run.output.find(", ", rpe);
   ASSERT_NE(comma, std::string::npos) << run.output;
   EXPECT_LT(std::stod(run.output.substr(comma + 2)), 0.5) << run.output;
-  const auto traj = gasp::readTumTrajectory(out + "/traj.txt");
-  ASSERT_EQ(traj.size(), nodes);
-  mrpt::maps::CSimpleMap map;
-  ASSERT_TRUE(map.loadFromFile(out + "/map.simplemap"));
-  ASSERT_EQ(map.size(), nodes);
-  for (std::size_t i = 0; i < nodes; ++i) {
-    const auto [pose, sf] = map.get(i);
-    ASSERT_TRUE(pose && sf) << i;
-    const auto scan = sf->getObservationByClass<mrpt::obs::CObservation3DRangeScan>();
-    ASSERT_TRUE(scan) << i;
-    const gasp::RgbdFrame frame = gasp::frameFromObservation(*scan, "map scan");
-    EXPECT_NEAR(frame.timestamp, traj[i].timestamp, 1e-4) << i;
-    const gasp::Isometry3 T_world_camera = gasp::fromCPose3D(pose->getMeanVal()) * frame.T_robot_camera;
-    EXPECT_TRUE(T_world_camera.isApprox(traj[i].T_world_camera, 1e-4)) << i;
-  }
+  expectTheMapHoldsEachNodesScan(out, nodes);
 }
 
 TEST(GaspGraphSlamProgram, RunsRawlogsOfSensoryFramesAndMrptsOptimiser) {

@@ -56,6 +56,12 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
   std::vector<Eigen::Vector3d> centroids;  // source patch centroids: a round's step is their RMS displacement
   for (const auto& p : source.segmentation.patches)
     if (p.centroid.allFinite()) centroids.push_back(p.centroid);
+  const auto centroidsAt = [&](const Isometry3& T) {
+    std::vector<Eigen::Vector3d> mapped;
+    mapped.reserve(centroids.size());
+    for (const auto& c : centroids) mapped.push_back(T * c);
+    return mapped;
+  };
   const auto rmsStep = [&](const Isometry3& before, const Isometry3& after) {
     if (centroids.empty()) return 0.0;
     double sum2 = 0;
@@ -112,7 +118,7 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
         const double score_before = truncatedScore(gathered, pose.T_target_source);
         const Isometry3 full_step = next.T_target_source * pose.T_target_source.inverse();
         Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-        for (const auto& c : centroids) centre += pose.T_target_source * c;
+        for (const auto& c : centroidsAt(pose.T_target_source)) centre += c;
         if (!centroids.empty()) centre /= static_cast<double>(centroids.size());
         Isometry3 landing = next.T_target_source;
         GatedTerms there = termsAt(landing, round + 1);
@@ -166,10 +172,8 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
         previous_step = step;
         continue;
       }
-      std::vector<Eigen::Vector3d> mapped;
-      mapped.reserve(centroids.size());
-      for (const auto& c : centroids) mapped.push_back(pose.T_target_source * c);
-      const StepExtrapolation jump = extrapolateSteps(*previous_step, step, mapped, params.dense_extrapolation_max);
+      const StepExtrapolation jump =
+          extrapolateSteps(*previous_step, step, centroidsAt(pose.T_target_source), params.dense_extrapolation_max);
       if (jump.factor > 0.0) {
         pose.T_target_source = jump.jump * pose.T_target_source;
         previous_step.reset();

@@ -1,7 +1,5 @@
 #include "gasp/graphslam/graph_types.h"
 
-#include <cmath>
-
 #include <mrpt/obs/CActionRobotMovement3D.h>
 
 #include <Eigen/Eigenvalues>
@@ -34,10 +32,19 @@ mrpt::obs::CActionCollection::Ptr noMotionAction() {
   return actions;
 }
 
-bool isBreakEdge(const mrpt::poses::CPose3DPDFGaussianInf& edge) {
+namespace {
+
+Eigen::Matrix<double, 6, 6> informationOf(const mrpt::poses::CPose3DPDFGaussianInf& edge) {
   Eigen::Matrix<double, 6, 6> I;
   for (int r = 0; r < 6; ++r)
     for (int k = 0; k < 6; ++k) I(r, k) = edge.cov_inv(r, k);
+  return I;
+}
+
+}  // namespace
+
+bool isBreakEdge(const mrpt::poses::CPose3DPDFGaussianInf& edge) {
+  const Eigen::Matrix<double, 6, 6> I = informationOf(edge);
   if (!I.allFinite()) return true;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(0.5 * (I + I.transpose()), Eigen::EigenvaluesOnly);
   return eig.eigenvalues().maxCoeff() < kBreakMaxInformation;
@@ -46,10 +53,7 @@ bool isBreakEdge(const mrpt::poses::CPose3DPDFGaussianInf& edge) {
 std::size_t breakNonFiniteEdges(Graph3D& graph) {
   std::size_t n = 0;
   for (auto& [ids, edge] : graph.edges) {
-    bool finite = true;
-    for (int r = 0; r < 6; ++r)
-      for (int k = 0; k < 6; ++k) finite = finite && std::isfinite(edge.cov_inv(r, k));
-    if (finite) continue;
+    if (informationOf(edge).allFinite()) continue;
     edge.cov_inv.setIdentity();
     edge.cov_inv *= kBreakInformation;
     ++n;
