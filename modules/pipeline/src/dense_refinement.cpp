@@ -10,8 +10,7 @@
 #include "gasp/core/depth_image.h"
 #include "gasp/pipeline/edge_terms.h"
 #include "gasp/pipeline/projective_terms.h"
-#include "gasp/pipeline/step_extrapolation.h"
-#include "gasp/pipeline/truncated_score.h"
+#include "gasp/pipeline/dense_rounds.h"
 #include "gasp/pipeline/visibility_check.h"
 #include "gasp/registration/refinement.h"
 #include "slide_scan.h"
@@ -46,34 +45,29 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
     tbb::parallel_invoke([&] { source_edges = findEdgePoints(source, params.edges); },
                          [&] { edge_targets = std::make_unique<EdgeTargets>(target, params.edges); });
   }
-  // One refinement from `start`: the rounds of dense_gates_m, then more at the last gate until a
-  // round moves the source patches by less than dense_converged_m (RMS) or dense_max_rounds are
-  // run. Edge gates are edge_gate_factor times the pixel gates. Fills `rounds`.
+  // One refinement from `start` (dense_rounds.h): the rounds of dense_gates_m, then more at the
+  // last gate until they converge. Edge gates are edge_gate_factor times the pixel gates.
   const auto gateOfRound = [&](int round) {
     return params.dense_gates_m[std::min<std::size_t>(static_cast<std::size_t>(round), params.dense_gates_m.size() - 1)];
   };
-  const int max_rounds = std::max(params.dense_rounds, params.dense_max_rounds);
   std::vector<Eigen::Vector3d> centroids;  // source patch centroids: a round's step is their RMS displacement
   for (const auto& p : source.segmentation.patches)
     if (p.centroid.allFinite()) centroids.push_back(p.centroid);
-  const auto centroidsAt = [&](const Isometry3& T) {
-    std::vector<Eigen::Vector3d> mapped;
-    mapped.reserve(centroids.size());
-    for (const auto& c : centroids) mapped.push_back(T * c);
-    return mapped;
-  };
-  const auto rmsStep = [&](const Isometry3& before, const Isometry3& after) {
-    if (centroids.empty()) return 0.0;
-    double sum2 = 0;
-    for (const auto& c : centroids) sum2 += (after * c - before * c).squaredNorm();
-    return std::sqrt(sum2 / static_cast<double>(centroids.size()));
-  };
-  const int first_last_gate_round = static_cast<int>(params.dense_gates_m.size()) - 1;
+  DenseRoundsSettings settings;
+  settings.gates_m = params.dense_gates_m;
+  settings.rounds = params.dense_rounds;
+  settings.max_rounds = params.dense_max_rounds;
+  settings.converged_m = params.dense_converged_m;
+  settings.extrapolation_max = params.dense_extrapolation_max;
+  settings.line_search = params.dense_line_search;
+  settings.line_search_halvings = params.dense_line_search_halvings;
+  RefinementParams refinement = params.pose.refinement;
+  refinement.degeneracy = params.dense_degeneracy;
+  RefinementParams evaluation = refinement;
+  evaluation.max_iterations = 0;
   auto refineFrom = [&](const Isometry3& start, double edge_gate_factor, DenseRounds& rounds) {
-    rounds = DenseRounds{};
-    RegistrationResult pose = patch_pose;
-    pose.T_target_source = start;
-    const auto termsAt = [&](const Isometry3& T, int round) {
+    DenseRoundsOps ops;
+    ops.gather = [&](const Isometry3& T, int round) {
       GatedTerms gathered;
       ProjectiveTermParams proj = params.projective;
       proj.max_distance_m = gateOfRound(round);
@@ -87,102 +81,12 @@ DenseOutcome refineDense(const DepthView& source, const DepthView& target, const
       }
       return gathered;
     };
-    RefinementParams refinement = params.pose.refinement;
-    refinement.degeneracy = params.dense_degeneracy;
-    std::optional<Isometry3> previous_step;  // the last round's motion, when it was a plain round at the last gate
-    std::optional<GatedTerms> gathered_ahead;  // the terms at `pose`, when the line search gathered them
-    RegistrationResult last_refined = pose;    // the last round's result (`pose` may be an extrapolated jump from it)
-    for (int round = 0; round < max_rounds; ++round) {
-      const GatedTerms gathered = gathered_ahead ? std::move(*gathered_ahead) : termsAt(pose.T_target_source, round);
-      gathered_ahead.reset();
-      rounds.terms = static_cast<int>(gathered.terms.size());
-      rounds.run = round + 1;
-      RegistrationResult next = refinePose(inliers, pose.T_target_source, refinement, gathered.terms);
-      if (!next.success) {
-        // The dense problem may be degenerate or fail where the patch problem was not: then no
-        // pose is claimed (never a silently weaker one).
-        next.reason = "dense refinement: " + next.reason;
-        pose = next;
-        break;
-      }
-      double step_m = rmsStep(pose.T_target_source, next.T_target_source);
-      // Line search (truncated_score.h): at the last gate, a step longer than the round before
-      // must not score worse against the terms gathered where it lands than the pose it leaves
-      // against its own (an equal score is kept); it is halved up to dense_line_search_halvings
-      // times, and when every length scores worse the rounds end at the last round's refined
-      // pose. (Shrinking steps are left alone: there the rounds creep, and the extrapolation
-      // below acts.)
-      bool shortened = false;
-      if (params.dense_line_search && round >= first_last_gate_round && step_m >= params.dense_converged_m &&
-          rounds.last_step_m >= 0.0 && step_m > rounds.last_step_m) {
-        const double score_before = truncatedScore(gathered, pose.T_target_source);
-        const Isometry3 full_step = next.T_target_source * pose.T_target_source.inverse();
-        Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-        for (const auto& c : centroidsAt(pose.T_target_source)) centre += c;
-        if (!centroids.empty()) centre /= static_cast<double>(centroids.size());
-        Isometry3 landing = next.T_target_source;
-        GatedTerms there = termsAt(landing, round + 1);
-        double score_after = truncatedScore(there, landing);
-        double fraction = 1.0;
-        for (int halving = 0; score_after < score_before && halving < params.dense_line_search_halvings; ++halving) {
-          fraction *= 0.5;
-          landing = stepPower(full_step, centre, fraction) * pose.T_target_source;
-          there = termsAt(landing, round + 1);
-          score_after = truncatedScore(there, landing);
-        }
-        const bool worse = score_after < score_before;
-        std::optional<RegistrationResult> at;
-        if (!worse && fraction < 1.0) {
-          // A shortened step: the information, residuals and degeneracy are those at the pose returned.
-          RefinementParams evaluate = refinement;
-          evaluate.max_iterations = 0;
-          at = refinePose(inliers, landing, evaluate, there.terms);
-        }
-        if (worse || (at && !at->success)) {
-          // The rounds end at the last refined pose (not at an extrapolated jump from it).
-          rounds.line_search_stopped = true;
-          rounds.last_step_m = 0.0;
-          pose = last_refined;
-          break;
-        }
-        if (at) {
-          next = std::move(*at);
-          step_m = rmsStep(pose.T_target_source, next.T_target_source);
-          ++rounds.shortened;
-          shortened = true;
-        }
-        gathered_ahead = std::move(there);
-      }
-      const Isometry3 step = next.T_target_source * pose.T_target_source.inverse();
-      rounds.last_step_m = step_m;
-      pose = next;
-      last_refined = pose;
-      // A shortened step is no sign of convergence (the solve wanted to go further), nor a step
-      // to extrapolate (it points where the full step was refused).
-      if (shortened) {
-        previous_step.reset();
-        continue;
-      }
-      if (round + 1 >= params.dense_rounds && rounds.last_step_m < params.dense_converged_m) break;
-      // Extrapolation (Besl & McKay 1992, IV-C; step_extrapolation.h): two rounds at the last
-      // gate that move the pose the same way say it creeps; the next round starts ahead along the
-      // last step. Never after the last round: the pose returned is always a refined one.
-      if (round + 1 < params.dense_rounds || round + 1 >= max_rounds || params.dense_extrapolation_max <= 0.0) continue;
-      if (!previous_step) {
-        previous_step = step;
-        continue;
-      }
-      const StepExtrapolation jump =
-          extrapolateSteps(*previous_step, step, centroidsAt(pose.T_target_source), params.dense_extrapolation_max);
-      if (jump.factor > 0.0) {
-        pose.T_target_source = jump.jump * pose.T_target_source;
-        previous_step.reset();
-        gathered_ahead.reset();
-      } else {
-        previous_step = step;
-      }
-    }
-    return pose;
+    ops.solve = [&](const Isometry3& from, const std::vector<PointToPlane>& terms, bool evaluate_only) {
+      return refinePose(inliers, from, evaluate_only ? evaluation : refinement, terms);
+    };
+    RegistrationResult first = patch_pose;
+    first.T_target_source = start;
+    return runDenseRounds(first, centroids, settings, ops, rounds);
   };
   auto refine = [&](double edge_gate_factor, DenseRounds& rounds) {
     return refineFrom(patch_pose.T_target_source, edge_gate_factor, rounds);

@@ -3,26 +3,19 @@
 // the patches' pixels and point-to-line terms along occluding edges, re-associated over
 // PairParams::dense_rounds rounds with shrinking gates, from the patch pose, then more at the last
 // gate until the pose stops moving (dense_converged_m, dense_max_rounds), a round after two steps
-// that agree and shrink starting ahead along them (step_extrapolation.h); with edge terms, when
+// that agree and shrink starting ahead along them, a growing step at the last gate judged by a
+// line search (the rounds' control: dense_rounds.h); with edge terms, when
 // most source edge points find no target edge at the final pose, a second refinement with wider
 // edge gates runs and the pose whose views agree more (visibility_check.h) is kept.
 #include <optional>
 #include <vector>
 
+#include "gasp/pipeline/dense_rounds.h"
 #include "gasp/pipeline/pair_registration.h"
 #include "gasp/pipeline/slide_scan.h"
 #include "gasp/pipeline/visibility_check.h"
 
 namespace gasp::detail {
-
-/// The rounds of one dense refinement.
-struct DenseRounds {
-  int terms = 0;              ///< terms of the last round
-  int run = 0;                ///< rounds run
-  double last_step_m = -1.0;  ///< RMS displacement of the source patches in the last round (-1: none succeeded; 0: the line search stopped the rounds)
-  int shortened = 0;          ///< steps the line search shortened
-  bool line_search_stopped = false;  ///< every length of the last round's step scored worse: the rounds ended before it
-};
 
 struct DenseOutcome {
   RegistrationResult pose;     ///< success false (with the reason) when the dense problem failed
