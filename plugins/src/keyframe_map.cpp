@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
 #include "gasp/rawlog/observation_conversion.h"
 
@@ -26,6 +27,20 @@ mrpt::maps::CSimpleMap keyframeSimpleMap(const std::vector<RgbdFrame>& keyframes
     map.insert(pose, sf);
   }
   return map;
+}
+
+RgbdFrame withViewDepth(RgbdFrame frame, const DepthView& view) {
+  const CameraIntrinsics& K = view.intrinsics;
+  if (view.depth_m.type() != CV_32FC1 || view.depth_m.cols != K.width || view.depth_m.rows != K.height)
+    throw Error("keyframe map: the view's depth is not a CV_32FC1 image of its intrinsics' size (" +
+                std::to_string(K.width) + "x" + std::to_string(K.height) + ")");
+  const bool had_raw = frame.hasRawDepth();
+  frame.depth_m = view.depth_m.clone();
+  frame.depth_intrinsics = K;
+  frame.depth_raw = had_raw ? depthToRaw(frame.depth_m, frame.depth_units_per_metre) : cv::Mat();
+  if (!had_raw) frame.depth_units_per_metre = 0.0;
+  frame.rgb.release();
+  return frame;
 }
 
 void saveSimpleMap(const mrpt::maps::CSimpleMap& map, const std::string& path) {

@@ -34,6 +34,7 @@
 #include "gasp/graphslam/engine.h"
 #include "gasp/graphslam/ini_check.h"
 #include "gasp/graphslam/options_checker.h"
+#include "gasp/mrpt/keyframe_map.h"
 #include "gasp/rawlog/observation_conversion.h"
 #include "gasp/rawlog/rawlog_entries.h"
 #include "gasp/rawlog/rawlog_format.h"
@@ -205,8 +206,17 @@ int main(int argc, char** argv) {
       // decider tells both exactly, below).
       const std::size_t n = engine.getGraph().nodeCount();
       while (nodes.size() < n) nodes.push_back(gasp_nrd ? NodeInfo{} : infoOf(nodes.empty() ? first_scan : scan, keep_depth));
-      while (gasp_nrd && keep_depth && keyframe_depth.size() < gasp_nrd->nodeFrames().size())
-        keyframe_depth.push_back(infoOf(scan, true).frame);  // a keyframe is made at its own scan
+      while (gasp_nrd && keep_depth && keyframe_depth.size() < gasp_nrd->nodeFrames().size()) {
+        // A keyframe is made at its own scan; a deskewed one goes to the map as it was
+        // registered (keyframe_map.h).
+        std::optional<gasp::RgbdFrame> frame = infoOf(scan, true).frame;
+        const gasp::DepthOdometry* odometry = gasp_nrd->odometry();
+        const std::size_t index = gasp_nrd->nodeFrames()[keyframe_depth.size()];
+        if (frame && odometry && index + 1 == odometry->frames().size() && odometry->frames()[index].deskewed &&
+            odometry->keyframeView())
+          frame = gasp::withViewDepth(std::move(*frame), *odometry->keyframeView());
+        keyframe_depth.push_back(std::move(frame));
+      }
       if (steps % 100 == 0)
         std::fprintf(stderr, "entry %zu: %zu nodes, %zu edges\n", entries.objectsRead(), n, engine.getGraph().edgeCount());
     }

@@ -19,6 +19,7 @@
 
 #include "gasp/core/error.h"
 #include "gasp/core/tum_trajectory.h"
+#include "gasp/mrpt/keyframe_map.h"
 #include "gasp/mrpt/pose_graph.h"
 #include "gasp/rawlog/depth_sequence.h"
 #include "gasp/slam/depth_slam.h"
@@ -110,7 +111,9 @@ int main(int argc, char** argv) {
       const gasp::OdometryFrame& f = slam->addFrame(frame->timestamp, frame->depth_m, frame->depth_intrinsics);
       if (f.keyframe && keep_keyframes) {
         frame->rgb.release();  // the map keeps depth only
-        keyframes.push_back(std::move(*frame));
+        // A deskewed keyframe goes to the map as it was registered (keyframe_map.h).
+        const gasp::DepthView* view = slam->odometry().keyframeView();
+        keyframes.push_back(f.deskewed && view ? gasp::withViewDepth(std::move(*frame), *view) : std::move(*frame));
       }
       if (sequence.framesUsed() % 50 == 0)
         std::fprintf(stderr, "frame %zu: %zu tracked of %zu, %zu loop closures\n", f.index,

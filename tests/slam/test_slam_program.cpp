@@ -8,8 +8,11 @@
 #include <mrpt/poses/CPose3DPDF.h>
 
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
+#include "gasp/core/tum_dataset.h"
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/rawlog/observation_conversion.h"
 #include "gasp_test_data.h"
@@ -78,6 +81,58 @@ TEST(GaspSlamProgram, WritesTheTrajectoryGraphSimpleMapAndCloud) {
   EXPECT_TRUE(T_world_robot.isApprox(gasp::Isometry3::Identity(), 1e-6));
   // The point map has points.
   EXPECT_GT(printedCount(run.output, "cloud: " + out + "/map.ply ("), 1000u) << run.output;
+}
+
+TEST(GaspSlamProgram, WithTheDeskewTheMapHoldsTheDepthEachKeyframeWasRegisteredWith) {
+  // --rolling-shutter deskews each frame (with the last step's velocity) before registering it;
+  // a deskewed keyframe's scan in the map is that depth, not the recorded one (keyframe_map.h).
+  // The first keyframe has no velocity yet: it keeps the recorded depth.
+  const std::string out = gasp::test::scratchDir();
+  const std::string folder = simulatedFolder(out);
+  const auto run = runProgram("gasp-slam", "--tum " + folder + " --max-frames 12 --rolling-shutter 0.03 --out " + out +
+                                               "/traj.txt --simplemap " + out + "/map.simplemap --frames-csv " + out +
+                                               "/f.csv");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  // The keyframes, and which were deskewed, from the frames CSV
+  // (index,timestamp,tracked,keyframe,reference,patches,inliers,deskewed,...).
+  std::ifstream csv(out + "/f.csv");
+  std::string line;
+  std::getline(csv, line);
+  ASSERT_EQ(line.rfind("index,timestamp,tracked,keyframe,reference,patches,inliers,deskewed,", 0), 0u) << line;
+  std::vector<std::pair<std::size_t, bool>> keyframes;  // (frame, deskewed)
+  while (std::getline(csv, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
+    ASSERT_GE(cells.size(), 8u) << line;
+    if (cells[3] == "1") keyframes.emplace_back(std::stoul(cells[0]), cells[7] == "1");
+  }
+  ASSERT_GE(keyframes.size(), 3u);
+  ASSERT_FALSE(keyframes.front().second);  // no velocity before the first frame
+
+  mrpt::maps::CSimpleMap map;
+  ASSERT_TRUE(map.loadFromFile(out + "/map.simplemap"));
+  ASSERT_EQ(map.size(), keyframes.size());
+  const gasp::TumDataset data = gasp::TumDataset::open(folder);
+  int deskewed = 0;
+  for (std::size_t k = 0; k < keyframes.size(); ++k) {
+    const auto scan = std::get<1>(map.get(k))->getObservationByClass<mrpt::obs::CObservation3DRangeScan>();
+    ASSERT_TRUE(scan);
+    const cv::Mat recorded = data.loadDepthRaw(keyframes[k].first);
+    ASSERT_EQ(scan->rangeImage.cols(), recorded.cols);
+    ASSERT_EQ(scan->rangeImage.rows(), recorded.rows);
+    int differing = 0;
+    for (int r = 0; r < recorded.rows; ++r)
+      for (int c = 0; c < recorded.cols; ++c) differing += scan->rangeImage(r, c) != recorded.at<std::uint16_t>(r, c);
+    if (keyframes[k].second) {
+      ++deskewed;
+      EXPECT_GT(differing, recorded.rows * recorded.cols / 100) << "keyframe " << keyframes[k].first;
+      EXPECT_FALSE(scan->hasIntensityImage);
+    } else {
+      EXPECT_EQ(differing, 0) << "keyframe " << keyframes[k].first;
+    }
+  }
+  EXPECT_GE(deskewed, 2);
 }
 
 TEST(GaspSlamProgram, BadInputExitsWith1OrAUsageCode) {

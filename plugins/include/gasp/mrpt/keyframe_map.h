@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gasp/core/pose.h"
+#include "gasp/pipeline/depth_view.h"
 #include "gasp/rawlog/rgbd_frame.h"
 
 namespace gasp {
@@ -19,6 +20,17 @@ namespace gasp {
 /// differ or a frame cannot be converted.
 mrpt::maps::CSimpleMap keyframeSimpleMap(const std::vector<RgbdFrame>& keyframes,
                                          const std::vector<Isometry3>& T_world_camera);
+
+/// The keyframe as GASP registered it, for the map: `frame` with the depth of `view`, the
+/// keyframe's segmented view (DepthOdometry::keyframeView()). With rolling_shutter_readout_s the
+/// odometry deskews a frame before segmenting it, and its pose is the deskewed depth's: the
+/// recorded depth at that pose smears a moving camera's map by the motion during the readout.
+/// The view's depth lies on the pinhole grid (lens distortion resampled away, makeDepthView()),
+/// so the frame takes the view's intrinsics too; its raw depth is requantised at the frame's own
+/// units (none when it had none), and its colour image is dropped: it no longer lies on the
+/// depth's pixels. Timestamp, sensor label and mounting stay. Throws gasp::Error when the
+/// view's depth is not CV_32FC1 of its intrinsics' size.
+RgbdFrame withViewDepth(RgbdFrame frame, const DepthView& view);
 
 /// Writes the map with MRPT's serialization (CSimpleMap::saveToFile, gzip-compressed as MRPT's
 /// own .simplemap files). Throws gasp::Error when it cannot be written.
