@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "gasp/core/error.h"
 #include "gasp/pipeline/dense_rounds.h"
 
 using namespace gasp;
@@ -221,6 +222,107 @@ TEST(DenseRoundControl, AnEqualScoreKeepsTheFullStep) {
   EXPECT_EQ(rounds.shortened, 0);
   EXPECT_FALSE(rounds.line_search_stopped);
   EXPECT_NEAR(xOf(pose.T_target_source), 0.18, kTol);
+  // The terms gathered where the full step landed are round 3's: one gather at 0.18.
+  int gathers_at_018 = 0;
+  for (const auto& g : script.gathers) gathers_at_018 += std::abs(g.first - 0.18) < kTol ? 1 : 0;
+  EXPECT_EQ(gathers_at_018, 1);
+  ASSERT_GE(script.solve_starts.size(), 4u);
+  EXPECT_NEAR(script.solve_starts[3], 0.18, kTol);
+}
+
+TEST(DenseRoundControl, WithNoHalvingsAWorseStepEndsTheRoundsAtOnce) {
+  DenseRoundsSettings s = twoGates();
+  s.line_search_halvings = 0;
+  Script script;
+  script.step = steps({0.08, 0.04, 0.06});
+  script.score = [](double x) { return -std::abs(x - 0.145); };  // half the step would score better
+  DenseRounds rounds;
+  const RegistrationResult pose = runDenseRounds(startAt(0.0), kPoints, s, script.ops(), rounds);
+  EXPECT_TRUE(rounds.line_search_stopped);
+  EXPECT_EQ(rounds.shortened, 0);
+  EXPECT_NEAR(xOf(pose.T_target_source), 0.12, kTol);
+  EXPECT_TRUE(script.evaluation_starts.empty());
+}
+
+TEST(DenseRoundControl, TheLineSearchJudgesOnlyGrowingStepsAtTheLastGateAboveTheConvergenceStep) {
+  // Three gates: round 1 (gate 0.05) grows from 2 to 5 cm and the score says it is worse, but it
+  // is not at the last gate: taken, with no gather beyond the three rounds'.
+  DenseRoundsSettings s = twoGates();
+  s.gates_m = {0.10, 0.05, 0.03};
+  s.rounds = 3;
+  Script early;
+  early.step = steps({0.02, 0.05});
+  early.score = [](double x) { return -std::abs(x); };
+  DenseRounds rounds;
+  RegistrationResult pose = runDenseRounds(startAt(0.0), kPoints, s, early.ops(), rounds);
+  EXPECT_NEAR(xOf(pose.T_target_source), 0.07, kTol);
+  EXPECT_EQ(early.gathers.size(), 3u);
+  EXPECT_FALSE(rounds.line_search_stopped);
+
+  // At the last gate, a growing step below converged_m (1.0 then 1.5 mm) is not judged either:
+  // it ends the rounds as converged.
+  Script small;
+  small.step = steps({0.0010, 0.0015});
+  small.score = [](double x) { return -std::abs(x); };
+  pose = runDenseRounds(startAt(0.0), kPoints, twoGates(), small.ops(), rounds);
+  EXPECT_NEAR(xOf(pose.T_target_source), 0.0025, kTol);
+  EXPECT_EQ(small.gathers.size(), 2u);
+  EXPECT_EQ(rounds.run, 2);
+  EXPECT_FALSE(rounds.line_search_stopped);
+}
+
+TEST(DenseRoundControl, StepsBeforeTheLastGateAreNotExtrapolated) {
+  // Three gates but one compulsory round: rounds 0 and 1 (gates 0.10 and 0.05) move 4 and 2 cm
+  // the same way; they are steps of different problems, so round 2 starts where round 1 ended.
+  DenseRoundsSettings s = twoGates();
+  s.gates_m = {0.10, 0.05, 0.03};
+  s.rounds = 1;
+  Script script;
+  script.step = steps({0.04, 0.02, 0.01});
+  DenseRounds rounds;
+  runDenseRounds(startAt(0.0), kPoints, s, script.ops(), rounds);
+  ASSERT_GE(script.solve_starts.size(), 3u);
+  EXPECT_NEAR(script.solve_starts[2], 0.06, kTol);
+}
+
+TEST(DenseRoundControl, NoJumpAfterTheLastRound) {
+  // The creep of the first test with max_rounds 3: the third step would be extrapolated, but it
+  // is the last round's, so the pose returned is the third refined one (0.0875), not the jump (0.1).
+  DenseRoundsSettings s = twoGates();
+  s.max_rounds = 3;
+  Script script;
+  script.step = steps({0.05, 0.025, 0.0125});
+  DenseRounds rounds;
+  const RegistrationResult pose = runDenseRounds(startAt(0.0), kPoints, s, script.ops(), rounds);
+  EXPECT_EQ(rounds.run, 3);
+  EXPECT_EQ(script.solve_starts.size(), 3u);
+  EXPECT_NEAR(xOf(pose.T_target_source), 0.0875, kTol);
+}
+
+TEST(DenseRoundControl, InvalidSettingsOrMissingFunctionsThrow) {
+  Script script;
+  script.step = steps({});
+  DenseRounds rounds;
+  const auto runWith = [&](const DenseRoundsSettings& s) { runDenseRounds(startAt(0.0), kPoints, s, script.ops(), rounds); };
+  DenseRoundsSettings s = twoGates();
+  s.gates_m.clear();
+  EXPECT_THROW(runWith(s), Error);
+  s = twoGates();
+  s.gates_m = {0.1, std::nan("")};
+  EXPECT_THROW(runWith(s), Error);
+  s = twoGates();
+  s.line_search_halvings = -1;
+  EXPECT_THROW(runWith(s), Error);
+  s = twoGates();
+  s.converged_m = std::nan("");
+  EXPECT_THROW(runWith(s), Error);
+  s = twoGates();
+  s.max_rounds = -1;
+  EXPECT_THROW(runWith(s), Error);
+  DenseRoundsOps missing = script.ops();
+  missing.solve = nullptr;
+  EXPECT_THROW(runDenseRounds(startAt(0.0), kPoints, twoGates(), missing, rounds), Error);
+  EXPECT_NO_THROW(runWith(twoGates()));
 }
 
 TEST(DenseRoundControl, AFailedEvaluationOfAShortenedStepIsAStop) {

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
 #include <utility>
 
+#include "gasp/core/error.h"
 #include "gasp/pipeline/step_extrapolation.h"
 
 namespace gasp {
@@ -28,11 +30,23 @@ double rmsStep(const std::vector<Eigen::Vector3d>& points, const Isometry3& befo
 
 }  // namespace
 
+void validate(const DenseRoundsSettings& s) {
+  if (s.gates_m.empty()) throw Error("dense rounds: no gates");
+  for (const double g : s.gates_m)
+    if (!std::isfinite(g) || g <= 0.0) throw Error("dense rounds: gates must be finite and positive, got " + std::to_string(g));
+  if (s.rounds < 0 || s.max_rounds < 0) throw Error("dense rounds: rounds and max_rounds must be >= 0");
+  if (s.line_search_halvings < 0) throw Error("dense rounds: line_search_halvings must be >= 0");
+  if (!std::isfinite(s.converged_m) || s.converged_m < 0.0) throw Error("dense rounds: converged_m must be finite and >= 0");
+  if (!std::isfinite(s.extrapolation_max) || s.extrapolation_max < 0.0)
+    throw Error("dense rounds: extrapolation_max must be finite and >= 0");
+}
+
 RegistrationResult runDenseRounds(const RegistrationResult& start, const std::vector<Eigen::Vector3d>& points,
                                   const DenseRoundsSettings& settings, const DenseRoundsOps& ops, DenseRounds& rounds) {
+  validate(settings);
+  if (!ops.gather || !ops.solve || !ops.score) throw Error("dense rounds: gather, solve and score are all needed");
   rounds = DenseRounds{};
   RegistrationResult pose = start;
-  if (settings.gates_m.empty()) return pose;
   const int max_rounds = std::max(settings.rounds, settings.max_rounds);
   const int first_last_gate_round = static_cast<int>(settings.gates_m.size()) - 1;
   std::optional<Isometry3> previous_step;    // the last round's motion, when it was a plain round at the last gate
@@ -104,7 +118,9 @@ RegistrationResult runDenseRounds(const RegistrationResult& start, const std::ve
     // Extrapolation (Besl & McKay 1992, IV-C; step_extrapolation.h): two rounds at the last
     // gate that move the pose the same way say it creeps; the next round starts ahead along the
     // last step. Never after the last round: the pose returned is always a refined one.
-    if (round + 1 < settings.rounds || round + 1 >= max_rounds || settings.extrapolation_max <= 0.0) continue;
+    if (round + 1 < settings.rounds || round < first_last_gate_round || round + 1 >= max_rounds ||
+        settings.extrapolation_max <= 0.0)
+      continue;
     if (!previous_step) {
       previous_step = step;
       continue;

@@ -10,18 +10,19 @@
 /// centroids). After the first `rounds` rounds, the rounds end when a step is below converged_m,
 /// or after max_rounds rounds.
 ///
-/// Line search (truncated_score.h), at the last gate: a step longer than the round before is
-/// judged afresh. The terms are gathered where it lands, and its score there must not be below
+/// Line search (truncated_score.h), at the last gate: a step of at least converged_m that is
+/// longer than the round before is judged afresh. The terms are gathered where it lands, and its score there must not be below
 /// the score of the pose it leaves against that pose's terms (an equal score is kept). It is
 /// halved (stepPower about the points' centre) up to line_search_halvings times; when every
 /// length scores worse, the rounds end at the last refined pose (line_search_stopped, last_step_m
 /// 0). A shortened step is evaluated there (the solve with no iterations: its information and
-/// residuals are those of the pose returned); it neither ends the rounds as converged nor seeds
-/// an extrapolation. The terms gathered where an accepted step lands are the next round's.
+/// residuals are those of the pose returned); when that evaluation fails, the rounds stop in the
+/// same way. A shortened step neither ends the rounds as converged nor seeds an extrapolation.
+/// The terms gathered where an accepted step lands are the next round's.
 ///
-/// Extrapolation (step_extrapolation.h), after the first `rounds` rounds and never after the
-/// last: two successive steps that agree and shrink move the pose ahead along the newer one.
-/// The pose returned is always a refined one, never a jump.
+/// Extrapolation (step_extrapolation.h), at the last gate after the first `rounds` rounds, and
+/// never after the last round: two successive plain steps that agree and shrink move the pose
+/// ahead along the newer one. The pose returned is always a refined one, never a jump.
 #include <functional>
 #include <vector>
 
@@ -37,7 +38,7 @@ namespace gasp {
 /// The rounds' settings; PairParams::dense_* (pair_registration.h documents each).
 struct DenseRoundsSettings {
   std::vector<double> gates_m = {0.10, 0.05, 0.03};  ///< gate of round r: gates_m[min(r, size - 1)] [m]; not empty
-  int rounds = 3;                   ///< rounds always run (0: none)
+  int rounds = 3;                   ///< rounds always run (>= 0; PairParams::dense_rounds 0 skips the refinement before this)
   int max_rounds = 16;              ///< at most max(rounds, max_rounds) rounds
   double converged_m = 0.002;       ///< a step below this ends the rounds [m]
   double extrapolation_max = 4.0;   ///< largest extrapolation factor (<= 0: off)
@@ -59,15 +60,22 @@ struct DenseRoundsOps {
   /// The terms at T_target_source with round `round`'s gate.
   std::function<GatedTerms(const Isometry3& T_target_source, int round)> gather;
   /// The pose solved from `start` on `terms`; with evaluate_only, no iterations: the result at
-  /// `start` (information, residuals, degeneracy). success false ends the rounds with that result.
+  /// `start` (information, residuals, degeneracy). A plain solve's success false ends the rounds
+  /// with that result; an evaluation's ends them at the last refined pose (a line-search stop).
   std::function<RegistrationResult(const Isometry3& start, const std::vector<PointToPlane>& terms, bool evaluate_only)> solve;
   /// The line search's score of a pose against terms gathered at it; larger is better.
   std::function<double(const GatedTerms& terms, const Isometry3& T_target_source)> score = truncatedScore;
 };
 
+/// Throws gasp::Error naming the first invalid setting: gates_m empty or not finite and positive,
+/// rounds or max_rounds or line_search_halvings negative, converged_m or extrapolation_max not
+/// finite or negative.
+void validate(const DenseRoundsSettings& settings);
+
 /// The rounds from `start` (its pose; its other fields are returned when no round runs).
 /// `points`: the source points whose RMS displacement is a step (finite). A failed solve is
-/// returned with "dense refinement: " before its reason.
+/// returned with "dense refinement: " before its reason. Throws gasp::Error for invalid settings
+/// (validate()) or a missing gather, solve or score.
 RegistrationResult runDenseRounds(const RegistrationResult& start, const std::vector<Eigen::Vector3d>& points,
                                   const DenseRoundsSettings& settings, const DenseRoundsOps& ops, DenseRounds& rounds);
 
