@@ -212,9 +212,13 @@ int main(int argc, char** argv) {
         std::optional<gasp::RgbdFrame> frame = infoOf(scan, true).frame;
         const gasp::DepthOdometry* odometry = gasp_nrd->odometry();
         const std::size_t index = gasp_nrd->nodeFrames()[keyframe_depth.size()];
-        if (frame && odometry && index + 1 == odometry->frames().size() && odometry->frames()[index].deskewed &&
-            odometry->keyframeView())
-          frame = gasp::withViewDepth(std::move(*frame), *odometry->keyframeView());
+        if (frame && odometry && index < odometry->frames().size() && odometry->frames()[index].deskewed) {
+          if (index + 1 == odometry->frames().size() && odometry->keyframeView())
+            frame = gasp::withViewDepth(std::move(*frame), *odometry->keyframeView());
+          else  // not expected: the node decider adds a keyframe in the step of its scan
+            std::fprintf(stderr, "warning: keyframe %zu was deskewed but its view is gone; the map keeps its recorded depth\n",
+                         index);
+        }
         keyframe_depth.push_back(std::move(frame));
       }
       if (steps % 100 == 0)
