@@ -12,12 +12,20 @@
 namespace gasp::tools {
 
 /// Parses the command line. Returns -1 when the program should go on, else its exit code: 0
-/// after --help, 2 after a usage error (CLI11 prints the message).
+/// after --help (CLI11 prints it), 2 after a usage error ("error: MESSAGE" on stderr, as every
+/// other error of the programs).
+/// The exit code for a CLI11 parse error: 0 after --help (printed), else 2 with "error: MESSAGE".
+inline int usageExit(CLI::App& app, const CLI::ParseError& e) {
+  if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e) == 0 ? 0 : 2;
+  std::fprintf(stderr, "error: %s\nRun with --help for more information.\n", e.what());
+  return 2;
+}
+
 inline int parseCommandLine(CLI::App& app, int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    return usageExit(app, e);
   }
   return -1;
 }
@@ -84,6 +92,35 @@ inline CLI::Validator within(double lo, double hi) {
                                       " (got " + text + ")"
                                 : std::string();
       });
+}
+
+/// A finite number in (lo, hi].
+inline CLI::Validator aboveAndAtMost(double lo, double hi) {
+  return detail::numberValidator(
+      "in (" + detail::shortNumber(lo) + ", " + detail::shortNumber(hi) + "]", [lo, hi](double v, const std::string& text) {
+        return !(v > lo) || v > hi ? "must be greater than " + detail::shortNumber(lo) + " and at most " +
+                                         detail::shortNumber(hi) + " (got " + text + ")"
+                                   : std::string();
+      });
+}
+
+/// 0 (off) or a finite number in [lo, hi).
+inline CLI::Validator zeroOrWithinHalfOpen(double lo, double hi) {
+  return detail::numberValidator(
+      "0 or in [" + detail::shortNumber(lo) + ", " + detail::shortNumber(hi) + ")",
+      [lo, hi](double v, const std::string& text) {
+        return v == 0.0 || (v >= lo && v < hi) ? std::string()
+                                               : "must be 0 (off) or at least " + detail::shortNumber(lo) + " and below " +
+                                                     detail::shortNumber(hi) + " (got " + text + ")";
+      });
+}
+
+/// 0 (off) or a finite number >= lo.
+inline CLI::Validator zeroOrAtLeast(double lo) {
+  return detail::numberValidator("0 or >= " + detail::shortNumber(lo), [lo](double v, const std::string& text) {
+    return v == 0.0 || v >= lo ? std::string()
+                               : "must be 0 (off) or at least " + detail::shortNumber(lo) + " (got " + text + ")";
+  });
 }
 
 /// A non-empty value (a file name given as "" would silently write nothing).

@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
   app.add_option("--retry-area-factor", params.retry_area_factor,
                  "when no estimate is found, segment again with this times the patch area and retry, mutual associations only (0 = never, else in [0.01, 1))")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(gasp::tools::zeroOrWithinHalfOpen(0.01, 1));
   gasp::DeskewParams deskew;
   app.add_option("--rolling-shutter", deskew.readout_s,
                  "deskew both views for a rolling shutter with this readout time [s] (first row to last; negative: "
@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
       }
     }
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;  // --help: 0; any usage error: 2
+    return gasp::tools::usageExit(app, e);  // --help: 0; any usage error: 2
   } catch (const gasp::Error& e) {
     std::cerr << "error: " << e.what() << '\n';
     return 2;
@@ -131,6 +131,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   params.association.match.theta_dev_rad = theta_dev_deg * M_PI / 180.0;
+  if (const std::string missing = gasp::tools::missingOutputFolder({{"--out", out_path}}); !missing.empty()) {
+    std::cerr << "error: " << missing << '\n';  // before the work, not after it
+    return 1;
+  }
   try {
     cv::Mat depth_a, depth_b;
     gasp::CameraIntrinsics K;
@@ -167,6 +171,8 @@ int main(int argc, char** argv) {
       if (!intrinsics_arg.empty()) opt.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg);
       opt.undistort = !no_undistort;
       const auto ds = gasp::TumDataset::open(tum_dir, opt);
+      std::printf("intrinsics: %s\n", ds.intrinsicsSummary().c_str());
+      if (const std::string w = ds.intrinsicsWarning(); !w.empty()) std::fprintf(stderr, "warning: %s\n", w.c_str());
       depth_a = ds.loadDepth(from);
       depth_b = ds.loadDepth(to);
       K = ds.intrinsics();

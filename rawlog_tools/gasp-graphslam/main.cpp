@@ -119,7 +119,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    return gasp::tools::usageExit(app, e);  // --help: 0; any usage error: 2
   }
 
   gasp::graphslam::GaspOptionsChecker checker;

@@ -251,19 +251,19 @@ int main(int argc, char** argv) {
   app.add_flag("!--no-mutual", base.association.mutual_check, "keep one-way best partners too (no mutual check)");
   app.add_option("--min-inliers", base.pose.ransac.min_inliers, "RANSAC: fewer inliers give no estimate (all methods)")->capture_default_str()->check(gasp::tools::atLeast(3));
   app.add_option("--one-way-max-violation", base.one_way_max_violation_ratio,
-                 "GASP: visibility check violation limit for poses from the one-way fallback")->capture_default_str()->check(CLI::Range(0.0, 1.0));
+                 "GASP: visibility check violation limit for poses from the one-way fallback")->capture_default_str()->check(gasp::tools::within(0, 1));
   app.add_option("--max-occluded", base.visibility.max_occluded_ratio,
-                 "visibility check: limit on the share of samples behind the other view's surfaces (all methods)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
+                 "visibility check: limit on the share of samples behind the other view's surfaces (all methods)")->capture_default_str()->check(gasp::tools::within(0, 1));
   app.add_option("--retry-area-factor", base.retry_area_factor,
                  "GASP: when no estimate is found, segment again with this times the patch area and retry, mutual associations only (0 = never, else in [0.01, 1))")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(gasp::tools::zeroOrWithinHalfOpen(0.01, 1));
   app.add_flag("!--no-slide-scan", base.slide_scan.enabled,
                "GASP: no slide scan of poses whose patch problem was degenerate (docs/pipeline.md, \"Slide scan\")");
   app.add_flag("!--no-edge-terms", base.edge_terms, "GASP: no point-to-line terms along occluding edges in the dense rounds");
-  app.add_option("--edge-weight", base.edges.weight, "GASP: weight of an edge term")->capture_default_str();
+  app.add_option("--edge-weight", base.edges.weight, "GASP: weight of an edge term (0 = edge terms weightless)")->capture_default_str()->check(gasp::tools::atLeast(0));
   app.add_option("--wide-edge-gates", base.wide_edge_gate_factor,
-                 "GASP: second refinement, when few edge points are paired, with edge gates this many times wider (0 = none, else >= 1)")->capture_default_str()->check(gasp::tools::atLeast(0));
+                 "GASP: second refinement, when few edge points are paired, with edge gates this many times wider (0 = none, else >= 1)")->capture_default_str()->check(gasp::tools::zeroOrAtLeast(1));
   app.add_option("--edge-step", base.edges.pixel_step, "GASP: one source edge pixel per (N/2)^2 image block")->capture_default_str()->check(gasp::tools::above(0));
   app.add_option("--dense-rounds", base.dense_rounds, "dense projective refinement rounds (0 = none)")->capture_default_str()->check(gasp::tools::atLeast(0));
   app.add_option("--dense-max-rounds", base.dense_max_rounds,
@@ -276,15 +276,15 @@ int main(int argc, char** argv) {
       ->check(gasp::tools::atLeast(0));
   app.add_flag("!--no-dense-line-search", base.dense_line_search,
                "GASP: no line search at the last dense gate (a longer step than the round before is kept even when it scores worse; docs/pipeline.md, \"Line search at the last gate\")");
-  app.add_option("--pixel-step", base.projective.pixel_step, "dense terms: every N-th pixel")->capture_default_str();
+  app.add_option("--pixel-step", base.projective.pixel_step, "dense terms: every N-th pixel")->capture_default_str()->check(gasp::tools::atLeast(1));
   bool polish_reference = false;  // --polish-reference (with the baselines only)
   bool rgb_rotation_check = false;  // --rgb-rotation-check (with the baselines only)
 #ifdef GASP_HAVE_BASELINES
   gasp::baselines::EpipolarParams epipolar;
   gasp::baselines::BaselineParams baseline;
-  app.add_option("--ratio", baseline.matching.ratio, "baselines: Lowe's ratio test threshold")->capture_default_str();
+  app.add_option("--ratio", baseline.matching.ratio, "baselines: Lowe's ratio test threshold")->capture_default_str()->check(gasp::tools::aboveAndAtMost(0, 1));
   app.add_flag("!--no-mutual-matches", baseline.matching.mutual, "baselines: no mutual check of descriptor matches");
-  app.add_option("--min-keypoints", baseline.point.min_keypoints, "fpfh/shot/cshot: keypoints per view")->capture_default_str();
+  app.add_option("--min-keypoints", baseline.point.min_keypoints, "fpfh/shot/cshot: keypoints per view")->capture_default_str()->check(gasp::tools::atLeast(1));
   app.add_flag("--polish-reference", polish_reference,
                "--pairs-csv: also run PCL's GICP from the reference pose and from each estimate (an independent "
                "check of the reference; columns ref_icp_*, est_vs_ref_icp_*, est_icp_*)");
@@ -367,7 +367,7 @@ int main(int argc, char** argv) {
     if (rgb_rotation_check && pairs_csv_path.empty())
       throw CLI::ValidationError("--rgb-rotation-check writes its columns to the --pairs-csv file: give --pairs-csv");
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;  // --help: 0; any usage error: 2
+    return gasp::tools::usageExit(app, e);  // --help: 0; any usage error: 2
   }
   // Each method once, in the order given.
   {
@@ -379,7 +379,7 @@ int main(int argc, char** argv) {
   if (const std::string missing = gasp::tools::missingOutputFolder({{"--csv", csv_path}, {"--pairs-csv", pairs_csv_path}});
       !missing.empty()) {
     std::cerr << "error: " << missing << '\n';  // before the benchmark, not after it
-    return 2;
+    return 1;
   }
   try {
     base.superpixels.target_patch_area_m2 = area_cm2 * 1e-4;
@@ -394,6 +394,9 @@ int main(int argc, char** argv) {
     opt.undistort = !no_undistort;
     opt.depth_units_per_metre = depth_scale;
     const auto ds = gasp::TumDataset::open(tum_dir, opt);
+    // On stderr: stdout is the table.
+    std::fprintf(stderr, "intrinsics: %s\n", ds.intrinsicsSummary().c_str());
+    if (const std::string w = ds.intrinsicsWarning(); !w.empty()) std::fprintf(stderr, "warning: %s\n", w.c_str());
     // Ground truth of frame i: the frame's own association (offset 0) or a look-up at t + offset.
     // --gt-frame-rotation: the reference's camera frame is the depth camera's turned by Q, so the
     // depth camera's pose is T_world_ref * Q^-1.

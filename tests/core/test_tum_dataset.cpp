@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "gasp/core/error.h"
@@ -108,4 +109,35 @@ TEST(TumDataset, MissingAndMalformedInputs) {
   const auto ds = gasp::TumDataset::open(dir);
   EXPECT_EQ(ds.size(), 1u);
   EXPECT_THROW(ds.loadDepth(0), gasp::Error);  // the PNG is missing
+}
+
+TEST(TumDataset, SaysWhereItsIntrinsicsCameFromAndWarnsOfTheDefaultGuess) {
+  // A folder of a user's own camera: no intrinsics.txt and no TUM camera in its name.
+  const std::string dir = gasp::test::scratchDir() + "/my_robot";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/depth.txt") << "1.0 depth/1.png\n";
+  const auto guessed = gasp::TumDataset::open(dir);
+  EXPECT_TRUE(guessed.intrinsicsAreTheDefaultGuess());
+  EXPECT_EQ(guessed.intrinsicsSummary(), "fx 525 fy 525 cx 319.5 cy 239.5 (640x480, preset ros (default; pass intrinsics to override))");
+  EXPECT_NE(guessed.intrinsicsWarning().find("ROS default intrinsics"), std::string::npos) << guessed.intrinsicsWarning();
+  EXPECT_NE(guessed.intrinsicsWarning().find(dir + "/intrinsics.txt"), std::string::npos) << guessed.intrinsicsWarning();
+  // Given, or found in the folder: no warning, and the summary names the source.
+  gasp::TumDataset::Options opt;
+  opt.intrinsics = gasp::CameraIntrinsics::tumFreiburg3();
+  const auto given = gasp::TumDataset::open(dir, opt);
+  EXPECT_FALSE(given.intrinsicsAreTheDefaultGuess());
+  EXPECT_TRUE(given.intrinsicsWarning().empty());
+  EXPECT_EQ(given.intrinsicsSummary(), "fx 535.4 fy 539.2 cx 320.1 cy 247.6 (640x480, option)");
+  gasp::CameraIntrinsics::tumFreiburg3().save(dir + "/intrinsics.txt");
+  const auto found = gasp::TumDataset::open(dir);
+  EXPECT_FALSE(found.intrinsicsAreTheDefaultGuess());
+  EXPECT_TRUE(found.intrinsicsWarning().empty());
+  EXPECT_NE(found.intrinsicsSummary().find("intrinsics.txt"), std::string::npos) << found.intrinsicsSummary();
+}
+
+TEST(TumDataset, SummaryOfAnUndistortedFolder) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const auto ds = gasp::TumDataset::open(dir);
+  EXPECT_EQ(ds.intrinsicsSummary(), "fx 517.3 fy 516.5 cx 318.6 cy 255.3 (640x480, preset fr1 (from the folder name), undistorted)");
+  EXPECT_TRUE(ds.intrinsicsWarning().empty());
 }

@@ -152,6 +152,14 @@ TEST(GaspAssociateProgram, TwoPngsAndExitCodes) {
   EXPECT_NE(ok.output.find("ground truth: not available"), std::string::npos);
   EXPECT_EQ(run("gasp-associate", "--depth-a /nonexistent.png --depth-b " + pngs[1]).exit_code, 1);
   EXPECT_EQ(run("gasp-associate", "--from 0").exit_code, 2);
+  // The picture's folder is checked before the work; a bad range is a usage error, said as one.
+  const ProgramRun no_folder = run("gasp-associate", "--depth-a " + pngs[0] + " --depth-b " + pngs[1] + " --out /nonexistent-dir/a.png");
+  EXPECT_EQ(no_folder.exit_code, 1) << no_folder.output;
+  EXPECT_NE(no_folder.output.find("does not exist"), std::string::npos) << no_folder.output;
+  EXPECT_EQ(no_folder.output.find("patches_a"), std::string::npos) << no_folder.output;
+  const ProgramRun bad_k = run("gasp-associate", "--depth-a " + pngs[0] + " --depth-b " + pngs[1] + " --k -1");
+  EXPECT_EQ(bad_k.exit_code, 2) << bad_k.output;
+  EXPECT_NE(bad_k.output.find("error: --k: must be at least 0"), std::string::npos) << bad_k.output;
   // The same view twice at an all-zero depth: no patches, no associations.
   const std::string zero = gasp::test::scratchDir() + "/zero.png";
   {
@@ -182,11 +190,23 @@ TEST(GaspPairsProgram, TableAndCsvOnARealFolder) {
   EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 1 --depth-scale -5000").exit_code, 2);
   // The dense rounds' options: a plain usage error before any pair, NaN and negatives alike.
   for (const std::string option : {"--dense-extrapolation nan", "--dense-extrapolation -1", "--dense-max-rounds -2",
-                                   "--wide-edge-gates inf"}) {
+                                   "--wide-edge-gates inf", "--wide-edge-gates 0.5", "--retry-area-factor 0.005",
+                                   "--retry-area-factor 1", "--pixel-step 0", "--edge-weight -1", "--edge-step 0"
+#ifdef GASP_HAVE_BASELINES
+                                   ,
+                                   "--ratio 0", "--ratio 1.5", "--min-keypoints -5"
+#endif
+       }) {
     const ProgramRun bad = run("gasp-pairs", "--tum " + dir + " --skips 1 " + option);
     EXPECT_EQ(bad.exit_code, 2) << option << ": " << bad.output;
+    EXPECT_NE(bad.output.find("error: --"), std::string::npos) << option << ": " << bad.output;
     EXPECT_NE(bad.output.find("must be"), std::string::npos) << option << ": " << bad.output;
   }
+  // A missing output folder is bad input, said before any pair runs.
+  const ProgramRun no_folder = run("gasp-pairs", "--tum " + dir + " --skips 1 --csv /nonexistent-dir/t.csv");
+  EXPECT_EQ(no_folder.exit_code, 1) << no_folder.output;
+  EXPECT_NE(no_folder.output.find("does not exist"), std::string::npos) << no_folder.output;
+  EXPECT_EQ(no_folder.output.find("pair 1/"), std::string::npos) << no_folder.output;
 }
 
 // The dense rounds' line search: its two pairs-CSV columns, and the flag that turns it off.

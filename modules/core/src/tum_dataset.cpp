@@ -3,6 +3,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 
@@ -69,6 +70,7 @@ TumDataset TumDataset::open(const std::string& dir, const Options& options) {
   } else {
     ds.intrinsics_ = CameraIntrinsics::rosDefault();
     ds.intrinsics_source_ = "preset ros (default; pass intrinsics to override)";
+    ds.intrinsics_guessed_ = true;
   }
   ds.intrinsics_.validate();
   CameraIntrinsics resampled = ds.intrinsics_;
@@ -111,6 +113,20 @@ const TumFrame& TumDataset::frame(std::size_t i) const {
     throw Error("frame index " + std::to_string(i) + " out of range: '" + dir_ + "' has " +
                 std::to_string(frames_.size()) + " depth frames");
   return frames_[i];
+}
+
+std::string TumDataset::intrinsicsSummary() const {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "fx %g fy %g cx %g cy %g (%dx%d, ", intrinsics_.fx, intrinsics_.fy, intrinsics_.cx,
+                intrinsics_.cy, intrinsics_.width, intrinsics_.height);
+  return buf + intrinsics_source_ + (undistorts() ? ", undistorted)" : ")");
+}
+
+std::string TumDataset::intrinsicsWarning() const {
+  if (!intrinsics_guessed_) return "";
+  return dir_ + ": no intrinsics given, no intrinsics.txt in the folder, and its name names no TUM camera (fr1, fr2, "
+                "fr3): the ROS default intrinsics (fx = fy = 525, cx 319.5, cy 239.5) are assumed; write the camera's "
+                "into " + dir_ + "/intrinsics.txt (docs/formats.md) or pass --intrinsics where the program has it";
 }
 
 std::optional<Isometry3> TumDataset::groundTruthOf(std::size_t i, double offset_s) const {

@@ -40,6 +40,12 @@ std::string DepthSequence::describe() const {
   return options_.tum_dir.empty() ? "rawlog " + options_.rawlog_path : "TUM folder " + options_.tum_dir;
 }
 
+std::string DepthSequence::intrinsicsSummary() const {
+  return impl_->tum ? impl_->tum->intrinsicsSummary() : "each scan's own (cameraParams)";
+}
+
+std::string DepthSequence::intrinsicsWarning() const { return impl_->tum ? impl_->tum->intrinsicsWarning() : ""; }
+
 std::optional<RgbdFrame> DepthSequence::next() {
   if (options_.max_frames != 0 && used_ >= options_.max_frames) return std::nullopt;  // read nothing more
   std::optional<RgbdFrame> out;

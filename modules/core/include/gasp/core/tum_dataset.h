@@ -54,6 +54,14 @@ class TumDataset {
   bool undistorts() const { return undistortion_->active(); }
   /// Where the intrinsics came from: "option", "DIR/intrinsics.txt", "preset fr1 (folder name)"...
   const std::string& intrinsicsSource() const { return intrinsics_source_; }
+  /// True when no intrinsics were given, found in DIR/intrinsics.txt or guessed from the folder
+  /// name: the ROS default (fx = fy = 525) is then assumed, which a user's own camera seldom has.
+  bool intrinsicsAreTheDefaultGuess() const { return intrinsics_guessed_; }
+  /// One line for the programs' output: "fx 517.3 fy 516.5 cx 318.6 cy 255.3 (640x480, SOURCE)",
+  /// the calibrated intrinsics (with ", undistorted" when the images are resampled).
+  std::string intrinsicsSummary() const;
+  /// "" or, when intrinsicsAreTheDefaultGuess(), a warning saying so and how to give the camera's.
+  std::string intrinsicsWarning() const;
   double depthUnitsPerMetre() const { return options_.depth_units_per_metre; }
 
   std::size_t size() const { return frames_.size(); }
@@ -80,6 +88,7 @@ class TumDataset {
   Options options_;
   CameraIntrinsics intrinsics_;
   std::string intrinsics_source_;
+  bool intrinsics_guessed_ = false;
   std::shared_ptr<const Undistortion> undistortion_;  ///< shared by copies (immutable maps)
   std::vector<TumFrame> frames_;
   Trajectory ground_truth_;

@@ -48,6 +48,10 @@ class DepthSequence {
   const Isometry3& robotCamera() const { return T_robot_camera_; }
   /// "TUM folder DIR" or "rawlog FILE".
   std::string describe() const;
+  /// TUM folder: TumDataset::intrinsicsSummary(); rawlog: each scan's own (its cameraParams).
+  std::string intrinsicsSummary() const;
+  /// TUM folder: TumDataset::intrinsicsWarning(); rawlog: "".
+  std::string intrinsicsWarning() const;
 
  private:
   struct Impl;
