@@ -10,6 +10,8 @@
 // Exit codes: 0 done, 1 bad input, 2 usage error, 3 written, but GASP's odometry lost track
 // (break edges in the graph).
 #include <CLI/CLI.hpp>
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/io/lazy_load_path.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/system/filesystem.h>
@@ -46,15 +48,30 @@ namespace {
 
 using gasp::graphslam::Graph3D;
 
-/// The default configuration in a temporary file (the engine reads a file), removed at exit.
+/// The configuration the engine reads, in a temporary file removed at exit: the built-in one
+/// with the user's --ini (if any) over it, key by key, so that a file with a few keys keeps the
+/// defaults of everything else (MRPT's engine asserts on missing sections such as
+/// [GeneralConfiguration]).
 class TemporaryIni {
  public:
-  TemporaryIni() {
+  explicit TemporaryIni(const std::string& user_ini) {
     path_ = (std::filesystem::temp_directory_path() /
              ("gasp-graphslam-" + std::to_string(::getpid()) + ".ini")).string();
+    mrpt::config::CConfigFileMemory merged(std::string(gasp::tools::kDefaultGraphSlamIni));
+    if (!user_ini.empty()) {
+      const mrpt::config::CConfigFile user(user_ini);
+      std::vector<std::string> sections, keys;
+      user.getAllSections(sections);
+      for (const auto& section : sections) {
+        user.getAllKeys(section, keys);
+        for (const auto& key : keys) merged.write(section, key, user.read_string(section, key, ""));
+      }
+    }
+    std::string text;
+    merged.getContent(text);
     std::ofstream out(path_);
-    out << gasp::tools::kDefaultGraphSlamIni;
-    if (!out) throw gasp::Error("cannot write the default configuration to " + path_);
+    out << text;
+    if (!out) throw gasp::Error("cannot write the configuration to " + path_);
   }
   ~TemporaryIni() {
     std::error_code ec;
@@ -159,11 +176,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "warning: %s: section [%s] is read by no decider (misspelt?); its keys are ignored\n",
                      ini_path.c_str(), s.c_str());
     }
-    std::unique_ptr<TemporaryIni> default_ini;
-    if (ini_path.empty()) {
-      default_ini = std::make_unique<TemporaryIni>();
-      ini_path = default_ini->path();
-    }
+    const TemporaryIni engine_ini(ini_path);  // the built-in configuration, --ini's keys over it
     const gasp::Trajectory gt = gt_path.empty() ? gasp::Trajectory{} : gasp::readTumTrajectory(gt_path);
     // The checker's factories return new objects; the engine does not own them.
     std::unique_ptr<mrpt::graphslam::deciders::CNodeRegistrationDecider<Graph3D>> nrd(checker.node_regs_map[node_reg]());
@@ -172,7 +185,7 @@ int main(int argc, char** argv) {
     auto* gasp_nrd = dynamic_cast<gasp::graphslam::CGaspOdometryNRD*>(nrd.get());
     auto* gasp_erd = dynamic_cast<gasp::graphslam::CGaspLoopClosureERD*>(erd.get());
     auto* gasp_gso = dynamic_cast<gasp::graphslam::CGaspPoseGraphGSO*>(gso.get());
-    const auto engine_ptr = gasp::graphslam::makeGraphSlamEngine(ini_path, rawlog_path, *nrd, *erd, *gso);
+    const auto engine_ptr = gasp::graphslam::makeGraphSlamEngine(engine_ini.path(), rawlog_path, *nrd, *erd, *gso);
     auto& engine = *engine_ptr;
 
     if (optimizer == "CLevMarqGSO")

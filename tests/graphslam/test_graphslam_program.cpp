@@ -322,6 +322,9 @@ TEST(GaspGraphSlamProgram, ListsItsClassesAndPrintsALoadableConfiguration) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_TRUE(contains(run.output, "CGaspOdometryNRD")) << run.output;
   EXPECT_TRUE(contains(run.output, "CGaspLoopClosureERD")) << run.output;
+  EXPECT_TRUE(contains(run.output, "CFixedIntervalsNRD")) << run.output;  // MRPT's 3D-capable ones too
+  for (const char* two_d_only : {"CICPCriteriaNRD", "CICPCriteriaERD", "CLoopCloserERD"})
+    EXPECT_FALSE(contains(run.output, two_d_only)) << two_d_only << ": " << run.output;
   run = runProgram("gasp-graphslam", "--list-optimizers");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_TRUE(contains(run.output, "CGaspPoseGraphGSO")) << run.output;
@@ -333,6 +336,19 @@ TEST(GaspGraphSlamProgram, ListsItsClassesAndPrintsALoadableConfiguration) {
   std::ofstream(out + "/printed.ini", std::ios::app) << "\n[CGaspOdometryNRD]\nkeyframe_distance_m = 0.3\n";
   run = runProgram("gasp-graphslam", "--rawlog " + simulatedRawlog(out) + " --ini " + out + "/printed.ini");
   EXPECT_EQ(run.exit_code, 0) << run.output;
+}
+
+TEST(GaspGraphSlamProgram, AnIniWithAFewKeysKeepsTheDefaultsOfTheRest) {
+  // docs/graphslam.md's noloops.ini: one section, one key. The engine's own sections
+  // ([GeneralConfiguration] ...) come from the built-in configuration, without MRPT's assertion.
+  const std::string out = gasp::test::scratchDir();
+  std::ofstream(out + "/noloops.ini") << "[CGaspLoopClosureERD]\nenabled = 0\n";
+  const auto run = runProgram("gasp-graphslam", "--rawlog " + simulatedRawlog(out) + " --ini " + out + "/noloops.ini");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_FALSE(contains(run.output, "rawlog_seq_info")) << run.output;
+  EXPECT_FALSE(contains(run.output, "xception")) << run.output;
+  EXPECT_TRUE(contains(run.output, "\nloop_closures: 0")) << run.output;
+  EXPECT_GE(printedCount(run.output, "nodes: "), 2u) << run.output;
 }
 
 TEST(GaspGraphSlamProgram, FindsImagesStoredBesideTheRawlog) {

@@ -35,6 +35,17 @@ void GaspOptionsChecker::populateDeciderOptimizerProperties() {
     delete *it;  // owned by the base class's vector
     it = optimizers_descriptions.erase(it);
   }
+  // MRPT describes its 2D-only deciders too (CICPCriteriaNRD, CICPCriteriaERD, CLoopCloserERD),
+  // which the 3D maps above do not hold: --list-regs must not offer them.
+  for (auto it = regs_descriptions.begin(); it != regs_descriptions.end();) {
+    const bool in_3d = node_regs_map.count((*it)->name) > 0 || edge_regs_map.count((*it)->name) > 0;
+    if (in_3d) {
+      ++it;
+      continue;
+    }
+    delete *it;  // owned by the base class's vector
+    it = regs_descriptions.erase(it);
+  }
   // The base class owns and deletes the descriptions.
   auto node = std::make_unique<TRegistrationDeciderProps>();
   node->name = "CGaspOdometryNRD";
