@@ -11,7 +11,8 @@
 
 namespace gasp::tools {
 
-/// --tum, --rawlog, --sensor, --gt (into gt_path), --first, --max-frames, --every.
+/// --tum, --rawlog, --sensor, --gt (into gt_path), --first, --max-frames, --every, and for a TUM
+/// folder --intrinsics, --depth-scale, --no-undistort.
 inline void addSequenceOptions(CLI::App& app, DepthSequenceOptions& input, std::string& gt_path) {
   auto* tum = app.add_option("--tum", input.tum_dir, "TUM RGB-D folder (frames in depth.txt order; its groundtruth.txt is the reference)");
   auto* rawlog = app.add_option("--rawlog", input.rawlog_path, "an MRPT rawlog: its CObservation3DRangeScan in file order")->excludes(tum);
@@ -23,6 +24,16 @@ inline void addSequenceOptions(CLI::App& app, DepthSequenceOptions& input, std::
       ->check(atLeast(0));
   app.add_option("--max-frames", input.max_frames, "at most this many frames (0 = all)")->capture_default_str()->check(atLeast(0));
   app.add_option("--every", input.every, "use every N-th frame (a wider baseline between frames)")->capture_default_str()->check(atLeast(1));
+  app.add_option("--intrinsics", input.intrinsics,
+                 "with --tum: the depth camera, fr1|fr2|fr3|ros or a file (docs/formats.md); default: the folder's "
+                 "intrinsics.txt, else a preset guessed from its name, else ros (with a warning)")
+      ->needs(tum)
+      ->check(nonEmpty());
+  app.add_option("--depth-scale", input.depth_units_per_metre, "with --tum: raw depth units per metre (TUM: 5000)")
+      ->capture_default_str()
+      ->needs(tum)
+      ->check(above(0));
+  app.add_flag("!--no-undistort", input.undistort, "with --tum: ignore lens distortion (images as stored)")->needs(tum);
 }
 
 /// --keyframe-distance, --keyframe-angle, --rolling-shutter.

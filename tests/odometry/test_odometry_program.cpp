@@ -113,6 +113,37 @@ TEST(GaspOdometryProgram, ARawlogGivesTheFoldersPosesAndRobotFrameGraph) {
   EXPECT_GT(std::abs(roll) + std::abs(pitch) + std::abs(yaw), 1.0) << first_vertex;
 }
 
+TEST(GaspOdometryProgram, AFolderOfAnotherCameraTakesItsIntrinsicsOrSaysWhatItAssumed) {
+  // fr1_desk9 under a name that names no TUM camera, without intrinsics.txt: the ROS default is
+  // assumed with a warning; --intrinsics fr1 gives the camera's (and resamples its lens).
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const std::string out = gasp::test::scratchDir();
+  const std::string mine = out + "/my_camera";
+  std::filesystem::create_directories(mine);
+  std::filesystem::copy(dir + "/depth", mine + "/depth");
+  std::filesystem::copy_file(dir + "/depth.txt", mine + "/depth.txt");
+  auto run = runProgram("gasp-odometry", "--tum " + mine + " --max-frames 3 --out " + out + "/a.txt");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "intrinsics: fx 525 fy 525 cx 319.5 cy 239.5 (640x480, preset ros")) << run.output;
+  EXPECT_TRUE(contains(run.output, "warning: ") && contains(run.output, "ROS default intrinsics")) << run.output;
+  run = runProgram("gasp-odometry", "--tum " + mine + " --max-frames 3 --intrinsics fr1 --out " + out + "/b.txt");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "intrinsics: fx 517.3 fy 516.5 cx 318.6 cy 255.3 (640x480, option, undistorted)")) << run.output;
+  EXPECT_FALSE(contains(run.output, "ROS default intrinsics")) << run.output;
+  run = runProgram("gasp-odometry", "--tum " + mine + " --max-frames 3 --intrinsics fr1 --no-undistort --depth-scale 5000 --out " +
+                                        out + "/c.txt");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "(640x480, option)")) << run.output;
+  // A camera file that is not there is bad input; the TUM-only options need --tum.
+  run = runProgram("gasp-odometry", "--tum " + mine + " --intrinsics " + out + "/none.txt --out " + out + "/d.txt");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "none.txt")) << run.output;
+  run = runProgram("gasp-odometry", "--rawlog x.rawlog --depth-scale 1000 --out " + out + "/e.txt");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  run = runProgram("gasp-odometry", "--tum " + mine + " --depth-scale 0 --out " + out + "/f.txt");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+}
+
 TEST(GaspOdometryProgram, BadInputExitsWith1OrAUsageCode) {
   const std::string out = gasp::test::scratchDir();
   const std::string sim = simulatedFolder(out);

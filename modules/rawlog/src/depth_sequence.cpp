@@ -21,7 +21,11 @@ DepthSequence::DepthSequence(const DepthSequenceOptions& options) : options_(opt
     throw Error("depth sequence: give either a TUM folder or a rawlog");
   if (options.every == 0) throw Error("depth sequence: every must be at least 1");
   if (!options.tum_dir.empty()) {
-    impl_->tum = TumDataset::open(options.tum_dir);
+    TumDataset::Options tum;
+    if (!options.intrinsics.empty()) tum.intrinsics = CameraIntrinsics::fromPresetOrFile(options.intrinsics);
+    tum.depth_units_per_metre = options.depth_units_per_metre;
+    tum.undistort = options.undistort;
+    impl_->tum = TumDataset::open(options.tum_dir, tum);
     ground_truth_ = impl_->tum->groundTruth();
     if (options.first >= impl_->tum->size())
       throw Error(options.tum_dir + ": first frame " + std::to_string(options.first) + " but the folder has " +

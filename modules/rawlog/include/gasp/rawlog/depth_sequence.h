@@ -20,12 +20,18 @@ struct DepthSequenceOptions {
   std::size_t every = 1;     ///< use every N-th frame
   std::size_t max_frames = 0;  ///< at most this many frames (0 = all)
   bool with_rgb = false;       ///< TUM: load the associated rgb image too
+  /// TUM: the camera, a preset (fr1, fr2, fr3, ros) or a file (CameraIntrinsics::save's format);
+  /// empty: the folder's intrinsics.txt, else a preset guessed from its name, else the ROS default
+  /// (TumDataset::Options). A rawlog's scans carry their own.
+  std::string intrinsics;
+  double depth_units_per_metre = 5000.0;  ///< TUM: raw depth units per metre (TUM: 5000)
+  bool undistort = true;                  ///< TUM: resample to the pinhole camera when the intrinsics carry lens distortion
 };
 
 class DepthSequence {
  public:
   /// Throws gasp::Error for neither or both inputs, every = 0, a missing or corrupt folder or
-  /// rawlog, or `first` beyond a TUM folder's frames.
+  /// rawlog, `first` beyond a TUM folder's frames, or intrinsics that cannot be read.
   explicit DepthSequence(const DepthSequenceOptions& options);
   ~DepthSequence();
   DepthSequence(DepthSequence&&) noexcept;
