@@ -72,6 +72,8 @@ int main(int argc, char** argv) {
   app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored")->excludes(rawlog);
   app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: the folder's; ros for PNGs)")->excludes(rawlog);
   app.add_option("--out", out_path, "association picture (default: associations_I_J.png, or associations.png for PNGs)");
+  double area_cm2 = params.superpixels.target_patch_area_m2 * 1e4;
+  app.add_option("--area-cm2", area_cm2, "target patch area [cm^2]")->capture_default_str()->check(gasp::tools::above(0));
   app.add_option("--k", params.association.feature_sets.neighbourhood.k, "neighbourhood size (0 = full view)")->capture_default_str()->check(gasp::tools::atLeast(0));
   app.add_option("--candidates", params.association.candidates, "KD-tree candidates per patch (C)")->capture_default_str()->check(gasp::tools::atLeast(1));
   app.add_option("--lambda", params.association.lambda, "gating on the normalised edit distance")->capture_default_str()->check(gasp::tools::within(0, 1));
@@ -131,6 +133,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   params.association.match.theta_dev_rad = theta_dev_deg * M_PI / 180.0;
+  params.superpixels.target_patch_area_m2 = area_cm2 * 1e-4;
   if (const std::string missing = gasp::tools::missingOutputFolder({{"--out", out_path}}); !missing.empty()) {
     std::cerr << "error: " << missing << '\n';  // before the work, not after it
     return 1;

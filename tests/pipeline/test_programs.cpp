@@ -157,6 +157,16 @@ TEST(GaspAssociateProgram, TwoPngsAndExitCodes) {
   EXPECT_EQ(no_folder.exit_code, 1) << no_folder.output;
   EXPECT_NE(no_folder.output.find("does not exist"), std::string::npos) << no_folder.output;
   EXPECT_EQ(no_folder.output.find("patches_a"), std::string::npos) << no_folder.output;
+  // --area-cm2: larger patches, fewer of them; 0 is a usage error.
+  const auto patchesA = [](const std::string& output) {
+    const auto pos = output.find("patches_a: ");
+    return pos == std::string::npos ? -1 : std::stoi(output.substr(pos + 11));
+  };
+  const ProgramRun large = run("gasp-associate", "--depth-a " + pngs[0] + " --depth-b " + pngs[1] + " --intrinsics fr1 --area-cm2 80 --out " + out);
+  EXPECT_EQ(large.exit_code, 0) << large.output;
+  EXPECT_GT(patchesA(large.output), 0) << large.output;
+  EXPECT_LT(patchesA(large.output), patchesA(ok.output)) << large.output << ok.output;
+  EXPECT_EQ(run("gasp-associate", "--depth-a " + pngs[0] + " --depth-b " + pngs[1] + " --area-cm2 0").exit_code, 2);
   const ProgramRun bad_k = run("gasp-associate", "--depth-a " + pngs[0] + " --depth-b " + pngs[1] + " --k -1");
   EXPECT_EQ(bad_k.exit_code, 2) << bad_k.output;
   EXPECT_NE(bad_k.output.find("error: --k: must be at least 0"), std::string::npos) << bad_k.output;
