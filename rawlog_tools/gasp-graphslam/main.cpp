@@ -129,6 +129,10 @@ int main(int argc, char** argv) {
   app.add_option("--graph", graph_path, "the graph (MRPT VERTEX3/EDGE3, robot frames)");
   app.add_option("--report-dir", report_dir, "directory for the engine's reports (MRPT's .log files: classes, timings)");
   app.add_option("--gt", gt_path, "ground truth (TUM format) to evaluate the nodes' trajectory against");
+  std::size_t max_scans = 0;
+  app.add_option("--max-scans", max_scans, "stop after this many scans of the deciders' sensor (0 = the whole rawlog)")
+      ->capture_default_str()
+      ->check(gasp::tools::atLeast(0));
   gasp::tools::addMapOutputOptions(app, map_output, "nodes");
   app.add_flag("--list-regs", list_regs, "list the node and edge registration deciders for 3D graphs");
   app.add_flag("--list-optimizers", list_optimizers, "list the optimisers");
@@ -204,7 +208,9 @@ int main(int argc, char** argv) {
     // GASP's node decider: the scan of each keyframe, in node order (the root's is known a step
     // before the root enters the graph, with the second node).
     std::vector<std::optional<gasp::RgbdFrame>> keyframe_depth;
-    while (auto next_entry = entries.next()) {
+    while (max_scans == 0 || scans < max_scans) {
+      auto next_entry = entries.next();
+      if (!next_entry) break;
       auto [action, observations, observation] = *next_entry;
       std::size_t entry = entries.objectsRead();
       // Format #1 with an empty action collection (GASP's rawlogs): the engine reads the first

@@ -351,6 +351,16 @@ TEST(GaspGraphSlamProgram, AnIniWithAFewKeysKeepsTheDefaultsOfTheRest) {
   EXPECT_GE(printedCount(run.output, "nodes: "), 2u) << run.output;
 }
 
+TEST(GaspGraphSlamProgram, MaxScansStopsEarly) {
+  const std::string out = gasp::test::scratchDir();
+  const std::string rawlog = simulatedRawlog(out);
+  const auto run = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --max-scans 5 --out " + out + "/traj.txt");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "\nscans: 5\n")) << run.output;
+  EXPECT_LE(printedCount(run.output, "nodes: "), 5u) << run.output;
+  EXPECT_EQ(runProgram("gasp-graphslam", "--rawlog " + rawlog + " --max-scans -1").exit_code, 2);
+}
+
 TEST(GaspGraphSlamProgram, FindsImagesStoredBesideTheRawlog) {
   // gasp-tum2rawlog --external: the depth images in sim_Images/, found from any working directory.
   const std::string out = gasp::test::scratchDir();
