@@ -134,6 +134,13 @@ inline CLI::Validator finite() {
   return detail::numberValidator("finite", [](double, const std::string&) { return std::string(); });
 }
 
+/// The "intrinsics: SUMMARY" line of a program that reads a TUM folder (on `out`: stdout, or
+/// stderr where stdout is a table) and, when its camera was only guessed, the warning on stderr.
+inline void reportIntrinsics(std::FILE* out, const std::string& summary, const std::string& warning) {
+  std::fprintf(out, "intrinsics: %s\n", summary.c_str());
+  if (!warning.empty()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+}
+
 /// The output files' folders exist, checked before a long run: returns "" or the first problem
 /// ("--graph '/nope/g.graph': the folder '/nope' does not exist"). Empty paths (option not
 /// given) are skipped.

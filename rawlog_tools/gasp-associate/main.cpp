@@ -174,8 +174,7 @@ int main(int argc, char** argv) {
       if (!intrinsics_arg.empty()) opt.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg);
       opt.undistort = !no_undistort;
       const auto ds = gasp::TumDataset::open(tum_dir, opt);
-      std::printf("intrinsics: %s\n", ds.intrinsicsSummary().c_str());
-      if (const std::string w = ds.intrinsicsWarning(); !w.empty()) std::fprintf(stderr, "warning: %s\n", w.c_str());
+      gasp::tools::reportIntrinsics(stdout, ds.intrinsicsSummary(), ds.intrinsicsWarning());
       depth_a = ds.loadDepth(from);
       depth_b = ds.loadDepth(to);
       K = ds.intrinsics();

@@ -46,8 +46,7 @@ int main(int argc, char** argv) {
     if (!missing.empty()) throw gasp::Error(missing);  // before the run, not after it
     gasp::DepthOdometry odometry(params);
     gasp::DepthSequence sequence(input);
-    std::printf("intrinsics: %s\n", sequence.intrinsicsSummary().c_str());
-    if (const std::string w = sequence.intrinsicsWarning(); !w.empty()) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    gasp::tools::reportIntrinsics(stdout, sequence.intrinsicsSummary(), sequence.intrinsicsWarning());
     const gasp::Trajectory gt = gt_path.empty() ? sequence.groundTruth() : gasp::readTumTrajectory(gt_path);
     while (const std::optional<gasp::RgbdFrame> frame = sequence.next()) {
       const gasp::OdometryFrame& f = odometry.addFrame(frame->timestamp, frame->depth_m, frame->depth_intrinsics);

@@ -395,8 +395,7 @@ int main(int argc, char** argv) {
     opt.depth_units_per_metre = depth_scale;
     const auto ds = gasp::TumDataset::open(tum_dir, opt);
     // On stderr: stdout is the table.
-    std::fprintf(stderr, "intrinsics: %s\n", ds.intrinsicsSummary().c_str());
-    if (const std::string w = ds.intrinsicsWarning(); !w.empty()) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    gasp::tools::reportIntrinsics(stderr, ds.intrinsicsSummary(), ds.intrinsicsWarning());
     // Ground truth of frame i: the frame's own association (offset 0) or a look-up at t + offset.
     // --gt-frame-rotation: the reference's camera frame is the depth camera's turned by Q, so the
     // depth camera's pose is T_world_ref * Q^-1.

@@ -138,8 +138,7 @@ int main(int argc, char** argv) {
     opt.depth_units_per_metre = depth_scale;
     const auto ds = gasp::TumDataset::open(tum_dir, opt);
     if (ds.size() == 0) throw gasp::Error(tum_dir + ": no frames in depth.txt");
-    std::printf("intrinsics: %s\n", ds.intrinsicsSummary().c_str());
-    if (const std::string w = ds.intrinsicsWarning(); !w.empty()) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    gasp::tools::reportIntrinsics(stdout, ds.intrinsicsSummary(), ds.intrinsicsWarning());
     if (pair_skip > 0) return measurePairs(ds, params, static_cast<std::size_t>(pair_skip), static_cast<std::size_t>(every));
     std::error_code ec;
     std::filesystem::create_directories(out, ec);

@@ -97,8 +97,7 @@ int main(int argc, char** argv) {
          {"--loops-csv", loops_csv}, {"--simplemap", map_output.simplemap_path}, {"--cloud", map_output.cloud_path}});
     if (!missing.empty()) throw gasp::Error(missing);  // before the run, not after it
     gasp::DepthSequence sequence(input);
-    std::printf("intrinsics: %s\n", sequence.intrinsicsSummary().c_str());
-    if (const std::string w = sequence.intrinsicsWarning(); !w.empty()) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    gasp::tools::reportIntrinsics(stdout, sequence.intrinsicsSummary(), sequence.intrinsicsWarning());
     const gasp::Trajectory gt = gt_path.empty() ? sequence.groundTruth() : gasp::readTumTrajectory(gt_path);
     std::optional<gasp::DepthSlam> slam;
     gasp::Isometry3 T_robot_camera = gasp::Isometry3::Identity();

@@ -21,6 +21,7 @@
 
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/rawlog/observation_conversion.h"
+#include "depth_difference.h"
 #include "gasp_test_data.h"
 #include "program_run.h"
 
@@ -28,6 +29,7 @@ namespace {
 
 using gasp::test::contains;
 using gasp::test::countLinesStartingWith;
+using gasp::test::medianAbsDifference;
 using gasp::test::runProgram;
 
 std::size_t printedCount(const std::string& output, const std::string& key) {
@@ -45,19 +47,6 @@ std::string simulatedRawlog(const std::string& dir, int format = 2, int frames =
                                           "/sim.rawlog");
   EXPECT_EQ(run.exit_code, 0) << run.output;
   return dir + "/sim.rawlog";
-}
-
-/// Median of |a - b| over the pixels with depth in both (raw units); -1 when there are none.
-double medianAbsDifference(const mrpt::math::CMatrix_u16& a, const mrpt::math::CMatrix_u16& b) {
-  std::vector<int> d;
-  for (int r = 0; r < a.rows(); ++r)
-    for (int c = 0; c < a.cols(); ++c) {
-      const int x = a(r, c), y = b(r, c);
-      if (x > 0 && y > 0) d.push_back(std::abs(x - y));
-    }
-  if (d.empty()) return -1.0;
-  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
-  return d[d.size() / 2];
 }
 
 /// OUT/map.simplemap and OUT/traj.txt of a gasp-graphslam run with `nodes` nodes: node i of the

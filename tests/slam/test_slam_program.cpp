@@ -17,6 +17,7 @@
 #include "gasp/core/tum_dataset.h"
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/rawlog/observation_conversion.h"
+#include "depth_difference.h"
 #include "gasp_test_data.h"
 #include "program_run.h"
 
@@ -24,20 +25,8 @@ namespace {
 
 using gasp::test::contains;
 using gasp::test::countLinesStartingWith;
+using gasp::test::medianAbsDifference;
 using gasp::test::runProgram;
-
-/// Median of |a - b| over the pixels with depth in both (raw units); -1 when there are none.
-double medianAbsDifference(const mrpt::math::CMatrix_u16& a, const cv::Mat& b) {
-  std::vector<int> d;
-  for (int r = 0; r < b.rows; ++r)
-    for (int c = 0; c < b.cols; ++c) {
-      const int x = a(r, c), y = b.at<std::uint16_t>(r, c);
-      if (x > 0 && y > 0) d.push_back(std::abs(x - y));
-    }
-  if (d.empty()) return -1.0;
-  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
-  return d[d.size() / 2];
-}
 
 std::size_t printedCount(const std::string& output, const std::string& key) {
   const auto pos = output.find(key);
