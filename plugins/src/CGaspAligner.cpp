@@ -21,13 +21,11 @@ namespace gasp {
 
 namespace {
 
+/// The superpixel map to align: m itself, or the one inside a CMultiMetricMap (CSuperpixelMap::findIn).
 const CSuperpixelMap& asSuperpixelMap(const mrpt::maps::CMetricMap* m, const char* which) {
-  if (!m) THROW_EXCEPTION_FMT("gasp::CGaspAligner: map %s is null", which);
-  const auto* s = dynamic_cast<const CSuperpixelMap*>(m);
-  if (!s) {
-    THROW_EXCEPTION_FMT("gasp::CGaspAligner: map %s is a %s; only gasp::CSuperpixelMap can be aligned", which,
-                        m->GetRuntimeClass()->className);
-  }
+  std::string why;
+  const CSuperpixelMap* s = CSuperpixelMap::findIn(m, &why);
+  if (!s) THROW_EXCEPTION_FMT("gasp::CGaspAligner: map %s cannot be aligned: %s", which, why.c_str());
   return *s;
 }
 

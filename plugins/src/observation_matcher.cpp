@@ -10,6 +10,11 @@ namespace gasp {
 std::shared_ptr<ObservationMatcher> createObservationMatcher(const std::string& class_name,
                                                              const mrpt::containers::yaml& params) {
   const auto object = mrpt::rtti::classFactory(class_name);
+  if (!object && mrpt::rtti::findRegisteredClass(class_name)) {
+    THROW_EXCEPTION_FMT("createObservationMatcher: '%s' is registered but cannot be created (an abstract class; "
+                        "e.g. 'gasp::ObservationMatcher_GASP' can)",
+                        class_name.c_str());
+  }
   if (!object) {
     THROW_EXCEPTION_FMT(
         "createObservationMatcher: no class named '%s' is registered (is the GASP plugin loaded? "

@@ -2,9 +2,12 @@
 
 #include <mrpt/core/exceptions.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <utility>
 #include <vector>
 
 #include "gasp/core/error.h"
@@ -14,7 +17,16 @@ namespace gasp {
 
 namespace {
 
-// ---- Key tables: each calls f(key, field) for every field of the struct.
+// ---- Key tables: each calls f(key, field) for every field of the struct, so that reading and
+// writing (and with them the maps' serialization) cover every parameter. A field that may be
+// infinite is passed as MayBeInfinite.
+
+template <class D>
+struct MayBeInfinite {
+  D& value;  ///< double or const double; +inf allowed, NaN and -inf not
+};
+template <class D>
+MayBeInfinite(D&) -> MayBeInfinite<D>;
 
 template <class P, class F>
 void superpixelFields(P& p, F&& f) {
@@ -38,25 +50,109 @@ void superpixelFields(P& p, F&& f) {
   f("processing_step_px", p.processing_step_px);
   f("kmeans_iteration_step_px", p.kmeans_iteration_step_px);
   f("kmeans_coarse_iterations", p.kmeans_coarse_iterations);
+  f("crease_borders", p.crease_borders);
+  f("crease_min_angle_deg", p.crease_min_angle_deg);
+  f("crease_band_px", p.crease_band_px);
+  f("plane_noise_abs_m", p.plane_noise_abs_m);
+  f("plane_noise_rel", p.plane_noise_rel);
+  f("step_borders", p.step_borders);
+  f("step_min_sigmas", p.step_min_sigmas);
+  f("step_smoothness", p.step_smoothness);
 }
 
+/// The pair pipeline: its segmentation (the matcher's observations, the finer-scale retry) under
+/// the segmentation's keys, then every other field of PairParams.
 template <class P, class F>
 void pairFields(P& p, F&& f) {
-  f("target_patch_area_m2", p.superpixels.target_patch_area_m2);
-  f("neighbourhood_k", p.association.feature_sets.neighbourhood.k);
-  f("candidates", p.association.candidates);
-  f("lambda", p.association.lambda);
-  f("mutual_check", p.association.mutual_check);
-  f("min_inliers", p.pose.ransac.min_inliers);
+  superpixelFields(p.superpixels, f);
+  f("view_degeneracy_min_eigenvalue_ratio", p.view_degeneracy.min_eigenvalue_ratio);
+  // Association (view_association.h)
+  auto& a = p.association;
+  f("neighbourhood_k", a.feature_sets.neighbourhood.k);
+  f("feature_e_theta_rad", a.feature_sets.feature.e_theta_rad);
+  f("feature_min_separation_m", a.feature_sets.feature.min_separation_m);
+  f("ordering_e_r_m", a.feature_sets.ordering.e_r_m);
+  f("ordering_e_theta_rad", a.feature_sets.ordering.e_theta_rad);
+  f("r_dev_m", a.match.r_dev_m);
+  f("theta_dev_rad", a.match.theta_dev_rad);
+  f("cost_insert", a.costs.insert);
+  f("cost_delete", a.costs.del);
+  f("cost_replace", MayBeInfinite{a.costs.replace});
+  f("cost_transpose", MayBeInfinite{a.costs.transpose});
+  f("candidates", a.candidates);
+  f("lambda", a.lambda);
+  f("mutual_check", a.mutual_check);
+  f("candidate_key", a.candidate_key);
+  f("distinctiveness_ratio", a.distinctiveness_ratio);
+  // RANSAC (ransac.h)
+  auto& r = p.pose.ransac;
+  f("inlier_distance_m", r.inlier.distance_m);
+  f("inlier_normal_angle_deg", r.inlier.normal_angle_deg);
+  f("ransac_edge_tolerance_m", r.edge_tolerance_m);
+  f("ransac_normal_pair_tolerance_deg", r.normal_pair_tolerance_deg);
+  f("ransac_min_triangle_height_m", r.min_triangle_height_m);
+  f("min_inliers", r.min_inliers);
+  f("ransac_max_iterations", r.max_iterations);
+  f("ransac_confidence", r.confidence);
+  f("ransac_seed", r.seed);
+  f("ransac_guided_sampling", r.guided_sampling);
+  f("ransac_min_iterations", r.min_iterations);
+  f("ransac_max_guided_correspondences", r.max_guided_correspondences);
+  // Patch refinement (refinement.h)
+  auto& q = p.pose.refinement;
+  f("refinement_loss", q.loss);
+  f("refinement_loss_scale_m", q.loss_scale_m);
+  f("refinement_bidirectional", q.bidirectional);
+  f("refinement_max_iterations", q.max_iterations);
+  f("refinement_noise_sigma_m", q.noise_sigma_m);
+  f("refinement_degeneracy_min_eigenvalue_ratio", q.degeneracy.min_eigenvalue_ratio);
+  f("refinement_degeneracy_max_std_m", q.degeneracy.max_std_m);
+  // Fallbacks and guided verification (pair_registration.h, guided_association.h)
+  f("one_way_fallback", p.one_way_fallback);
+  f("one_way_max_violation_ratio", p.one_way_max_violation_ratio);
+  f("guided_verification", p.guided_verification);
+  f("guided_densify", p.guided_densify);
+  f("guided_max_distance_m", p.guided.max_distance_m);
+  f("guided_max_normal_angle_deg", p.guided.max_normal_angle_deg);
+  f("guided_lambda", p.guided.lambda);
+  f("min_guided_support", p.min_guided_support);
+  f("refine", p.refine);
+  // Dense rounds (dense_rounds.h, projective_terms.h, edge_terms.h)
   f("dense_rounds", p.dense_rounds);
+  f("dense_gates_m", p.dense_gates_m);
   f("dense_max_rounds", p.dense_max_rounds);
   f("dense_converged_m", p.dense_converged_m);
   f("dense_extrapolation_max", p.dense_extrapolation_max);
   f("dense_line_search", p.dense_line_search);
   f("dense_line_search_halvings", p.dense_line_search_halvings);
-  f("refine", p.refine);
-  f("retry_area_factor", p.retry_area_factor);
+  f("projective_pixel_step", p.projective.pixel_step);
+  f("projective_max_distance_m", p.projective.max_distance_m);
+  f("projective_max_normal_angle_deg", p.projective.max_normal_angle_deg);
+  f("edge_terms", p.edge_terms);
+  f("edge_min_jump_m", p.edges.min_jump_m);
+  f("edge_jump_per_m2", p.edges.jump_per_m2);
+  f("edge_pixel_step", p.edges.pixel_step);
+  f("edge_line_neighbours", p.edges.line_neighbours);
+  f("edge_max_distance_m", p.edges.max_distance_m);
+  f("edge_weight", p.edges.weight);
+  f("wide_edge_gate_factor", p.wide_edge_gate_factor);
+  f("wide_edge_min_paired_share", p.wide_edge_min_paired_share);
+  f("dense_degeneracy_min_eigenvalue_ratio", p.dense_degeneracy.min_eigenvalue_ratio);
+  f("dense_degeneracy_max_std_m", p.dense_degeneracy.max_std_m);
+  f("min_dense_terms", p.min_dense_terms);
+  // Slide scan, visibility check, retry, model error
   f("slide_scan", p.slide_scan.enabled);
+  f("slide_scan_range_m", p.slide_scan.range_m);
+  f("slide_scan_step_m", p.slide_scan.step_m);
+  f("slide_scan_min_gain", p.slide_scan.min_gain);
+  f("slide_scan_pixel_step", p.slide_scan.pixel_step);
+  f("visibility_pixel_step", p.visibility.pixel_step);
+  f("visibility_gate_m", p.visibility.gate_m);
+  f("visibility_gate_per_m2", p.visibility.gate_per_m2);
+  f("visibility_max_violation_ratio", p.visibility.max_violation_ratio);
+  f("visibility_max_occluded_ratio", p.visibility.max_occluded_ratio);
+  f("visibility_min_consistent", p.visibility.min_consistent);
+  f("retry_area_factor", p.retry_area_factor);
   f("model_error_t_m", p.model_error.sigma_t_m);
   f("model_error_r_deg", p.model_error.sigma_r_deg);
 }
@@ -115,22 +211,108 @@ bool parse(const std::string& text, bool& v) {
   return false;
 }
 
+bool parse(const std::string& text, unsigned& v) {
+  std::uint64_t x = 0;
+  if (!parse(text, x) || x > std::numeric_limits<unsigned>::max()) return false;
+  v = static_cast<unsigned>(x);
+  return true;
+}
+
+bool parse(const std::string& text, MayBeInfinite<double> w) {
+  std::string t;
+  for (char c : text) t += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (t == "inf" || t == "+inf" || t == "infinity") return w.value = std::numeric_limits<double>::infinity(), true;
+  return parse(text, w.value);
+}
+
+bool parse(const std::string& text, CandidateKey& v) {
+  if (text == "quantiles") return v = CandidateKey::kQuantiles, true;
+  if (text == "mean") return v = CandidateKey::kMean, true;
+  return false;
+}
+
+bool parse(const std::string& text, RobustLoss& v) {
+  if (text == "none") return v = RobustLoss::kNone, true;
+  if (text == "huber") return v = RobustLoss::kHuber, true;
+  if (text == "cauchy") return v = RobustLoss::kCauchy, true;
+  return false;
+}
+
+/// A comma-separated list of finite numbers (at least one).
+bool parse(const std::string& text, std::vector<double>& v) {
+  std::vector<double> out;
+  std::size_t b = 0;
+  while (true) {
+    const std::size_t e = text.find(',', b);
+    double x = 0;
+    if (!parse(trimmed(text.substr(b, e == std::string::npos ? std::string::npos : e - b)), x)) return false;
+    out.push_back(x);
+    if (e == std::string::npos) break;
+    b = e + 1;
+  }
+  v = std::move(out);
+  return true;
+}
+
 const char* typeName(const double&) { return "a finite number"; }
 const char* typeName(const int&) { return "an integer"; }
+const char* typeName(const unsigned&) { return "a non-negative integer"; }
 const char* typeName(const std::uint64_t&) { return "a non-negative integer"; }
 const char* typeName(const bool&) { return "true or false"; }
+template <class D>
+const char* typeName(const MayBeInfinite<D>&) { return "a number or inf"; }
+const char* typeName(const CandidateKey&) { return "quantiles or mean"; }
+const char* typeName(const RobustLoss&) { return "none, huber or cauchy"; }
+const char* typeName(const std::vector<double>&) { return "a comma-separated list of finite numbers"; }
 
-std::string toText(double v) { return mrpt::format("%.17g", v); }
+std::string toText(double v) { return mrpt::format("%.17g", v); }  // exact: reads back to the same double
 std::string toText(int v) { return std::to_string(v); }
+std::string toText(unsigned v) { return std::to_string(v); }
 std::string toText(std::uint64_t v) { return std::to_string(v); }
 std::string toText(bool v) { return v ? "true" : "false"; }
+template <class D>
+std::string toText(const MayBeInfinite<D>& w) { return std::isinf(w.value) ? "inf" : toText(static_cast<double>(w.value)); }
+std::string toText(CandidateKey v) { return v == CandidateKey::kMean ? "mean" : "quantiles"; }
+std::string toText(RobustLoss v) {
+  return v == RobustLoss::kNone ? "none" : v == RobustLoss::kCauchy ? "cauchy" : "huber";
+}
+std::string toText(const std::vector<double>& v) {
+  std::string s;
+  for (const double x : v) s += (s.empty() ? "" : ",") + toText(x);
+  return s;
+}
 
 template <class T>
-void readOne(const mrpt::config::CConfigFileBase& source, const std::string& section, const std::string& key, T& field) {
+void readOne(const mrpt::config::CConfigFileBase& source, const std::string& section, const std::string& key, T&& field) {
   if (!source.keyExists(section, key)) return;
   const std::string text = trimmed(source.read_string(section, key, ""));
   if (!parse(text, field)) {
     THROW_EXCEPTION_FMT("[%s] %s = '%s': expected %s", section.c_str(), key.c_str(), text.c_str(), typeName(field));
+  }
+}
+
+/// One YAML value: plain numbers and flags as MRPT's YAML converts them; names, "inf" and lists
+/// through the strict text parsing above (a list as a YAML sequence or as "a,b,c").
+template <class T>
+bool fromYaml(const mrpt::containers::yaml& node, T&& field) {
+  using V = std::decay_t<T>;
+  try {
+    if constexpr (std::is_same_v<V, double> || std::is_same_v<V, int> || std::is_same_v<V, bool> ||
+                  std::is_same_v<V, unsigned> || std::is_same_v<V, std::uint64_t>) {
+      field = node.template as<V>();
+      return true;
+    } else if constexpr (std::is_same_v<V, std::vector<double>>) {
+      if (!node.isSequence()) return parse(trimmed(node.template as<std::string>()), field);
+      std::vector<double> v;
+      for (const auto& e : node.asSequence()) v.push_back(e.template as<double>());
+      if (v.empty() || !std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); })) return false;
+      field = std::move(v);
+      return true;
+    } else {
+      return parse(trimmed(node.template as<std::string>()), std::forward<T>(field));
+    }
+  } catch (const std::exception&) {
+    return false;
   }
 }
 
@@ -139,9 +321,9 @@ template <class Table>
 void readIni(const mrpt::config::CConfigFileBase& source, const std::string& section, Table&& table,
              const std::set<std::string>& other_allowed) {
   std::set<std::string> known = other_allowed;
-  table([&](const char* key, auto& field) {
+  table([&](const char* key, auto&& field) {
     known.insert(key);
-    readOne(source, section, key, field);
+    readOne(source, section, key, std::forward<decltype(field)>(field));
   });
   checkKeys(source, section, known);
 }
@@ -156,6 +338,11 @@ void readValue(const mrpt::config::CConfigFileBase& source, const std::string& s
 void readValue(const mrpt::config::CConfigFileBase& source, const std::string& section, const std::string& key,
                int& value) {
   readOne(source, section, key, value);
+}
+
+void writeValue(mrpt::config::CConfigFileBase& target, const std::string& section, const std::string& key,
+                double value) {
+  target.write(section, key, toText(value));
 }
 
 void checkKeys(const mrpt::config::CConfigFileBase& source, const std::string& section,
@@ -205,15 +392,11 @@ void readPairParams(const mrpt::containers::yaml& y, const std::string& who, Pai
   if (!y.isNullNode() && !y.empty()) {
     if (!y.isMap()) THROW_EXCEPTION_FMT("%s: parameters must be a YAML map", who.c_str());
     std::set<std::string> known;
-    pairFields(p, [&](const char* key, auto& field) {
+    pairFields(p, [&](const char* key, auto&& field) {
       known.insert(key);
       if (!y.has(key)) return;
-      using T = std::decay_t<decltype(field)>;
-      try {
-        field = y[key].template as<T>();
-      } catch (const std::exception&) {
+      if (!fromYaml(y[key], std::forward<decltype(field)>(field)))
         THROW_EXCEPTION_FMT("%s: parameter '%s' must be %s", who.c_str(), key, typeName(field));
-      }
     });
     for (const auto& [key, value] : y.asMap()) {
       const auto name = key.as<std::string>();

@@ -1,6 +1,7 @@
 // CSuperpixelMap::compute3DMatchingRatio and computeObservationLikelihood, both from GASP's
 // patch associations (pose-invariant descriptors) checked against the given pose.
 #include <mrpt/core/exceptions.h>
+#include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
 #include <algorithm>
@@ -29,10 +30,30 @@ const SurfacePatch& patchOf(const SuperpixelMapView& v, int i) {
 
 }  // namespace
 
+const CSuperpixelMap* CSuperpixelMap::findIn(const mrpt::maps::CMetricMap* m, std::string* why) {
+  auto say = [&](const std::string& text) {
+    if (why) *why = text;
+    return nullptr;
+  };
+  if (!m) return say("the map is null");
+  if (const auto* s = dynamic_cast<const CSuperpixelMap*>(m)) return s;
+  const auto* multi = dynamic_cast<const mrpt::maps::CMultiMetricMap*>(m);
+  if (!multi)
+    return say(std::string("it is a ") + m->GetRuntimeClass()->className +
+               ", neither a gasp::CSuperpixelMap nor a CMultiMetricMap holding one");
+  const CSuperpixelMap* found = nullptr;
+  std::size_t count = 0;
+  for (const auto& sub : multi->maps)
+    if (const auto* s = dynamic_cast<const CSuperpixelMap*>(sub.get())) found = s, ++count;
+  if (count == 1) return found;
+  return say("it is a CMultiMetricMap holding " + std::to_string(count) +
+             " gasp::CSuperpixelMap (one is needed)");
+}
+
 float CSuperpixelMap::compute3DMatchingRatio(const mrpt::maps::CMetricMap* otherMap,
                                              const mrpt::poses::CPose3D& otherMapPose,
                                              const mrpt::maps::TMatchingRatioParams& params) const {
-  const auto* other = dynamic_cast<const CSuperpixelMap*>(otherMap);
+  const CSuperpixelMap* other = findIn(otherMap);
   if (!other || isEmpty() || other->isEmpty()) return 0.0f;
   const Isometry3 T_this_other = fromCPose3D(otherMapPose);
   const double max_d = params.maxDistForCorr;
@@ -64,12 +85,7 @@ bool CSuperpixelMap::internal_canComputeObservationLikelihood(const mrpt::obs::C
 double CSuperpixelMap::internal_computeObservationLikelihood(const mrpt::obs::CObservation& obs,
                                                              const mrpt::poses::CPose3D& takenFrom) const {
   const auto* scan = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&obs);
-  if (!scan) {
-    THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: cannot compute the likelihood of a %s; only "
-                        "mrpt::obs::CObservation3DRangeScan is supported",
-                        obs.GetRuntimeClass()->className);
-  }
-  if (isEmpty()) THROW_EXCEPTION("gasp::CSuperpixelMap: the map is empty; no likelihood can be computed");
+  if (!scan || isEmpty()) return 0.0;  // no information (see the header)
   SuperpixelMapView seen;
   try {
     const RgbdFrame frame = frameFromObservation(*scan, "CObservation3DRangeScan '" + scan->sensorLabel + "'");

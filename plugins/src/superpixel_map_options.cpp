@@ -42,8 +42,8 @@ void CSuperpixelMap::TLikelihoodOptions::loadFromConfigFile(const mrpt::config::
 void CSuperpixelMap::TLikelihoodOptions::saveToConfigFile(mrpt::config::CConfigFileBase& target,
                                                           const std::string& section) const {
   writePairParams(matching, target, section);
-  target.write(section, "sigma_m", sigma_m);
-  target.write(section, "max_distance_m", max_distance_m);
+  writeValue(target, section, "sigma_m", sigma_m);
+  writeValue(target, section, "max_distance_m", max_distance_m);
 }
 
 void CSuperpixelMap::TRenderOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& source,

@@ -1,7 +1,10 @@
-// CSuperpixelMap's versioned serialization. Version 0:
-//   genericMapParams; creation, likelihood and render options as ini text; view count; per view:
-//   timestamp, sensor label, T_map_camera (3x4), depth intrinsics, depth image (float [m]),
-//   label image (run-length coded), patches, adjacency, pixel counts, patch colours.
+// CSuperpixelMap's versioned serialization. Version 1:
+//   genericMapParams; creation, likelihood and render options as ini text (every parameter,
+//   params_io.h); view count; per view: timestamp, sensor label, T_map_camera (3x4), depth
+//   intrinsics, depth image (float [m]), label image (run-length coded), patches, adjacency, pixel
+//   counts, patch colours, then the segmentation parameters the view was made with (ini text).
+// Version 0 (read only) had no per-view parameters (the views take the creation options) and
+// fewer option keys (the others keep their defaults).
 // Reading checks every size and range and the view's consistency, so a corrupt stream gives an
 // exception naming the problem and leaves the map unchanged.
 #include <mrpt/config/CConfigFileMemory.h>
@@ -12,6 +15,7 @@
 
 #include "gasp/core/error.h"
 #include "gasp/mrpt/CSuperpixelMap.h"
+#include "gasp/mrpt/params_io.h"
 
 namespace gasp {
 
@@ -31,6 +35,19 @@ template <class Options>
 void optionsFromText(const std::string& text, Options& o) {
   const mrpt::config::CConfigFileMemory mem(text);
   o.loadFromConfigFile(mem, "options");
+}
+
+std::string superpixelText(const SuperpixelParams& p) {
+  mrpt::config::CConfigFileMemory mem;
+  writeSuperpixelParams(p, mem, "segmentation");
+  return mem.getContent();
+}
+
+SuperpixelParams superpixelsFromText(const std::string& text) {
+  const mrpt::config::CConfigFileMemory mem(text);
+  SuperpixelParams p;
+  readSuperpixelParams(mem, "segmentation", p);
+  return p;
 }
 
 void writeVec(mrpt::serialization::CArchive& out, const Eigen::Vector3d& v) { out << v.x() << v.y() << v.z(); }
@@ -174,17 +191,20 @@ SuperpixelMapView readView(mrpt::serialization::CArchive& in) {
 
 }  // namespace
 
-uint8_t CSuperpixelMap::serializeGetVersion() const { return 0; }
+uint8_t CSuperpixelMap::serializeGetVersion() const { return 1; }
 
 void CSuperpixelMap::serializeTo(mrpt::serialization::CArchive& out) const {
   out << genericMapParams;
   out << optionsText(creationOptions) << optionsText(likelihoodOptions) << optionsText(renderOptions);
   out << static_cast<std::uint32_t>(views_.size());
-  for (const auto& v : views_) writeView(out, v);
+  for (const auto& v : views_) {
+    writeView(out, v);
+    out << superpixelText(v.view.superpixels);
+  }
 }
 
 void CSuperpixelMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version) {
-  if (version != 0) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
+  if (version > 1) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
   try {
     mrpt::maps::TMapGenericParams generic;
     in >> generic;
@@ -202,13 +222,17 @@ void CSuperpixelMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t ve
     for (std::uint32_t i = 0; i < num_views; ++i) {
       try {
         views.push_back(readView(in));
+        if (version >= 1) {
+          std::string text;
+          in >> text;
+          views.back().view.superpixels = superpixelsFromText(text);
+        } else {  // version 0: segmented with the map's creation options
+          views.back().view.superpixels = c.superpixels;
+        }
       } catch (const std::exception& e) {
         THROW_EXCEPTION_FMT("view %u of %u: %s", i, num_views, e.what());
       }
     }
-    // The views were segmented with the map's creation options (what the finer-scale retry of
-    // registerViews() re-segments with).
-    for (SuperpixelMapView& v : views) v.view.superpixels = c.superpixels;
     genericMapParams = generic;
     creationOptions = c;
     likelihoodOptions = l;

@@ -1,6 +1,7 @@
 // gasp::CGaspAligner on two real frames of fr1_desk9 converted by gasp-tum2rawlog (RGB-D and
 // range-only), between maps and between observations; degenerate and bad input.
 #include <gtest/gtest.h>
+#include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/rtti/CObject.h>
@@ -95,6 +96,25 @@ TEST(GaspAligner, RecoversFr1Desk9RelativePoseBetweenMaps) {
       EXPECT_GE(std::sqrt(Ce(k, k)), 0.0099) << k;
     const Matrix6 J = yprJacobian(fromCPose3D(gauss->mean));
     EXPECT_TRUE((J * info.information.inverse() * J.transpose()).isApprox(Ce, 1e-6));
+    // Maps inside CMultiMetricMaps (as ini files make them, beside a points map): the same pose.
+    if (rgb) {
+      mrpt::maps::CMultiMetricMap multi1, multi2;
+      for (auto* m : {&multi1, &multi2}) m->maps.push_back(std::make_shared<mrpt::maps::CSimplePointsMap>());
+      multi1.maps.push_back(std::make_shared<CSuperpixelMap>(m1));
+      multi2.maps.push_back(std::make_shared<CSuperpixelMap>(m2));
+      const auto pdf_multi = std::dynamic_pointer_cast<mrpt::poses::CPose3DPDFGaussian>(
+          aligner.Align3DPDF(&multi1, &multi2, mrpt::poses::CPose3DPDFGaussian()));
+      ASSERT_TRUE(pdf_multi);
+      EXPECT_NEAR((pdf_multi->mean.asVectorVal() - gauss->mean.asVectorVal()).norm(), 0.0, 1e-9);
+      mrpt::maps::CMultiMetricMap points_only;
+      points_only.maps.push_back(std::make_shared<mrpt::maps::CSimplePointsMap>());
+      try {
+        aligner.Align3DPDF(&multi1, &points_only, mrpt::poses::CPose3DPDFGaussian());
+        ADD_FAILURE() << "a multi-map without a superpixel map was aligned";
+      } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("holding 0 gasp::CSuperpixelMap"), std::string::npos) << e.what();
+      }
+    }
 
     // The 2D projection: (x, y, yaw) and their covariance block.
     const auto pdf2 = aligner.AlignPDF(&m1, &m2, mrpt::poses::CPosePDFGaussian());

@@ -83,6 +83,12 @@ TEST(ObservationMatcher, ParametersFromYaml) {
   EXPECT_THROW(createObservationMatcher("gasp::ObservationMatcher_GASP", yaml::FromText("lambda: 3.0\n")),
                std::exception);
   EXPECT_THROW(createObservationMatcher("gasp::NoSuchMatcher"), std::exception);
+  try {  // the interface itself is registered but abstract: said so, not "not registered"
+    createObservationMatcher("gasp::ObservationMatcher");
+    ADD_FAILURE() << "the abstract interface was created";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("abstract"), std::string::npos) << e.what();
+  }
   EXPECT_THROW(createObservationMatcher("mrpt::obs::CObservation2DRangeScan"), std::exception);
 }
 

@@ -377,6 +377,25 @@ TEST(SuperpixelMap, MatchingRatioAndLikelihoodPreferTheTruePose) {
   mrpt::obs::CObservation2DRangeScan laser;
   EXPECT_FALSE(m0.canComputeObservationLikelihood(laser));
   EXPECT_GT(m0.compute3DMatchingRatio(&m0, toCPose3D(Isometry3::Identity()), mp), 0.5f);  // itself
+  // MRPT adds every map's answer for every observation of a sensory frame without asking
+  // canComputeObservationLikelihood: other observation types and an empty map answer 0.
+  EXPECT_EQ(m0.computeObservationLikelihood(laser, toCPose3D(P4)), 0.0);
+  EXPECT_EQ(CSuperpixelMap().computeObservationLikelihood(*obs4, toCPose3D(P4)), 0.0);
+  mrpt::obs::CSensoryFrame sf;
+  sf.insert(obs4);
+  sf.insert(std::make_shared<mrpt::obs::CObservation2DRangeScan>());
+  EXPECT_DOUBLE_EQ(m0.computeObservationsLikelihood(sf, toCPose3D(P4)), ll_right);
+  // CMultiMetricMap passes the other multi-map itself to each of its maps: the superpixel map
+  // inside it is used, as if it were passed alone.
+  mrpt::maps::CMultiMetricMap multi4;
+  multi4.maps.push_back(std::make_shared<CSuperpixelMap>(m4));
+  EXPECT_EQ(m0.compute3DMatchingRatio(&multi4, toCPose3D(P4), mp), right);
+  std::string why;
+  EXPECT_EQ(CSuperpixelMap::findIn(&multi4), multi4.maps[0].get());
+  multi4.maps.push_back(std::make_shared<CSuperpixelMap>(m4));
+  EXPECT_FALSE(CSuperpixelMap::findIn(&multi4, &why));
+  EXPECT_NE(why.find("holding 2 gasp::CSuperpixelMap"), std::string::npos) << why;
+  EXPECT_EQ(m0.compute3DMatchingRatio(&multi4, toCPose3D(P4), mp), 0.0f);
 }
 
 TEST(SuperpixelMapView, ColoursOfADistortedRegisteredFrameComeFromTheSamePixels) {

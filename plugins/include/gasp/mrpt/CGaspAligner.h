@@ -63,7 +63,10 @@ class CGaspAligner : public mrpt::slam::CMetricMapsAlignmentAlgorithm, public mr
 
   CGaspAligner();
 
-  /// Pose of m2 relative to m1 (both CSuperpixelMap; other types throw). nullptr = no estimate.
+  /// Pose of m2 relative to m1: each a CSuperpixelMap, or a CMultiMetricMap holding exactly one
+  /// (CSuperpixelMap::findIn); other maps throw. nullptr = no estimate, with the reason in
+  /// outInfo (a TGaspAlignmentResult) -- unlike CICP, which always returns a pose and rates it
+  /// with `goodness`; GASP does not hand out a pose it does not claim.
   mrpt::poses::CPose3DPDF::Ptr Align3DPDF(
       const mrpt::maps::CMetricMap* m1, const mrpt::maps::CMetricMap* m2,
       const mrpt::poses::CPose3DPDFGaussian& initialEstimationPDF,

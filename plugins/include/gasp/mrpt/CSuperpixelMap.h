@@ -75,9 +75,13 @@ class CSuperpixelMap : public mrpt::maps::CMetricMap {
   /// PREFIX_patches.txt (a table: view, patch, centroid, normal, area, pixels, planarity, colour)
   /// and PREFIX_3D.3Dscene (getVisualizationInto, for SceneViewer3D).
   void saveMetricMapRepresentationToFile(const std::string& prefix) const override;
+  /// `m` itself when it is a CSuperpixelMap; the only CSuperpixelMap inside a CMultiMetricMap
+  /// (what CMultiMetricMap passes on to its maps); else nullptr, with the reason in `why`.
+  static const CSuperpixelMap* findIn(const mrpt::maps::CMetricMap* m, std::string* why = nullptr);
+
   /// Fraction of the patches (of the smaller map) whose GASP association partner lies within
-  /// params.maxDistForCorr once `otherMap` (a CSuperpixelMap) is placed at otherMapPose.
-  /// 0 for other map types.
+  /// params.maxDistForCorr once `otherMap` (a CSuperpixelMap, or a CMultiMetricMap holding one:
+  /// findIn) is placed at otherMapPose. 0 for other map types.
   float compute3DMatchingRatio(const mrpt::maps::CMetricMap* otherMap, const mrpt::poses::CPose3D& otherMapPose,
                                const mrpt::maps::TMatchingRatioParams& params) const override;
 
@@ -97,7 +101,11 @@ class CSuperpixelMap : public mrpt::maps::CMetricMap {
   /// log-likelihood of a CObservation3DRangeScan taken from `takenFrom`: its patches are
   /// associated with the map's (GASP); each contributes -0.5 min((d / sigma_m)^2, 9), d the
   /// point-to-plane distance to its partner, 9 (3 sigma) for patches without a consistent one;
-  /// the mean over the observation's patches is returned.
+  /// the mean over the observation's patches is returned. 0 (no information) for other
+  /// observation types and for an empty map, as MRPT's own maps answer for what they cannot use:
+  /// CMetricMap::computeObservationsLikelihood and CMultiMetricMap add every map's answer for
+  /// every observation without asking canComputeObservationLikelihood first. A scan that cannot
+  /// be read throws.
   double internal_computeObservationLikelihood(const mrpt::obs::CObservation& obs,
                                                const mrpt::poses::CPose3D& takenFrom) const override;
   bool internal_canComputeObservationLikelihood(const mrpt::obs::CObservation& obs) const override;

@@ -2,9 +2,9 @@
 /// \file ObservationMatcher_GASP.h GASP's pair pipeline (gasp/pipeline/pair_registration.h) as an
 /// ObservationMatcher for mrpt::obs::CObservation3DRangeScan (RGB-D or range-only).
 ///
-/// YAML parameters (all optional; defaults from PairParams, docs/mrpt.md):
-///   target_patch_area_m2: 0.004   neighbourhood_k: 30   candidates: 20   lambda: 0.7
-///   mutual_check: true   min_inliers: 8   dense_rounds: 3   refine: true
+/// YAML parameters: every field of PairParams, all optional, under the keys of params_io.h
+/// (docs/mrpt.md "Matching keys" lists them with their defaults), e.g.
+///   candidates: 30   lambda: 0.7   min_inliers: 8   dense_gates_m: [0.1, 0.05, 0.03]
 #include "gasp/mrpt/observation_matcher.h"
 #include "gasp/pipeline/pair_registration.h"
 

@@ -41,8 +41,8 @@ class ObservationMatcher : public mrpt::rtti::CObject {
   /// naming them.
   virtual void initialize(const mrpt::containers::yaml& params) = 0;
   /// Matches b against a. Observations of an unsupported type throw; data problems (no depth,
-  /// no overlap, degenerate scene) give success = false with a reason. The initial guess, when
-  /// given, is only used to check the result (GASP needs none).
+  /// no overlap, degenerate scene) give success = false with a reason. GASP needs no initial
+  /// guess; ObservationMatcher_GASP ignores it (other matchers may use it).
   virtual MatchConstraint match(const mrpt::obs::CObservation& a, const mrpt::obs::CObservation& b,
                                 const std::optional<mrpt::poses::CPose3D>& initial_guess = std::nullopt) const = 0;
 };

@@ -23,8 +23,10 @@ void readSuperpixelParams(const mrpt::config::CConfigFileBase& source, const std
 void writeSuperpixelParams(const SuperpixelParams& params, mrpt::config::CConfigFileBase& target,
                            const std::string& section);
 
-/// Matching (the pair pipeline): target_patch_area_m2, neighbourhood_k, candidates, lambda,
-/// mutual_check, min_inliers, dense_rounds, refine.
+/// The pair pipeline: every field of PairParams, its segmentation under the keys above and the
+/// rest under the names docs/mrpt.md lists ("Matching keys"). Enumerations by name
+/// (candidate_key: quantiles | mean; refinement_loss: none | huber | cauchy), dense_gates_m as a
+/// comma-separated list (or a YAML sequence), cost_replace and cost_transpose may be inf.
 void readPairParams(const mrpt::config::CConfigFileBase& source, const std::string& section, PairParams& params,
                     const std::set<std::string>& other_allowed_keys = {});
 void readPairParams(const mrpt::containers::yaml& source, const std::string& who, PairParams& params);
@@ -35,6 +37,9 @@ void readValue(const mrpt::config::CConfigFileBase& source, const std::string& s
                double& value);
 void readValue(const mrpt::config::CConfigFileBase& source, const std::string& section, const std::string& key,
                int& value);
+/// Writes a number so that it reads back exactly (%.17g; MRPT's write(double) keeps 6 decimals).
+void writeValue(mrpt::config::CConfigFileBase& target, const std::string& section, const std::string& key,
+                double value);
 /// Throws when the section holds a key not in `known`.
 void checkKeys(const mrpt::config::CConfigFileBase& source, const std::string& section,
                const std::set<std::string>& known);

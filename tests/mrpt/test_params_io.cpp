@@ -1,0 +1,255 @@
+// gasp/mrpt/params_io.h: every parameter of SuperpixelParams and PairParams is an ini / YAML key
+// that reads back exactly what was written (so maps serialised through their option text keep all
+// of them), the special kinds of value (names, inf, lists) parse strictly, and docs/mrpt.md lists
+// every key with its true default.
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/containers/yaml.h>
+#include <mrpt/io/CMemoryStream.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <cmath>
+#include <algorithm>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include "gasp/mrpt/CSuperpixelMap.h"
+#include "gasp/mrpt/params_io.h"
+
+using namespace gasp;
+
+namespace {
+
+/// Key -> text of an ini section written by `write`.
+template <class Write>
+std::map<std::string, std::string> keysOf(Write write) {
+  mrpt::config::CConfigFileMemory mem;
+  write(mem);
+  std::vector<std::string> keys;
+  mem.getAllKeys("s", keys);
+  std::map<std::string, std::string> out;
+  for (const auto& k : keys) out[k] = mem.read_string("s", k, "");
+  return out;
+}
+
+std::map<std::string, std::string> pairKeys(const PairParams& p) {
+  return keysOf([&](auto& mem) { writePairParams(p, mem, "s"); });
+}
+
+/// Every field of PairParams away from its default (and still valid).
+PairParams everythingChanged() {
+  PairParams p;
+  auto& s = p.superpixels;
+  s.discontinuity_abs_m = 0.0123456789, s.discontinuity_rel = 0.021, s.normal_window_px_per_m = 6.5;
+  s.normal_min_radius_px = 3, s.normal_max_radius_px = 11, s.max_crease_angle_deg = 26;
+  s.max_neighbour_normal_angle_deg = 11, s.min_component_pixels = 41, s.target_patch_area_m2 = 0.0051;
+  s.kmeans_iterations = 7, s.kmeans_normal_weight = 0.55, s.seed_sampling_step_px = 3, s.seed = 99;
+  s.max_incidence_deg = 79, s.min_patch_pixels = 21, s.min_patch_area_ratio = 0.26;
+  s.regrow_normal_weight_m = 0.11, s.processing_step_px = 1, s.kmeans_iteration_step_px = 1;
+  s.kmeans_coarse_iterations = 3, s.crease_borders = false, s.crease_min_angle_deg = 31, s.crease_band_px = 9;
+  s.plane_noise_abs_m = 0.0051, s.plane_noise_rel = 0.0031, s.step_borders = true, s.step_min_sigmas = 6.5;
+  s.step_smoothness = 1.5;
+  p.view_degeneracy.min_eigenvalue_ratio = 2e-3;
+  auto& a = p.association;
+  a.feature_sets.neighbourhood.k = 25, a.feature_sets.feature.e_theta_rad = 0.09;
+  a.feature_sets.feature.min_separation_m = 2e-6, a.feature_sets.ordering.e_r_m = 0.025;
+  a.feature_sets.ordering.e_theta_rad = 0.1, a.match.r_dev_m = 0.045, a.match.theta_dev_rad = 0.2;
+  a.costs.insert = 1.5, a.costs.del = 1.25, a.costs.replace = 2.0;
+  a.costs.transpose = std::numeric_limits<double>::infinity();
+  a.candidates = 21, a.lambda = 0.65, a.mutual_check = false, a.candidate_key = CandidateKey::kMean;
+  a.distinctiveness_ratio = 0.9;
+  auto& r = p.pose.ransac;
+  r.inlier.distance_m = 0.06, r.inlier.normal_angle_deg = 21, r.edge_tolerance_m = 0.031;
+  r.normal_pair_tolerance_deg = 19, r.min_triangle_height_m = 0.051, r.min_inliers = 9, r.max_iterations = 9000;
+  r.confidence = 0.99, r.seed = 7, r.guided_sampling = false, r.min_iterations = 150;
+  r.max_guided_correspondences = 1400;
+  auto& q = p.pose.refinement;
+  q.loss = RobustLoss::kCauchy, q.loss_scale_m = 0.03, q.bidirectional = false, q.max_iterations = 40;
+  q.noise_sigma_m = 0.012, q.degeneracy.min_eigenvalue_ratio = 2e-3, q.degeneracy.max_std_m = 0.06;
+  p.one_way_fallback = false, p.one_way_max_violation_ratio = 0.09, p.guided_verification = false;
+  p.guided_densify = true, p.guided.max_distance_m = 0.04, p.guided.max_normal_angle_deg = 21;
+  p.guided.lambda = 0.75, p.min_guided_support = 13, p.refine = false, p.dense_rounds = 2;
+  p.dense_gates_m = {0.2, 0.04};
+  p.dense_max_rounds = 12, p.dense_converged_m = 0.003, p.dense_extrapolation_max = 3;
+  p.dense_line_search = false, p.dense_line_search_halvings = 2;
+  p.projective.pixel_step = 6, p.projective.max_distance_m = 0.06, p.projective.max_normal_angle_deg = 22;
+  p.edge_terms = false, p.edges.min_jump_m = 0.06, p.edges.jump_per_m2 = 0.03, p.edges.pixel_step = 10;
+  p.edges.line_neighbours = 6, p.edges.max_distance_m = 0.07, p.edges.weight = 1.5;
+  p.wide_edge_gate_factor = 2.5, p.wide_edge_min_paired_share = 0.5;
+  p.dense_degeneracy.min_eigenvalue_ratio = 2e-3, p.dense_degeneracy.max_std_m = 0.06, p.min_dense_terms = 250;
+  p.slide_scan.enabled = false, p.slide_scan.range_m = 0.25, p.slide_scan.step_m = 0.02;
+  p.slide_scan.min_gain = 0.006, p.slide_scan.pixel_step = 6;
+  p.visibility.pixel_step = 6, p.visibility.gate_m = 0.035, p.visibility.gate_per_m2 = 0.025;
+  p.visibility.max_violation_ratio = 0.2, p.visibility.max_occluded_ratio = 0.6, p.visibility.min_consistent = 40;
+  p.retry_area_factor = 0.4, p.model_error.sigma_t_m = 0.02, p.model_error.sigma_r_deg = 1.0;
+  return p;
+}
+
+}  // namespace
+
+TEST(ParamsIo, EveryPairParameterIsAKeyThatReadsBackExactly) {
+  const PairParams changed = everythingChanged();
+  ASSERT_NO_THROW(validate(changed));
+  const auto defaults = pairKeys(PairParams{});
+  const auto written = pairKeys(changed);
+  ASSERT_EQ(written.size(), defaults.size());
+  // Every key was changed by everythingChanged(), so each one below is a real round trip.
+  for (const auto& [key, text] : written) EXPECT_NE(text, defaults.at(key)) << key << " kept its default";
+  mrpt::config::CConfigFileMemory mem;
+  writePairParams(changed, mem, "s");
+  PairParams read;
+  readPairParams(mem, "s", read);
+  EXPECT_EQ(pairKeys(read), written);
+  // The kinds of value with their own syntax, field by field.
+  EXPECT_EQ(read.superpixels.discontinuity_abs_m, 0.0123456789);  // exactly: %.17g
+  EXPECT_EQ(read.association.candidate_key, CandidateKey::kMean);
+  EXPECT_TRUE(std::isinf(read.association.costs.transpose));
+  EXPECT_EQ(read.association.costs.replace, 2.0);
+  EXPECT_EQ(read.pose.refinement.loss, RobustLoss::kCauchy);
+  EXPECT_EQ(read.dense_gates_m, (std::vector<double>{0.2, 0.04}));
+  EXPECT_EQ(read.pose.ransac.seed, 7u);
+  EXPECT_EQ(written.at("cost_replace"), "2");
+  EXPECT_EQ(defaults.at("cost_replace"), "inf");
+  EXPECT_EQ(defaults.at("dense_gates_m"), "0.10000000000000001,0.050000000000000003,0.029999999999999999");
+  // Every segmentation key is a pair key too (the matcher segments its observations with them).
+  const auto seg = keysOf([&](auto& m) { writeSuperpixelParams(changed.superpixels, m, "s"); });
+  EXPECT_EQ(seg.size(), 28u);
+  for (const auto& [key, text] : seg) EXPECT_EQ(written.at(key), text) << key;
+}
+
+TEST(ParamsIo, SpecialValuesParseStrictlyInIniAndYaml) {
+  auto readIni = [](const std::string& body) {
+    PairParams p;
+    readPairParams(mrpt::config::CConfigFileMemory("[s]\n" + body), "s", p);
+    return p;
+  };
+  EXPECT_EQ(readIni("dense_gates_m = 0.2, 0.1 ,0.05\n").dense_gates_m, (std::vector<double>{0.2, 0.1, 0.05}));
+  EXPECT_TRUE(std::isinf(readIni("cost_transpose=Infinity\n").association.costs.transpose));
+  EXPECT_EQ(readIni("refinement_loss=none\n").pose.refinement.loss, RobustLoss::kNone);
+  for (const char* bad : {"dense_gates_m=0.1,,0.05\n", "dense_gates_m=\n", "candidate_key=median\n",
+                          "refinement_loss=Huber\n", "cost_insert=inf\n", "cost_replace=-inf\n", "cost_replace=nan\n",
+                          "ransac_seed=-1\n", "ransac_seed=99999999999\n"}) {
+    try {
+      readIni(bad);
+      ADD_FAILURE() << "accepted: " << bad;
+    } catch (const std::exception& e) {
+      const std::string key = std::string(bad).substr(0, std::string(bad).find('='));
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  }
+  PairParams y;
+  readPairParams(mrpt::containers::yaml::FromText("candidate_key: mean\ndense_gates_m: [0.2, 0.1]\n"
+                                                  "cost_replace: inf\nrefinement_loss: cauchy\nransac_seed: 5\n"),
+                 "matcher", y);
+  EXPECT_EQ(y.association.candidate_key, CandidateKey::kMean);
+  EXPECT_EQ(y.dense_gates_m, (std::vector<double>{0.2, 0.1}));
+  EXPECT_TRUE(std::isinf(y.association.costs.replace));
+  EXPECT_EQ(y.pose.refinement.loss, RobustLoss::kCauchy);
+  EXPECT_EQ(y.pose.ransac.seed, 5u);
+  PairParams z;
+  EXPECT_THROW(readPairParams(mrpt::containers::yaml::FromText("dense_gates_m: [0.2, abc]\n"), "matcher", z),
+               std::exception);
+  EXPECT_THROW(readPairParams(mrpt::containers::yaml::FromText("candidate_key: 3\n"), "matcher", z), std::exception);
+}
+
+TEST(ParamsIo, DocsListEveryKeyWithItsDefault) {
+  std::ifstream in(std::string(GASP_SOURCE_DIR) + "/docs/mrpt.md");
+  ASSERT_TRUE(in) << "docs/mrpt.md not found";
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string doc = text.str();
+  // Table cells "| `key` | default |" (two pairs per row in the segmentation table).
+  std::map<std::string, std::string> documented;
+  const std::regex cell("\\| `([a-z0-9_]+)` \\| ([^|]+?) (?=\\|)");
+  for (auto it = std::sregex_iterator(doc.begin(), doc.end(), cell); it != std::sregex_iterator(); ++it)
+    documented.emplace((*it)[1], (*it)[2]);
+  auto same = [](const std::string& doc_value, const std::string& actual) {
+    std::stringstream d(doc_value), a(actual);
+    std::string x, y;
+    while (true) {
+      const bool more_d = static_cast<bool>(std::getline(d, x, ',')), more_a = static_cast<bool>(std::getline(a, y, ','));
+      if (more_d != more_a) return false;
+      if (!more_d) return true;
+      try {
+        const double u = std::stod(x), v = std::stod(y);
+        if (!(u == v || std::abs(u - v) <= 1e-6 * std::abs(v))) return false;
+      } catch (const std::exception&) {
+        if (x != y) return false;
+      }
+    }
+  };
+  for (const auto& [key, value] : pairKeys(PairParams{})) {
+    const auto d = documented.find(key);
+    if (d == documented.end()) {
+      ADD_FAILURE() << "docs/mrpt.md has no row for key " << key;
+      continue;
+    }
+    EXPECT_TRUE(same(d->second, value)) << key << ": docs say " << d->second << ", the default is " << value;
+  }
+}
+
+TEST(ParamsIo, AMapKeepsItsOptionsAndEachViewItsOwnSegmentationThroughSerialization) {
+  // A flat wall with a box in front: enough patches for a view.
+  RgbdFrame f;
+  f.depth_intrinsics = CameraIntrinsics::tumFreiburg3();
+  f.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(2.0f));
+  f.depth_m(cv::Rect(200, 150, 200, 150)).setTo(1.5f);
+  CSuperpixelMap map;
+  map.creationOptions.superpixels = everythingChanged().superpixels;
+  map.creationOptions.superpixels.processing_step_px = 2;  // keep the test quick
+  map.insertFrame(f);
+  const SuperpixelParams first = map.creationOptions.superpixels;
+  map.creationOptions.superpixels.target_patch_area_m2 = 0.008;  // the next view is made otherwise
+  map.insertFrame(f);
+  map.likelihoodOptions.matching = everythingChanged();
+  map.likelihoodOptions.sigma_m = 0.0123456;  // MRPT's write(double) would keep 6 decimals
+  mrpt::io::CMemoryStream buf;
+  mrpt::serialization::archiveFrom(buf) << map;
+  buf.Seek(0);
+  CSuperpixelMap back;
+  mrpt::serialization::archiveFrom(buf) >> back;
+  auto text = [](const mrpt::config::CLoadableOptions& o) {
+    mrpt::config::CConfigFileMemory mem;
+    o.saveToConfigFile(mem, "s");
+    return mem.getContent();
+  };
+  EXPECT_EQ(text(back.creationOptions), text(map.creationOptions));
+  EXPECT_EQ(text(back.likelihoodOptions), text(map.likelihoodOptions));
+  EXPECT_EQ(back.likelihoodOptions.sigma_m, 0.0123456);
+  ASSERT_EQ(back.views().size(), 2u);
+  auto seg = [](const SuperpixelParams& p) {
+    return keysOf([&](auto& m) { writeSuperpixelParams(p, m, "s"); });
+  };
+  EXPECT_EQ(seg(back.views()[0].view.superpixels), seg(first));
+  EXPECT_EQ(back.views()[1].view.superpixels.target_patch_area_m2, 0.008);
+}
+
+TEST(ParamsIo, VersionZeroMapsStillLoadAndUnknownVersionsAreRefused) {
+  // Without views the two versions have the same layout; only the version byte after the class
+  // name differs (MRPT's object format: class name, version, data, end marker).
+  CSuperpixelMap map;
+  map.creationOptions.superpixels.target_patch_area_m2 = 0.006;
+  mrpt::io::CMemoryStream buf;
+  mrpt::serialization::archiveFrom(buf) << map;
+  const auto* p = static_cast<const std::uint8_t*>(buf.getRawBufferData());
+  std::vector<std::uint8_t> bytes(p, p + buf.getTotalBytesCount());
+  const std::string name = "gasp::CSuperpixelMap";
+  const auto at = std::search(bytes.begin(), bytes.end(), name.begin(), name.end());
+  ASSERT_NE(at, bytes.end());
+  const std::size_t version_byte = static_cast<std::size_t>(at - bytes.begin()) + name.size();
+  ASSERT_EQ(bytes[version_byte], 1);
+  auto load = [&](std::uint8_t version) {
+    bytes[version_byte] = version;
+    mrpt::io::CMemoryStream in;
+    in.assignMemoryNotOwn(bytes.data(), bytes.size());
+    CSuperpixelMap back;
+    mrpt::serialization::archiveFrom(in) >> back;
+    return back;
+  };
+  EXPECT_EQ(load(0).creationOptions.superpixels.target_patch_area_m2, 0.006);
+  EXPECT_THROW(load(2), std::exception);
+}
