@@ -234,6 +234,7 @@ int main(int argc, char** argv) {
     std::cerr << "error: " << missing << '\n';  // before the benchmark, not after it
     return 1;
   }
+  bool progress_line_open = false;  // an error then starts on a line of its own
   try {
     base.superpixels.target_patch_area_m2 = area_cm2 * 1e-4;
     gasp::pairs::MethodSetup setup;
@@ -375,8 +376,10 @@ int main(int argc, char** argv) {
       ++done;
       std::fprintf(stderr, "\rpair %zu/%zu (%.0f s)", done, all.size(), msSince(bench_t0) / 1000.0);
       std::fflush(stderr);
+      progress_line_open = true;
     }
     if (!all.empty()) std::fprintf(stderr, "\n");
+    progress_line_open = false;
 
     std::size_t total_pairs = 0;
     const auto rows = gasp::pairs::printPairsTable(skips, methods, tally, total_pairs);
@@ -400,14 +403,14 @@ int main(int argc, char** argv) {
       for (const auto& s : rows) csv << gasp::eval::csvRow(s) << '\n';
     }
     if (total_pairs == 0 && picture_pair.empty()) {
-      std::fprintf(stderr, "no pair with ground truth for both frames\n");
+      if (ds.size() < 2)
+        std::fprintf(stderr, "no pair: the folder has %zu depth frame%s\n", ds.size(), ds.size() == 1 ? "" : "s");
+      else
+        std::fprintf(stderr, "no pair with ground truth for both frames\n");
       return 4;
     }
-  } catch (const gasp::Error& e) {
-    std::cerr << "error: " << e.what() << '\n';
-    return 1;
-  } catch (const std::exception& e) {  // e.g. a cv::Exception from a library
-    std::cerr << "error: " << e.what() << '\n';
+  } catch (const std::exception& e) {  // gasp::Error, or e.g. a cv::Exception from a library
+    std::cerr << (progress_line_open ? "\n" : "") << "error: " << e.what() << '\n';
     return 1;
   }
   return 0;

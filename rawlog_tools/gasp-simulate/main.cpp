@@ -42,7 +42,10 @@ int main(int argc, char** argv) {
                   << gasp::sim::makeScene(name).description << '\n';
       return 0;
     }
-    if (out_dir.empty()) throw gasp::Error("--out DIR is required");
+    if (out_dir.empty()) {  // a usage error, as every program's (exit 2)
+      std::fprintf(stderr, "error: --out DIR is required\nRun with --help for more information.\n");
+      return 2;
+    }
     if (no_noise) options.noise = gasp::sim::KinectNoiseModel::exact();
 
     const auto summary = gasp::sim::writeSimulation(options, out_dir);

@@ -2,6 +2,8 @@
 // formats and with external storage; rawlog-edit's view of the result.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -121,6 +123,19 @@ TEST(RawlogRoundTrip, ExternalStorageResolvedRelativeToTheRawlogNotTheWorkingDir
   } catch (const gasp::Error& e) {
     EXPECT_NE(std::string(e.what()).find("RGBD_000000_depth.bin"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+  }
+  // Garbage in place of the file (MRPT 2.5.8 would take its first bytes for the image size and
+  // crash), and a whole file of another size: refused, naming the file.
+  for (const std::string& content : {std::string("garbage\n"), std::string("\x10\x00\x00\x00\x08\x00\x00\x00", 8) +
+                                                                    std::string(2 * 16 * 8, '\0')}) {
+    std::ofstream(bin, std::ios::binary | std::ios::trunc) << content;
+    try {
+      gasp::readRawlogFrames(dir + "/b/cam.rawlog");
+      ADD_FAILURE() << "expected gasp::Error";
+    } catch (const gasp::Error& e) {
+      EXPECT_NE(std::string(e.what()).find("RGBD_000000_depth.bin' is damaged or not this scan's"), std::string::npos)
+          << e.what();
+    }
   }
   fs::copy_file(dir + "/whole.bin", bin, fs::copy_options::overwrite_existing);
   EXPECT_EQ(gasp::readRawlogFrames(dir + "/b/cam.rawlog").size(), 1u);

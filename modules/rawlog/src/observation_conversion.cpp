@@ -144,8 +144,9 @@ RgbdFrame frameFromObservation(const mrpt::obs::CObservation3DRangeScan& obs,
                 "' has no range image (hasRangeImage = false); GASP needs depth");
   if (obs.rangeImage_isExternallyStored()) {
     // MRPT loads what it can of a cut or damaged file. The gzip stream must be whole; in MRPT 2's
-    // layout (rows, cols as uint32, then the uint16 values; older rawlogs store a serialized
-    // matrix, `rawlog-edit --txt-externals` text) all rows x cols values must be there.
+    // .bin layout (rows, cols as uint32, then the uint16 values) the size must be the camera's and
+    // all rows x cols values must be there. Other files (`rawlog-edit --txt-externals` text) are
+    // left to MRPT.
     const std::string file = obs.rangeImage_getExternalStorageFileAbsolutePath("");
     if (std::ifstream(file).good()) {
       const auto content = detail::readGzipContent(file, what + ": external range image", 8);
@@ -158,6 +159,16 @@ RgbdFrame frameFromObservation(const mrpt::obs::CObservation3DRangeScan& obs,
       if (mrpt2_layout && content.length != 8 + 2ull * rows * cols)
         throw Error(what + ": external range image '" + file + "' is cut or damaged: " + std::to_string(content.length) +
                     " bytes for a " + std::to_string(rows) + " x " + std::to_string(cols) + " image");
+      // MRPT 2.5.8 reads a .bin file's first 8 bytes as the image size and allocates it before
+      // reading anything else: a damaged header crashes it (garbage sizes overflow its int
+      // arithmetic). A .bin whose header is not the camera's size is refused here.
+      const bool bin = file.size() >= 4 && file.compare(file.size() - 4, 4, ".bin") == 0;
+      if (bin && !mrpt2_layout)
+        throw Error(what + ": external range image '" + file + "' is damaged or not this scan's: " +
+                    (content.head.size() < 8 ? "shorter than its 8-byte size header"
+                                             : "its header gives " + std::to_string(rows) + " x " + std::to_string(cols) +
+                                                   " pixels, the camera " + std::to_string(obs.cameraParams.nrows) +
+                                                   " x " + std::to_string(obs.cameraParams.ncols)));
     }
   }
   try {
