@@ -203,9 +203,14 @@ bool parse(const std::string& text, std::uint64_t& v) {
   }
 }
 
-bool parse(const std::string& text, bool& v) {
+std::string lowercase(const std::string& text) {
   std::string t;
   for (char c : text) t += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return t;
+}
+
+bool parse(const std::string& text, bool& v) {
+  const std::string t = lowercase(text);
   if (t == "true" || t == "1" || t == "yes" || t == "on") return v = true, true;
   if (t == "false" || t == "0" || t == "no" || t == "off") return v = false, true;
   return false;
@@ -219,8 +224,7 @@ bool parse(const std::string& text, unsigned& v) {
 }
 
 bool parse(const std::string& text, MayBeInfinite<double> w) {
-  std::string t;
-  for (char c : text) t += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string t = lowercase(text);
   if (t == "inf" || t == "+inf" || t == "infinity") return w.value = std::numeric_limits<double>::infinity(), true;
   return parse(text, w.value);
 }

@@ -15,7 +15,6 @@
 
 #include "gasp/core/error.h"
 #include "gasp/mrpt/CSuperpixelMap.h"
-#include "gasp/mrpt/params_io.h"
 
 namespace gasp {
 
@@ -35,19 +34,6 @@ template <class Options>
 void optionsFromText(const std::string& text, Options& o) {
   const mrpt::config::CConfigFileMemory mem(text);
   o.loadFromConfigFile(mem, "options");
-}
-
-std::string superpixelText(const SuperpixelParams& p) {
-  mrpt::config::CConfigFileMemory mem;
-  writeSuperpixelParams(p, mem, "segmentation");
-  return mem.getContent();
-}
-
-SuperpixelParams superpixelsFromText(const std::string& text) {
-  const mrpt::config::CConfigFileMemory mem(text);
-  SuperpixelParams p;
-  readSuperpixelParams(mem, "segmentation", p);
-  return p;
 }
 
 void writeVec(mrpt::serialization::CArchive& out, const Eigen::Vector3d& v) { out << v.x() << v.y() << v.z(); }
@@ -199,7 +185,9 @@ void CSuperpixelMap::serializeTo(mrpt::serialization::CArchive& out) const {
   out << static_cast<std::uint32_t>(views_.size());
   for (const auto& v : views_) {
     writeView(out, v);
-    out << superpixelText(v.view.superpixels);
+    CSuperpixelMap::TCreationOptions segmentation;  // the view's own, as the map's creation options are written
+    segmentation.superpixels = v.view.superpixels;
+    out << optionsText(segmentation);
   }
 }
 
@@ -225,7 +213,9 @@ void CSuperpixelMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t ve
         if (version >= 1) {
           std::string text;
           in >> text;
-          views.back().view.superpixels = superpixelsFromText(text);
+          TCreationOptions segmentation;
+          optionsFromText(text, segmentation);
+          views.back().view.superpixels = segmentation.superpixels;
         } else {  // version 0: segmented with the map's creation options
           views.back().view.superpixels = c.superpixels;
         }

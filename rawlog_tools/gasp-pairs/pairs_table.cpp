@@ -1,17 +1,14 @@
 #include "pairs_table.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
+
+#include "gasp/eval/error_statistics.h"
 
 namespace gasp::pairs {
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+double median(std::vector<double> v) { return eval::computeStatistics(std::move(v)).median; }
 
 std::vector<eval::SkipSummary> printPairsTable(const std::vector<std::size_t>& skips,
                                                const std::vector<std::string>& methods, const PairsTally& tally,

@@ -27,7 +27,7 @@ std::vector<eval::SkipSummary> printPairsTable(const std::vector<std::size_t>& s
 /// Prints "median_ms_per_stage METHOD: STAGE MS ..." per method that has stage times.
 void printStageTimes(const std::vector<std::string>& methods, const PairsTally& tally);
 
-/// The median (0 for none).
+/// The median (0 for none; error_statistics.h's definition).
 double median(std::vector<double> v);
 
 }  // namespace gasp::pairs
