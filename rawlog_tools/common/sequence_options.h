@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include <string>
+#include <vector>
 
 #include "gasp/odometry/odometry_params.h"
 #include "cli.h"
@@ -34,6 +35,17 @@ inline void addSequenceOptions(CLI::App& app, DepthSequenceOptions& input, std::
       ->needs(tum)
       ->check(above(0));
   app.add_flag("!--no-undistort", input.undistort, "with --tum: ignore lens distortion (images as stored)")->needs(tum);
+}
+
+/// The files the sequence options read (a TUM folder's lists, the rawlog, --gt, an intrinsics
+/// file), which no output may overwrite (outputPathProblem()).
+inline std::vector<std::string> sequenceInputs(const DepthSequenceOptions& input, const std::string& gt_path) {
+  std::vector<std::string> files = tumFolderInputs(input.tum_dir);
+  for (const std::string& f : {input.rawlog_path, gt_path})
+    if (!f.empty()) files.push_back(f);
+  std::error_code ec;  // --intrinsics is a file only where it is not a preset name such as fr1
+  if (!input.intrinsics.empty() && std::filesystem::is_regular_file(input.intrinsics, ec)) files.push_back(input.intrinsics);
+  return files;
 }
 
 /// --keyframe-distance, --keyframe-angle, --rolling-shutter.

@@ -41,8 +41,14 @@ void printOdometrySummary(const DepthOdometry& odometry) {
               median(reg));
 }
 
-void printEvaluation(const Trajectory& ground_truth, const Trajectory& estimate, const std::string& prefix) {
+void printEvaluation(const Trajectory& ground_truth, const Trajectory& estimate, std::size_t tracked,
+                     const std::string& prefix) {
   if (ground_truth.empty()) return;
+  if (tracked < 2) {
+    std::printf("%sevaluation: not possible: %s\n", prefix.c_str(),
+                tracked == 0 ? "no frame was tracked" : "no frame after the first was tracked (the other poses are predicted)");
+    return;
+  }
   try {
     const auto ate = eval::computeAte(ground_truth, estimate);
     std::printf("%sate_rmse_m: %.4f (%zu poses)\n", prefix.c_str(), ate.translation.rmse, ate.translation.count);

@@ -1,5 +1,6 @@
 #pragma once
 /// \file sequence_report.h What gasp-odometry and gasp-slam print and write about a sequence.
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -18,7 +19,9 @@ void writeFramesCsv(const std::string& path, const std::vector<OdometryFrame>& f
 void printOdometrySummary(const DepthOdometry& odometry);
 
 /// Prints `<prefix>ate_rmse_m:` and `<prefix>rpe_1s_rmse:` of `estimate` against `ground_truth`
-/// (TUM's definitions, gasp/eval), or why they cannot be computed.
-void printEvaluation(const Trajectory& ground_truth, const Trajectory& estimate, const std::string& prefix = "");
+/// (TUM's definitions, gasp/eval), or why they cannot be computed: among them, fewer than two
+/// `tracked` frames (the first frame and the predicted poses of lost frames measure nothing).
+void printEvaluation(const Trajectory& ground_truth, const Trajectory& estimate, std::size_t tracked,
+                     const std::string& prefix = "");
 
 }  // namespace gasp::tools

@@ -134,7 +134,10 @@ int main(int argc, char** argv) {
   }
   params.association.match.theta_dev_rad = theta_dev_deg * M_PI / 180.0;
   params.superpixels.target_patch_area_m2 = area_cm2 * 1e-4;
-  if (const std::string missing = gasp::tools::missingOutputFolder({{"--out", out_path}}); !missing.empty()) {
+  std::vector<std::string> inputs = gasp::tools::tumFolderInputs(tum_dir);
+  for (const std::string& f : {rawlog_path, gt_path, depth_a_path, depth_b_path})
+    if (!f.empty()) inputs.push_back(f);
+  if (const std::string missing = gasp::tools::outputPathProblem({{"--out", out_path}}, inputs); !missing.empty()) {
     std::cerr << "error: " << missing << '\n';  // before the work, not after it
     return 1;
   }

@@ -50,6 +50,9 @@ int main(int argc, char** argv) {
   if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;
 
   try {
+    if (const std::string problem = gasp::tools::outputPathProblem({{"--aligned", aligned_path}}, {gt_path, est_path});
+        !problem.empty())
+      throw gasp::Error(problem);  // before the work, not after it
     const auto gt = gasp::readTumTrajectory(gt_path);
     const auto est = gasp::readTumTrajectory(est_path);
     if (ate->parsed()) {

@@ -167,8 +167,9 @@ int main(int argc, char** argv) {
 
   try {
     if (!mrpt::system::fileExists(rawlog_path)) throw gasp::Error("cannot open rawlog " + rawlog_path);
-    const std::string missing = gasp::tools::missingOutputFolder(
-        {{"--out", out_path}, {"--graph", graph_path}, {"--simplemap", map_output.simplemap_path}, {"--cloud", map_output.cloud_path}});
+    const std::string missing = gasp::tools::outputPathProblem(
+        {{"--out", out_path}, {"--graph", graph_path}, {"--simplemap", map_output.simplemap_path}, {"--cloud", map_output.cloud_path}},
+        {rawlog_path, gt_path, ini_path});
     if (!missing.empty()) throw gasp::Error(missing);  // before the run, not after it
     if (!ini_path.empty() && !mrpt::system::fileExists(ini_path)) throw gasp::Error("cannot open configuration " + ini_path);
     if (!ini_path.empty()) {
@@ -299,7 +300,11 @@ int main(int argc, char** argv) {
     std::printf("edges: %zu\n", graph.edgeCount());
     if (gasp_nrd) {
       std::printf("break_edges: %zu\n", gasp_nrd->breakEdges());
-      if (gasp_nrd->skippedScans() > 0) std::printf("skipped_scans: %zu\n", gasp_nrd->skippedScans());
+      if (gasp_nrd->skippedScans() > 0) {
+        std::printf("skipped_scans: %zu\n", gasp_nrd->skippedScans());
+        std::fprintf(stderr, "warning: %zu scans could not be converted and were skipped (see the warnings above)\n",
+                     gasp_nrd->skippedScans());
+      }
     }
     if (gasp_erd) {
       std::size_t relocalisations = 0, tried = 0;
@@ -315,8 +320,8 @@ int main(int argc, char** argv) {
                   gasp_gso->optimisationMs(), gasp_gso->droppedEdges());
     if (!out_path.empty()) std::printf("trajectory: %s\n", out_path.c_str());
     if (!graph_path.empty()) std::printf("graph: %s\n", graph_path.c_str());
-    gasp::tools::printEvaluation(gt, trajectory);
-    if (gasp_nrd && gasp_nrd->breakEdges() > 0) return 3;
+    gasp::tools::printEvaluation(gt, trajectory, trajectory.size());  // every node is a registered scan
+    if (gasp_nrd && (gasp_nrd->breakEdges() > 0 || gasp_nrd->skippedScans() > 0)) return 3;
   } catch (const std::exception& e) {  // gasp::Error, MRPT's (configuration, rawlog), filesystem
     std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';
     return 1;

@@ -42,7 +42,8 @@ int main(int argc, char** argv) {
 
   try {
     gasp::validate(params);
-    const std::string missing = gasp::tools::missingOutputFolder({{"--out", out_path}, {"--graph", graph_path}, {"--frames-csv", frames_csv}});
+    const std::string missing = gasp::tools::outputPathProblem(
+        {{"--out", out_path}, {"--graph", graph_path}, {"--frames-csv", frames_csv}}, gasp::tools::sequenceInputs(input, gt_path));
     if (!missing.empty()) throw gasp::Error(missing);  // before the run, not after it
     gasp::DepthOdometry odometry(params);
     gasp::DepthSequence sequence(input);
@@ -66,7 +67,7 @@ int main(int argc, char** argv) {
 
     gasp::tools::printOdometrySummary(odometry);
     std::printf("trajectory: %s\n", out_path.c_str());
-    gasp::tools::printEvaluation(gt, odometry.trajectory());
+    gasp::tools::printEvaluation(gt, odometry.trajectory(), odometry.trackedCount());
     if (odometry.trackedCount() < frames.size()) {
       std::printf("not_tracked: %zu frames (poses predicted; reasons in --frames-csv)\n",
                   frames.size() - odometry.trackedCount());

@@ -229,7 +229,7 @@ int main(int argc, char** argv) {
       if (std::find(unique.begin(), unique.end(), m) == unique.end()) unique.push_back(m);
     methods = unique;
   }
-  if (const std::string missing = gasp::tools::missingOutputFolder({{"--csv", csv_path}, {"--pairs-csv", pairs_csv_path}});
+  if (const std::string missing = gasp::tools::outputPathProblem({{"--csv", csv_path}, {"--pairs-csv", pairs_csv_path}}, gasp::tools::tumFolderInputs(tum_dir));
       !missing.empty()) {
     std::cerr << "error: " << missing << '\n';  // before the benchmark, not after it
     return 1;

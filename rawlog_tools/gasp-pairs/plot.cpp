@@ -42,7 +42,9 @@ std::vector<Row> readCsv(const std::string& path) {
     std::stringstream ss(line);
     std::vector<std::string> c;
     for (std::string cell; std::getline(ss, cell, ',');) c.push_back(cell);
-    if (c.size() < 7) throw gasp::Error(path + ":" + std::to_string(n) + ": expected 9 columns");
+    if (c.size() < 7)
+      throw gasp::Error(path + ":" + std::to_string(n) + ": expected the 9 columns of the header (got " +
+                        std::to_string(c.size()) + ")");
     // A number, or NaN for an empty RMSE cell (every pair of that skip failed: nothing to plot).
     const auto number = [&](const std::string& cell, bool may_be_empty) {
       if (cell.empty() && may_be_empty) return std::numeric_limits<double>::quiet_NaN();
@@ -58,12 +60,18 @@ std::vector<Row> readCsv(const std::string& path) {
       return v;
     };
     Row r;
-    try {
-      r.skip = std::stoul(c[0]);
-    } catch (const std::exception&) {
-      throw gasp::Error(path + ":" + std::to_string(n) + ": '" + c[0] + "' is not a skip");
-    }
+    // A skip is a whole number >= 1 (std::stoul alone would take "-1" and wrap it round).
+    const bool digits = !c[0].empty() && c[0].size() <= 9 &&
+                        std::all_of(c[0].begin(), c[0].end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+    if (!digits || std::stoul(c[0]) == 0)
+      throw gasp::Error(path + ":" + std::to_string(n) + ": '" + c[0] + "' is not a skip (a whole number from 1)");
+    r.skip = std::stoul(c[0]);
     r.method = c[1];
+    if (r.method.empty()) throw gasp::Error(path + ":" + std::to_string(n) + ": the method is empty");
+    for (const Row& earlier : rows)
+      if (earlier.skip == r.skip && earlier.method == r.method)
+        throw gasp::Error(path + ":" + std::to_string(n) + ": a second row for skip " + c[0] + " and method " +
+                          r.method + " (one row each; were two tables joined?)");
     r.rmse_t = number(c[4], true);
     r.rmse_r = number(c[5], true);
     r.fail = number(c[6], false);
@@ -141,6 +149,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
+    if (const std::string problem = gasp::tools::outputPathProblem({{"--out", out}}, csvs); !problem.empty())
+      throw gasp::Error(problem);
     const int panel_w = 330, panel_h = 230, legend_w = 165, row_title = 22;
     const int height = static_cast<int>(csvs.size()) * (panel_h + row_title) + (caption.empty() ? 8 : 30);
     cv::Mat img(height, 3 * panel_w + legend_w, CV_8UC3, cv::Scalar(255, 255, 255));

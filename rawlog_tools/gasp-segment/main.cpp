@@ -121,6 +121,8 @@ int main(int argc, char** argv) {
     if (area_cm2 > 0) params.target_patch_area_m2 = area_cm2 * 1e-4;
     params.step_borders = step_borders;
     if (!depth_path.empty()) {
+      if (const std::string problem = gasp::tools::outputPathProblem({{"--out", out}}, {depth_path}); !problem.empty())
+        throw gasp::Error(problem);  // before the work, not after it
       auto k = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg.empty() ? "ros" : intrinsics_arg);
       if (no_undistort) k.distortion.fill(0.0);
       const gasp::Undistortion undistortion(k);

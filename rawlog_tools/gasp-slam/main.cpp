@@ -92,9 +92,10 @@ int main(int argc, char** argv) {
   try {
     gasp::validate(params);
     const gasp::VoxelPointMap probe(map_output.voxel_m, map_output.cloud_max_depth_m);  // checked before the run
-    const std::string missing = gasp::tools::missingOutputFolder(
+    const std::string missing = gasp::tools::outputPathProblem(
         {{"--out", out_path}, {"--odometry-out", odometry_out}, {"--graph", graph_path}, {"--frames-csv", frames_csv},
-         {"--loops-csv", loops_csv}, {"--simplemap", map_output.simplemap_path}, {"--cloud", map_output.cloud_path}});
+         {"--loops-csv", loops_csv}, {"--simplemap", map_output.simplemap_path}, {"--cloud", map_output.cloud_path}},
+        gasp::tools::sequenceInputs(input, gt_path));
     if (!missing.empty()) throw gasp::Error(missing);  // before the run, not after it
     gasp::DepthSequence sequence(input);
     gasp::tools::reportIntrinsics(stdout, sequence.intrinsicsSummary(), sequence.intrinsicsWarning());
@@ -150,9 +151,10 @@ int main(int argc, char** argv) {
     std::printf("optimisations: %zu (%.1f ms in all)\n", slam->optimisationCount(), slam->optimisationMs());
     std::printf("graph_pieces: %zu (odometry alone: %zu)\n", slam->pieceCount(), slam->odometry().componentCount());
     std::printf("trajectory: %s\n", out_path.c_str());
-    gasp::tools::printEvaluation(gt, slam->odometry().trajectory(), "odometry_");
-    gasp::tools::printEvaluation(gt, slam->trajectory());
-    const std::size_t lost = frames.size() - slam->odometry().trackedCount();
+    const std::size_t tracked = slam->odometry().trackedCount();
+    gasp::tools::printEvaluation(gt, slam->odometry().trajectory(), tracked, "odometry_");
+    gasp::tools::printEvaluation(gt, slam->trajectory(), tracked);
+    const std::size_t lost = frames.size() - tracked;
     if (lost > 0) std::printf("not_tracked: %zu frames (poses predicted; reasons in --frames-csv)\n", lost);
     if (lost > 0 || slam->pieceCount() > 1) return 3;
   } catch (const std::exception& e) {  // gasp::Error, and MRPT's when an output cannot be written

@@ -3,9 +3,12 @@
 #include <CLI/CLI.hpp>
 
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <string>
+#include <vector>
 
+#include "gasp/core/error.h"
 #include "gasp/rawlog/tum_to_rawlog.h"
 #include "cli.h"
 
@@ -35,6 +38,13 @@ int main(int argc, char** argv) {
   if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;
 
   try {
+    std::vector<std::string> inputs = gasp::tools::tumFolderInputs(tum_dir);
+    std::error_code ec;  // --intrinsics is a file only where it is not a preset name
+    if (!intrinsics.empty() && std::filesystem::is_regular_file(intrinsics, ec)) inputs.push_back(intrinsics);
+    if (const std::string problem = gasp::tools::outputPathProblem(
+            {{"OUT", out_rawlog}, {"OUT's ground truth", gasp::groundTruthPathForRawlog(out_rawlog)}}, inputs);
+        !problem.empty())
+      throw gasp::Error(problem);
     gasp::TumToRawlogOptions options;
     if (!intrinsics.empty()) options.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics);
     options.writer.format = gasp::rawlogFormatFromNumber(format);

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "gasp/core/error.h"
 #include "gasp/eval/ate.h"
@@ -71,4 +72,21 @@ TEST(Ate, ScaleOptionMultipliesEstimate) {
   opt.scale = 2.0;
   EXPECT_LT(gasp::eval::computeAte(gt, half, opt).translation.rmse, 1e-9);
   EXPECT_GT(gasp::eval::computeAte(gt, half).translation.rmse, 0.1);
+}
+
+TEST(Ate, AScaleThatOverflowsIsAnErrorNotNaN) {
+  // gasp-eval --scale 1e160 printed "rmse: nan" with exit 0: the squares of 1e160 m overflow.
+  const auto gt = circle(24, 1.0);
+  gasp::eval::AteOptions opt;
+  opt.scale = 1e160;
+  try {
+    gasp::eval::computeAte(gt, gt, opt);
+    FAIL() << "expected gasp::Error";
+  } catch (const gasp::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not finite"), std::string::npos) << e.what();
+  }
+  for (double bad : {0.0, -2.0, std::nan(""), HUGE_VAL}) {
+    opt.scale = bad;
+    EXPECT_THROW(gasp::eval::computeAte(gt, gt, opt), gasp::Error) << bad;
+  }
 }

@@ -4,6 +4,8 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
+#include <string>
 #include <memory>
 
 #include "gasp/core/tum_trajectory.h"
@@ -64,4 +66,21 @@ TEST(GaspEvalProgram, BadInputExitsNonZeroWithMessage) {
   r = run("rpe --gt " + dir + "/gt.txt --est " + dir + "/huge.txt");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("huge.txt:2: translation"), std::string::npos) << r.output;
+  // A scale whose products overflow, and a delta that pairs each pose with itself: errors.
+  r = run("ate --gt " + dir + "/gt.txt --est " + dir + "/gt.txt --scale 1e160");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_EQ(r.output.find("nan"), std::string::npos) << r.output;
+  r = run("rpe --gt " + dir + "/gt.txt --est " + dir + "/gt.txt --delta 1e-300");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("below the poses' spacing"), std::string::npos) << r.output;
+  // --aligned onto an input would destroy it before it is read again: refused before the work.
+  writeLine(dir + "/keep.txt", 10, 0.05);
+  std::ifstream before_in(dir + "/keep.txt");
+  const std::string before((std::istreambuf_iterator<char>(before_in)), std::istreambuf_iterator<char>());
+  r = run("ate --gt " + dir + "/gt.txt --est " + dir + "/keep.txt --aligned " + dir + "/./keep.txt");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("is an input of this run"), std::string::npos) << r.output;
+  std::ifstream after_in(dir + "/keep.txt");
+  const std::string after((std::istreambuf_iterator<char>(after_in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(before, after);
 }

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "gasp/core/error.h"
 #include "gasp/eval/rpe.h"
@@ -70,4 +71,45 @@ TEST(Rpe, BadInputThrows) {
   auto far = gt;
   for (auto& p : far) p.timestamp += 100.0;  // no overlap in time
   EXPECT_THROW(gasp::eval::computeRpe(gt, far), gasp::Error);
+}
+
+TEST(Rpe, ADeltaBelowThePoseSpacingPairsNoPoseWithItself) {
+  // Poses are 0.1 s apart: a delta of 1e-300 s would find each pose itself, an error of 0 that
+  // measures nothing. Such pairs are left out; with none left it is an error saying why.
+  const auto gt = walk(10, 0.1, 0.0);
+  gasp::eval::RpeOptions opt;
+  opt.delta = 1e-300;
+  try {
+    gasp::eval::computeRpe(gt, gt, opt);
+    FAIL() << "expected gasp::Error";
+  } catch (const gasp::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("below the poses' spacing"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("1e-300"), std::string::npos) << e.what();
+  }
+  opt.delta = 0.04;  // closer to a pose itself than to the next one (0.1 s on)
+  EXPECT_THROW(gasp::eval::computeRpe(gt, gt, opt), gasp::Error);
+  opt.delta = 0.06;  // nearer the next pose: every pair spans one step
+  const auto r = gasp::eval::computeRpe(gt, gt, opt);
+  for (const auto& p : r.pairs) EXPECT_EQ(p.est_j, p.est_i + 1);
+}
+
+TEST(Rpe, ScaleAndDeltaMustBeFiniteAndErrorsFinite) {
+  const auto gt = walk(30, 0.1, 0.0);  // 2.9 s: pairs at the default delta of 1 s
+  gasp::eval::RpeOptions opt;
+  for (double bad : {0.0, -1.0, std::nan(""), HUGE_VAL}) {
+    opt = {};
+    opt.scale = bad;
+    EXPECT_THROW(gasp::eval::computeRpe(gt, gt, opt), gasp::Error) << bad;
+    opt = {};
+    opt.delta = bad;
+    EXPECT_THROW(gasp::eval::computeRpe(gt, gt, opt), gasp::Error) << bad;
+  }
+  opt = {};
+  opt.scale = 1e308;  // 0.1 m steps times 1e308 overflow to inf: an error, not "rmse: nan"
+  try {
+    gasp::eval::computeRpe(gt, gt, opt);
+    FAIL() << "expected gasp::Error";
+  } catch (const gasp::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not finite"), std::string::npos) << e.what();
+  }
 }

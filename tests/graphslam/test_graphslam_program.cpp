@@ -359,6 +359,20 @@ TEST(GaspGraphSlamProgram, FindsImagesStoredBesideTheRawlog) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_GE(printedCount(run.output, "nodes: "), 2u) << run.output;
   EXPECT_FALSE(contains(run.output, "skipped_scans")) << run.output;
+
+  // One scan's image file gone: that scan is skipped with a warning, the rest is written, and
+  // the exit code (3) says the result is incomplete.
+  std::vector<std::string> images;
+  for (const auto& e : std::filesystem::directory_iterator(out + "/sim_Images"))
+    if (e.path().filename().string().find("_depth.bin") != std::string::npos) images.push_back(e.path().string());
+  ASSERT_GE(images.size(), 8u);
+  std::sort(images.begin(), images.end());
+  std::filesystem::remove(images[4]);
+  const auto gap = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --out " + out + "/t.txt");
+  EXPECT_EQ(gap.exit_code, 3) << gap.output;
+  EXPECT_TRUE(contains(gap.output, "\nskipped_scans: 1\n")) << gap.output;
+  EXPECT_TRUE(contains(gap.output, "warning: 1 scans could not be converted")) << gap.output;
+  EXPECT_TRUE(std::filesystem::exists(out + "/t.txt"));
 }
 
 TEST(GaspGraphSlamProgram, SaysWhenTrackingWasLost) {

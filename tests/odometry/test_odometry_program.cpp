@@ -7,6 +7,8 @@
 #include <sstream>
 #include <string>
 
+#include <opencv2/imgcodecs.hpp>
+
 #include "gasp/core/tum_dataset.h"
 #include "gasp_test_data.h"
 #include "program_run.h"
@@ -185,4 +187,44 @@ TEST(GaspOdometryProgram, BadInputExitsWith1OrAUsageCode) {
   run = runProgram("gasp-odometry", "--tum " + sim + " --out " + out + "/t.txt --rolling-shutter 1e9");
   EXPECT_EQ(run.exit_code, 2) << run.output;
   EXPECT_FALSE(std::filesystem::exists(out + "/t.txt"));
+  // An output onto an input (the folder's ground truth), or one file for two outputs: refused
+  // before the run, the input untouched.
+  const auto gt_size = std::filesystem::file_size(sim + "/groundtruth.txt");
+  run = runProgram("gasp-odometry", "--tum " + sim + " --out " + sim + "/../sim/groundtruth.txt");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "is an input of this run")) << run.output;
+  EXPECT_EQ(std::filesystem::file_size(sim + "/groundtruth.txt"), gt_size);
+  run = runProgram("gasp-odometry", "--tum " + sim + " --out " + out + "/t.txt --frames-csv " + out + "/t.txt");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "--frames-csv '" + out + "/t.txt': the same file as --out")) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(out + "/t.txt"));
+  run = runProgram("gasp-odometry", "--tum " + sim + " --out " + out);  // a folder
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "is a folder, not a file")) << run.output;
+}
+
+TEST(GaspOdometryProgram, NoScoreWhenNoFrameAfterTheFirstWasTracked) {
+  // Frames 1-5 have no depth at all: their poses are predicted, so an ATE over them would score
+  // predictions against the ground truth. The program says there is nothing to score.
+  const std::string out = gasp::test::scratchDir();
+  const std::string sim = simulatedFolder(out);
+  std::filesystem::path first_path = gasp::TumDataset::open(sim).frame(0).depth_path;
+  if (first_path.is_relative()) first_path = std::filesystem::path(sim) / first_path;
+  const cv::Mat first = cv::imread(first_path.string(), cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(first.empty());
+  ASSERT_TRUE(cv::imwrite(sim + "/depth/blank.png", cv::Mat::zeros(first.size(), CV_16UC1)));
+  std::ifstream in(sim + "/depth.txt");
+  std::string text, line;
+  int data_lines = 0;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line[0] != '#' && data_lines++ > 0) line = line.substr(0, line.find(' ')) + " depth/blank.png";
+    text += line + "\n";
+  }
+  in.close();
+  std::ofstream(sim + "/depth.txt") << text;
+  const auto run = runProgram("gasp-odometry", "--tum " + sim + " --max-frames 6 --out " + out + "/t.txt");
+  EXPECT_EQ(run.exit_code, 3) << run.output;
+  EXPECT_TRUE(contains(run.output, "tracked: 1\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "evaluation: not possible: no frame after the first was tracked")) << run.output;
+  EXPECT_FALSE(contains(run.output, "ate_rmse_m")) << run.output;
 }

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "gasp/core/depth_image.h"
 #include "gasp_test_data.h"
@@ -119,4 +121,16 @@ TEST(ImagePrograms, PairsPlotRefusesBadTablesAndSkipsMissingErrors) {
   EXPECT_TRUE(std::filesystem::exists(dir + "/f.png"));
   run = runProgram("gasp-pairs-plot", "--csv " + dir + "/failed.csv --out " + dir + "/f.txt");
   EXPECT_EQ(run.exit_code, 2) << run.output;
+  // A negative skip (std::stoul would wrap it round to 18446744073709551606), skip 0, and two rows
+  // for one skip and method (two tables joined) are refused, naming the line.
+  for (const auto& [rows, message] : std::vector<std::pair<std::string, std::string>>{
+           {"-10,gasp,5,0,0.01,1.0,0.0,100.0,50.0\n", "bad.csv:2: '-10' is not a skip"},
+           {"0,gasp,5,0,0.01,1.0,0.0,100.0,50.0\n", "bad.csv:2: '0' is not a skip"},
+           {"10,gasp,5,0,0.01,1.0,0.0,100.0,50.0\n10,gasp,5,0,0.02,1.0,0.0,100.0,50.0\n",
+            "bad.csv:3: a second row for skip 10 and method gasp"}}) {
+    std::ofstream(dir + "/bad.csv") << header << rows;
+    run = runProgram("gasp-pairs-plot", "--csv " + dir + "/bad.csv --out " + dir + "/f.png");
+    EXPECT_EQ(run.exit_code, 1) << rows << run.output;
+    EXPECT_TRUE(contains(run.output, message)) << rows << run.output;
+  }
 }

@@ -8,9 +8,14 @@
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <opencv2/imgcodecs.hpp>
+#include <sys/wait.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -331,4 +336,97 @@ TEST(RawlogEntries, AnUnknownClassIsNamed) {
   } catch (const gasp::Error& e) {
     EXPECT_TRUE(contains(e.what(), "CObservationOdometrZ")) << e.what();
   }
+}
+
+namespace {
+
+std::string fileText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+TEST(RawlogWriter, AFailedRunLeavesTheEarlierRawlogAsItWas) {
+  const std::string dir = gasp::test::scratchDir();
+  const std::string path = dir + "/kept.rawlog";
+  {
+    gasp::RawlogWriter writer(path);
+    for (int i = 0; i < 2; ++i) writer.write(gasp::test::syntheticFrame(1.0 + i));
+    EXPECT_FALSE(std::filesystem::exists(path)) << "published before close()";
+    EXPECT_TRUE(std::filesystem::exists(path + ".partial"));
+    writer.close();
+  }
+  const std::string before = fileText(path);
+  ASSERT_EQ(gasp::readRawlogFrames(path).size(), 2u);
+
+  // An exception while writing: the partial file is removed, the earlier rawlog stays.
+  try {
+    gasp::RawlogWriter writer(path);
+    writer.write(gasp::test::syntheticFrame(5.0));
+    throw std::runtime_error("the run failed");
+  } catch (const std::runtime_error&) {
+  }
+  EXPECT_EQ(fileText(path), before);
+  EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
+
+  // discard() says the same without an exception.
+  {
+    gasp::RawlogWriter writer(path);
+    writer.write(gasp::test::syntheticFrame(5.0));
+    writer.discard();
+    writer.close();  // no-op once discarded
+  }
+  EXPECT_EQ(fileText(path), before);
+  EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
+
+  // A run that ends normally replaces it (the destructor closes).
+  {
+    gasp::RawlogWriter writer(path);
+    for (int i = 0; i < 3; ++i) writer.write(gasp::test::syntheticFrame(7.0 + i));
+  }
+  EXPECT_EQ(gasp::readRawlogFrames(path).size(), 3u);
+  EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
+
+  // A folder where the rawlog should be: a clear error.
+  std::filesystem::create_directories(dir + "/folder.rawlog");
+  try {
+    gasp::RawlogWriter writer(dir + "/folder.rawlog");
+    FAIL() << "expected gasp::Error";
+  } catch (const gasp::Error& e) {
+    EXPECT_TRUE(contains(e.what(), "is a folder")) << e.what();
+  }
+}
+
+TEST(Tum2RawlogProgram, AFrameThatCannotBeReadLeavesTheEarlierOutputAsItWas) {
+  // A TUM folder of three frames, the third not an image: the conversion fails (exit 1) and an
+  // existing rawlog of the same name is neither replaced by a shorter one nor removed.
+  const std::string dir = gasp::test::scratchDir();
+  const std::string tum = dir + "/tum";
+  std::filesystem::create_directories(tum + "/depth");
+  std::ofstream list(tum + "/depth.txt");
+  list << "# timestamp filename\n";
+  for (int i = 0; i < 3; ++i) {
+    const std::string name = "depth/" + std::to_string(i) + ".png";
+    if (i < 2)
+      ASSERT_TRUE(cv::imwrite(tum + "/" + name, gasp::test::syntheticFrame(1.0, 640, 480).depth_raw));
+    else
+      std::ofstream(tum + "/" + name) << "not a png";
+    list << 10.0 + i << ' ' << name << '\n';
+  }
+  list.close();
+  const std::string program = std::string(GASP_BIN_DIR) + "/gasp-tum2rawlog";
+  const std::string out = dir + "/out.rawlog";
+  std::ofstream(out) << "an earlier rawlog";
+  const std::string cmd = "'" + program + "' '" + tum + "' '" + out + "' --intrinsics ros 2> '" + dir + "/stderr.txt'";
+  EXPECT_EQ(WEXITSTATUS(std::system(cmd.c_str())), 1);
+  EXPECT_TRUE(contains(fileText(dir + "/stderr.txt"), "2.png")) << fileText(dir + "/stderr.txt");
+  EXPECT_EQ(fileText(out), "an earlier rawlog");
+  EXPECT_FALSE(std::filesystem::exists(out + ".partial"));
+
+  // Output onto the folder's own listing: refused before anything is written.
+  const std::string onto = "'" + program + "' '" + tum + "' '" + tum + "/depth.txt' 2> '" + dir + "/stderr2.txt'";
+  EXPECT_EQ(WEXITSTATUS(std::system(onto.c_str())), 1);
+  EXPECT_TRUE(contains(fileText(dir + "/stderr2.txt"), "is an input of this run")) << fileText(dir + "/stderr2.txt");
+  EXPECT_TRUE(contains(fileText(tum + "/depth.txt"), "depth/0.png"));
 }

@@ -124,3 +124,25 @@ TEST(SimWriter, EveryNamedSceneBuilds) {
   EXPECT_EQ(gasp::sim::makeScene("corridor").objects.size(), 2u);
   EXPECT_LE(gasp::sim::makeScene("sparse").objects.size(), 4u);
 }
+
+TEST(SimWriter, ARealTumFolderIsNeverOverwritten) {
+  // A folder whose depth.txt the simulator did not write is real data: refused, untouched.
+  const std::string root = gasp::test::scratchDir() + "/real";
+  fs::create_directories(root);
+  const std::string listing = "# depth maps\n# timestamp filename\n1305031102.160407 depth/1305031102.160407.png\n";
+  std::ofstream(root + "/depth.txt") << listing;
+  try {
+    gasp::sim::writeSimulation(smallOptions(), root);
+    FAIL() << "expected gasp::Error";
+  } catch (const gasp::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("did not write"), std::string::npos) << e.what();
+  }
+  std::ifstream in(root + "/depth.txt");
+  const std::string after((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(after, listing);
+  EXPECT_FALSE(fs::exists(root + "/groundtruth.txt"));
+  // An earlier simulation in the same folder is replaced.
+  const std::string sim = gasp::test::scratchDir() + "/sim";
+  EXPECT_NO_THROW(gasp::sim::writeSimulation(smallOptions(), sim));
+  EXPECT_NO_THROW(gasp::sim::writeSimulation(smallOptions(), sim));
+}

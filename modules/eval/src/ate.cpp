@@ -2,11 +2,14 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
+
 #include "gasp/core/error.h"
 
 namespace gasp::eval {
 
 AteResult computeAte(const Trajectory& gt, const Trajectory& est, const AteOptions& options) {
+  if (!(options.scale > 0.0) || !std::isfinite(options.scale)) throw Error("ATE: scale must be a positive finite number");
   std::vector<double> t_gt, t_est;
   for (const auto& p : gt) t_gt.push_back(p.timestamp);
   for (const auto& p : est) t_est.push_back(p.timestamp);
@@ -29,6 +32,9 @@ AteResult computeAte(const Trajectory& gt, const Trajectory& est, const AteOptio
   std::vector<double> errors(static_cast<std::size_t>(n));
   for (Eigen::Index k = 0; k < n; ++k)
     errors[static_cast<std::size_t>(k)] = (r.T_gt_est * p_est.col(k) - p_gt.col(k)).norm();
+  for (double e : errors)
+    if (!std::isfinite(e))
+      throw Error("ATE: the position errors are not finite (positions beyond floating point after the scale?)");
   r.errors = errors;
   r.translation = computeStatistics(std::move(errors));
   return r;

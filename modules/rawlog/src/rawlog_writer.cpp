@@ -22,25 +22,26 @@ struct RawlogWriter::Impl {
 };
 
 RawlogWriter::RawlogWriter(const std::string& path, const RawlogWriterOptions& options)
-    : path_(path), images_dir_(rawlogImagesDirectory(path)), options_(options),
-      impl_(std::make_unique<Impl>()) {
+    : path_(path), partial_path_(path + ".partial"), images_dir_(rawlogImagesDirectory(path)),
+      uncaught_at_construction_(std::uncaught_exceptions()), options_(options), impl_(std::make_unique<Impl>()) {
   namespace fs = std::filesystem;
   if (options_.compress_level < 0 || options_.compress_level > 9)
     throw Error("rawlog '" + path + "': compress_level must be 0..9");
   const fs::path parent = fs::path(path).parent_path();
   std::error_code ec;
+  if (fs::is_directory(path, ec)) throw Error("rawlog '" + path + "': is a folder, not a file");
   if (!parent.empty()) fs::create_directories(parent, ec);
   if (!parent.empty() && !fs::is_directory(parent, ec))
     throw Error("rawlog '" + path + "': cannot create the output folder '" + parent.string() + "'");
   try {
     if (options_.compress_level == 0) {
       auto f = std::make_unique<mrpt::io::CFileOutputStream>();
-      if (!f->open(path)) throw Error("rawlog '" + path + "': cannot create the file");
+      if (!f->open(partial_path_)) throw Error("rawlog '" + path + "': cannot create '" + partial_path_ + "'");
       impl_->stream = std::move(f);
     } else {
       auto f = std::make_unique<mrpt::io::CFileGZOutputStream>();
-      if (!f->open(path, options_.compress_level))
-        throw Error("rawlog '" + path + "': cannot create the file");
+      if (!f->open(partial_path_, options_.compress_level))
+        throw Error("rawlog '" + path + "': cannot create '" + partial_path_ + "'");
       impl_->stream = std::move(f);
     }
   } catch (const Error&) {
@@ -50,12 +51,18 @@ RawlogWriter::RawlogWriter(const std::string& path, const RawlogWriterOptions& o
   }
   if (options_.external_storage) {
     fs::create_directories(images_dir_, ec);
-    if (!fs::is_directory(images_dir_))
+    if (!fs::is_directory(images_dir_)) {
+      discard();
       throw Error("rawlog '" + path + "': cannot create the images folder '" + images_dir_ + "'");
+    }
   }
 }
 
 RawlogWriter::~RawlogWriter() {
+  if (std::uncaught_exceptions() > uncaught_at_construction_) {
+    discard();  // a failed run: the partial file is not published
+    return;
+  }
   try {
     close();
   } catch (...) {  // destructors must not throw; close() explicitly to see errors
@@ -103,7 +110,18 @@ void RawlogWriter::write(const RgbdFrame& frame) {
 }
 
 void RawlogWriter::close() {
-  if (impl_ && impl_->stream) impl_->stream.reset();
+  if (!impl_ || !impl_->stream) return;
+  impl_->stream.reset();  // flushes and closes
+  std::error_code ec;
+  std::filesystem::rename(partial_path_, path_, ec);
+  if (ec) throw Error("rawlog '" + path_ + "': cannot rename '" + partial_path_ + "' to it: " + ec.message());
+}
+
+void RawlogWriter::discard() {
+  if (!impl_ || !impl_->stream) return;
+  impl_->stream.reset();
+  std::error_code ec;
+  std::filesystem::remove(partial_path_, ec);
 }
 
 }  // namespace gasp

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <string>
 
 #include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
@@ -24,6 +25,23 @@ void makeDir(const fs::path& dir) {
   if (ec || !fs::is_directory(dir))
     throw Error("cannot create output folder '" + dir.string() + "'" +
                 (ec ? ": " + ec.message() : std::string(" (a file of that name exists?)")));
+}
+
+/// The first line of every depth.txt the simulator writes.
+constexpr const char* kDepthListMark = "# depth maps (GASP simulator";
+
+/// A folder that holds a depth.txt the simulator did not write is real data: refused, never
+/// overwritten.
+void refuseForeignSequence(const fs::path& root) {
+  const fs::path depth_list = root / "depth.txt";
+  std::error_code ec;
+  if (!fs::exists(depth_list, ec)) return;
+  std::ifstream in(depth_list);
+  std::string first;
+  std::getline(in, first);
+  if (first.rfind(kDepthListMark, 0) != 0)
+    throw Error("output folder '" + root.string() +
+                "' holds a depth.txt that gasp-simulate did not write (real data?); write into a new folder");
 }
 
 std::ofstream openText(const fs::path& path) {
@@ -82,12 +100,13 @@ std::string formatTimestamp(double t) {
 SimulationSummary writeSimulation(const SimulationOptions& options, const std::string& out_dir) {
   const Simulation sim(options);  // validates everything before touching the disk
   const fs::path root(out_dir);
+  refuseForeignSequence(root);
   makeDir(root / "depth");
   makeDir(root / "labels");
 
   const fs::path depth_list = root / "depth.txt";
   std::ofstream depth_txt = openText(depth_list);
-  depth_txt << "# depth maps (GASP simulator, scene " << sim.scene().name << ", seed " << options.seed
+  depth_txt << kDepthListMark << ", scene " << sim.scene().name << ", seed " << options.seed
             << ")\n# timestamp filename\n";
   double valid = 0.0, total = 0.0;
   for (int i = 0; i < sim.size(); ++i) {

@@ -20,11 +20,14 @@ struct RawlogWriterOptions {
   int compress_level = 1;
 };
 
-/// Writes a rawlog; the file is complete when the writer is closed or destroyed.
+/// Writes a rawlog. The frames go to "<path>.partial", which close() renames to `path`: a run
+/// that fails half-way leaves an existing rawlog at `path` as it was, never a shorter one that
+/// reads as complete. The destructor closes too, except while an exception unwinds the stack:
+/// then (as with discard()) the partial file is removed. External images are written in place.
 class RawlogWriter {
  public:
-  /// Creates (overwrites) the rawlog, creating its folder if needed; with external storage also
-  /// creates "<name>_Images".
+  /// Creates "<path>.partial" (overwriting one a killed run left), creating the rawlog's folder if
+  /// needed; with external storage also creates "<name>_Images".
   /// Throws gasp::Error when the file or folder cannot be created.
   explicit RawlogWriter(const std::string& path, const RawlogWriterOptions& options = {});
   ~RawlogWriter();
@@ -33,8 +36,11 @@ class RawlogWriter {
 
   /// Converts the frame (observationFromFrame()) and appends it. Throws gasp::Error.
   void write(const RgbdFrame& frame);
-  /// Flushes and closes the file (also done by the destructor).
+  /// Flushes and closes the file and renames it to path() (also done by the destructor, unless
+  /// an exception is unwinding). Throws gasp::Error when the rename fails; no-op once closed.
   void close();
+  /// Closes and removes the partial file: path() is left as it was. No-op once closed.
+  void discard();
 
   std::size_t framesWritten() const { return frames_written_; }
   const std::string& path() const { return path_; }
@@ -44,7 +50,9 @@ class RawlogWriter {
  private:
   struct Impl;
   std::string path_;
+  std::string partial_path_;  ///< path_ + ".partial", renamed to path_ by close()
   std::string images_dir_;
+  int uncaught_at_construction_ = 0;  ///< std::uncaught_exceptions() then
   RawlogWriterOptions options_;
   std::size_t frames_written_ = 0;
   std::unique_ptr<Impl> impl_;

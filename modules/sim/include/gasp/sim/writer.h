@@ -31,9 +31,10 @@ struct SimulationSummary {
 /// Timestamp as used in file names and lists: fixed, 6 decimals ("1000.033333").
 std::string formatTimestamp(double t);
 
-/// Simulates and writes the sequence into out_dir (created if needed; existing files of the
-/// same names are overwritten). Throws gasp::Error for bad options or when out_dir cannot be
-/// created or written.
+/// Simulates and writes the sequence into out_dir (created if needed; the files of an earlier
+/// simulation there are overwritten). Throws gasp::Error for bad options, when out_dir cannot be
+/// created or written, or when it holds a depth.txt the simulator did not write (a real TUM
+/// folder is never overwritten).
 SimulationSummary writeSimulation(const SimulationOptions& options, const std::string& out_dir);
 
 }  // namespace gasp::sim
