@@ -15,6 +15,7 @@ namespace gasp {
 void CSuperpixelMap::insertFrame(const RgbdFrame& frame, const Isometry3& T_map_robot) {
   try {
     views_.push_back(makeMapView(frame, T_map_robot, creationOptions.superpixels));
+    ++content_version_;
   } catch (const Error& e) {
     THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: cannot insert observation '%s': %s", frame.sensor_label.c_str(),
                         e.what());
@@ -33,6 +34,11 @@ bool CSuperpixelMap::internal_insertObservation(const mrpt::obs::CObservation& o
   }
   insertFrame(frame, robotPose ? fromCPose3D(*robotPose) : Isometry3::Identity());
   return true;
+}
+
+CSuperpixelMap::LikelihoodCacheStats CSuperpixelMap::likelihoodCacheStats() const {
+  std::lock_guard<std::mutex> lock(likelihood_cache_.mutex);
+  return {likelihood_cache_.hits, likelihood_cache_.misses};
 }
 
 std::size_t CSuperpixelMap::patchCount() const {

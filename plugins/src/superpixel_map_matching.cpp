@@ -1,8 +1,7 @@
-// CSuperpixelMap::compute3DMatchingRatio and computeObservationLikelihood, both from GASP's
-// patch associations (pose-invariant descriptors) checked against the given pose.
+// CSuperpixelMap::compute3DMatchingRatio from GASP's patch associations (pose-invariant
+// descriptors) checked against the given pose; the likelihood is in superpixel_map_likelihood.cpp.
 #include <mrpt/core/exceptions.h>
 #include <mrpt/maps/CMultiMetricMap.h>
-#include <mrpt/obs/CObservation3DRangeScan.h>
 
 #include <algorithm>
 #include <set>
@@ -16,9 +15,6 @@
 namespace gasp {
 
 namespace {
-
-/// Cost of an observation patch without a consistent partner: 3 sigma.
-constexpr double kOutlierCost = 9.0;
 
 std::vector<PatchGeometry> geometry(const SuperpixelMapView& v) {
   return toPatchGeometry(v.view.segmentation.patches);
@@ -76,44 +72,6 @@ float CSuperpixelMap::compute3DMatchingRatio(const mrpt::maps::CMetricMap* other
   const std::size_t smaller = std::min(patchCount(), other->patchCount());
   const std::size_t matched = std::min(matched_this.size(), matched_other.size());
   return smaller ? static_cast<float>(static_cast<double>(matched) / static_cast<double>(smaller)) : 0.0f;
-}
-
-bool CSuperpixelMap::internal_canComputeObservationLikelihood(const mrpt::obs::CObservation& obs) const {
-  return !isEmpty() && dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&obs) != nullptr;
-}
-
-double CSuperpixelMap::internal_computeObservationLikelihood(const mrpt::obs::CObservation& obs,
-                                                             const mrpt::poses::CPose3D& takenFrom) const {
-  const auto* scan = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&obs);
-  if (!scan || isEmpty()) return 0.0;  // no information (see the header)
-  SuperpixelMapView seen;
-  try {
-    const RgbdFrame frame = frameFromObservation(*scan, "CObservation3DRangeScan '" + scan->sensorLabel + "'");
-    seen = makeMapView(frame, fromCPose3D(takenFrom), creationOptions.superpixels);
-  } catch (const Error& e) {
-    THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());
-  }
-  const auto& patches = seen.view.segmentation.patches;
-  if (patches.empty()) return -0.5 * kOutlierCost;
-  std::vector<double> cost(patches.size(), kOutlierCost);
-  const auto geom_seen = geometry(seen);
-  const double sigma = likelihoodOptions.sigma_m, max_d = likelihoodOptions.max_distance_m;
-  for (const auto& view : views_) {
-    const AssociationResult r = associateViews(geom_seen, geometry(view), likelihoodOptions.matching.association);
-    for (const PatchAssociation& s : r.associations) {
-      const Eigen::Vector3d p = seen.T_map_camera * patchOf(seen, s.a).centroid;
-      const SurfacePatch& m = patchOf(view, s.b);
-      const Eigen::Vector3d q = view.T_map_camera * m.centroid;
-      if ((p - q).norm() > max_d) continue;
-      const Eigen::Vector3d n = view.T_map_camera.linear() * m.normal;
-      const double d = std::abs(n.dot(p - q)) / sigma;
-      double& c = cost[static_cast<std::size_t>(s.a)];
-      c = std::min(c, std::min(d * d, kOutlierCost));
-    }
-  }
-  double sum = 0;
-  for (double c : cost) sum += c;
-  return -0.5 * sum / static_cast<double>(cost.size());
 }
 
 }  // namespace gasp

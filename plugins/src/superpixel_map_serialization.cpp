@@ -228,6 +228,7 @@ void CSuperpixelMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t ve
     likelihoodOptions = l;
     renderOptions = r;
     views_ = std::move(views);
+    ++content_version_;
   } catch (const std::exception& e) {
     THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: corrupt serialized map: %s", mrpt::exception_to_str(e).c_str());
   }

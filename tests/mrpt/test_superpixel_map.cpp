@@ -14,10 +14,13 @@
 #include <mrpt/opengl/CSetOfTriangles.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <set>
+#include <thread>
+#include <vector>
 
 #include "gasp/core/undistortion.h"
 #include "gasp/mrpt/CSuperpixelMap.h"
@@ -347,6 +350,76 @@ TEST(SuperpixelMap, VisualisationAndFiles) {
   ASSERT_TRUE(scene.loadFromFile(prefix + "_3D.3Dscene"));
   EXPECT_TRUE(scene.getByClass<mrpt::opengl::CSetOfTriangles>());
   EXPECT_THROW(map.saveMetricMapRepresentationToFile("/nonexistent/dir/map"), std::exception);
+}
+
+TEST(SuperpixelMap, LikelihoodReusesTheObservationAcrossPosesAndEqualsAFreshMap) {
+  // A particle filter asks for one observation at many poses: the segmentation and associations
+  // are computed once (a miss), each further pose is a hit. Every answer equals that of a copy of
+  // the map (copies start with an empty cache), and anything the cached part depends on (the
+  // depth pixels, the map's content, the association options) makes a miss.
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const auto ds = TumDataset::open(dir);
+  const Isometry3 S = someMount();
+  const Isometry3 P0 = *ds.frame(0).T_world_camera * S.inverse(), P4 = *ds.frame(4).T_world_camera * S.inverse();
+  CSuperpixelMap map;
+  map.insertObservation(*tumObservation(ds, 0, false, S), toCPose3D(P0));
+  const auto obs = tumObservation(ds, 4, false, S);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 0.03);
+  std::vector<mrpt::poses::CPose3D> poses;
+  for (int k = 0; k < 6; ++k) {
+    Isometry3 jitter = Isometry3::Identity();
+    jitter.translation() = Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+    jitter.linear() = Eigen::AngleAxisd(noise(rng), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    poses.push_back(toCPose3D(jitter * P4));
+  }
+  std::vector<double> cached;
+  for (const auto& pose : poses) {
+    cached.push_back(map.computeObservationLikelihood(*obs, pose));
+    EXPECT_DOUBLE_EQ(cached.back(), CSuperpixelMap(map).computeObservationLikelihood(*obs, pose));
+  }
+  EXPECT_EQ(map.likelihoodCacheStats().misses, 1u);
+  EXPECT_EQ(map.likelihoodCacheStats().hits, poses.size() - 1);
+  EXPECT_GT(*std::max_element(cached.begin(), cached.end()), *std::min_element(cached.begin(), cached.end()))
+      << "the poses must give different answers, or the test shows nothing";
+
+  // Several threads at once (the likelihood is const): the same answers.
+  std::vector<double> parallel(poses.size());
+  {
+    std::vector<std::thread> threads;
+    for (std::size_t k = 0; k < poses.size(); ++k)
+      threads.emplace_back([&, k] { parallel[k] = map.computeObservationLikelihood(*obs, poses[k]); });
+    for (auto& t : threads) t.join();
+  }
+  for (std::size_t k = 0; k < poses.size(); ++k) EXPECT_DOUBLE_EQ(parallel[k], cached[k]);
+
+  // sigma_m is applied per pose: a hit with a new answer, equal to a fresh map's.
+  auto misses = map.likelihoodCacheStats().misses;
+  map.likelihoodOptions.sigma_m = 0.05;
+  EXPECT_DOUBLE_EQ(map.computeObservationLikelihood(*obs, poses[0]), CSuperpixelMap(map).computeObservationLikelihood(*obs, poses[0]));
+  EXPECT_EQ(map.likelihoodCacheStats().misses, misses);
+
+  // The same observation object with other depth pixels: a miss.
+  auto changed = tumObservation(ds, 4, false, S);
+  for (int r = 0; r < 240; ++r)
+    for (int c = 0; c < 320; ++c) changed->rangeImage(r, c) = 0;
+  const double ll_changed = map.computeObservationLikelihood(*changed, poses[0]);
+  EXPECT_EQ(map.likelihoodCacheStats().misses, ++misses);
+  EXPECT_DOUBLE_EQ(ll_changed, CSuperpixelMap(map).computeObservationLikelihood(*changed, poses[0]));
+  EXPECT_NE(ll_changed, map.computeObservationLikelihood(*obs, poses[0]));
+  EXPECT_EQ(map.likelihoodCacheStats().misses, ++misses);
+
+  // Association options: a miss.
+  map.likelihoodOptions.matching.association.lambda = 0.3;
+  EXPECT_DOUBLE_EQ(map.computeObservationLikelihood(*obs, poses[0]), CSuperpixelMap(map).computeObservationLikelihood(*obs, poses[0]));
+  EXPECT_EQ(map.likelihoodCacheStats().misses, ++misses);
+
+  // New content in the map: a miss, and the new view counts.
+  map.insertObservation(*tumObservation(ds, 8, false, S), toCPose3D(*ds.frame(8).T_world_camera * S.inverse()));
+  EXPECT_DOUBLE_EQ(map.computeObservationLikelihood(*obs, poses[0]), CSuperpixelMap(map).computeObservationLikelihood(*obs, poses[0]));
+  EXPECT_EQ(map.likelihoodCacheStats().misses, ++misses);
+  map.clear();
+  EXPECT_EQ(map.computeObservationLikelihood(*obs, poses[0]), 0.0);  // empty: no information
 }
 
 TEST(SuperpixelMap, MatchingRatioAndLikelihoodPreferTheTruePose) {

@@ -15,7 +15,12 @@
 ///   [<section>_superpixelMap_00_renderOpts]      style=discs|points, point_step_px
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/maps/CMetricMap.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
 
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -85,6 +90,16 @@ class CSuperpixelMap : public mrpt::maps::CMetricMap {
   float compute3DMatchingRatio(const mrpt::maps::CMetricMap* otherMap, const mrpt::poses::CPose3D& otherMapPose,
                                const mrpt::maps::TMatchingRatioParams& params) const override;
 
+  /// The likelihood keeps the last observation's segmentation and associations and reuses them
+  /// while it is asked for the same observation at other poses (a particle filter asks once per
+  /// particle). A hit needs the same depth pixels, camera, sensor pose, timestamp and label, the
+  /// same map content and the same segmentation and association options.
+  struct LikelihoodCacheStats {
+    std::size_t hits = 0;    ///< calls that reused the last observation's associations
+    std::size_t misses = 0;  ///< calls that segmented and associated the observation
+  };
+  LikelihoodCacheStats likelihoodCacheStats() const;
+
   MAP_DEFINITION_START(CSuperpixelMap)
   TCreationOptions creationOpts;
   TLikelihoodOptions likelihoodOpts;
@@ -92,7 +107,10 @@ class CSuperpixelMap : public mrpt::maps::CMetricMap {
   MAP_DEFINITION_END(CSuperpixelMap)
 
  private:
-  void internal_clear() override { views_.clear(); }
+  void internal_clear() override {
+    views_.clear();
+    ++content_version_;
+  }
   /// CObservation3DRangeScan: inserted (true). Other observation types: false, as every MRPT map
   /// does for what it cannot use (CMultiMetricMap offers each observation to every map). A scan
   /// without range image or with inconsistent intrinsics throws.
@@ -110,7 +128,28 @@ class CSuperpixelMap : public mrpt::maps::CMetricMap {
                                                const mrpt::poses::CPose3D& takenFrom) const override;
   bool internal_canComputeObservationLikelihood(const mrpt::obs::CObservation& obs) const override;
 
+  /// The last observation's pose-free likelihood data (superpixel_map_likelihood.cpp). Copies
+  /// of the map start with an empty cache; it is not serialised. The mutex makes the const
+  /// likelihood safe to call from several threads.
+  struct LikelihoodCache {
+    struct Entry;
+    std::shared_ptr<const Entry> entry;
+    std::size_t hits = 0, misses = 0;
+    std::mutex mutex;
+    LikelihoodCache() = default;
+    LikelihoodCache(const LikelihoodCache&) {}
+    LikelihoodCache& operator=(const LikelihoodCache&) {
+      std::lock_guard<std::mutex> lock(mutex);
+      entry.reset();
+      return *this;
+    }
+  };
+  /// The cache entry for `scan` (computed, or the last one when its key matches).
+  std::shared_ptr<const LikelihoodCache::Entry> likelihoodEntry(const mrpt::obs::CObservation3DRangeScan& scan) const;
+
   std::vector<SuperpixelMapView> views_;
+  std::uint64_t content_version_ = 0;  ///< changes with every change of views_ (the cache's key)
+  mutable LikelihoodCache likelihood_cache_;
 };
 
 }  // namespace gasp
