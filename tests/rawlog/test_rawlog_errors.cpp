@@ -6,6 +6,7 @@
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <opencv2/imgcodecs.hpp>
@@ -15,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -292,16 +294,45 @@ TEST(RawlogEntries, TruncatedFilesAreErrorsNotAnEarlyEnd) {
     EXPECT_TRUE(contains(msg, "corrupt or truncated gzip stream")) << msg;
     EXPECT_TRUE(contains(readError(path), "corrupt or truncated gzip stream")) << readError(path);
   }
-  // A format-#1 file that ends after an action.
-  const std::string path = dir + "/action_only.rawlog";
+  // A format-#1 file that ends after an action, without its sensory frame: the end of the file,
+  // as in MRPT's own reader (MRPT's sample kf-slam_demo.rawlog ends that way), not an error.
+  const std::string path = dir + "/action_last.rawlog";
   {
     mrpt::io::CFileGZOutputStream out(path);
     auto ar = mrpt::serialization::archiveFrom(out);
     mrpt::obs::CActionCollection action;
-    ar << action;
+    mrpt::obs::CSensoryFrame sf;
+    sf.insert(std::make_shared<mrpt::obs::CObservation3DRangeScan>(tinyScan()));
+    ar << action << sf << action;
   }
-  const std::string msg = entriesError(path);
-  EXPECT_TRUE(contains(msg, "ends after an action")) << msg;
+  std::size_t entries = 0;
+  EXPECT_EQ(entriesError(path, &entries), "");
+  EXPECT_EQ(entries, 1u);
+  gasp::RawlogEntries reader(path);
+  while (reader.next()) {
+  }
+  EXPECT_TRUE(reader.endedAfterAction());
+  EXPECT_EQ(gasp::readRawlogFrames(path).size(), 1u);
+}
+
+TEST(RawlogEntries, MrptsOwnSampleRawlogsThatEndAfterAnActionAreRead) {
+  const std::string path = "/usr/share/mrpt/datasets/kf-slam_demo.rawlog";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is not installed (Debian package mrpt-common)";
+  std::size_t entries = 0;
+  EXPECT_EQ(entriesError(path, &entries), "");
+  // A sensory frame, 249 (action, sensory frame) pairs, and an action without its sensory frame.
+  EXPECT_EQ(entries, 250u);
+  gasp::RawlogEntries reader(path);
+  while (reader.next()) {
+  }
+  EXPECT_TRUE(reader.endedAfterAction());
+  EXPECT_EQ(reader.objectsRead(), 500u);
+  try {
+    gasp::readRawlogFrames(path);
+    FAIL() << "expected gasp::Error: the file holds no 3D scan";
+  } catch (const gasp::Error& e) {
+    EXPECT_TRUE(contains(e.what(), "no CObservation3DRangeScan")) << e.what();
+  }
 }
 
 TEST(RawlogEntries, AnUnknownClassIsNamed) {

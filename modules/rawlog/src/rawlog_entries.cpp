@@ -26,8 +26,7 @@ std::optional<RawlogEntry> RawlogEntries::next() {
     }
     // Anything else (a map, a pose, ...) is not part of an entry: skipped.
   }
-  if (entry.action)
-    throw Error("rawlog '" + path() + "': the file ends after an action, without its sensory frame (truncated?)");
+  ended_after_action_ = static_cast<bool>(entry.action);  // dropped, as MRPT's CRawlog does
   return std::nullopt;
 }
 

@@ -18,7 +18,6 @@ struct RawlogReader::Impl {
   RawlogObjects objects;
   std::deque<mrpt::obs::CObservation::Ptr> pending;  ///< observations not yet returned
   bool at_end = false;
-  bool after_action = false;  ///< the last object read was an action (format #1: a sensory frame must follow)
 };
 
 RawlogReader::RawlogReader(const std::string& path) : path_(path) {
@@ -33,7 +32,6 @@ RawlogReader::RawlogReader(const std::string& path) : path_(path) {
     for (const auto& o : *sf) impl_->pending.push_back(o);
   } else if (std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(first)) {
     format_ = RawlogFormat::ActionsSensoryFrames;
-    impl_->after_action = true;
     ++skipped_[rawlogClassName(*first)];
   } else if (auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservation>(first)) {
     format_ = RawlogFormat::Observations;
@@ -69,13 +67,10 @@ std::optional<RgbdFrame> RawlogReader::next() {
     if (impl_->at_end) break;
 
     auto obj = impl_->objects.next();  // gasp::Error for a truncated or corrupt stream
-    if (!obj) {
-      if (impl_->after_action)
-        throw Error("rawlog '" + path_ + "': the file ends after an action, without its sensory frame (truncated?)");
+    if (!obj) {  // an action at the very end, without its sensory frame, ends the file (as in MRPT)
       impl_->at_end = true;
       continue;
     }
-    impl_->after_action = static_cast<bool>(std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(obj));
     if (auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(obj)) {
       for (const auto& o : *sf) impl_->pending.push_back(o);
     } else if (auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservation>(obj)) {

@@ -23,8 +23,9 @@ struct RawlogEntry {
 
 /// The entries of a rawlog in file order: what mrpt::obs::CRawlog::getActionObservationPairOrObservation()
 /// returns, except that a truncated or corrupt file is a gasp::Error (see RawlogObjects) instead of
-/// an early end. Objects that are neither observations, sensory frames nor actions are skipped; an
-/// action not followed by a sensory frame (the file ends) is an error.
+/// an early end. Objects that are neither observations, sensory frames nor actions are skipped. An
+/// action at the very end, without its sensory frame, ends the file as in MRPT's reader (several of
+/// MRPT's own sample rawlogs end that way); endedAfterAction() says so.
 class RawlogEntries {
  public:
   explicit RawlogEntries(const std::string& path) : objects_(path) {}
@@ -35,9 +36,12 @@ class RawlogEntries {
   /// Objects read so far (MRPT's "rawlog entry" counter).
   std::size_t objectsRead() const { return objects_.objectsRead(); }
   const std::string& path() const { return objects_.path(); }
+  /// The file ended after an action without its sensory frame (that action was dropped).
+  bool endedAfterAction() const { return ended_after_action_; }
 
  private:
   RawlogObjects objects_;
+  bool ended_after_action_ = false;
 };
 
 }  // namespace gasp
