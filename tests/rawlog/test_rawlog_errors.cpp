@@ -461,3 +461,13 @@ TEST(Tum2RawlogProgram, AFrameThatCannotBeReadLeavesTheEarlierOutputAsItWas) {
   EXPECT_TRUE(contains(fileText(dir + "/stderr2.txt"), "is an input of this run")) << fileText(dir + "/stderr2.txt");
   EXPECT_TRUE(contains(fileText(tum + "/depth.txt"), "depth/0.png"));
 }
+
+TEST(RawlogReader, ObservationClassesOfMrptMapsAreKnownToEveryReader) {
+  // CObservationRotatingScan is registered by mrpt-maps, which a program that reads rawlogs need
+  // not otherwise use (this test links gasp::rawlog alone): it is read and skipped by name.
+  const std::string path = "/usr/share/mrpt/datasets/rot_scan_2d.rawlog";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is not installed (Debian package mrpt-common)";
+  const std::string msg = readError(path);
+  EXPECT_TRUE(contains(msg, "no CObservation3DRangeScan in the file (it holds 1 x CObservationRotatingScan)")) << msg;
+  EXPECT_FALSE(contains(msg, "does not know")) << msg;
+}

@@ -1,6 +1,7 @@
 #include "gasp/rawlog/rawlog_objects.h"
 
 #include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/obs/CObservationRotatingScan.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <cstdint>
@@ -36,6 +37,11 @@ std::string rawlogClassName(const mrpt::serialization::CSerializable& object) {
 }
 
 RawlogObjects::RawlogObjects(const std::string& path) : path_(path), impl_(std::make_unique<Impl>()) {
+  // MRPT registers the observation classes of mrpt-maps (CObservationRotatingScan,
+  // CObservationPointCloud, ...) when that library is loaded. Naming one keeps it linked into
+  // every program that reads rawlogs, so their objects are read and skipped by name instead of
+  // stopping the read as an unknown class.
+  static_cast<void>(CLASS_ID(mrpt::obs::CObservationRotatingScan));
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(path, ec)) throw Error("rawlog '" + path + "': file not found");
