@@ -183,6 +183,9 @@ int main(int argc, char** argv) {
     }
     const TemporaryIni engine_ini(ini_path);  // the built-in configuration, --ini's keys over it
     const gasp::Trajectory gt = gt_path.empty() ? gasp::Trajectory{} : gasp::readTumTrajectory(gt_path);
+    // MRPT's engine and deciders log to stdout: sent to stderr until the engine is gone, so that
+    // stdout holds only this program's "key: value" lines.
+    std::optional<gasp::graphslam::StdoutToStderr> mrpt_log_to_stderr(std::in_place);
     // The checker's factories return new objects; the engine does not own them.
     std::unique_ptr<mrpt::graphslam::deciders::CNodeRegistrationDecider<Graph3D>> nrd(checker.node_regs_map[node_reg]());
     std::unique_ptr<mrpt::graphslam::deciders::CEdgeRegistrationDecider<Graph3D>> erd(checker.edge_regs_map[edge_reg]());
@@ -190,7 +193,7 @@ int main(int argc, char** argv) {
     auto* gasp_nrd = dynamic_cast<gasp::graphslam::CGaspOdometryNRD*>(nrd.get());
     auto* gasp_erd = dynamic_cast<gasp::graphslam::CGaspLoopClosureERD*>(erd.get());
     auto* gasp_gso = dynamic_cast<gasp::graphslam::CGaspPoseGraphGSO*>(gso.get());
-    const auto engine_ptr = gasp::graphslam::makeGraphSlamEngine(engine_ini.path(), rawlog_path, *nrd, *erd, *gso);
+    auto engine_ptr = gasp::graphslam::makeGraphSlamEngine(engine_ini.path(), rawlog_path, *nrd, *erd, *gso);
     auto& engine = *engine_ptr;
 
     if (optimizer == "CLevMarqGSO")
@@ -281,6 +284,9 @@ int main(int argc, char** argv) {
       std::filesystem::create_directories(report_dir);
       engine.generateReportFiles(report_dir);
     }
+    const std::size_t node_count = graph.nodeCount(), edge_count = graph.edgeCount();
+    engine_ptr.reset();  // its time logger's table goes to stderr too
+    mrpt_log_to_stderr.reset();
     std::vector<gasp::RgbdFrame> map_frames;  // for --simplemap and --cloud: nodes with a converted scan
     std::vector<gasp::Isometry3> map_poses;
     for (std::size_t i = 0; i < nodes.size() && keep_depth; ++i) {
@@ -296,8 +302,8 @@ int main(int argc, char** argv) {
     std::printf("rawlog_entries: %zu\n", steps);
     std::printf("scans: %zu\n", scans);
     std::printf("deciders: %s, %s, %s\n", node_reg.c_str(), edge_reg.c_str(), optimizer.c_str());
-    std::printf("nodes: %zu\n", graph.nodeCount());
-    std::printf("edges: %zu\n", graph.edgeCount());
+    std::printf("nodes: %zu\n", node_count);
+    std::printf("edges: %zu\n", edge_count);
     if (gasp_nrd) {
       std::printf("break_edges: %zu\n", gasp_nrd->breakEdges());
       if (gasp_nrd->skippedScans() > 0) {

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -373,6 +374,20 @@ TEST(GaspGraphSlamProgram, FindsImagesStoredBesideTheRawlog) {
   EXPECT_TRUE(contains(gap.output, "\nskipped_scans: 1\n")) << gap.output;
   EXPECT_TRUE(contains(gap.output, "warning: 1 scans could not be converted")) << gap.output;
   EXPECT_TRUE(std::filesystem::exists(out + "/t.txt"));
+}
+
+TEST(GaspGraphSlamProgram, StandardOutputHoldsOnlyItsOwnLines) {
+  // MRPT's engine and deciders log to stdout ("[time|INFO |CGraphSlamEngine] ...", the time
+  // logger's table): sent to stderr, so stdout is the program's "key: value" lines alone.
+  const std::string out = gasp::test::scratchDir();
+  const auto run = runProgram("gasp-graphslam", "--rawlog " + simulatedRawlog(out), "/dev/null");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  std::istringstream lines(run.output);
+  std::size_t n = 0;
+  for (std::string line; std::getline(lines, line); ++n)
+    EXPECT_TRUE(line.find(": ") != std::string::npos && line[0] != '[' && line[0] != ' ' && line[0] != '-') << line;
+  EXPECT_GE(n, 6u) << run.output;
+  EXPECT_TRUE(contains(run.output, "\nnodes: ")) << run.output;
 }
 
 TEST(GaspGraphSlamProgram, SaysWhenTrackingWasLost) {

@@ -17,8 +17,9 @@ struct ProgramRun {
   std::string output;  ///< stdout and stderr
 };
 
-inline ProgramRun runProgram(const std::string& program, const std::string& args) {
-  const std::string cmd = std::string(GASP_BIN_DIR) + "/" + program + " " + args + " 2>&1";
+/// Runs the program; `stderr_to` is where its stderr goes ("&1": into `output` with stdout).
+inline ProgramRun runProgram(const std::string& program, const std::string& args, const std::string& stderr_to = "&1") {
+  const std::string cmd = std::string(GASP_BIN_DIR) + "/" + program + " " + args + " 2>" + stderr_to;
   std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
   if (!pipe) return {-1, "cannot start " + cmd};
   std::string out;

@@ -40,6 +40,22 @@ class StdinFromDevNull {
 
 }  // namespace
 
+StdoutToStderr::StdoutToStderr() {
+  std::cout.flush();
+  std::fflush(stdout);
+  saved_ = ::dup(1);
+  if (saved_ >= 0) ::dup2(2, 1);
+}
+
+StdoutToStderr::~StdoutToStderr() {
+  std::cout.flush();
+  std::fflush(stdout);
+  if (saved_ >= 0) {
+    ::dup2(saved_, 1);
+    ::close(saved_);
+  }
+}
+
 std::unique_ptr<GraphSlamEngine> makeGraphSlamEngine(
     const std::string& ini, const std::string& rawlog,
     mrpt::graphslam::deciders::CNodeRegistrationDecider<Graph3D>& node_registration,

@@ -21,6 +21,21 @@ using GraphSlamEngine = mrpt::graphslam::CGraphSlamEngine<Graph3D>;
 /// untested. This function gives that pause /dev/null as its standard input, so it returns at
 /// once whatever the process's standard input is. Throws what the constructor throws (e.g. for
 /// an invalid key in a section).
+/// Standard output goes to standard error while it lives (flushed on both sides). MRPT's engine,
+/// deciders and optimisers log to standard output (class messages, warnings, the time logger's
+/// table when the engine is destroyed); a program whose standard output is its result holds one
+/// of these from before the deciders are made until the engine is gone.
+class StdoutToStderr {
+ public:
+  StdoutToStderr();
+  ~StdoutToStderr();
+  StdoutToStderr(const StdoutToStderr&) = delete;
+  StdoutToStderr& operator=(const StdoutToStderr&) = delete;
+
+ private:
+  int saved_ = -1;
+};
+
 std::unique_ptr<GraphSlamEngine> makeGraphSlamEngine(
     const std::string& ini, const std::string& rawlog,
     mrpt::graphslam::deciders::CNodeRegistrationDecider<Graph3D>& node_registration,
