@@ -154,6 +154,14 @@ inline std::vector<std::string> tumFolderInputs(const std::string& dir) {
   return files;
 }
 
+/// `--intrinsics` as an input file for outputPathProblem(): none when it is empty or a preset
+/// name such as fr1 (a file of that name is read only where it is not a preset).
+inline std::vector<std::string> intrinsicsFileInput(const std::string& intrinsics) {
+  std::error_code ec;
+  if (intrinsics.empty() || !std::filesystem::is_regular_file(intrinsics, ec)) return {};
+  return {intrinsics};
+}
+
 /// The output files can be written, checked before a long run rather than after it. Returns ""
 /// or the first problem, naming the option:
 /// - the path is a folder ("--graph 'out': is a folder, not a file");

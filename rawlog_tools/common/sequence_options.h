@@ -43,8 +43,7 @@ inline std::vector<std::string> sequenceInputs(const DepthSequenceOptions& input
   std::vector<std::string> files = tumFolderInputs(input.tum_dir);
   for (const std::string& f : {input.rawlog_path, gt_path})
     if (!f.empty()) files.push_back(f);
-  std::error_code ec;  // --intrinsics is a file only where it is not a preset name such as fr1
-  if (!input.intrinsics.empty() && std::filesystem::is_regular_file(input.intrinsics, ec)) files.push_back(input.intrinsics);
+  for (const std::string& f : intrinsicsFileInput(input.intrinsics)) files.push_back(f);
   return files;
 }
 

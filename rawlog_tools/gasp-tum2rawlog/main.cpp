@@ -3,7 +3,6 @@
 #include <CLI/CLI.hpp>
 
 #include <exception>
-#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -39,8 +38,7 @@ int main(int argc, char** argv) {
 
   try {
     std::vector<std::string> inputs = gasp::tools::tumFolderInputs(tum_dir);
-    std::error_code ec;  // --intrinsics is a file only where it is not a preset name
-    if (!intrinsics.empty() && std::filesystem::is_regular_file(intrinsics, ec)) inputs.push_back(intrinsics);
+    for (const std::string& f : gasp::tools::intrinsicsFileInput(intrinsics)) inputs.push_back(f);
     if (const std::string problem = gasp::tools::outputPathProblem(
             {{"OUT", out_rawlog}, {"OUT's ground truth", gasp::groundTruthPathForRawlog(out_rawlog)}}, inputs);
         !problem.empty())

@@ -10,24 +10,35 @@ namespace gasp::graphslam {
 
 namespace {
 
+/// Points `fd` at `target` (both flushed first); returns a copy of the old `fd` for restoreFd(),
+/// or -1 when it could not be saved (then nothing changes).
+int redirectFd(int fd, int target) {
+  std::cout.flush();
+  std::fflush(stdout);
+  const int saved = ::dup(fd);
+  if (saved >= 0) ::dup2(target, fd);
+  return saved;
+}
+
+void restoreFd(int fd, int saved) {
+  std::cout.flush();
+  std::fflush(stdout);
+  if (saved < 0) return;
+  ::dup2(saved, fd);
+  ::close(saved);
+}
+
 /// Standard input (fd 0) from /dev/null while it lives; restored after.
 class StdinFromDevNull {
  public:
   StdinFromDevNull() {
-    std::cout.flush();
-    std::fflush(stdout);
-    saved_ = ::dup(0);
     const int null_fd = ::open("/dev/null", O_RDONLY);
-    if (null_fd >= 0) {
-      ::dup2(null_fd, 0);
-      ::close(null_fd);
-    }
+    if (null_fd < 0) return;
+    saved_ = redirectFd(0, null_fd);
+    ::close(null_fd);
   }
   ~StdinFromDevNull() {
-    if (saved_ >= 0) {
-      ::dup2(saved_, 0);
-      ::close(saved_);
-    }
+    restoreFd(0, saved_);
     std::clearerr(stdin);
     std::cin.clear();
   }
@@ -40,21 +51,9 @@ class StdinFromDevNull {
 
 }  // namespace
 
-StdoutToStderr::StdoutToStderr() {
-  std::cout.flush();
-  std::fflush(stdout);
-  saved_ = ::dup(1);
-  if (saved_ >= 0) ::dup2(2, 1);
-}
+StdoutToStderr::StdoutToStderr() : saved_(redirectFd(1, 2)) {}
 
-StdoutToStderr::~StdoutToStderr() {
-  std::cout.flush();
-  std::fflush(stdout);
-  if (saved_ >= 0) {
-    ::dup2(saved_, 1);
-    ::close(saved_);
-  }
-}
+StdoutToStderr::~StdoutToStderr() { restoreFd(1, saved_); }
 
 std::unique_ptr<GraphSlamEngine> makeGraphSlamEngine(
     const std::string& ini, const std::string& rawlog,
