@@ -134,6 +134,10 @@ int main(int argc, char** argv) {
   }
   params.association.match.theta_dev_rad = theta_dev_deg * M_PI / 180.0;
   params.superpixels.target_patch_area_m2 = area_cm2 * 1e-4;
+  // The default picture path is known before the work, so it is checked with --out's rules.
+  if (out_path.empty())
+    out_path = depth_a_path.empty() ? "associations_" + std::to_string(from) + "_" + std::to_string(to) + ".png"
+                                    : "associations.png";
   std::vector<std::string> inputs = gasp::tools::tumFolderInputs(tum_dir);
   for (const std::string& f : {rawlog_path, gt_path, depth_a_path, depth_b_path})
     if (!f.empty()) inputs.push_back(f);
@@ -171,7 +175,6 @@ int main(int argc, char** argv) {
         if (ia && ib) T_b_a_true = gasp::relativePose(gt[*ib].T_world_camera, gt[*ia].T_world_camera);
         else std::printf("ground_truth: none within 0.02 s of the scans' timestamps in %s\n", gt_path.c_str());
       }
-      if (out_path.empty()) out_path = "associations_" + std::to_string(from) + "_" + std::to_string(to) + ".png";
     } else if (!tum_dir.empty()) {
       gasp::TumDataset::Options opt;
       if (!intrinsics_arg.empty()) opt.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg);
@@ -199,7 +202,6 @@ int main(int argc, char** argv) {
       }
       const auto ga = ds.groundTruthOf(from, gt_offset), gb = ds.groundTruthOf(to, gt_offset);
       if (ga && gb) T_b_a_true = gasp::relativePose(*gb, *ga);
-      if (out_path.empty()) out_path = "associations_" + std::to_string(from) + "_" + std::to_string(to) + ".png";
     } else {
       K = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg.empty() ? "ros" : intrinsics_arg);
       if (no_undistort) K.distortion.fill(0.0);
@@ -207,7 +209,6 @@ int main(int argc, char** argv) {
       depth_a = undistortion.applyToDepth(gasp::loadDepth(depth_a_path, depth_scale));
       depth_b = undistortion.applyToDepth(gasp::loadDepth(depth_b_path, depth_scale));
       K = undistortion.pinhole();
-      if (out_path.empty()) out_path = "associations.png";
     }
     // Each view resampled to its pinhole camera where its intrinsics carry lens distortion.
     const auto [va, vb] = K_b && *K_b != K ? std::make_pair(gasp::makeDepthView(depth_a, K, params.superpixels),

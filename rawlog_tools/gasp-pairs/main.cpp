@@ -229,7 +229,12 @@ int main(int argc, char** argv) {
       if (std::find(unique.begin(), unique.end(), m) == unique.end()) unique.push_back(m);
     methods = unique;
   }
-  if (const std::string missing = gasp::tools::outputPathProblem({{"--csv", csv_path}, {"--pairs-csv", pairs_csv_path}}, gasp::tools::tumFolderInputs(tum_dir));
+  // Every output, the pictures included, is checked before the work.
+  std::vector<std::pair<std::string, std::string>> outputs{{"--csv", csv_path}, {"--pairs-csv", pairs_csv_path}};
+  if (!picture_pair.empty())
+    for (const auto& method : methods)
+      if (method != "gicp") outputs.emplace_back("--picture-prefix", picture_prefix + method + "." + picture_format);
+  if (const std::string missing = gasp::tools::outputPathProblem(outputs, gasp::tools::tumFolderInputs(tum_dir));
       !missing.empty()) {
     std::cerr << "error: " << missing << '\n';  // before the benchmark, not after it
     return 1;

@@ -157,6 +157,14 @@ TEST(GaspAssociateProgram, TwoPngsAndExitCodes) {
   EXPECT_EQ(no_folder.exit_code, 1) << no_folder.output;
   EXPECT_NE(no_folder.output.find("does not exist"), std::string::npos) << no_folder.output;
   EXPECT_EQ(no_folder.output.find("patches_a"), std::string::npos) << no_folder.output;
+  // The default picture path (associations.png in the working folder) is checked the same way.
+  const std::string cwd = gasp::test::scratchDir() + "/default_out";
+  std::filesystem::create_directories(cwd + "/associations.png");
+  const ProgramRun default_out = gasp::test::runProgram(
+      "gasp-associate", "--depth-a " + pngs[0] + " --depth-b " + pngs[1] + " --intrinsics fr1", "&1", cwd);
+  EXPECT_EQ(default_out.exit_code, 1) << default_out.output;
+  EXPECT_NE(default_out.output.find("'associations.png': is a folder"), std::string::npos) << default_out.output;
+  EXPECT_EQ(default_out.output.find("patches_a"), std::string::npos) << default_out.output;
   // --area-cm2: larger patches, fewer of them; 0 is a usage error.
   const auto patchesA = [](const std::string& output) {
     const auto pos = output.find("patches_a: ");
@@ -217,6 +225,14 @@ TEST(GaspPairsProgram, TableAndCsvOnARealFolder) {
   EXPECT_EQ(no_folder.exit_code, 1) << no_folder.output;
   EXPECT_NE(no_folder.output.find("does not exist"), std::string::npos) << no_folder.output;
   EXPECT_EQ(no_folder.output.find("pair 1/"), std::string::npos) << no_folder.output;
+  // So are the pictures' paths (one per method that draws).
+  const ProgramRun no_picture_folder =
+      run("gasp-pairs", "--tum " + dir + " --skips 1 --picture 0,1 --picture-prefix /nonexistent-dir/p_");
+  EXPECT_EQ(no_picture_folder.exit_code, 1) << no_picture_folder.output;
+  EXPECT_NE(no_picture_folder.output.find("--picture-prefix '/nonexistent-dir/p_gasp.png': the folder"),
+            std::string::npos)
+      << no_picture_folder.output;
+  EXPECT_EQ(no_picture_folder.output.find("pair 1/"), std::string::npos) << no_picture_folder.output;
 }
 
 // The dense rounds' line search: its two pairs-CSV columns, and the flag that turns it off.
