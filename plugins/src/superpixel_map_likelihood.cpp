@@ -5,13 +5,14 @@
 // Only that last step depends on the pose. A particle filter asks for the same observation at
 // every particle's pose, so the segmentation and the associations are kept for the last
 // observation (LikelihoodCache) and each further pose costs a loop over the associations.
-#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/exceptions.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
 #include <algorithm>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -30,35 +31,54 @@ namespace {
 /// Cost of an observation patch without a consistent partner: 3 sigma.
 constexpr double kOutlierCost = 9.0;
 
-/// A hash of an image's pixels (rows of any step).
-std::size_t pixelHash(const cv::Mat& image) {
-  std::size_t h = std::hash<int>()(image.type()) ^ (static_cast<std::size_t>(image.rows) << 20) ^
-                  static_cast<std::size_t>(image.cols);
-  const std::size_t row_bytes = static_cast<std::size_t>(image.cols) * image.elemSize();
-  for (int r = 0; r < image.rows; ++r)
-    h = h * 1099511628211ULL ^ std::hash<std::string_view>()(std::string_view(image.ptr<char>(r), row_bytes));
-  return h;
+/// A hash of a range image's raw values (contiguous storage), with its size.
+std::size_t rangeImageHash(const mrpt::math::CMatrix_u16& range) {
+  const std::size_t h = (static_cast<std::size_t>(range.rows()) << 20) ^ static_cast<std::size_t>(range.cols());
+  const std::string_view bytes(reinterpret_cast<const char*>(range.data()),
+                               static_cast<std::size_t>(range.size()) * sizeof(std::uint16_t));
+  return h * 1099511628211ULL ^ std::hash<std::string_view>()(bytes);
 }
 
-/// The options the cached part depends on, as ini text (segmentation and association keys).
-std::string optionsText(const SuperpixelParams& superpixels, const PairParams& matching) {
-  mrpt::config::CConfigFileMemory memory;
-  writeSuperpixelParams(superpixels, memory, "s");
-  writePairParams(matching, memory, "m");
+/// A write-only CConfigFileBase that appends every key to a string: the options' text without
+/// the cost of an ini document (the options are compared on every call).
+class OptionsText : public mrpt::config::CConfigFileBase {
+ public:
   std::string text;
-  memory.getContent(text);
-  return text;
+  void writeString(const std::string& section, const std::string& name, const std::string& str) override {
+    text.append(section).push_back('\x1f');
+    text.append(name).push_back('\x1f');
+    text.append(str).push_back('\n');
+  }
+  std::string readString(const std::string&, const std::string&, const std::string& default_str,
+                         bool fail_if_not_found) const override {
+    ASSERT_(!fail_if_not_found);
+    return default_str;
+  }
+  void getAllSections(std::vector<std::string>&) const override {}
+  void getAllKeys(const std::string&, std::vector<std::string>&) const override {}
+  void clear() override { text.clear(); }
+};
+
+/// The options the cached part depends on, as text (segmentation and association keys).
+std::string optionsText(const SuperpixelParams& superpixels, const PairParams& matching) {
+  OptionsText sink;
+  writeSuperpixelParams(superpixels, sink, "s");
+  writePairParams(matching, sink, "m");
+  return std::move(sink.text);
 }
 
 }  // namespace
 
 /// What the likelihood of one observation needs that does not depend on the pose.
 struct CSuperpixelMap::LikelihoodCache::Entry {
-  // The key: the observation (converted frame) and the map's content and options.
-  std::size_t depth_hash = 0;
-  CameraIntrinsics intrinsics;
-  Isometry3 T_robot_camera = Isometry3::Identity();
-  double timestamp = 0.0;
+  // The key: the observation as stored (raw range image, units, camera, sensor pose, time,
+  // label) and the map's content and options. Nothing of it needs the scan converted.
+  std::size_t range_hash = 0;
+  float range_units = 0.0f;
+  bool range_is_depth = true;
+  mrpt::img::TCamera camera;
+  mrpt::poses::CPose3D sensor_pose;
+  mrpt::Clock::time_point timestamp;
   std::string sensor_label;
   std::uint64_t map_version = 0;
   std::string options;
@@ -70,13 +90,14 @@ struct CSuperpixelMap::LikelihoodCache::Entry {
     Eigen::Vector3d map_centroid = Eigen::Vector3d::Zero();     ///< partner's centroid, map frame
     Eigen::Vector3d map_normal = Eigen::Vector3d::UnitZ();      ///< partner's normal, map frame
   };
+  Isometry3 T_robot_camera = Isometry3::Identity();  ///< the depth camera's pose on the robot
   std::size_t seen_patches = 0;
   std::vector<Pair> pairs;
 
   bool sameKey(const Entry& o) const {
-    return depth_hash == o.depth_hash && intrinsics == o.intrinsics && T_robot_camera.isApprox(o.T_robot_camera, 0.0) &&
-           timestamp == o.timestamp && sensor_label == o.sensor_label && map_version == o.map_version &&
-           options == o.options;
+    return range_hash == o.range_hash && range_units == o.range_units && range_is_depth == o.range_is_depth &&
+           camera == o.camera && sensor_pose == o.sensor_pose && timestamp == o.timestamp &&
+           sensor_label == o.sensor_label && map_version == o.map_version && options == o.options;
   }
 };
 
@@ -86,18 +107,25 @@ bool CSuperpixelMap::internal_canComputeObservationLikelihood(const mrpt::obs::C
 
 std::shared_ptr<const CSuperpixelMap::LikelihoodCache::Entry> CSuperpixelMap::likelihoodEntry(
     const mrpt::obs::CObservation3DRangeScan& scan) const {
-  RgbdFrame frame;
-  try {
-    frame = frameFromObservation(scan, "CObservation3DRangeScan '" + scan.sensorLabel + "'");
-  } catch (const Error& e) {
-    THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());
-  }
+  // A scan whose range image is not in memory yet (stored externally) is converted first, which
+  // loads and checks it; any other scan is converted only when the cache misses.
+  std::optional<RgbdFrame> frame;
+  const auto convert = [&] {
+    try {
+      frame = frameFromObservation(scan, "CObservation3DRangeScan '" + scan.sensorLabel + "'");
+    } catch (const Error& e) {
+      THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());
+    }
+  };
+  if (!scan.hasRangeImage || scan.rangeImage.size() == 0) convert();
   auto entry = std::make_shared<LikelihoodCache::Entry>();
-  entry->depth_hash = pixelHash(frame.depth_m);
-  entry->intrinsics = frame.depth_intrinsics;
-  entry->T_robot_camera = frame.T_robot_camera;
-  entry->timestamp = frame.timestamp;
-  entry->sensor_label = frame.sensor_label;
+  entry->range_hash = rangeImageHash(scan.rangeImage);
+  entry->range_units = scan.rangeUnits;
+  entry->range_is_depth = scan.range_is_depth;
+  entry->camera = scan.cameraParams;
+  entry->sensor_pose = scan.sensorPose;
+  entry->timestamp = scan.timestamp;
+  entry->sensor_label = scan.sensorLabel;
   entry->map_version = content_version_;
   entry->options = optionsText(creationOptions.superpixels, likelihoodOptions.matching);
   {
@@ -108,11 +136,13 @@ std::shared_ptr<const CSuperpixelMap::LikelihoodCache::Entry> CSuperpixelMap::li
     }
   }
 
+  if (!frame) convert();
+  entry->T_robot_camera = frame->T_robot_camera;
   // Segmented in the robot frame (T_map_robot = identity): T_map_camera is then T_robot_camera.
   SuperpixelMapView seen;
   try {
-    frame.rgb.release();  // colours are not needed here
-    seen = makeMapView(frame, Isometry3::Identity(), creationOptions.superpixels);
+    frame->rgb.release();  // colours are not needed here
+    seen = makeMapView(*frame, Isometry3::Identity(), creationOptions.superpixels);
   } catch (const Error& e) {
     THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());
   }

@@ -409,6 +409,43 @@ TEST(SuperpixelMap, LikelihoodReusesTheObservationAcrossPosesAndEqualsAFreshMap)
   EXPECT_NE(ll_changed, map.computeObservationLikelihood(*obs, poses[0]));
   EXPECT_EQ(map.likelihoodCacheStats().misses, ++misses);
 
+  // The same pixels read with other units or from another sensor pose on the robot: a miss each.
+  auto rescaled = tumObservation(ds, 4, false, S);
+  rescaled->rangeUnits *= 1.02f;
+  EXPECT_DOUBLE_EQ(map.computeObservationLikelihood(*rescaled, poses[0]),
+                   CSuperpixelMap(map).computeObservationLikelihood(*rescaled, poses[0]));
+  EXPECT_EQ(map.likelihoodCacheStats().misses, ++misses);
+  const double ll_obs = map.computeObservationLikelihood(*obs, poses[0]);  // the cache holds obs again
+  EXPECT_EQ(map.likelihoodCacheStats().misses, ++misses);
+  Isometry3 S2 = S;
+  S2.translation().x() += 0.1;
+  const auto remounted = tumObservation(ds, 4, false, S2);
+  const double ll_remounted = map.computeObservationLikelihood(*remounted, poses[0]);
+  EXPECT_EQ(map.likelihoodCacheStats().misses, ++misses);
+  EXPECT_DOUBLE_EQ(ll_remounted, CSuperpixelMap(map).computeObservationLikelihood(*remounted, poses[0]));
+  EXPECT_NE(ll_remounted, ll_obs);
+
+  // A range image stored in an external file (not in memory until the scan is loaded): the
+  // same answer as the scan in memory, and a further pose is a hit.
+  const std::string external_dir = gasp::test::scratchDir() + "/likelihood_external";
+  std::filesystem::create_directories(external_dir);
+  auto external = tumObservation(ds, 4, false, S);
+  external->rangeImage_convertToExternalStorage(external_dir + "/range_4.bin", external_dir + "/");  // absolute: no lazy-load base
+  ASSERT_TRUE(external->rangeImage_isExternallyStored());
+  external->unload();
+  ASSERT_EQ(external->rangeImage.size(), 0) << "the test needs the range image out of memory";
+  EXPECT_DOUBLE_EQ(map.computeObservationLikelihood(*external, poses[0]), ll_obs);
+  EXPECT_EQ(map.likelihoodCacheStats().misses, ++misses);
+  const auto hits = map.likelihoodCacheStats().hits;
+  EXPECT_DOUBLE_EQ(map.computeObservationLikelihood(*external, poses[1]),
+                   CSuperpixelMap(map).computeObservationLikelihood(*obs, poses[1]));
+  EXPECT_EQ(map.likelihoodCacheStats().hits, hits + 1);
+
+  // Segmentation options: a miss.
+  map.creationOptions.superpixels.target_patch_area_m2 *= 1.5;
+  EXPECT_DOUBLE_EQ(map.computeObservationLikelihood(*obs, poses[0]), CSuperpixelMap(map).computeObservationLikelihood(*obs, poses[0]));
+  EXPECT_EQ(map.likelihoodCacheStats().misses, ++misses);
+
   // Association options: a miss.
   map.likelihoodOptions.matching.association.lambda = 0.3;
   EXPECT_DOUBLE_EQ(map.computeObservationLikelihood(*obs, poses[0]), CSuperpixelMap(map).computeObservationLikelihood(*obs, poses[0]));

@@ -92,8 +92,8 @@ class CSuperpixelMap : public mrpt::maps::CMetricMap {
 
   /// The likelihood keeps the last observation's segmentation and associations and reuses them
   /// while it is asked for the same observation at other poses (a particle filter asks once per
-  /// particle). A hit needs the same depth pixels, camera, sensor pose, timestamp and label, the
-  /// same map content and the same segmentation and association options.
+  /// particle). A hit needs the same raw range image, range units, camera, sensor pose, timestamp
+  /// and label, the same map content and the same segmentation and association options.
   struct LikelihoodCacheStats {
     std::size_t hits = 0;    ///< calls that reused the last observation's associations
     std::size_t misses = 0;  ///< calls that segmented and associated the observation
