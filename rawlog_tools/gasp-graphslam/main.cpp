@@ -36,6 +36,7 @@
 #include "gasp/graphslam/engine.h"
 #include "gasp/graphslam/ini_check.h"
 #include "gasp/graphslam/options_checker.h"
+#include "gasp/graphslam/scan_selection.h"
 #include "gasp/mrpt/keyframe_map.h"
 #include "gasp/rawlog/observation_conversion.h"
 #include "gasp/rawlog/rawlog_entries.h"
@@ -129,8 +130,15 @@ int main(int argc, char** argv) {
   app.add_option("--graph", graph_path, "the graph (MRPT VERTEX3/EDGE3, robot frames)");
   app.add_option("--report-dir", report_dir, "directory for the engine's reports (MRPT's .log files: classes, timings)");
   app.add_option("--gt", gt_path, "ground truth (TUM format) to evaluate the nodes' trajectory against");
-  std::size_t max_scans = 0;
-  app.add_option("--max-scans", max_scans, "stop after this many scans of the deciders' sensor (0 = the whole rawlog)")
+  gasp::graphslam::ScanSelection selection;
+  app.add_option("--first", selection.first,
+                 "first scan used (index among the deciders' sensor's scans; the steps before it still give their odometry)")
+      ->capture_default_str()
+      ->check(gasp::tools::atLeast(0));
+  app.add_option("--every", selection.every, "use every N-th scan from --first on (a wider baseline between scans)")
+      ->capture_default_str()
+      ->check(gasp::tools::atLeast(1));
+  app.add_option("--max-scans", selection.max_scans, "stop after this many used scans (0 = the whole rawlog)")
       ->capture_default_str()
       ->check(gasp::tools::atLeast(0));
   gasp::tools::addMapOutputOptions(app, map_output, "nodes");
@@ -202,7 +210,8 @@ int main(int argc, char** argv) {
     // Images stored outside the rawlog (<rawlog>_Images/) are found as MRPT's tools find them.
     mrpt::io::setLazyLoadPathBase(gasp::findRawlogImagesDirectory(rawlog_path));
     gasp::RawlogEntries entries(rawlog_path);  // a truncated or corrupt file is an error, not an early end
-    std::size_t steps = 0, scans = 0;
+    std::size_t steps = 0, scans = 0, seen_scans = 0;  // scans: used; seen_scans: read
+    gasp::graphslam::SkippedMotion skipped_motion;     // odometry of the steps left out
     // The scans the deciders use (their sensor_label; GASP's node decider's first): the nodes'
     // scans for the map are found by the same rule.
     const std::string sensor_label = gasp_nrd ? gasp_nrd->sensorLabel() : (gasp_erd ? gasp_erd->sensorLabel() : "");
@@ -212,15 +221,22 @@ int main(int argc, char** argv) {
     // GASP's node decider: the scan of each keyframe, in node order (the root's is known a step
     // before the root enters the graph, with the second node).
     std::vector<std::optional<gasp::RgbdFrame>> keyframe_depth;
-    while (max_scans == 0 || scans < max_scans) {
+    while (!selection.done(scans)) {
       auto next_entry = entries.next();
       if (!next_entry) break;
       auto [action, observations, observation] = *next_entry;
       std::size_t entry = entries.objectsRead();
+      const auto scan = gasp::graphslam::depthScanOf(observations, observation, sensor_label);
+      if (scan && !selection.uses(seen_scans++)) {
+        // A scan left out (--first, --every): its step is not given to the engine. Format #1:
+        // the step's motion goes with the next step that is (its other observations are lost).
+        if (observations) skipped_motion.add(action);
+        continue;
+      }
+      if (observations) action = skipped_motion.prepend(action);
       // Format #1 with an empty action collection (GASP's rawlogs): the engine reads the first
       // action of every such step, so it gets one with no motion.
       if (observations && (!action || action->size() == 0)) action = gasp::graphslam::noMotionAction();
-      const auto scan = gasp::graphslam::depthScanOf(observations, observation, sensor_label);
       if (scan) ++scans;
       if (scan && !first_scan) first_scan = scan;
       engine._execGraphSlamStep(action, observations, observation, entry);
@@ -247,8 +263,12 @@ int main(int argc, char** argv) {
       if (steps % 100 == 0)
         std::fprintf(stderr, "entry %zu: %zu nodes, %zu edges\n", entries.objectsRead(), n, engine.getGraph().edgeCount());
     }
-    if (scans == 0)
+    if (seen_scans == 0)
       throw gasp::Error(rawlog_path + ": no CObservation3DRangeScan in the rawlog" +
+                        (sensor_label.empty() ? std::string() : " with sensorLabel '" + sensor_label + "'"));
+    if (scans == 0)
+      throw gasp::Error(rawlog_path + ": --first " + std::to_string(selection.first) + " is beyond its " +
+                        std::to_string(seen_scans) + " scans" +
                         (sensor_label.empty() ? std::string() : " with sensorLabel '" + sensor_label + "'"));
 
     if (gasp_gso) gasp_gso->optimizeNow();
@@ -301,6 +321,7 @@ int main(int argc, char** argv) {
 
     std::printf("rawlog_entries: %zu\n", steps);
     std::printf("scans: %zu\n", scans);
+    if (seen_scans > scans) std::printf("scans_not_used: %zu (--first, --every, --max-scans)\n", seen_scans - scans);
     std::printf("deciders: %s, %s, %s\n", node_reg.c_str(), edge_reg.c_str(), optimizer.c_str());
     std::printf("nodes: %zu\n", node_count);
     std::printf("edges: %zu\n", edge_count);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CActionRobotMovement3D.h>
 #include <mrpt/obs/CSensoryFrame.h>
 
 #include <unistd.h>
@@ -24,6 +25,7 @@
 #include "gasp/graphslam/engine.h"
 #include "gasp/graphslam/ini_check.h"
 #include "gasp/graphslam/options_checker.h"
+#include "gasp/graphslam/scan_selection.h"
 #include "gasp/rawlog/observation_conversion.h"
 #include "gasp_test_data.h"
 #include "loop_sequence.h"
@@ -373,4 +375,53 @@ TEST(GraphTypes, BreakEdgesAndDepthScansAreTold) {
   EXPECT_EQ(gasp::graphslam::depthScanOf(sf, nullptr, "OTHER"), nullptr);
   EXPECT_EQ(gasp::graphslam::depthScanOf(nullptr, scan, ""), scan);
   EXPECT_EQ(gasp::graphslam::depthScanOf(nullptr, nullptr, ""), nullptr);
+}
+
+TEST(ScanSelection, UsesFirstEveryAndMax) {
+  const gasp::graphslam::ScanSelection all;
+  for (std::size_t k = 0; k < 5; ++k) EXPECT_TRUE(all.uses(k));
+  EXPECT_FALSE(all.done(1000));
+  const gasp::graphslam::ScanSelection some{2, 3, 2};
+  std::vector<std::size_t> used;
+  for (std::size_t k = 0; k < 12; ++k)
+    if (some.uses(k)) used.push_back(k);
+  EXPECT_EQ(used, (std::vector<std::size_t>{2, 5, 8, 11}));
+  EXPECT_FALSE(some.done(1));
+  EXPECT_TRUE(some.done(2));
+}
+
+TEST(SkippedMotion, ComposesTheLeftOutStepsWithTheNextOne) {
+  using mrpt::poses::CPose3D;
+  const auto actionsOf = [](const CPose3D& move, double sigma, mrpt::Clock::time_point t) {
+    auto actions = std::make_shared<mrpt::obs::CActionCollection>();
+    mrpt::obs::CActionRobotMovement3D a;
+    a.poseChange.mean = move;
+    a.poseChange.cov.setIdentity();
+    a.poseChange.cov *= sigma * sigma;
+    a.timestamp = t;
+    actions->insert(a);
+    return actions;
+  };
+  const CPose3D m1(0.1, 0, 0, 0.3, 0, 0), m2(0.2, 0.05, 0, -0.1, 0.02, 0), m3(0, 0.1, 0.01, 0.2, 0, 0.05);
+  const auto t3 = mrpt::Clock::fromDouble(3.0);
+  gasp::graphslam::SkippedMotion held;
+  EXPECT_TRUE(held.empty());
+  const auto as_is = actionsOf(m1, 0.01, t3);
+  EXPECT_EQ(held.prepend(as_is), as_is);  // nothing held: the step's own actions
+  held.add(std::make_shared<mrpt::obs::CActionCollection>());  // no movement: nothing
+  held.add(nullptr);
+  EXPECT_TRUE(held.empty());
+  held.add(actionsOf(m1, 0.01, mrpt::Clock::fromDouble(1.0)));
+  held.add(actionsOf(m2, 0.01, mrpt::Clock::fromDouble(2.0)));
+  EXPECT_FALSE(held.empty());
+  const auto merged = held.prepend(actionsOf(m3, 0.01, t3));
+  EXPECT_TRUE(held.empty());
+  ASSERT_EQ(merged->size(), 1u);
+  EXPECT_EQ(merged->get(0)->timestamp, t3);
+  mrpt::poses::CPose3DPDFGaussian move;
+  ASSERT_TRUE(merged->getFirstMovementEstimation(move));
+  const CPose3D expected = m1 + m2 + m3;
+  EXPECT_NEAR((move.mean.asVectorVal() - expected.asVectorVal()).norm(), 0.0, 1e-12);
+  // Three steps' uncertainty: more than one step's along every axis.
+  for (int i = 0; i < 6; ++i) EXPECT_GT(move.cov(i, i), 1.5 * 0.01 * 0.01) << i;
 }

@@ -71,6 +71,48 @@ void expectTheMapHoldsEachNodesScan(const std::string& out, std::size_t nodes) {
   }
 }
 
+/// OUT/odometry.rawlog: format #1, the first 16 scans of simulatedRawlog(OUT, 1), each preceded
+/// by a CActionRobotMovement3D with the simulator's true robot motion since the previous scan
+/// (none before the first); its ground truth is OUT/sim_groundtruth.txt.
+void writeOdometryRawlog(const std::string& out) {
+  mrpt::obs::CRawlog plain, odometry;
+  ASSERT_TRUE(plain.loadFromRawLogFile(simulatedRawlog(out, 1, 16)));
+  const auto truth = gasp::readTumTrajectory(out + "/sim_groundtruth.txt");
+  ASSERT_FALSE(truth.empty());
+  const auto T_world_camera_at = [&](double t) {
+    for (const auto& p : truth)
+      if (std::abs(p.timestamp - t) < 1e-4) return std::optional<gasp::Isometry3>(p.T_world_camera);
+    return std::optional<gasp::Isometry3>();
+  };
+  std::optional<gasp::Isometry3> previous;  // T_world_robot of the previous scan
+  int moves = 0;
+  for (std::size_t i = 0; i + 1 < plain.size(); i += 2) {
+    ASSERT_EQ(plain.getType(i), mrpt::obs::CRawlog::etActionCollection) << i;
+    const auto sf = plain.getAsObservations(i + 1);
+    const auto scan = sf->getObservationByClass<mrpt::obs::CObservation3DRangeScan>();
+    ASSERT_TRUE(scan) << i;
+    const auto T_world_camera = T_world_camera_at(mrpt::Clock::toDouble(scan->timestamp));
+    ASSERT_TRUE(T_world_camera) << i;
+    // The optical camera's mounting (sensorPose and MRPT's fixed turn to the optical axes).
+    const gasp::Isometry3 T_robot_camera = gasp::frameFromObservation(*scan, "odometry scan").T_robot_camera;
+    const gasp::Isometry3 T_world_robot = *T_world_camera * T_robot_camera.inverse();
+    mrpt::obs::CActionCollection actions;
+    if (previous) {
+      mrpt::obs::CActionRobotMovement3D move;
+      move.poseChange.mean = gasp::toCPose3D(previous->inverse() * T_world_robot);
+      move.poseChange.cov.setIdentity();
+      move.poseChange.cov *= 1e-6;
+      actions.insert(move);
+      ++moves;
+    }
+    odometry.insert(actions);
+    odometry.insert(*sf);
+    previous = T_world_robot;
+  }
+  ASSERT_EQ(moves, 15);
+  ASSERT_TRUE(odometry.saveToRawLogFile(out + "/odometry.rawlog"));
+}
+
 }  // namespace
 
 TEST(GaspGraphSlamProgram, WritesTheTrajectoryGraphAndReports) {
@@ -225,42 +267,7 @@ TEST(GaspGraphSlamProgram, MapsWithMrptsOdometryNodeDecider) {
   // as CActionRobotMovement3D). The map must hold, for every node, the scan of the step that
   // registered it, at the node's pose.
   const std::string out = gasp::test::scratchDir();
-  mrpt::obs::CRawlog plain, odometry;
-  ASSERT_TRUE(plain.loadFromRawLogFile(simulatedRawlog(out, 1, 16)));
-  const auto truth = gasp::readTumTrajectory(out + "/sim_groundtruth.txt");
-  ASSERT_FALSE(truth.empty());
-  const auto T_world_camera_at = [&](double t) {
-    for (const auto& p : truth)
-      if (std::abs(p.timestamp - t) < 1e-4) return std::optional<gasp::Isometry3>(p.T_world_camera);
-    return std::optional<gasp::Isometry3>();
-  };
-  std::optional<gasp::Isometry3> previous;  // T_world_robot of the previous scan
-  int moves = 0;
-  for (std::size_t i = 0; i + 1 < plain.size(); i += 2) {
-    ASSERT_EQ(plain.getType(i), mrpt::obs::CRawlog::etActionCollection) << i;
-    const auto sf = plain.getAsObservations(i + 1);
-    const auto scan = sf->getObservationByClass<mrpt::obs::CObservation3DRangeScan>();
-    ASSERT_TRUE(scan) << i;
-    const auto T_world_camera = T_world_camera_at(mrpt::Clock::toDouble(scan->timestamp));
-    ASSERT_TRUE(T_world_camera) << i;
-    // The optical camera's mounting (sensorPose and MRPT's fixed turn to the optical axes).
-    const gasp::Isometry3 T_robot_camera = gasp::frameFromObservation(*scan, "odometry scan").T_robot_camera;
-    const gasp::Isometry3 T_world_robot = *T_world_camera * T_robot_camera.inverse();
-    mrpt::obs::CActionCollection actions;
-    if (previous) {
-      mrpt::obs::CActionRobotMovement3D move;
-      move.poseChange.mean = gasp::toCPose3D(previous->inverse() * T_world_robot);
-      move.poseChange.cov.setIdentity();
-      move.poseChange.cov *= 1e-6;
-      actions.insert(move);
-      ++moves;
-    }
-    odometry.insert(actions);
-    odometry.insert(*sf);
-    previous = T_world_robot;
-  }
-  ASSERT_EQ(moves, 15);
-  ASSERT_TRUE(odometry.saveToRawLogFile(out + "/odometry.rawlog"));
+  ASSERT_NO_FATAL_FAILURE(writeOdometryRawlog(out));
   // A node every 5 cm or 5 deg of odometry (MRPT's defaults, 0.5 m / 60 deg, would give one or two).
   std::ofstream(out + "/fixed.ini") << "[NodeRegistrationDeciderParameters]\nregistration_max_distance = 0.05\n"
                                        "registration_max_angle = 5\n";
@@ -349,6 +356,61 @@ TEST(GaspGraphSlamProgram, MaxScansStopsEarly) {
   EXPECT_TRUE(contains(run.output, "\nscans: 5\n")) << run.output;
   EXPECT_LE(printedCount(run.output, "nodes: "), 5u) << run.output;
   EXPECT_EQ(runProgram("gasp-graphslam", "--rawlog " + rawlog + " --max-scans -1").exit_code, 2);
+}
+
+TEST(GaspGraphSlamProgram, FirstAndEveryThinTheScansAndKeepTheOdometry) {
+  const std::string out = gasp::test::scratchDir();
+  const auto truth_times = [&] {
+    std::vector<double> t;
+    for (const auto& p : gasp::readTumTrajectory(out + "/sim_groundtruth.txt")) t.push_back(p.timestamp);
+    return t;
+  };
+  // Index of a node's timestamp among the simulator's frames (the rawlogs hold frames 0-15).
+  const auto frameIndexOf = [](const std::vector<double>& times, double t) {
+    for (std::size_t i = 0; i < times.size(); ++i)
+      if (std::abs(times[i] - t) < 1e-4) return static_cast<int>(i);
+    return -1;
+  };
+  // GASP's deciders, format #2: scans 1, 3, ..., 15 only; every node is one of them.
+  const std::string rawlog = simulatedRawlog(out);
+  const auto run = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --first 1 --every 2 --out " + out + "/traj.txt");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "\nscans: 8\nscans_not_used: 8 ")) << run.output;
+  const auto times = truth_times();
+  const auto traj = gasp::readTumTrajectory(out + "/traj.txt");
+  ASSERT_GE(traj.size(), 2u) << run.output;
+  for (const auto& p : traj) {
+    const int i = frameIndexOf(times, p.timestamp);
+    EXPECT_TRUE(i >= 1 && i % 2 == 1) << p.timestamp << " is frame " << i;
+  }
+
+  // MRPT's odometry node decider, format #1 with the true motion as actions: the motion of the
+  // steps left out reaches the engine with the next step, so the nodes are still where the
+  // simulator put the robot (a dropped motion would put every later node off by it).
+  ASSERT_NO_FATAL_FAILURE(writeOdometryRawlog(out));
+  std::ofstream(out + "/fixed.ini") << "[NodeRegistrationDeciderParameters]\nregistration_max_distance = 0.05\n"
+                                       "registration_max_angle = 5\n";
+  const auto odo = runProgram("gasp-graphslam", "--rawlog " + out + "/odometry.rawlog --ini " + out +
+                                                    "/fixed.ini --node-reg CFixedIntervalsNRD --every 3 --out " + out +
+                                                    "/traj3.txt --gt " + out + "/sim_groundtruth.txt");
+  ASSERT_EQ(odo.exit_code, 0) << odo.output;
+  EXPECT_TRUE(contains(odo.output, "\nscans: 6\nscans_not_used: 10 ")) << odo.output;
+  const auto traj3 = gasp::readTumTrajectory(out + "/traj3.txt");
+  ASSERT_GE(traj3.size(), 3u) << odo.output;
+  for (const auto& p : traj3) {
+    const int i = frameIndexOf(times, p.timestamp);
+    EXPECT_TRUE(i >= 0 && i % 3 == 0) << p.timestamp << " is frame " << i;
+  }
+  const auto ate = odo.output.find("\nate_rmse_m: ");
+  ASSERT_NE(ate, std::string::npos) << odo.output;
+  EXPECT_LT(std::stod(odo.output.substr(ate + 13)), 0.01) << odo.output;
+
+  // Bad selections: a usage error, or an error that says how many scans there are.
+  EXPECT_EQ(runProgram("gasp-graphslam", "--rawlog " + rawlog + " --every 0").exit_code, 2);
+  EXPECT_EQ(runProgram("gasp-graphslam", "--rawlog " + rawlog + " --first -1").exit_code, 2);
+  const auto beyond = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --first 16");
+  EXPECT_EQ(beyond.exit_code, 1) << beyond.output;
+  EXPECT_TRUE(contains(beyond.output, "--first 16 is beyond its 16 scans")) << beyond.output;
 }
 
 TEST(GaspGraphSlamProgram, FindsImagesStoredBesideTheRawlog) {
