@@ -10,6 +10,7 @@
 #include <mrpt/obs/CObservation3DRangeScan.h>
 
 #include <algorithm>
+#include <array>
 #include <functional>
 #include <mutex>
 #include <optional>
@@ -77,7 +78,7 @@ struct CSuperpixelMap::LikelihoodCache::Entry {
   float range_units = 0.0f;
   bool range_is_depth = true;
   mrpt::img::TCamera camera;
-  mrpt::poses::CPose3D sensor_pose;
+  std::array<double, 16> sensor_pose{};  ///< its homogeneous matrix, compared exactly
   mrpt::Clock::time_point timestamp;
   std::string sensor_label;
   std::uint64_t map_version = 0;
@@ -117,13 +118,19 @@ std::shared_ptr<const CSuperpixelMap::LikelihoodCache::Entry> CSuperpixelMap::li
       THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());
     }
   };
+  // MRPT's load() writes the image into the const scan (size first, then the values): calls for
+  // an externally stored scan take turns, so none hashes an image while another loads it.
+  std::unique_lock<std::mutex> load_lock(likelihood_cache_.load_mutex, std::defer_lock);
+  if (scan.rangeImage_isExternallyStored() || scan.intensityImage.isExternallyStored()) load_lock.lock();
   if (!scan.hasRangeImage || scan.rangeImage.size() == 0) convert();
   auto entry = std::make_shared<LikelihoodCache::Entry>();
   entry->range_hash = rangeImageHash(scan.rangeImage);
   entry->range_units = scan.rangeUnits;
   entry->range_is_depth = scan.range_is_depth;
   entry->camera = scan.cameraParams;
-  entry->sensor_pose = scan.sensorPose;
+  const auto sensor_pose = scan.sensorPose.getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>();
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) entry->sensor_pose[static_cast<std::size_t>(4 * r + c)] = sensor_pose(r, c);
   entry->timestamp = scan.timestamp;
   entry->sensor_label = scan.sensorLabel;
   entry->map_version = content_version_;

@@ -440,6 +440,18 @@ TEST(SuperpixelMap, LikelihoodReusesTheObservationAcrossPosesAndEqualsAFreshMap)
   EXPECT_DOUBLE_EQ(map.computeObservationLikelihood(*external, poses[1]),
                    CSuperpixelMap(map).computeObservationLikelihood(*obs, poses[1]));
   EXPECT_EQ(map.likelihoodCacheStats().hits, hits + 1);
+  // Out of memory again and asked from several threads at once: one loads, none reads a half-loaded image.
+  external->unload();
+  std::vector<double> from_threads(4);
+  {
+    std::vector<std::thread> threads;
+    for (std::size_t k = 0; k < from_threads.size(); ++k)
+      threads.emplace_back([&, k] { from_threads[k] = map.computeObservationLikelihood(*external, poses[k]); });
+    for (auto& t : threads) t.join();
+  }
+  for (std::size_t k = 0; k < from_threads.size(); ++k)
+    EXPECT_DOUBLE_EQ(from_threads[k], CSuperpixelMap(map).computeObservationLikelihood(*obs, poses[k])) << k;
+  misses = map.likelihoodCacheStats().misses;
 
   // Segmentation options: a miss.
   map.creationOptions.superpixels.target_patch_area_m2 *= 1.5;

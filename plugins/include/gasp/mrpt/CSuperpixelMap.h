@@ -130,12 +130,14 @@ class CSuperpixelMap : public mrpt::maps::CMetricMap {
 
   /// The last observation's pose-free likelihood data (superpixel_map_likelihood.cpp). Copies
   /// of the map start with an empty cache; it is not serialised. The mutex makes the const
-  /// likelihood safe to call from several threads.
+  /// likelihood safe to call from several threads; `load_mutex` serialises the calls for a scan
+  /// stored in external files (MRPT's load() fills the const observation in place).
   struct LikelihoodCache {
     struct Entry;
     std::shared_ptr<const Entry> entry;
     std::size_t hits = 0, misses = 0;
     std::mutex mutex;
+    std::mutex load_mutex;
     LikelihoodCache() = default;
     LikelihoodCache(const LikelihoodCache&) {}
     LikelihoodCache& operator=(const LikelihoodCache&) {
