@@ -91,6 +91,7 @@ class TemporaryIni {
 struct NodeInfo {
   double timestamp = 0.0;
   gasp::Isometry3 T_robot_camera = gasp::Isometry3::Identity();
+  bool mounted = false;  ///< T_robot_camera is the scan's (it could be converted)
   std::optional<gasp::RgbdFrame> frame;
 };
 
@@ -103,6 +104,7 @@ NodeInfo infoOf(const mrpt::obs::CObservation3DRangeScan::Ptr& scan, bool keep_d
   try {
     gasp::RgbdFrame frame = gasp::frameFromObservation(*scan, "scan");
     info.T_robot_camera = frame.T_robot_camera;
+    info.mounted = true;
     if (keep_depth) {
       frame.rgb.release();  // the map keeps depth only (the raw values as stored, for the simple map)
       info.frame = std::move(frame);
@@ -227,9 +229,12 @@ int main(int argc, char** argv) {
       auto [action, observations, observation] = *next_entry;
       std::size_t entry = entries.objectsRead();
       const auto scan = gasp::graphslam::depthScanOf(observations, observation, sensor_label);
-      if (scan && !selection.uses(seen_scans++)) {
-        // A scan left out (--first, --every): its step is not given to the engine. Format #1:
-        // the step's motion goes with the next step that is (its other observations are lost).
+      // A scan left out (--first, --every): its step is not given to the engine. Format #1: the
+      // step's motion goes with the next given step that has a scan, so that a node an odometry
+      // decider registers on it has its scan; steps without a scan in between are held too
+      // (their other observations are lost).
+      const bool left_out = scan ? !selection.uses(seen_scans++) : observations && !skipped_motion.empty();
+      if (left_out) {
         if (observations) skipped_motion.add(action);
         continue;
       }
@@ -244,7 +249,22 @@ int main(int argc, char** argv) {
       // New nodes: the root takes the first scan, the newest the scan of this step (GASP's node
       // decider tells both exactly, below).
       const std::size_t n = engine.getGraph().nodeCount();
-      while (nodes.size() < n) nodes.push_back(gasp_nrd ? NodeInfo{} : infoOf(nodes.empty() ? first_scan : scan, keep_depth));
+      while (nodes.size() < n) {
+        if (gasp_nrd) {  // told exactly after the run
+          nodes.emplace_back();
+          continue;
+        }
+        const auto& node_scan = nodes.empty() ? first_scan : scan;
+        NodeInfo info = infoOf(node_scan, keep_depth);
+        // A node MRPT's odometry decider registered on a step without the deciders' scan: the
+        // step's time, and the mounting of the node before it.
+        if (!node_scan) {
+          const auto t = gasp::graphslam::stepTimestamp(action, observations, observation);
+          if (t != INVALID_TIMESTAMP) info.timestamp = mrpt::Clock::toDouble(t);
+        }
+        if (!info.mounted && !nodes.empty()) info.T_robot_camera = nodes.back().T_robot_camera;
+        nodes.push_back(std::move(info));
+      }
       while (gasp_nrd && keep_depth && keyframe_depth.size() < gasp_nrd->nodeFrames().size()) {
         // A keyframe is made at its own scan; a deskewed one goes to the map as it was
         // registered (keyframe_map.h).

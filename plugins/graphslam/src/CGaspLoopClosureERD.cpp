@@ -52,19 +52,19 @@ bool CGaspLoopClosureERD::updateState(mrpt::obs::CActionCollection::Ptr /*action
                                       mrpt::obs::CSensoryFrame::Ptr observations,
                                       mrpt::obs::CObservation::Ptr observation) {
   m_just_inserted_lc = false;
-  if (auto scan = depthScanOf(observations, observation, sensor_label_)) {
-    // The root: the first scan with surface patches, as the odometry's origin is (segmented
-    // once, kept until the root is registered).
-    if (!root_ && nodes_.empty()) {
-      Node candidate = nodeOf(scan, nullptr);
-      if (candidate.view && !candidate.view->segmentation.patches.empty()) root_ = std::move(candidate);
-    }
-    last_scan_ = scan;
+  const auto scan = depthScanOf(observations, observation, sensor_label_);
+  // The root: the first scan with surface patches, as the odometry's origin is (segmented once,
+  // kept until the root is registered).
+  if (scan && !root_ && nodes_.empty()) {
+    Node candidate = nodeOf(scan, nullptr);
+    if (candidate.view && !candidate.view->segmentation.patches.empty()) root_ = std::move(candidate);
   }
   const std::size_t n = m_graph->nodeCount();
   if (n <= nodes_.size()) return true;
-  // The root takes its scan; the newest node the scan of this step; any other node added in the
-  // same step has none.
+  // The root takes its scan; the newest node the scan of this step, if it has one (a node an
+  // odometry decider registers on a step without a scan has no view: an earlier scan was taken
+  // elsewhere); any other node added in the same step has none. A node without a converted scan
+  // keeps the previous node's mounting, for the predictions through it.
   while (nodes_.size() < n) {
     const std::size_t id = nodes_.size();
     if (id == 0) {
@@ -73,8 +73,10 @@ bool CGaspLoopClosureERD::updateState(mrpt::obs::CActionCollection::Ptr /*action
       continue;
     }
     std::string error;
-    nodes_.push_back(id + 1 == n ? nodeOf(last_scan_, &error) : Node{});
+    Node node = id + 1 == n ? nodeOf(scan, &error) : Node{};
+    if (!node.view) node.T_robot_camera = nodes_.back().T_robot_camera;
     if (!error.empty()) MRPT_LOG_WARN_STREAM("node " << id << " has no view: " << error);
+    nodes_.push_back(std::move(node));
   }
   if (loop_.enabled && nodes_.back().view) closeLoops(n - 1);
   return true;

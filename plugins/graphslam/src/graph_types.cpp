@@ -25,6 +25,17 @@ mrpt::obs::CObservation3DRangeScan::Ptr depthScanOf(const mrpt::obs::CSensoryFra
   return nullptr;
 }
 
+mrpt::Clock::time_point stepTimestamp(const mrpt::obs::CActionCollection::Ptr& action,
+                                      const mrpt::obs::CSensoryFrame::Ptr& observations,
+                                      const mrpt::obs::CObservation::Ptr& observation) {
+  if (observation) return observation->timestamp;
+  if (action && action->size() > 0 && action->get(0)->timestamp != INVALID_TIMESTAMP) return action->get(0)->timestamp;
+  if (observations)
+    for (const auto& o : *observations)
+      if (o && o->timestamp != INVALID_TIMESTAMP) return o->timestamp;
+  return INVALID_TIMESTAMP;
+}
+
 mrpt::obs::CActionCollection::Ptr noMotionAction() {
   auto actions = std::make_shared<mrpt::obs::CActionCollection>();
   mrpt::obs::CActionRobotMovement3D still;  // zero pose change, INVALID_TIMESTAMP

@@ -83,7 +83,6 @@ class CGaspLoopClosureERD : public mrpt::graphslam::deciders::CEdgeRegistrationD
   LoopClosureParams loop_;
   std::string sensor_label_;
   std::optional<Node> root_;  ///< the root's node until the root is registered
-  mrpt::obs::CObservation3DRangeScan::Ptr last_scan_;
   std::vector<Node> nodes_;
   std::vector<PoseConstraint> closures_;  ///< in the graph, between camera frames
   std::vector<std::size_t> closure_attempt_;  ///< for each closure, its index in attempts_

@@ -21,6 +21,12 @@ mrpt::obs::CObservation3DRangeScan::Ptr depthScanOf(const mrpt::obs::CSensoryFra
                                                     const mrpt::obs::CObservation::Ptr& observation,
                                                     const std::string& sensor_label);
 
+/// The time of an engine step as CGraphSlamEngine reads it: `observation`'s (format #2), else the
+/// first action's, else the first valid one of `observations`' (INVALID_TIMESTAMP when none).
+mrpt::Clock::time_point stepTimestamp(const mrpt::obs::CActionCollection::Ptr& action,
+                                      const mrpt::obs::CSensoryFrame::Ptr& observations,
+                                      const mrpt::obs::CObservation::Ptr& observation);
+
 /// For a sensory frame without an action (rawlog format #1 as GASP's tools write it): one
 /// CActionRobotMovement3D with no motion and no timestamp. CGraphSlamEngine reads the first
 /// action of every format-#1 step (its timestamp, then the sensory frame's; its motion as
