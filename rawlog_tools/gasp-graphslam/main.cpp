@@ -283,13 +283,11 @@ int main(int argc, char** argv) {
       if (steps % 100 == 0)
         std::fprintf(stderr, "entry %zu: %zu nodes, %zu edges\n", entries.objectsRead(), n, engine.getGraph().edgeCount());
     }
-    if (seen_scans == 0)
-      throw gasp::Error(rawlog_path + ": no CObservation3DRangeScan in the rawlog" +
-                        (sensor_label.empty() ? std::string() : " with sensorLabel '" + sensor_label + "'"));
+    const std::string of_sensor = sensor_label.empty() ? std::string() : " with sensorLabel '" + sensor_label + "'";
+    if (seen_scans == 0) throw gasp::Error(rawlog_path + ": no CObservation3DRangeScan in the rawlog" + of_sensor);
     if (scans == 0)
       throw gasp::Error(rawlog_path + ": --first " + std::to_string(selection.first) + " is beyond its " +
-                        std::to_string(seen_scans) + " scans" +
-                        (sensor_label.empty() ? std::string() : " with sensorLabel '" + sensor_label + "'"));
+                        std::to_string(seen_scans) + " scans" + of_sensor);
 
     if (gasp_gso) gasp_gso->optimizeNow();
     if (gasp_erd) gasp_erd->syncWithGraph();  // closures the optimiser removed

@@ -123,6 +123,13 @@ void writeOdometryRawlog(const std::string& out, bool motion_in_steps_without_sc
   ASSERT_TRUE(odometry.saveToRawLogFile(out + "/odometry.rawlog"));
 }
 
+/// OUT/fixed.ini: CFixedIntervalsNRD registers a node every 5 cm or 5 deg of odometry (MRPT's
+/// defaults, 0.5 m / 60 deg, would give one or two nodes on the simulated rawlogs).
+void writeFixedIntervalsIni(const std::string& out) {
+  std::ofstream(out + "/fixed.ini") << "[NodeRegistrationDeciderParameters]\nregistration_max_distance = 0.05\n"
+                                       "registration_max_angle = 5\n";
+}
+
 }  // namespace
 
 TEST(GaspGraphSlamProgram, WritesTheTrajectoryGraphAndReports) {
@@ -278,9 +285,7 @@ TEST(GaspGraphSlamProgram, MapsWithMrptsOdometryNodeDecider) {
   // registered it, at the node's pose.
   const std::string out = gasp::test::scratchDir();
   ASSERT_NO_FATAL_FAILURE(writeOdometryRawlog(out));
-  // A node every 5 cm or 5 deg of odometry (MRPT's defaults, 0.5 m / 60 deg, would give one or two).
-  std::ofstream(out + "/fixed.ini") << "[NodeRegistrationDeciderParameters]\nregistration_max_distance = 0.05\n"
-                                       "registration_max_angle = 5\n";
+  writeFixedIntervalsIni(out);
   const auto run = runProgram("gasp-graphslam", "--rawlog " + out + "/odometry.rawlog --ini " + out +
                                                     "/fixed.ini --node-reg CFixedIntervalsNRD --out " + out +
                                                     "/traj.txt --simplemap " + out + "/map.simplemap --gt " + out +
@@ -398,8 +403,7 @@ TEST(GaspGraphSlamProgram, FirstAndEveryThinTheScansAndKeepTheOdometry) {
   // steps left out reaches the engine with the next step, so the nodes are still where the
   // simulator put the robot (a dropped motion would put every later node off by it).
   ASSERT_NO_FATAL_FAILURE(writeOdometryRawlog(out));
-  std::ofstream(out + "/fixed.ini") << "[NodeRegistrationDeciderParameters]\nregistration_max_distance = 0.05\n"
-                                       "registration_max_angle = 5\n";
+  writeFixedIntervalsIni(out);
   const auto odo = runProgram("gasp-graphslam", "--rawlog " + out + "/odometry.rawlog --ini " + out +
                                                     "/fixed.ini --node-reg CFixedIntervalsNRD --every 3 --out " + out +
                                                     "/traj3.txt --gt " + out + "/sim_groundtruth.txt");
