@@ -289,8 +289,12 @@ int main(int argc, char** argv) {
       throw gasp::Error(rawlog_path + ": --first " + std::to_string(selection.first) + " is beyond its " +
                         std::to_string(seen_scans) + " scans" + of_sensor);
 
-    if (gasp_gso) gasp_gso->optimizeNow();
-    if (gasp_erd) gasp_erd->syncWithGraph();  // closures the optimiser removed
+    // The final optimisation. The loop closer then forgets the closures the optimiser removed;
+    // when that takes relocalisation votes out of the graph with them, optimise again.
+    for (;;) {
+      if (gasp_gso) gasp_gso->optimizeNow();
+      if (!gasp_erd || gasp_erd->syncWithGraph() == 0 || !gasp_gso) break;
+    }
     if (engine.getGraph().nodeCount() == 0)
       throw gasp::Error(rawlog_path + ": no graph: fewer than two nodes were registered (" + std::to_string(scans) +
                         " scans; with CGaspOdometryNRD, fewer than two keyframes)");

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <string>
@@ -258,6 +259,108 @@ TEST(CGaspPoseGraphGSO, RemovesAContradictedClosureAndKeepsAConsistentOne) {
   EXPECT_NEAR(graph.nodes.at(5).x(), 0.5, 1e-6);
   EXPECT_NEAR(graph.nodes.at(0).x(), 0.0, 1e-12);  // the gauge: node 0 fixed
   EXPECT_LT(gso.lastResult().final_chi2, 1e-6);
+}
+
+TEST(CGaspPoseGraphGSO, RemovesAContradictedSecondEdgeBetweenConsecutiveNodesButNotTheFirst) {
+  // Nodes 0.1 m apart along x. Between 2 and 3 the node decider's break edge comes first, then a
+  // relocalisation 0.4 m off; a closure 0 -> 5 agrees with the odometry. Between 3 and 4 the
+  // node decider's edge itself is off: it is no closure, so it stays.
+  Graph3D graph;
+  for (int i = 0; i < 6; ++i) graph.nodes[i] = mrpt::poses::CPose3D(0.1 * i, 0, 0, 0, 0, 0);
+  const auto edge = [](double dx, double information) {
+    mrpt::poses::CPose3DPDFGaussianInf e;
+    e.mean = mrpt::poses::CPose3D(dx, 0, 0, 0, 0, 0);
+    e.cov_inv.setIdentity();
+    e.cov_inv *= information;
+    return e;
+  };
+  for (int i = 0; i < 5; ++i)
+    graph.insertEdge(i, i + 1, edge(i == 3 ? 0.102 : 0.1, i == 2 ? gasp::graphslam::kBreakInformation : 1e4));
+  graph.insertEdge(2, 3, edge(0.5, 1e4));
+  graph.insertEdge(0, 5, edge(0.502, 1e4));
+  EXPECT_FALSE(gasp::graphslam::isClosureEdge(graph, graph.edges.find({3, 4})));
+  EXPECT_TRUE(gasp::graphslam::isClosureEdge(graph, std::prev(graph.edges.equal_range({2, 3}).second)));
+  EXPECT_FALSE(gasp::graphslam::isClosureEdge(graph, graph.edges.equal_range({2, 3}).first));
+  EXPECT_TRUE(gasp::graphslam::isClosureEdge(graph, graph.edges.find({0, 5})));
+  gasp::graphslam::CGaspPoseGraphGSO gso;
+  gso.setGraphPtr(&graph);
+  gso.optimizeNow();
+  EXPECT_EQ(gso.droppedEdges(), 1u);
+  ASSERT_EQ(graph.edges.count({2, 3}), 1u);
+  EXPECT_TRUE(gasp::graphslam::isBreakEdge(graph.edges.find({2, 3})->second));
+  EXPECT_EQ(graph.edges.count({3, 4}), 1u);
+  EXPECT_EQ(graph.edges.count({0, 5}), 1u);
+  EXPECT_EQ(graph.edgeCount(), 6u);
+}
+
+TEST(CGaspPoseGraphGSO, OptimisesAgainWhenAnEdgeIsRemoved) {
+  // A loop closer that takes edges out of the graph (the rest of a relocalisation group) leaves
+  // poses optimised with them: the optimiser runs again at its next step without a new node,
+  // even when a closure was added in the same step.
+  Graph3D graph;
+  for (int i = 0; i < 5; ++i) graph.nodes[i] = mrpt::poses::CPose3D(0.1 * i, 0, 0, 0, 0, 0);
+  mrpt::poses::CPose3DPDFGaussianInf e;
+  e.cov_inv.setIdentity();
+  e.cov_inv *= 1e4;
+  for (int i = 0; i < 4; ++i) {
+    e.mean = mrpt::poses::CPose3D(0.1, 0, 0, 0, 0, 0);
+    graph.insertEdge(i, i + 1, e);
+  }
+  e.mean = mrpt::poses::CPose3D(0.2, 0, 0, 0, 0, 0);
+  graph.insertEdge(0, 2, e);
+  gasp::graphslam::CGaspPoseGraphGSO gso;
+  gso.setGraphPtr(&graph);
+  const auto step = [&] { gso.updateState(nullptr, nullptr, nullptr); };
+  step();  // new nodes: waits
+  step();  // the closure 0 -> 2: optimised
+  EXPECT_EQ(gso.optimisations(), 1u);
+  step();
+  EXPECT_EQ(gso.optimisations(), 1u);  // nothing changed
+  graph.edges.erase(graph.edges.find({0, 2}));
+  e.mean = mrpt::poses::CPose3D(0.3, 0, 0, 0, 0, 0);
+  graph.insertEdge(1, 4, e);  // one out, one in: the count of closures is the same
+  step();
+  EXPECT_EQ(gso.optimisations(), 2u);
+  graph.edges.erase(graph.edges.find({1, 4}));
+  step();
+  EXPECT_EQ(gso.optimisations(), 3u);
+}
+
+TEST(CGaspLoopClosureERD, TakesOutTheOtherVotesOfARelocalisationTheOptimiserCutDown) {
+  // The relocalisation of the test above joins two pieces with two agreeing votes. When an
+  // optimiser removes one, the other alone would be an unchecked join: the loop closer takes it
+  // out of the graph as well, and says why.
+  const std::string dir = gasp::test::scratchDir();
+  const auto s = gasp::test::circleSequence(30, {12, 13, 14});
+  GaspEngine e(writeFile(dir + "/g.ini", kEngineSections));
+  for (std::size_t i = 0; i < s.depth.size(); ++i) e.step(scanOf(s, i));
+  e.gso.optimizeNow();
+  EXPECT_EQ(e.erd.syncWithGraph(), 0u);
+  const auto accepted = [&] {
+    std::size_t n = 0;
+    for (const auto& a : e.erd.attempts()) n += a.accepted && a.relocalisation ? 1 : 0;
+    return n;
+  };
+  const std::size_t votes = accepted(), inserted = e.erd.insertedEdges(), edges = e.graph().edgeCount();
+  ASSERT_GE(votes, 2u);
+  std::size_t cut = 0;
+  while (!e.erd.attempts()[cut].accepted || !e.erd.attempts()[cut].relocalisation) ++cut;
+  const auto& vote = e.erd.attempts()[cut];
+  // The vote's edge is the last between its nodes (a vote between consecutive nodes follows the
+  // node decider's break edge). The engine's graph stands in for an optimiser's here.
+  auto& graph = const_cast<Graph3D&>(e.graph());
+  graph.edges.erase(std::prev(graph.edges.equal_range({vote.from, vote.to}).second));
+  const std::size_t taken_out = e.erd.syncWithGraph();
+  EXPECT_EQ(taken_out, 1u);  // its one partner (relocalisation_agreeing = 2)
+  EXPECT_EQ(accepted(), votes - 1 - taken_out);
+  EXPECT_EQ(e.erd.insertedEdges(), inserted - 1 - taken_out);
+  EXPECT_EQ(e.graph().edgeCount(), edges - 1 - taken_out);
+  EXPECT_EQ(e.erd.attempts()[cut].reason, "removed from the graph by the optimiser");
+  std::size_t with_it = 0;
+  for (const auto& a : e.erd.attempts())
+    with_it += a.reason.find("a vote it joined two pieces with was removed") != std::string::npos ? 1 : 0;
+  EXPECT_EQ(with_it, taken_out);
+  EXPECT_EQ(e.erd.syncWithGraph(), 0u);
 }
 
 TEST(GaspOptionsChecker, RegistersGaspsClassesBesideMrptsFor3DGraphs) {

@@ -4,6 +4,7 @@
 #include <mrpt/system/filesystem.h>
 
 #include <iostream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -52,6 +53,7 @@ bool CGaspLoopClosureERD::updateState(mrpt::obs::CActionCollection::Ptr /*action
                                       mrpt::obs::CSensoryFrame::Ptr observations,
                                       mrpt::obs::CObservation::Ptr observation) {
   m_just_inserted_lc = false;
+  if (m_graph) syncWithGraph();  // an optimiser may have removed closures since the last step
   const auto scan = depthScanOf(observations, observation, sensor_label_);
   // The root: the first scan with surface patches, as the odometry's origin is (segmented once,
   // kept until the root is registered).
@@ -84,40 +86,57 @@ bool CGaspLoopClosureERD::updateState(mrpt::obs::CActionCollection::Ptr /*action
 
 std::vector<PoseConstraint> CGaspLoopClosureERD::treeConstraints() const {
   std::vector<PoseConstraint> tree;
-  std::set<std::size_t> ends;
-  for (const auto& [ids, edge] : m_graph->edges) {
-    const auto [from, to] = ids;
-    if (to != from + 1 || to >= nodes_.size() || ends.count(to) || isBreakEdge(edge)) continue;
-    bool ours = false;
-    for (const PoseConstraint& c : closures_) ours = ours || (c.from == from && c.to == to);
-    if (ours) continue;
-    if (auto c = constraintFromEdge(from, to, edge, nodes_[from].T_robot_camera, nodes_[to].T_robot_camera)) {
+  for (auto it = m_graph->edges.begin(); it != m_graph->edges.end(); ++it) {
+    const auto [from, to] = it->first;
+    if (to >= nodes_.size() || isClosureEdge(*m_graph, it) || isBreakEdge(it->second)) continue;
+    if (auto c = constraintFromEdge(from, to, it->second, nodes_[from].T_robot_camera, nodes_[to].T_robot_camera))
       tree.push_back(*c);
-      ends.insert(to);
-    }
   }
   return tree;
 }
 
-void CGaspLoopClosureERD::syncWithGraph() {
-  std::vector<PoseConstraint> present;
-  std::vector<std::size_t> present_attempt;
-  for (std::size_t j = 0; j < closures_.size(); ++j) {
-    const PoseConstraint& c = closures_[j];
-    if (m_graph && m_graph->edges.count({c.from, c.to})) {
-      present.push_back(c);
-      present_attempt.push_back(closure_attempt_[j]);
-      continue;
-    }
-    LoopClosureAttempt& a = attempts_[closure_attempt_[j]];
-    a.accepted = false;
-    a.reason = "removed from the graph by the optimiser";
-  }
-  closures_.swap(present);
-  closure_attempt_.swap(present_attempt);
+std::vector<PoseConstraint> CGaspLoopClosureERD::closureConstraints() const {
+  std::vector<PoseConstraint> out;
+  for (const Closure& c : closures_) out.push_back(c.constraint);
+  return out;
 }
 
-void CGaspLoopClosureERD::insert(const PoseConstraint& c, std::size_t attempt) {
+std::size_t CGaspLoopClosureERD::syncWithGraph() {
+  if (!m_graph) return 0;
+  std::vector<bool> gone(closures_.size(), false);
+  std::map<std::size_t, std::size_t> group_left;  // group -> its votes still in the graph
+  std::set<std::size_t> group_hit;                // groups that lost a vote now
+  for (std::size_t j = 0; j < closures_.size(); ++j) {
+    const Closure& c = closures_[j];
+    gone[j] = findEdge(*m_graph, c.constraint.from, c.constraint.to, c.edge) == m_graph->edges.end();
+    if (gone[j]) {
+      attempts_[c.attempt].accepted = false;
+      attempts_[c.attempt].reason = "removed from the graph by the optimiser";
+      if (c.group != 0) group_hit.insert(c.group);
+    } else if (c.group != 0) {
+      ++group_left[c.group];
+    }
+  }
+  std::size_t removed = 0;
+  for (std::size_t j = 0; j < closures_.size(); ++j) {
+    const Closure& c = closures_[j];
+    if (gone[j] || !group_hit.count(c.group) || group_left[c.group] >= loop_.relocalisation_agreeing) continue;
+    m_graph->edges.erase(findEdge(*m_graph, c.constraint.from, c.constraint.to, c.edge));
+    gone[j] = true;
+    ++removed;
+    attempts_[c.attempt].accepted = false;
+    attempts_[c.attempt].reason = "removed: a vote it joined two pieces with was removed by the optimiser, too few are left";
+    MRPT_LOG_WARN_STREAM("relocalisation " << c.constraint.from << " -> " << c.constraint.to
+                                           << " removed with the vote the optimiser removed");
+  }
+  std::vector<Closure> present;
+  for (std::size_t j = 0; j < closures_.size(); ++j)
+    if (!gone[j]) present.push_back(std::move(closures_[j]));
+  closures_.swap(present);
+  return removed;
+}
+
+void CGaspLoopClosureERD::insert(const PoseConstraint& c, std::size_t attempt, std::size_t group) {
   const auto edge = edgeFromConstraint(c, nodes_[c.from].T_robot_camera, nodes_[c.to].T_robot_camera);
   if (!edge) {
     attempts_[attempt].accepted = false;
@@ -125,8 +144,7 @@ void CGaspLoopClosureERD::insert(const PoseConstraint& c, std::size_t attempt) {
     return;
   }
   m_graph->insertEdge(c.from, c.to, *edge);
-  closures_.push_back(c);
-  closure_attempt_.push_back(attempt);
+  closures_.push_back({c, *edge, attempt, group});
   m_just_inserted_lc = true;
   MRPT_LOG_INFO_STREAM((attempts_[attempt].relocalisation ? "relocalisation " : "loop closure ")
                        << c.from << " -> " << c.to << " (" << c.inliers << " inliers)");
@@ -134,7 +152,6 @@ void CGaspLoopClosureERD::insert(const PoseConstraint& c, std::size_t attempt) {
 
 void CGaspLoopClosureERD::closeLoops(std::size_t k) {
   const std::size_t n = nodes_.size();
-  syncWithGraph();
   std::vector<std::size_t> with_view;  // the nodes that can be registered, ascending (k last)
   std::vector<Isometry3> T_world_camera(n, Isometry3::Identity());
   for (std::size_t i = 0; i < n; ++i) {
@@ -144,7 +161,8 @@ void CGaspLoopClosureERD::closeLoops(std::size_t k) {
   const std::vector<PoseConstraint> tree = treeConstraints();
   const auto links = [&] {
     std::vector<PoseConstraint> all = tree;
-    all.insert(all.end(), closures_.begin(), closures_.end());
+    const std::vector<PoseConstraint> closures = closureConstraints();
+    all.insert(all.end(), closures.begin(), closures.end());
     return all;
   };
   std::vector<std::size_t> roots = pieceRoots(n, links());
@@ -154,7 +172,7 @@ void CGaspLoopClosureERD::closeLoops(std::size_t k) {
     if (a.reason.empty()) gateLoopClosure(c, composeAlongTree(tree, n, cand, k), loop_, a);
     a.accepted = a.reason.empty();
     attempts_.push_back(std::move(a));
-    if (attempts_.back().accepted) insert(c, attempts_.size() - 1);
+    if (attempts_.back().accepted) insert(c, attempts_.size() - 1, 0);
   }
   if (loop_.relocalisation_candidates == 0) return;
   roots = pieceRoots(n, links());
@@ -170,10 +188,11 @@ void CGaspLoopClosureERD::closeLoops(std::size_t k) {
       attempts_.back().reason = d.reason;
       continue;
     }
+    ++vote_groups_;
     for (const RelocalisationVotes::Vote& v : d.votes) {
       attempts_[v.attempt].accepted = true;
       attempts_[v.attempt].reason.clear();
-      insert(v.constraint, v.attempt);
+      insert(v.constraint, v.attempt, vote_groups_);
     }
     roots = pieceRoots(n, links());
     for (const RelocalisationVotes::Vote& v : votes_.removeJoined(roots))

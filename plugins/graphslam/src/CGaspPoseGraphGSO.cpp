@@ -3,10 +3,12 @@
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/system/filesystem.h>
 
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 #include <set>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "gasp/core/error.h"
@@ -24,6 +26,14 @@ const char* const kSection = "CGaspPoseGraphGSO";
 /// Edges beyond a spanning tree: the loop closures of a connected graph.
 std::size_t extraEdges(const Graph3D& g) {
   return g.edgeCount() + 1 > g.nodeCount() ? g.edgeCount() + 1 - g.nodeCount() : 0;
+}
+
+/// The graph's edges as node pairs, in the graph's (sorted) order.
+std::vector<std::pair<std::size_t, std::size_t>> edgeKeys(const Graph3D& g) {
+  std::vector<std::pair<std::size_t, std::size_t>> keys;
+  keys.reserve(g.edges.size());
+  for (const auto& e : g.edges) keys.emplace_back(e.first.first, e.first.second);
+  return keys;
 }
 }  // namespace
 
@@ -44,8 +54,13 @@ bool CGaspPoseGraphGSO::updateState(mrpt::obs::CActionCollection::Ptr, mrpt::obs
                                     mrpt::obs::CObservation::Ptr) {
   just_optimised_ = false;
   const std::size_t n = m_graph->nodeCount(), extra = extraEdges(*m_graph);
-  pending_ = pending_ || extra > seen_extra_edges_;
+  // Closures added, or edges removed since the last look (e.g. by a loop closer that takes out
+  // the rest of a relocalisation group whose vote this optimiser removed).
+  auto keys = edgeKeys(*m_graph);
+  const bool removed = !std::includes(keys.begin(), keys.end(), seen_edges_.begin(), seen_edges_.end());
+  pending_ = pending_ || extra > seen_extra_edges_ || removed;
   seen_extra_edges_ = extra;
+  seen_edges_ = std::move(keys);
   const bool new_node = n != seen_nodes_;
   seen_nodes_ = n;
   if (pending_ && !new_node) optimizeNow();
@@ -70,7 +85,7 @@ void CGaspPoseGraphGSO::optimizeNow() {
       const auto [from, to] = it->first;
       if (from >= n || to >= n || from == to) throw Error("CGaspPoseGraphGSO: an edge names a node that is not in the graph");
       if (auto c = constraintFromEdge(from, to, it->second, Isometry3::Identity(), Isometry3::Identity())) {
-        c->loop_closure = to != from + 1;
+        c->loop_closure = isClosureEdge(*m_graph, it);
         edges.push_back(*c);
         where.push_back(it);
       } else {
@@ -96,6 +111,7 @@ void CGaspPoseGraphGSO::optimizeNow() {
   }
   for (std::size_t i = 0; i < n; ++i) m_graph->nodes[i] = toCPose3D(T_world_node[i]);
   seen_extra_edges_ = extraEdges(*m_graph);
+  seen_edges_ = edgeKeys(*m_graph);
   just_optimised_ = true;
   optimisation_ms_ += msSince(t0);
   MRPT_LOG_INFO_STREAM("optimised " << n << " nodes: chi-square " << last_.initial_chi2 << " -> " << last_.final_chi2);

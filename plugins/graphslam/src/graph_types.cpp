@@ -4,6 +4,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <iterator>
+
 namespace gasp::graphslam {
 
 mrpt::obs::CObservation3DRangeScan::Ptr depthScanOf(const mrpt::obs::CSensoryFrame::Ptr& observations,
@@ -70,6 +72,23 @@ std::size_t breakNonFiniteEdges(Graph3D& graph) {
     ++n;
   }
   return n;
+}
+
+bool isClosureEdge(const Graph3D& graph, Graph3D::edges_map_t::const_iterator it) {
+  const auto [from, to] = it->first;
+  if (to != from + 1) return true;
+  return it != graph.edges.begin() && std::prev(it)->first == it->first;
+}
+
+Graph3D::edges_map_t::const_iterator findEdge(const Graph3D& graph, std::size_t from, std::size_t to,
+                                              const mrpt::poses::CPose3DPDFGaussianInf& edge) {
+  const auto [first, last] = graph.edges.equal_range({from, to});
+  for (auto it = first; it != last; ++it)
+    if (it->second.mean.getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>().asEigen() ==
+            edge.mean.getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>().asEigen() &&
+        informationOf(it->second) == informationOf(edge))
+      return it;
+  return graph.edges.end();
 }
 
 }  // namespace gasp::graphslam

@@ -62,8 +62,12 @@ class CGaspLoopClosureERD : public mrpt::graphslam::deciders::CEdgeRegistrationD
   /// Loop closures and relocalisations in the graph (as of the last syncWithGraph()).
   std::size_t insertedEdges() const { return closures_.size(); }
   /// Forgets the closures an optimiser removed from the graph (their attempts: not accepted,
-  /// with the reason). Runs before each search; call it before reading the counts at the end.
-  void syncWithGraph();
+  /// with the reason). The relocalisation votes that joined two pieces together go together
+  /// once fewer than relocalisation_agreeing of them are left (as in DepthSlam): one alone would
+  /// be the unchecked join the votes exist to prevent, so this removes the rest from the graph
+  /// and returns how many it removed (the graph then needs optimising again). Runs at every
+  /// step; call it after the last optimisation, and again after each that follows a removal.
+  std::size_t syncWithGraph();
 
  private:
   struct Node {
@@ -76,16 +80,26 @@ class CGaspLoopClosureERD : public mrpt::graphslam::deciders::CEdgeRegistrationD
   void closeLoops(std::size_t k);
   /// The decider's edges i -> i+1 (not breaks) as constraints between camera frames.
   std::vector<PoseConstraint> treeConstraints() const;
-  /// Inserts the edge of `c_camera`, the closure of attempts_[attempt].
-  void insert(const PoseConstraint& c_camera, std::size_t attempt);
+  /// Inserts the edge of `c_camera`, the closure of attempts_[attempt]; `group`: the
+  /// relocalisation votes inserted together (0: a loop closure).
+  void insert(const PoseConstraint& c_camera, std::size_t attempt, std::size_t group);
+  std::vector<PoseConstraint> closureConstraints() const;
+
+  /// A closure in the graph.
+  struct Closure {
+    PoseConstraint constraint;                 ///< between camera frames
+    mrpt::poses::CPose3DPDFGaussianInf edge;   ///< as inserted (robot frames), to find it again
+    std::size_t attempt = 0;                   ///< its index in attempts_
+    std::size_t group = 0;                     ///< relocalisation votes inserted together (0: none)
+  };
 
   PairParams pair_;
   LoopClosureParams loop_;
   std::string sensor_label_;
   std::optional<Node> root_;  ///< the root's node until the root is registered
   std::vector<Node> nodes_;
-  std::vector<PoseConstraint> closures_;  ///< in the graph, between camera frames
-  std::vector<std::size_t> closure_attempt_;  ///< for each closure, its index in attempts_
+  std::vector<Closure> closures_;  ///< in the graph
+  std::size_t vote_groups_ = 0;
   std::vector<LoopClosureAttempt> attempts_;
   RelocalisationVotes votes_{LoopClosureParams{}};  ///< relocalisations waiting for agreement
 };

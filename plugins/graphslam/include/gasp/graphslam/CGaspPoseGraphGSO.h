@@ -10,12 +10,13 @@
 /// (dijkstra_nodes_estimate) after each step that registers a node, after the optimiser has run,
 /// so an optimisation in such a step would be lost. This optimiser therefore runs at the first
 /// step without a new node after edges beyond the node registration decider's (loop closures)
-/// were added, and when optimizeNow() is called (gasp-graphslam calls it after the last step, so
-/// the graph it saves is optimised).
+/// were added or any edge was removed, and when optimizeNow() is called (gasp-graphslam calls it
+/// after the last step, so the graph it saves is optimised).
 ///
-/// After each optimisation, an edge that does not link consecutive nodes (a loop closure) and
-/// whose chi-square at the optimised poses exceeds `drop_chi2` is removed, the worst first, and
-/// the graph optimised again (0 = never).
+/// After each optimisation, a closure (isClosureEdge(): an edge between nodes that are not
+/// consecutive, or a second edge between consecutive ones) whose chi-square at the optimised
+/// poses exceeds `drop_chi2` is removed, the worst first, and the graph optimised again
+/// (0 = never).
 ///
 /// Parameters: ini section [CGaspPoseGraphGSO]: max_iterations, function_tolerance, drop_chi2,
 /// class_verbosity.
@@ -23,6 +24,8 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "gasp/graphslam/graph_types.h"
 #include "gasp/slam/pose_graph_optimizer.h"
@@ -61,6 +64,7 @@ class CGaspPoseGraphGSO : public mrpt::graphslam::optimizers::CGraphSlamOptimize
   PoseGraphSettings settings_;
   double drop_chi2_ = 22.46;  ///< the loop closer's gate (chi-square of 6 d.o.f. at 0.999)
   std::size_t seen_nodes_ = 0, seen_extra_edges_ = 0;
+  std::vector<std::pair<std::size_t, std::size_t>> seen_edges_;  ///< edge keys at the last look
   bool pending_ = false, just_optimised_ = false;
   std::size_t optimisations_ = 0, dropped_ = 0, skipped_ = 0;
   double optimisation_ms_ = 0.0;

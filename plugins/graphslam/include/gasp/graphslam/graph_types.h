@@ -51,4 +51,16 @@ bool isBreakEdge(const mrpt::poses::CPose3DPDFGaussianInf& edge);
 /// (VERTEX3 / EDGE3) that other tools can read: `nan` is no information matrix.
 std::size_t breakNonFiniteEdges(Graph3D& graph);
 
+/// Whether the edge at `it` is a closure (an edge beyond the node registration decider's): it
+/// links nodes that are not consecutive, or it is not the first edge between its two
+/// consecutive nodes. The node decider inserts its edge i -> i+1 in the step that adds node i+1,
+/// before any edge decider can name that node, and std::multimap keeps equal keys in insertion
+/// order; a later edge between the same nodes is a relocalisation across a break.
+bool isClosureEdge(const Graph3D& graph, Graph3D::edges_map_t::const_iterator it);
+
+/// The edge from -> to of `graph` that equals `edge` exactly (mean and information): how a
+/// decider finds its own edge among others between the same nodes. end() when there is none.
+Graph3D::edges_map_t::const_iterator findEdge(const Graph3D& graph, std::size_t from, std::size_t to,
+                                              const mrpt::poses::CPose3DPDFGaussianInf& edge);
+
 }  // namespace gasp::graphslam
