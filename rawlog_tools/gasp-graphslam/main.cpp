@@ -13,14 +13,13 @@
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/io/lazy_load_path.h>
-#include <mrpt/obs/CActionCollection.h>
 #include <mrpt/system/filesystem.h>
 
+#include <stdlib.h>  // mkstemps
 #include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -36,9 +35,8 @@
 #include "gasp/graphslam/engine.h"
 #include "gasp/graphslam/ini_check.h"
 #include "gasp/graphslam/options_checker.h"
+#include "gasp/graphslam/rawlog_run.h"
 #include "gasp/graphslam/scan_selection.h"
-#include "gasp/mrpt/keyframe_map.h"
-#include "gasp/rawlog/observation_conversion.h"
 #include "gasp/rawlog/rawlog_entries.h"
 #include "gasp/rawlog/rawlog_format.h"
 #include "cli.h"
@@ -49,15 +47,14 @@ namespace {
 
 using gasp::graphslam::Graph3D;
 
-/// The configuration the engine reads, in a temporary file removed at exit: the built-in one
-/// with the user's --ini (if any) over it, key by key, so that a file with a few keys keeps the
-/// defaults of everything else (MRPT's engine asserts on missing sections such as
+/// The configuration the engine reads, in a temporary file of its own (mkstemps) that lives only
+/// while the engine is made (the engine and the deciders read it in the engine's constructor):
+/// the built-in one with the user's --ini (if any) over it, key by key, so that a file with a few
+/// keys keeps the defaults of everything else (MRPT's engine asserts on missing sections such as
 /// [GeneralConfiguration]).
 class TemporaryIni {
  public:
   explicit TemporaryIni(const std::string& user_ini) {
-    path_ = (std::filesystem::temp_directory_path() /
-             ("gasp-graphslam-" + std::to_string(::getpid()) + ".ini")).string();
     mrpt::config::CConfigFileMemory merged(std::string(gasp::tools::kDefaultGraphSlamIni));
     if (!user_ini.empty()) {
       const mrpt::config::CConfigFile user(user_ini);
@@ -70,9 +67,21 @@ class TemporaryIni {
     }
     std::string text;
     merged.getContent(text);
-    std::ofstream out(path_);
-    out << text;
-    if (!out) throw gasp::Error("cannot write the configuration to " + path_);
+    const std::string dir = std::filesystem::temp_directory_path().string();
+    path_ = dir + "/gasp-graphslam-XXXXXX.ini";
+    const int fd = ::mkstemps(path_.data(), 4);
+    if (fd < 0) throw gasp::Error("cannot create a temporary configuration file in " + dir);
+    std::size_t written = 0;
+    while (written < text.size()) {
+      const ssize_t w = ::write(fd, text.data() + written, text.size() - written);
+      if (w <= 0) break;
+      written += static_cast<std::size_t>(w);
+    }
+    ::close(fd);
+    if (written < text.size()) {
+      std::filesystem::remove(path_);
+      throw gasp::Error("cannot write the configuration to " + path_);
+    }
   }
   ~TemporaryIni() {
     std::error_code ec;
@@ -85,34 +94,6 @@ class TemporaryIni {
  private:
   std::string path_;
 };
-
-/// What the program knows of each node: when and where its scan was taken, and the scan's depth
-/// when a map is asked for (--simplemap, --cloud).
-struct NodeInfo {
-  double timestamp = 0.0;
-  gasp::Isometry3 T_robot_camera = gasp::Isometry3::Identity();
-  bool mounted = false;  ///< T_robot_camera is the scan's (it could be converted)
-  std::optional<gasp::RgbdFrame> frame;
-};
-
-/// A scan that cannot be converted keeps what it has (its timestamp; the identity mounting; no
-/// depth for the map).
-NodeInfo infoOf(const mrpt::obs::CObservation3DRangeScan::Ptr& scan, bool keep_depth) {
-  NodeInfo info;
-  if (!scan) return info;
-  info.timestamp = mrpt::Clock::toDouble(scan->timestamp);
-  try {
-    gasp::RgbdFrame frame = gasp::frameFromObservation(*scan, "scan");
-    info.T_robot_camera = frame.T_robot_camera;
-    info.mounted = true;
-    if (keep_depth) {
-      frame.rgb.release();  // the map keeps depth only (the raw values as stored, for the simple map)
-      info.frame = std::move(frame);
-    }
-  } catch (const gasp::Error&) {
-  }
-  return info;
-}
 
 }  // namespace
 
@@ -191,7 +172,6 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "warning: %s: section [%s] is read by no decider (misspelt?); its keys are ignored\n",
                      ini_path.c_str(), s.c_str());
     }
-    const TemporaryIni engine_ini(ini_path);  // the built-in configuration, --ini's keys over it
     const gasp::Trajectory gt = gt_path.empty() ? gasp::Trajectory{} : gasp::readTumTrajectory(gt_path);
     // MRPT's engine and deciders log to stdout: sent to stderr until the engine is gone, so that
     // stdout holds only this program's "key: value" lines.
@@ -203,8 +183,10 @@ int main(int argc, char** argv) {
     auto* gasp_nrd = dynamic_cast<gasp::graphslam::CGaspOdometryNRD*>(nrd.get());
     auto* gasp_erd = dynamic_cast<gasp::graphslam::CGaspLoopClosureERD*>(erd.get());
     auto* gasp_gso = dynamic_cast<gasp::graphslam::CGaspPoseGraphGSO*>(gso.get());
-    auto engine_ptr = gasp::graphslam::makeGraphSlamEngine(engine_ini.path(), rawlog_path, *nrd, *erd, *gso);
-    auto& engine = *engine_ptr;
+    auto engine = [&] {
+      const TemporaryIni engine_ini(ini_path);  // the built-in configuration, --ini's keys over it
+      return gasp::graphslam::makeGraphSlamEngine(engine_ini.path(), rawlog_path, *nrd, *erd, *gso);
+    }();
 
     if (optimizer == "CLevMarqGSO")
       std::fprintf(stderr, "warning: MRPT 2.5.8's CLevMarqGSO applies an edge's information to [x y z rx ry rz], not to "
@@ -212,138 +194,66 @@ int main(int argc, char** argv) {
     // Images stored outside the rawlog (<rawlog>_Images/) are found as MRPT's tools find them.
     mrpt::io::setLazyLoadPathBase(gasp::findRawlogImagesDirectory(rawlog_path));
     gasp::RawlogEntries entries(rawlog_path);  // a truncated or corrupt file is an error, not an early end
-    std::size_t steps = 0, scans = 0, seen_scans = 0;  // scans: used; seen_scans: read
-    gasp::graphslam::SkippedMotion skipped_motion;     // odometry of the steps left out
-    // The scans the deciders use (their sensor_label; GASP's node decider's first): the nodes'
-    // scans for the map are found by the same rule.
+    // The scans the deciders use (their sensor_label; GASP's node decider's first).
     const std::string sensor_label = gasp_nrd ? gasp_nrd->sensorLabel() : (gasp_erd ? gasp_erd->sensorLabel() : "");
-    mrpt::obs::CObservation3DRangeScan::Ptr first_scan;
-    std::vector<NodeInfo> nodes;
-    const bool keep_depth = map_output.wanted();
-    // GASP's node decider: the scan of each keyframe, in node order (the root's is known a step
-    // before the root enters the graph, with the second node).
-    std::vector<std::optional<gasp::RgbdFrame>> keyframe_depth;
-    while (!selection.done(scans)) {
-      auto next_entry = entries.next();
-      if (!next_entry) break;
-      auto [action, observations, observation] = *next_entry;
-      std::size_t entry = entries.objectsRead();
-      const auto scan = gasp::graphslam::depthScanOf(observations, observation, sensor_label);
-      // A scan left out (--first, --every): its step is not given to the engine. Format #1: the
-      // step's motion goes with the next given step that has a scan, so that a node an odometry
-      // decider registers on it has its scan; steps without a scan in between are held too
-      // (their other observations are lost).
-      const bool left_out = scan ? !selection.uses(seen_scans++) : observations && !skipped_motion.empty();
-      if (left_out) {
-        if (observations) skipped_motion.add(action);
-        continue;
-      }
-      if (observations) action = skipped_motion.prepend(action);
-      // Format #1 with an empty action collection (GASP's rawlogs): the engine reads the first
-      // action of every such step, so it gets one with no motion.
-      if (observations && (!action || action->size() == 0)) action = gasp::graphslam::noMotionAction();
-      if (scan) ++scans;
-      if (scan && !first_scan) first_scan = scan;
-      engine._execGraphSlamStep(action, observations, observation, entry);
-      ++steps;
-      // New nodes: the root takes the first scan, the newest the scan of this step (GASP's node
-      // decider tells both exactly, below).
-      const std::size_t n = engine.getGraph().nodeCount();
-      while (nodes.size() < n) {
-        if (gasp_nrd) {  // told exactly after the run
-          nodes.emplace_back();
-          continue;
-        }
-        const auto& node_scan = nodes.empty() ? first_scan : scan;
-        NodeInfo info = infoOf(node_scan, keep_depth);
-        // A node MRPT's odometry decider registered on a step without the deciders' scan: the
-        // step's time, and the mounting of the node before it.
-        if (!node_scan) {
-          const auto t = gasp::graphslam::stepTimestamp(action, observations, observation);
-          if (t != INVALID_TIMESTAMP) info.timestamp = mrpt::Clock::toDouble(t);
-        }
-        if (!info.mounted && !nodes.empty()) info.T_robot_camera = nodes.back().T_robot_camera;
-        nodes.push_back(std::move(info));
-      }
-      while (gasp_nrd && keep_depth && keyframe_depth.size() < gasp_nrd->nodeFrames().size()) {
-        // A keyframe is made at its own scan; a deskewed one goes to the map as it was
-        // registered (keyframe_map.h).
-        std::optional<gasp::RgbdFrame> frame = infoOf(scan, true).frame;
-        const gasp::DepthOdometry* odometry = gasp_nrd->odometry();
-        const std::size_t index = gasp_nrd->nodeFrames()[keyframe_depth.size()];
-        if (frame && odometry && index < odometry->frames().size() && odometry->frames()[index].deskewed) {
-          if (index + 1 == odometry->frames().size() && odometry->keyframeView())
-            frame = gasp::withViewDepth(std::move(*frame), *odometry->keyframeView());
-          else  // not expected: the node decider adds a keyframe in the step of its scan
-            std::fprintf(stderr, "warning: keyframe %zu was deskewed but its view is gone; the map keeps its recorded depth\n",
-                         index);
-        }
-        keyframe_depth.push_back(std::move(frame));
-      }
-      if (steps % 100 == 0)
-        std::fprintf(stderr, "entry %zu: %zu nodes, %zu edges\n", entries.objectsRead(), n, engine.getGraph().edgeCount());
-    }
+    gasp::graphslam::RawlogRunOptions run_options;
+    run_options.selection = selection;
+    run_options.keep_depth = map_output.wanted();
+    gasp::graphslam::RawlogRunResult run =
+        gasp::graphslam::runOverRawlog(*engine, entries, sensor_label, gasp_nrd, run_options);
     const std::string of_sensor = sensor_label.empty() ? std::string() : " with sensorLabel '" + sensor_label + "'";
-    if (seen_scans == 0) throw gasp::Error(rawlog_path + ": no CObservation3DRangeScan in the rawlog" + of_sensor);
-    if (scans == 0)
+    if (run.seen_scans == 0) throw gasp::Error(rawlog_path + ": no CObservation3DRangeScan in the rawlog" + of_sensor);
+    if (run.scans == 0)
       throw gasp::Error(rawlog_path + ": --first " + std::to_string(selection.first) + " is beyond its " +
-                        std::to_string(seen_scans) + " scans" + of_sensor);
+                        std::to_string(run.seen_scans) + " scans" + of_sensor);
 
-    // The final optimisation. The loop closer then forgets the closures the optimiser removed;
-    // when that takes relocalisation votes out of the graph with them, optimise again.
-    for (;;) {
-      if (gasp_gso) gasp_gso->optimizeNow();
-      if (!gasp_erd || gasp_erd->syncWithGraph() == 0 || !gasp_gso) break;
-    }
-    if (engine.getGraph().nodeCount() == 0)
-      throw gasp::Error(rawlog_path + ": no graph: fewer than two nodes were registered (" + std::to_string(scans) +
+    gasp::graphslam::finishGraph(gasp_gso, gasp_erd);  // optimised, the closures it removed forgotten
+    if (engine->getGraph().nodeCount() == 0)
+      throw gasp::Error(rawlog_path + ": no graph: fewer than two nodes were registered (" + std::to_string(run.scans) +
                         " scans; with CGaspOdometryNRD, fewer than two keyframes)");
-    if (gasp_nrd && gasp_nrd->odometry()) {  // exact timestamps and mountings of the keyframes
-      for (std::size_t i = 0; i < nodes.size() && i < gasp_nrd->nodeFrames().size(); ++i) {
-        nodes[i].timestamp = gasp_nrd->odometry()->frames()[gasp_nrd->nodeFrames()[i]].timestamp;
-        nodes[i].T_robot_camera = gasp_nrd->nodeRobotCamera()[i];
-        if (i < keyframe_depth.size()) nodes[i].frame = std::move(keyframe_depth[i]);
-      }
-    }
-    const Graph3D& graph = engine.getGraph();
     gasp::Trajectory trajectory;
-    for (std::size_t i = 0; i < nodes.size(); ++i)
-      trajectory.push_back({nodes[i].timestamp, gasp::fromCPose3D(graph.nodes.at(i)) * nodes[i].T_robot_camera});
+    std::size_t node_count = 0, edge_count = 0;
+    {  // the graph's outputs, while the engine lives
+      const Graph3D& graph = engine->getGraph();
+      trajectory = gasp::graphslam::nodeTrajectory(graph, run.nodes);
 
-    if (!out_path.empty())
-      gasp::writeTumTrajectory(out_path, trajectory, "node (keyframe) depth-camera trajectory by gasp-graphslam");
-    if (!graph_path.empty()) {
-      // The engine's graph as it is, except that an edge with non-finite information (MRPT's
-      // CFixedIntervalsNRD gives its first edge NaN) is written as a break edge: a file of
-      // `nan` information matrices is no graph another tool can read.
-      Graph3D written = graph;
-      if (const std::size_t broken = gasp::graphslam::breakNonFiniteEdges(written))
-        std::fprintf(stderr, "warning: %zu edge(s) with non-finite information from the node decider written as break edges (information %g)\n",
-                     broken, gasp::graphslam::kBreakInformation);
-      written.saveToTextFile(graph_path);
+      if (!out_path.empty())
+        gasp::writeTumTrajectory(out_path, trajectory, "node (keyframe) depth-camera trajectory by gasp-graphslam");
+      if (!graph_path.empty()) {
+        // The engine's graph as it is, except that an edge with non-finite information (MRPT's
+        // CFixedIntervalsNRD gives its first edge NaN) is written as a break edge: a file of
+        // `nan` information matrices is no graph another tool can read.
+        Graph3D written = graph;
+        if (const std::size_t broken = gasp::graphslam::breakNonFiniteEdges(written))
+          std::fprintf(stderr, "warning: %zu edge(s) with non-finite information from the node decider written as break edges (information %g)\n",
+                       broken, gasp::graphslam::kBreakInformation);
+        written.saveToTextFile(graph_path);
+      }
+      if (!report_dir.empty()) {
+        std::filesystem::create_directories(report_dir);
+        engine->generateReportFiles(report_dir);
+      }
+      node_count = graph.nodeCount();
+      edge_count = graph.edgeCount();
     }
-    if (!report_dir.empty()) {
-      std::filesystem::create_directories(report_dir);
-      engine.generateReportFiles(report_dir);
-    }
-    const std::size_t node_count = graph.nodeCount(), edge_count = graph.edgeCount();
-    engine_ptr.reset();  // its time logger's table goes to stderr too
+    engine.reset();  // its time logger's table goes to stderr too
     mrpt_log_to_stderr.reset();
     std::vector<gasp::RgbdFrame> map_frames;  // for --simplemap and --cloud: nodes with a converted scan
     std::vector<gasp::Isometry3> map_poses;
-    for (std::size_t i = 0; i < nodes.size() && keep_depth; ++i) {
-      if (!nodes[i].frame) continue;
+    for (std::size_t i = 0; i < run.nodes.size() && run_options.keep_depth; ++i) {
+      if (!run.nodes[i].frame) continue;
       map_poses.push_back(trajectory[i].T_world_camera);
-      map_frames.push_back(std::move(*nodes[i].frame));
+      map_frames.push_back(std::move(*run.nodes[i].frame));
     }
-    if (keep_depth && map_frames.size() < nodes.size())
+    if (run_options.keep_depth && map_frames.size() < run.nodes.size())
       std::fprintf(stderr, "warning: %zu of %zu nodes have no depth scan that could be converted; the map leaves them out\n",
-                   nodes.size() - map_frames.size(), nodes.size());
+                   run.nodes.size() - map_frames.size(), run.nodes.size());
     gasp::tools::writeMapOutputs(map_output, map_frames, map_poses, "nodes");
 
-    std::printf("rawlog_entries: %zu\n", steps);
-    std::printf("scans: %zu\n", scans);
-    if (seen_scans > scans) std::printf("scans_not_used: %zu (--first, --every, --max-scans)\n", seen_scans - scans);
+    std::printf("rawlog_entries: %zu\n", run.steps);
+    std::printf("scans: %zu\n", run.scans);
+    if (run.seen_scans > run.scans)
+      std::printf("scans_not_used: %zu (--first, --every, --max-scans)\n", run.seen_scans - run.scans);
     std::printf("deciders: %s, %s, %s\n", node_reg.c_str(), edge_reg.c_str(), optimizer.c_str());
     std::printf("nodes: %zu\n", node_count);
     std::printf("edges: %zu\n", edge_count);

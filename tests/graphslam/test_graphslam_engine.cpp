@@ -26,8 +26,11 @@
 #include "gasp/graphslam/engine.h"
 #include "gasp/graphslam/ini_check.h"
 #include "gasp/graphslam/options_checker.h"
+#include "gasp/graphslam/rawlog_run.h"
 #include "gasp/graphslam/scan_selection.h"
 #include "gasp/rawlog/observation_conversion.h"
+#include "gasp/rawlog/rawlog_entries.h"
+#include "gasp/rawlog/rawlog_writer.h"
 #include "gasp_test_data.h"
 #include "loop_sequence.h"
 
@@ -361,6 +364,60 @@ TEST(CGaspLoopClosureERD, TakesOutTheOtherVotesOfARelocalisationTheOptimiserCutD
     with_it += a.reason.find("a vote it joined two pieces with was removed") != std::string::npos ? 1 : 0;
   EXPECT_EQ(with_it, taken_out);
   EXPECT_EQ(e.erd.syncWithGraph(), 0u);
+}
+
+TEST(RawlogRun, GivesTheSelectedScansAndARecordPerNode) {
+  // gasp-graphslam's run over a rawlog: scans 1, 3, 5, ... of a circle, ten of them.
+  const std::string dir = gasp::test::scratchDir();
+  const auto s = gasp::test::circleSequence(30);
+  {
+    gasp::RawlogWriter writer(dir + "/circle.rawlog");
+    for (std::size_t i = 0; i < s.depth.size(); ++i) {
+      gasp::RgbdFrame f;
+      f.timestamp = s.timestamps[i];
+      f.depth_m = s.depth[i];
+      f.depth_intrinsics = s.K;
+      f.T_robot_camera = mounting();
+      writer.write(f);
+    }
+  }
+  GaspEngine e(writeFile(dir + "/g.ini", kEngineSections));
+  gasp::RawlogEntries entries(dir + "/circle.rawlog");
+  gasp::graphslam::RawlogRunOptions options;
+  options.selection.first = 1;
+  options.selection.every = 2;
+  options.selection.max_scans = 10;
+  options.keep_depth = true;
+  options.progress_every = 0;
+  const auto run = gasp::graphslam::runOverRawlog(*e.engine, entries, "", &e.nrd, options);
+  EXPECT_EQ(run.scans, 10u);
+  EXPECT_EQ(run.seen_scans, 20u);  // the tenth used is scan 19
+  EXPECT_EQ(run.steps, 10u);
+  ASSERT_EQ(run.nodes.size(), e.graph().nodeCount());
+  ASSERT_GE(run.nodes.size(), 2u);
+  for (std::size_t i = 0; i < run.nodes.size(); ++i) {
+    const std::size_t scan = 1 + 2 * e.nrd.nodeFrames()[i];  // odometry frame k is scan 1 + 2k
+    EXPECT_DOUBLE_EQ(run.nodes[i].timestamp, s.timestamps[scan]) << i;
+    EXPECT_TRUE(run.nodes[i].mounted);
+    EXPECT_TRUE(run.nodes[i].T_robot_camera.isApprox(mounting(), 1e-9));
+    ASSERT_TRUE(run.nodes[i].frame.has_value());
+    EXPECT_LE(cv::norm(run.nodes[i].frame->depth_m, s.depth[scan], cv::NORM_INF), 0.0011) << i;  // as stored: mm
+    EXPECT_TRUE(run.nodes[i].frame->rgb.empty());
+  }
+  gasp::graphslam::finishGraph(&e.gso, &e.erd);
+  const gasp::Trajectory trajectory = gasp::graphslam::nodeTrajectory(e.graph(), run.nodes);
+  ASSERT_EQ(trajectory.size(), run.nodes.size());
+  EXPECT_TRUE(trajectory[0].T_world_camera.isApprox(mounting(), 1e-9));  // the root's robot frame is the world
+  // The last node's camera, against the truth (the world being the root's robot frame).
+  const std::size_t last = trajectory.size() - 1;
+  const Isometry3 T_world_root = s.T_world_camera[1 + 2 * e.nrd.nodeFrames()[0]] * mounting().inverse();
+  const Isometry3 err = (T_world_root.inverse() * s.T_world_camera[1 + 2 * e.nrd.nodeFrames()[last]]).inverse() *
+                        trajectory[last].T_world_camera;
+  EXPECT_LT(gasp::translationNorm(err), 0.03);
+  EXPECT_LT(gasp::rotationAngle(err) * 180 / M_PI, 2.0);
+  auto fewer = run.nodes;
+  fewer.pop_back();
+  EXPECT_THROW(gasp::graphslam::nodeTrajectory(e.graph(), fewer), gasp::Error);
 }
 
 TEST(GaspOptionsChecker, RegistersGaspsClassesBesideMrptsFor3DGraphs) {
