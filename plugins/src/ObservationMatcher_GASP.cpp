@@ -44,8 +44,8 @@ MatchConstraint ObservationMatcher_GASP::match(const mrpt::obs::CObservation& a,
   MatchConstraint c;
   RgbdFrame fa, fb;
   try {
-    fa = frameFromObservation(scan_a, "observation a");
-    fb = frameFromObservation(scan_b, "observation b");
+    fa = frameFromObservation(scan_a, "observation a", ColourImage::Skip);  // depth alone
+    fb = frameFromObservation(scan_b, "observation b", ColourImage::Skip);
   } catch (const Error& e) {
     THROW_EXCEPTION_FMT("ObservationMatcher_GASP: %s", e.what());
   }

@@ -46,9 +46,13 @@ class OptionsText : public mrpt::config::CConfigFileBase {
  public:
   std::string text;
   void writeString(const std::string& section, const std::string& name, const std::string& str) override {
-    text.append(section).push_back('\x1f');
-    text.append(name).push_back('\x1f');
-    text.append(str).push_back('\n');
+    // MRPT 2.5.8's write() without padding calls this twice with the same key and value (its
+    // padded writeString() lacks a return after the plain call): the repeat is left out.
+    std::string line = section + '\x1f' + name + '\x1f' + str + '\n';
+    if (text.size() >= line.size() && text.compare(text.size() - line.size(), line.size(), line) == 0 &&
+        (text.size() == line.size() || text[text.size() - line.size() - 1] == '\n'))
+      return;
+    text += line;
   }
   std::string readString(const std::string&, const std::string&, const std::string& default_str,
                          bool fail_if_not_found) const override {
@@ -113,7 +117,7 @@ std::shared_ptr<const CSuperpixelMap::LikelihoodCache::Entry> CSuperpixelMap::li
   std::optional<RgbdFrame> frame;
   const auto convert = [&] {
     try {
-      frame = frameFromObservation(scan, "CObservation3DRangeScan '" + scan.sensorLabel + "'");
+      frame = frameFromObservation(scan, "CObservation3DRangeScan '" + scan.sensorLabel + "'", ColourImage::Skip);
     } catch (const Error& e) {
       THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());
     }

@@ -453,6 +453,14 @@ TEST(SuperpixelMap, LikelihoodReusesTheObservationAcrossPosesAndEqualsAFreshMap)
     EXPECT_DOUBLE_EQ(from_threads[k], CSuperpixelMap(map).computeObservationLikelihood(*obs, poses[k])) << k;
   misses = map.likelihoodCacheStats().misses;
 
+  // A colour image that cannot be loaded (its external file is gone): the likelihood needs depth
+  // alone, so it answers as for the scan without colour.
+  auto coloured = tumObservation(ds, 4, true, S);
+  ASSERT_TRUE(coloured->hasIntensityImage);
+  coloured->intensityImage.setExternalStorage(external_dir + "/no_such_rgb.png");
+  EXPECT_DOUBLE_EQ(map.computeObservationLikelihood(*coloured, poses[0]), ll_obs);
+  misses = map.likelihoodCacheStats().misses;
+
   // Segmentation options: a miss.
   map.creationOptions.superpixels.target_patch_area_m2 *= 1.5;
   EXPECT_DOUBLE_EQ(map.computeObservationLikelihood(*obs, poses[0]), CSuperpixelMap(map).computeObservationLikelihood(*obs, poses[0]));

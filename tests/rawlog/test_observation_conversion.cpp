@@ -8,11 +8,13 @@
 #include <mrpt/poses/CPose3D.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "gasp/core/error.h"
 #include "gasp/core/point_cloud.h"
 #include "gasp/rawlog/frame_convention.h"
 #include "gasp/rawlog/observation_conversion.h"
+#include "gasp_test_data.h"
 #include "rawlog_test_frames.h"
 
 namespace {
@@ -202,6 +204,34 @@ TEST(ObservationConversion, BadInputsThrow) {
   EXPECT_THROW(gasp::observationFromFrame(f), gasp::Error);
   gasp::RgbdFrame empty;
   EXPECT_THROW(gasp::observationFromFrame(empty), gasp::Error);
+}
+
+TEST(ObservationConversion, DepthAloneNeedsNoColourImage) {
+  // Range and intensity images stored in external files; the colour file then goes missing.
+  const std::string dir = gasp::test::scratchDir();
+  const gasp::RgbdFrame f = gasp::test::syntheticFrame(3.0);
+  auto obs = gasp::observationFromFrame(f);
+  obs->rangeImage_convertToExternalStorage(dir + "/range.bin", dir + "/");
+  ASSERT_TRUE(obs->intensityImage.saveToFile(dir + "/rgb.png"));
+  obs->intensityImage.setExternalStorage(dir + "/rgb.png");
+  obs->unload();
+  const gasp::RgbdFrame both = gasp::frameFromObservation(*obs, "scan");
+  EXPECT_TRUE(gasp::test::sameMat(both.rgb, f.rgb));
+  obs->unload();
+  std::filesystem::remove(dir + "/rgb.png");
+  try {
+    gasp::frameFromObservation(*obs, "scan");
+    ADD_FAILURE() << "expected gasp::Error";
+  } catch (const gasp::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot load the intensity image"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("rgb.png"), std::string::npos) << e.what();
+  }
+  obs->unload();
+  const gasp::RgbdFrame depth = gasp::frameFromObservation(*obs, "scan", gasp::ColourImage::Skip);
+  EXPECT_TRUE(depth.rgb.empty());
+  EXPECT_TRUE(gasp::test::sameMat(depth.depth_raw, f.depth_raw));
+  EXPECT_EQ(depth.rgb_intrinsics.width, f.rgb_intrinsics.width);
+  EXPECT_TRUE(depth.T_robot_camera.isApprox(f.T_robot_camera, 1e-12));
 }
 
 TEST(ObservationConversion, DepthWithoutRawIsQuantisedAtTumUnits) {

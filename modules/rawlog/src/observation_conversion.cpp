@@ -137,8 +137,8 @@ Isometry3 fromCPose3D(const mrpt::poses::CPose3D& pose) {
   return T;
 }
 
-RgbdFrame frameFromObservation(const mrpt::obs::CObservation3DRangeScan& obs,
-                               const std::string& what) {
+RgbdFrame frameFromObservation(const mrpt::obs::CObservation3DRangeScan& obs, const std::string& what,
+                               ColourImage colour) {
   if (!obs.hasRangeImage)
     throw Error(what + ": CObservation3DRangeScan '" + obs.sensorLabel +
                 "' has no range image (hasRangeImage = false); GASP needs depth");
@@ -212,8 +212,8 @@ RgbdFrame frameFromObservation(const mrpt::obs::CObservation3DRangeScan& obs,
   }
 
   if (obs.hasIntensityImage) {
-    f.rgb = intensityToBgr(obs.intensityImage, what);
     f.rgb_intrinsics = fromMrptCamera(obs.cameraParamsIntensity);
+    if (colour == ColourImage::Convert) f.rgb = intensityToBgr(obs.intensityImage, what);
     if (!f.rgb.empty() && (f.rgb.cols != f.rgb_intrinsics.width || f.rgb.rows != f.rgb_intrinsics.height))
       throw Error(what + ": intensity image is " + std::to_string(f.rgb.cols) + "x" + std::to_string(f.rgb.rows) +
                   " but cameraParamsIntensity say " + std::to_string(f.rgb_intrinsics.width) + "x" +

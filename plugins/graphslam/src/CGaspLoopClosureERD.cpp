@@ -40,7 +40,7 @@ CGaspLoopClosureERD::Node CGaspLoopClosureERD::nodeOf(const mrpt::obs::CObservat
   Node node;
   if (!scan) return node;
   try {
-    const RgbdFrame frame = frameFromObservation(*scan, "scan '" + scan->sensorLabel + "'");
+    const RgbdFrame frame = frameFromObservation(*scan, "scan '" + scan->sensorLabel + "'", ColourImage::Skip);
     node.T_robot_camera = frame.T_robot_camera;
     node.view = makeDepthView(frame.depth_m, frame.depth_intrinsics, pair_.superpixels);
   } catch (const Error& e) {

@@ -66,7 +66,7 @@ bool CGaspOdometryNRD::updateState(mrpt::obs::CActionCollection::Ptr /*action*/,
   if (!scan) return false;
   std::size_t index = 0;
   try {
-    const RgbdFrame frame = frameFromObservation(*scan, "scan '" + scan->sensorLabel + "'");
+    const RgbdFrame frame = frameFromObservation(*scan, "scan '" + scan->sensorLabel + "'", ColourImage::Skip);
     if (!odometry_) odometry_.emplace(params_, frame.T_robot_camera);  // world = the first robot frame
     const OdometryFrame& f = odometry_->addFrame(frame.timestamp, frame.depth_m, frame.depth_intrinsics);
     frame_robot_camera_.push_back(frame.T_robot_camera);

@@ -18,13 +18,10 @@ NodeRecord recordOf(const mrpt::obs::CObservation3DRangeScan::Ptr& scan, bool ke
   if (!scan) return record;
   record.timestamp = mrpt::Clock::toDouble(scan->timestamp);
   try {
-    RgbdFrame frame = frameFromObservation(*scan, "scan");
+    RgbdFrame frame = frameFromObservation(*scan, "scan", ColourImage::Skip);
     record.T_robot_camera = frame.T_robot_camera;
     record.mounted = true;
-    if (keep_depth) {
-      frame.rgb.release();  // a map keeps depth only (the raw values as stored, for a simple map)
-      record.frame = std::move(frame);
-    }
+    if (keep_depth) record.frame = std::move(frame);  // a map keeps depth only (the raw values as stored)
   } catch (const Error&) {
   }
   return record;

@@ -20,6 +20,14 @@ CameraIntrinsics fromMrptCamera(const mrpt::img::TCamera& camera);
 mrpt::poses::CPose3D toCPose3D(const Isometry3& T);
 Isometry3 fromCPose3D(const mrpt::poses::CPose3D& pose);
 
+/// Whether frameFromObservation() converts the scan's intensity (colour) image.
+enum class ColourImage {
+  Convert,  ///< rgb from the intensity image (a missing or damaged image file is an error)
+  Skip,     ///< rgb left empty: for what uses depth alone (GASP's registration, odometry, loop
+            ///< closure, likelihood), which then neither pays for decoding the image nor fails
+            ///< when only the colour image is missing or damaged
+};
+
 /// Converts an MRPT 3D range scan to an RgbdFrame.
 ///  - Loads externally stored data first (obs.load()); relative external files are resolved
 ///    against mrpt::io::getLazyLoadPathBase() (RawlogReader sets it to "<rawlog>_Images").
@@ -28,13 +36,14 @@ Isometry3 fromCPose3D(const mrpt::poses::CPose3D& pose);
 ///    1/N, so 1/5000 gives exactly 5000), depth_m = raw / depth_units_per_metre (= depthFromRaw).
 ///  - range_is_depth = false (ranges along each pixel's ray): converted to depth along the optical
 ///    axis, depth = range / sqrt(1 + ((u-cx)/fx)^2 + ((v-cy)/fy)^2); depth_raw is left empty.
-///  - intensity image (if any) -> rgb as BGR (grey images are expanded to three channels).
+///  - intensity image (if any, and `colour` is Convert) -> rgb as BGR (grey images are expanded
+///    to three channels); rgb_intrinsics from cameraParamsIntensity either way.
 ///  - sensorPose -> T_robot_camera, relativePoseIntensityWRTDepth -> T_depth_rgb (optical frames).
 /// Throws gasp::Error when the scan has no range image, the range image is empty, its size
 /// disagrees with cameraParams, or rangeUnits is not positive; `what` names the source (e.g.
 /// "file.rawlog, scan 3") for the message.
 RgbdFrame frameFromObservation(const mrpt::obs::CObservation3DRangeScan& obs,
-                               const std::string& what = "observation");
+                               const std::string& what = "observation", ColourImage colour = ColourImage::Convert);
 
 /// Converts an RgbdFrame to an MRPT 3D range scan.
 ///  - depth_raw (if present) is stored unchanged with rangeUnits = 1 / depth_units_per_metre;
