@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
       if (!scan || scans++ % every != 0) continue;
       const auto k = gasp::findNearest(gt, mrpt::Clock::toDouble(scan->timestamp), 0.02);
       if (!k) continue;  // no ground truth for this scan
-      const gasp::Isometry3 S = gasp::frameFromObservation(*scan).T_robot_camera;
+      const gasp::Isometry3 S = gasp::frameFromObservation(*scan, "scan", gasp::ColourImage::Skip).T_robot_camera;
       const auto pose = mrpt::poses::CPose3DPDFGaussian::Create(gasp::toCPose3D(gt[*k].T_world_camera * S.inverse()));
       auto sf = mrpt::obs::CSensoryFrame::Create();
       sf->insert(scan);

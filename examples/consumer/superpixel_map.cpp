@@ -52,7 +52,7 @@ int main() {
   }
   // Both observations carry the same sensorPose S (the optical -> MRPT camera rotation), so the
   // robot frames relate as the cameras do, conjugated by S.
-  const gasp::Isometry3 S = gasp::frameFromObservation(*observation(a, options.intrinsics)).T_robot_camera;
+  const gasp::Isometry3 S = gasp::frameFromObservation(*observation(a, options.intrinsics), "a", gasp::ColourImage::Skip).T_robot_camera;
   const gasp::Isometry3 T_ra_rb = S * gasp::relativePose(a.T_world_camera, b.T_world_camera) * S.inverse();
   const gasp::Isometry3 error = T_ra_rb.inverse() * gasp::fromCPose3D(pdf->getMeanVal());
   std::printf("aligner_inliers: %d\naligner_error_m: %.4f\naligner_error_deg: %.3f\n", info.inliers,

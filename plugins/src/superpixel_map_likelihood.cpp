@@ -152,7 +152,6 @@ std::shared_ptr<const CSuperpixelMap::LikelihoodCache::Entry> CSuperpixelMap::li
   // Segmented in the robot frame (T_map_robot = identity): T_map_camera is then T_robot_camera.
   SuperpixelMapView seen;
   try {
-    frame->rgb.release();  // colours are not needed here
     seen = makeMapView(*frame, Isometry3::Identity(), creationOptions.superpixels);
   } catch (const Error& e) {
     THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());

@@ -18,7 +18,9 @@
 #include <stdlib.h>  // mkstemps
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -70,17 +72,23 @@ class TemporaryIni {
     const std::string dir = std::filesystem::temp_directory_path().string();
     path_ = dir + "/gasp-graphslam-XXXXXX.ini";
     const int fd = ::mkstemps(path_.data(), 4);
-    if (fd < 0) throw gasp::Error("cannot create a temporary configuration file in " + dir);
+    if (fd < 0) throw gasp::Error("cannot create a temporary configuration file in " + dir + ": " + std::strerror(errno));
     std::size_t written = 0;
+    int error = 0;
     while (written < text.size()) {
       const ssize_t w = ::write(fd, text.data() + written, text.size() - written);
-      if (w <= 0) break;
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0) {
+        error = w < 0 ? errno : EIO;
+        break;
+      }
       written += static_cast<std::size_t>(w);
     }
     ::close(fd);
     if (written < text.size()) {
-      std::filesystem::remove(path_);
-      throw gasp::Error("cannot write the configuration to " + path_);
+      std::error_code ec;
+      std::filesystem::remove(path_, ec);
+      throw gasp::Error("cannot write the configuration to " + path_ + ": " + std::strerror(error));
     }
   }
   ~TemporaryIni() {
@@ -188,6 +196,9 @@ int main(int argc, char** argv) {
       return gasp::graphslam::makeGraphSlamEngine(engine_ini.path(), rawlog_path, *nrd, *erd, *gso);
     }();
 
+    // GASP's optimiser tells GASP's loop closer at once when it removes an edge, so that the rest
+    // of a relocalisation group leaves the graph before the next optimisation.
+    if (gasp_gso && gasp_erd) gasp_gso->setAfterEdgeRemoval([gasp_erd] { return gasp_erd->syncWithGraph(); });
     if (optimizer == "CLevMarqGSO")
       std::fprintf(stderr, "warning: MRPT 2.5.8's CLevMarqGSO applies an edge's information to [x y z rx ry rz], not to "
                            "[x y z yaw pitch roll] as CPose3DPDFGaussianInf declares it (docs/graphslam.md)\n");

@@ -329,6 +329,39 @@ TEST(CGaspPoseGraphGSO, OptimisesAgainWhenAnEdgeIsRemoved) {
   EXPECT_EQ(gso.optimisations(), 3u);
 }
 
+TEST(CGaspPoseGraphGSO, TheHookRemovesEdgesBeforeTheNextOptimisation) {
+  // Nodes 0.1 m apart along x. The closure 1 -> 4 is 0.5 m off and removed; the hook then takes
+  // out 0 -> 5, which is 2 cm off: node 5 ends where the odometry puts it only when 0 -> 5 takes
+  // no part in the optimisation after the removal.
+  Graph3D graph;
+  for (int i = 0; i < 6; ++i) graph.nodes[i] = mrpt::poses::CPose3D(0.1 * i, 0, 0, 0, 0, 0);
+  const auto edge = [](double dx, double information) {
+    mrpt::poses::CPose3DPDFGaussianInf e;
+    e.mean = mrpt::poses::CPose3D(dx, 0, 0, 0, 0, 0);
+    e.cov_inv.setIdentity();
+    e.cov_inv *= information;
+    return e;
+  };
+  for (int i = 0; i < 5; ++i) graph.insertEdge(i, i + 1, edge(0.1, 1e4));
+  graph.insertEdge(1, 4, edge(0.8, 1e4));
+  graph.insertEdge(0, 5, edge(0.52, 1e2));
+  gasp::graphslam::CGaspPoseGraphGSO gso;
+  gso.setGraphPtr(&graph);
+  std::size_t calls = 0;
+  gso.setAfterEdgeRemoval([&] {
+    ++calls;
+    EXPECT_EQ(graph.edges.count({1, 4}), 0u);
+    graph.edges.erase(graph.edges.find({0, 5}));
+    return std::size_t{1};
+  });
+  gso.optimizeNow();
+  EXPECT_EQ(calls, 1u);
+  EXPECT_EQ(gso.droppedEdges(), 1u);
+  EXPECT_EQ(gso.optimisations(), 2u);
+  EXPECT_EQ(graph.edgeCount(), 5u);
+  EXPECT_NEAR(graph.nodes.at(5).x(), 0.5, 1e-6);
+}
+
 TEST(CGaspLoopClosureERD, TakesOutTheOtherVotesOfARelocalisationTheOptimiserCutDown) {
   // The relocalisation of the test above joins two pieces with two agreeing votes. When an
   // optimiser removes one, the other alone would be an unchecked join: the loop closer takes it
@@ -353,8 +386,11 @@ TEST(CGaspLoopClosureERD, TakesOutTheOtherVotesOfARelocalisationTheOptimiserCutD
   // node decider's break edge). The engine's graph stands in for an optimiser's here.
   auto& graph = const_cast<Graph3D&>(e.graph());
   graph.edges.erase(std::prev(graph.edges.equal_range({vote.from, vote.to}).second));
-  const std::size_t taken_out = e.erd.syncWithGraph();
-  EXPECT_EQ(taken_out, 1u);  // its one partner (relocalisation_agreeing = 2)
+  // gasp-graphslam's end: optimise, forget, and optimise again without the partner.
+  const std::size_t optimisations = e.gso.optimisations();
+  gasp::graphslam::finishGraph(&e.gso, &e.erd);
+  EXPECT_EQ(e.gso.optimisations(), optimisations + 2);
+  const std::size_t taken_out = 1;  // its one partner (relocalisation_agreeing = 2)
   EXPECT_EQ(accepted(), votes - 1 - taken_out);
   EXPECT_EQ(e.erd.insertedEdges(), inserted - 1 - taken_out);
   EXPECT_EQ(e.graph().edgeCount(), edges - 1 - taken_out);

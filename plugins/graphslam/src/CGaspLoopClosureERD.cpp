@@ -106,6 +106,8 @@ std::size_t CGaspLoopClosureERD::syncWithGraph() {
   std::vector<bool> gone(closures_.size(), false);
   std::map<std::size_t, std::size_t> group_left;  // group -> its votes still in the graph
   std::set<std::size_t> group_hit;                // groups that lost a vote now
+  // (Two closures with the same nodes and the same values would be found as one; every closure
+  // ends at the node that was newest when it was made, from distinct candidates, so none are.)
   for (std::size_t j = 0; j < closures_.size(); ++j) {
     const Closure& c = closures_[j];
     gone[j] = findEdge(*m_graph, c.constraint.from, c.constraint.to, c.edge) == m_graph->edges.end();
@@ -186,6 +188,16 @@ void CGaspLoopClosureERD::closeLoops(std::size_t k) {
     attempts_.back().gate_chi2 = d.chi2;
     if (!d.join) {
       attempts_.back().reason = d.reason;
+      continue;
+    }
+    // The votes enter the graph together or not at all: fewer would be an unchecked join.
+    bool insertable = true;
+    for (const RelocalisationVotes::Vote& v : d.votes)
+      insertable = insertable && edgeFromConstraint(v.constraint, nodes_[v.constraint.from].T_robot_camera,
+                                                    nodes_[v.constraint.to].T_robot_camera);
+    if (!insertable) {
+      for (const RelocalisationVotes::Vote& v : d.votes)
+        attempts_[v.attempt].reason = "not used: a vote of its group has no positive definite information";
       continue;
     }
     ++vote_groups_;

@@ -108,6 +108,9 @@ void CGaspPoseGraphGSO::optimizeNow() {
                                  << " removed: the optimised graph contradicts it (chi-square " << worst_chi2 << ")");
     m_graph->edges.erase(where[worst]);
     ++dropped_;
+    if (after_removal_)
+      if (const std::size_t more = after_removal_())
+        MRPT_LOG_WARN_STREAM(more << " more edge(s) removed with it (the rest of its relocalisation)");
   }
   for (std::size_t i = 0; i < n; ++i) m_graph->nodes[i] = toCPose3D(T_world_node[i]);
   seen_extra_edges_ = extraEdges(*m_graph);

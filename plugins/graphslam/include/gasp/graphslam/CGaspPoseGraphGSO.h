@@ -16,13 +16,16 @@
 /// After each optimisation, a closure (isClosureEdge(): an edge between nodes that are not
 /// consecutive, or a second edge between consecutive ones) whose chi-square at the optimised
 /// poses exceeds `drop_chi2` is removed, the worst first, and the graph optimised again
-/// (0 = never).
+/// (0 = never). After each removal the hook of setAfterEdgeRemoval() runs, before the graph is
+/// optimised again: gasp-graphslam gives it CGaspLoopClosureERD::syncWithGraph(), so the other
+/// votes of a relocalisation take no part in that optimisation (as in DepthSlam).
 ///
 /// Parameters: ini section [CGaspPoseGraphGSO]: max_iterations, function_tolerance, drop_chi2,
 /// class_verbosity.
 #include <mrpt/graphslam/interfaces/CGraphSlamOptimizer.h>
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -45,6 +48,10 @@ class CGaspPoseGraphGSO : public mrpt::graphslam::optimizers::CGraphSlamOptimize
 
   /// Optimises the graph now (the caller holds the graph's lock, if it shares the graph).
   void optimizeNow();
+
+  /// Runs after this optimiser removes an edge and before it optimises again; may remove further
+  /// edges from the graph (it returns how many, for the log). Empty: none.
+  void setAfterEdgeRemoval(std::function<std::size_t()> hook) { after_removal_ = std::move(hook); }
 
   void setSettings(const PoseGraphSettings& settings, double drop_chi2);
   const PoseGraphSettings& settings() const { return settings_; }
@@ -69,6 +76,7 @@ class CGaspPoseGraphGSO : public mrpt::graphslam::optimizers::CGraphSlamOptimize
   std::size_t optimisations_ = 0, dropped_ = 0, skipped_ = 0;
   double optimisation_ms_ = 0.0;
   PoseGraphResult last_;
+  std::function<std::size_t()> after_removal_;
 };
 
 }  // namespace gasp::graphslam
