@@ -173,3 +173,27 @@ TEST(RelocalisationVotes, VotesTheOtherWayRoundAndTheNumberNeeded) {
   p.relocalisation_agreeing = 0;
   EXPECT_THROW(gasp::validate(p), gasp::Error);
 }
+
+TEST(RelocalisationVotes, TheVotesThatJoinAgreeAmongThemselves) {
+  // Three needed. Two waiting votes 6 cm off either way each agree with an exact third, but not
+  // with each other: no join (the third is not the proof that both are right).
+  const auto tree = odometry();
+  const auto roots = gasp::pieceRoots(12, tree);
+  gasp::LoopClosureParams p;
+  p.relocalisation_agreeing = 3;
+  gasp::RelocalisationVotes votes(p);
+  EXPECT_FALSE(votes.offer(constraint(1, 6, shifted(-0.06)), 0, tree, 12, roots).join);
+  auto d = votes.offer(constraint(2, 7, shifted(0.06)), 1, tree, 12, roots);
+  EXPECT_FALSE(d.join);
+  EXPECT_GT(d.chi2, 22.46) << "the two waiting votes must disagree, or the test shows nothing";
+  d = votes.offer(constraint(3, 8), 2, tree, 12, roots);
+  EXPECT_FALSE(d.join) << "joined by " << d.votes.size() << " votes";
+  EXPECT_LE(d.chi2, 22.46) << "the exact vote must agree with each, or the test shows nothing";
+  EXPECT_NE(d.reason.find("disagree among themselves"), std::string::npos) << d.reason;
+  // A fourth, exact as well: it, the third and the better of the first two (or either) agree.
+  d = votes.offer(constraint(4, 9), 3, tree, 12, roots);
+  ASSERT_TRUE(d.join) << d.reason;
+  ASSERT_EQ(d.votes.size(), 3u);
+  EXPECT_EQ(d.votes.back().attempt, 3u);
+  EXPECT_EQ(votes.waiting().size(), 1u);  // one of the two 6-cm votes is left out
+}

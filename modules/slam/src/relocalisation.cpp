@@ -2,7 +2,10 @@
 
 #include <Eigen/Cholesky>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 #include "gasp/core/error.h"
 #include "gasp/core/format.h"
@@ -69,7 +72,14 @@ RelocalisationVotes::Decision RelocalisationVotes::offer(const PoseConstraint& c
     return d;
   }
   const std::size_t needed = params_.relocalisation_agreeing;
-  std::vector<std::size_t> agreeing;  // positions in waiting_
+  // The chi-square of `v` against the prediction through `h` (NaN when h cannot predict it).
+  const auto chi2Of = [&](const PoseConstraint& h, const PoseConstraint& v, const Matrix6d& S_v) {
+    const auto prediction = predictThroughRelocalisation(tree, frame_count, h, v.from, v.to);
+    if (!prediction) return std::numeric_limits<double>::quiet_NaN();
+    const Vector6d xi = leftPerturbation(v.T_from_to, prediction->T_a_b);
+    return xi.dot((prediction->covariance + S_v).ldlt().solve(xi));
+  };
+  std::vector<std::pair<double, std::size_t>> agreeing;  // chi-square against c, position in waiting_
   if (needed > 1) {
     const auto samePieces = [&](const PoseConstraint& h) {
       const std::size_t a = roots[h.from], b = roots[h.to], x = roots[c.from], y = roots[c.to];
@@ -78,27 +88,40 @@ RelocalisationVotes::Decision RelocalisationVotes::offer(const PoseConstraint& c
     for (std::size_t i = 0; i < waiting_.size(); ++i) {
       const PoseConstraint& h = waiting_[i].constraint;
       if (!samePieces(h)) continue;
-      const auto prediction = predictThroughRelocalisation(tree, frame_count, h, c.from, c.to);
-      if (!prediction) continue;
-      const Vector6d xi = leftPerturbation(c.T_from_to, prediction->T_a_b);
-      const double chi2 = xi.dot((prediction->covariance + S_meas).ldlt().solve(xi));
+      const double chi2 = chi2Of(h, c, S_meas);
+      if (std::isnan(chi2)) continue;
       if (!(chi2 >= d.chi2)) d.chi2 = chi2;  // the least (NaN at first)
-      if (chi2 <= params_.gate_chi2) agreeing.push_back(i);
+      if (chi2 <= params_.gate_chi2) agreeing.emplace_back(chi2, i);
     }
   }
-  if (agreeing.size() + 1 >= needed) {
+  // The votes that join must agree among themselves too, not only with c: the waiting ones that
+  // agree with c, the best first, each kept when the ones kept before it predict it within the gate.
+  std::sort(agreeing.begin(), agreeing.end());
+  std::vector<std::size_t> chosen;  // positions in waiting_
+  for (const auto& [chi2_c, i] : agreeing) {
+    bool consistent = true;
+    for (const std::size_t j : chosen) {
+      const double chi2 = chi2Of(waiting_[j].constraint, waiting_[i].constraint, covarianceOf(waiting_[i].constraint));
+      consistent = consistent && chi2 <= params_.gate_chi2;  // false for NaN (no prediction)
+    }
+    if (consistent) chosen.push_back(i);
+  }
+  if (chosen.size() + 1 >= needed) {
     d.join = true;
-    for (std::size_t k = agreeing.size(); k-- > 0;) {  // from the back, so positions stay valid
-      d.votes.insert(d.votes.begin(), waiting_[agreeing[k]]);
-      waiting_.erase(waiting_.begin() + static_cast<std::ptrdiff_t>(agreeing[k]));
+    std::sort(chosen.begin(), chosen.end());
+    for (std::size_t k = chosen.size(); k-- > 0;) {  // from the back, so positions stay valid
+      d.votes.insert(d.votes.begin(), waiting_[chosen[k]]);
+      waiting_.erase(waiting_.begin() + static_cast<std::ptrdiff_t>(chosen[k]));
     }
     d.votes.push_back({c, attempt});
     return d;
   }
   waiting_.push_back({c, attempt});
-  d.reason = formatted("waits for %zu more agreeing relocalisation(s) between these pieces", needed - 1 - agreeing.size());
+  d.reason = formatted("waits for %zu more agreeing relocalisation(s) between these pieces", needed - 1 - chosen.size());
   if (std::isfinite(d.chi2) && agreeing.empty())
     d.reason += formatted(" (disagrees with the waiting ones: least chi-square %.1f > %.2f)", d.chi2, params_.gate_chi2);
+  else if (chosen.size() < agreeing.size())
+    d.reason += " (the waiting ones that agree with it disagree among themselves)";
   return d;
 }
 

@@ -26,7 +26,8 @@ std::optional<RelativePoseEstimate> predictThroughRelocalisation(const std::vect
 /// Successful relocalisation registrations (constraints between two pieces) wait here until
 /// `LoopClosureParams::relocalisation_agreeing` of them link the same two pieces consistently:
 /// each waiting one predicts the new one's relative pose (predictThroughRelocalisation()), and
-/// agrees when xi^T (S_pred + S_meas)^-1 xi <= gate_chi2.
+/// agrees when xi^T (S_pred + S_meas)^-1 xi <= gate_chi2. The votes that join agree with each
+/// other as well (every earlier-chosen one predicts every later-chosen one), not only with the new one.
 class RelocalisationVotes {
  public:
   /// A relocalisation and the index of its attempt (the caller's bookkeeping).
@@ -47,8 +48,10 @@ class RelocalisationVotes {
   explicit RelocalisationVotes(const LoopClosureParams& params) : params_(params) {}
 
   /// Offers a successful relocalisation `c` (between two pieces under `roots`, pieceRoots()).
-  /// With relocalisation_agreeing - 1 waiting ones agreeing with it, returns join with them and
-  /// removes them from the waiting list; otherwise `c` waits.
+  /// With relocalisation_agreeing - 1 waiting ones agreeing with it and among themselves,
+  /// returns join with them (all such that are found: the waiting ones that agree with `c`, the
+  /// best first, each taken when it agrees with those taken before it) and removes them from
+  /// the waiting list; otherwise `c` waits.
   Decision offer(const PoseConstraint& c, std::size_t attempt, const std::vector<PoseConstraint>& tree,
                  std::size_t frame_count, const std::vector<std::size_t>& roots);
 
