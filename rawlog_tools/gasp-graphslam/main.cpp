@@ -199,6 +199,8 @@ int main(int argc, char** argv) {
     // GASP's optimiser tells GASP's loop closer at once when it removes an edge, so that the rest
     // of a relocalisation group leaves the graph before the next optimisation.
     if (gasp_gso && gasp_erd) gasp_gso->setAfterEdgeRemoval([gasp_erd] { return gasp_erd->syncWithGraph(); });
+    // The loop closer takes each node's view from GASP's node decider (no second segmentation).
+    if (gasp_erd && gasp_nrd) gasp_erd->useKeyframeViewsOf(gasp_nrd);
     if (optimizer == "CLevMarqGSO")
       std::fprintf(stderr, "warning: MRPT 2.5.8's CLevMarqGSO applies an edge's information to [x y z rx ry rz], not to "
                            "[x y z yaw pitch roll] as CPose3DPDFGaussianInf declares it (docs/graphslam.md)\n");

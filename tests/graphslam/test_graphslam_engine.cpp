@@ -159,6 +159,41 @@ TEST(GraphSlamEngine, ClosesTheLoopOfACircleWithGaspsDecidersAndOptimises) {
   EXPECT_GE(e.gso.optimisations(), 2u);  // during the run (after closures) and at the end
 }
 
+TEST(CGaspLoopClosureERD, TakesTheNodeDecidersKeyframeViewsInsteadOfSegmentingAgain) {
+  // Linked to GASP's node decider (as gasp-graphslam does), the loop closer segments nothing and
+  // tries and takes the same closures with the same inliers as when it segments each scan itself.
+  const std::string dir = gasp::test::scratchDir();
+  const auto s = gasp::test::circleSequence(30);
+  const std::string ini = writeFile(dir + "/g.ini", kEngineSections);
+  GaspEngine own(ini), linked(ini);
+  linked.erd.useKeyframeViewsOf(&linked.nrd);
+  for (std::size_t i = 0; i < s.depth.size(); ++i) {
+    own.step(scanOf(s, i));
+    linked.step(scanOf(s, i));
+  }
+  ASSERT_EQ(linked.graph().nodeCount(), own.graph().nodeCount());
+  EXPECT_GE(own.erd.segmentations(), own.graph().nodeCount());
+  EXPECT_EQ(linked.erd.segmentations(), 0u);
+  ASSERT_EQ(linked.erd.attempts().size(), own.erd.attempts().size());
+  ASSERT_GE(own.erd.insertedEdges(), 1u);
+  for (std::size_t k = 0; k < own.erd.attempts().size(); ++k) {
+    const auto &a = own.erd.attempts()[k], &b = linked.erd.attempts()[k];
+    EXPECT_EQ(b.from, a.from) << k;
+    EXPECT_EQ(b.to, a.to) << k;
+    EXPECT_EQ(b.accepted, a.accepted) << k;
+    EXPECT_EQ(b.inliers, a.inliers) << k;
+  }
+  // Other segmentation parameters than the node decider's: the loop closer segments itself.
+  GaspEngine other(ini);
+  other.erd.useKeyframeViewsOf(&other.nrd);
+  gasp::PairParams pair = other.erd.pairParams();
+  pair.superpixels.target_patch_area_m2 *= 1.5;
+  other.erd.setParams(pair, other.erd.loopParams());
+  for (std::size_t i = 0; i < 8; ++i) other.step(scanOf(s, i));
+  EXPECT_GE(other.erd.segmentations(), other.graph().nodeCount());
+  EXPECT_GE(other.graph().nodeCount(), 2u);
+}
+
 TEST(GraphSlamEngine, ReadsSensoryFramesAsWellAsObservations) {
   const std::string dir = gasp::test::scratchDir();
   const auto s = gasp::test::circleSequence(30);

@@ -1,6 +1,7 @@
 #include "gasp/graphslam/CGaspLoopClosureERD.h"
 
 #include <mrpt/config/CConfigFile.h>
+#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/system/filesystem.h>
 
 #include <iostream>
@@ -35,10 +36,33 @@ void CGaspLoopClosureERD::setParams(const PairParams& pair, const LoopClosurePar
   votes_ = RelocalisationVotes(loop);
 }
 
+std::optional<CGaspLoopClosureERD::Node> CGaspLoopClosureERD::keyframeNode(std::size_t id) const {
+  if (!node_decider_) return std::nullopt;
+  const DepthOdometry* odometry = node_decider_->odometry();
+  const auto& node_frames = node_decider_->nodeFrames();
+  if (!odometry || !odometry->keyframeView() || odometry->frames().empty() || node_frames.size() != id + 1)
+    return std::nullopt;
+  const OdometryFrame& newest = odometry->frames().back();
+  if (!newest.keyframe || newest.index != node_frames[id]) return std::nullopt;
+  // The same segmentation parameters, compared as their ini text.
+  mrpt::config::CConfigFileMemory mine, theirs;
+  writeSuperpixelParams(pair_.superpixels, mine, "s");
+  writeSuperpixelParams(odometry->params().pair.superpixels, theirs, "s");
+  std::string a, b;
+  mine.getContent(a);
+  theirs.getContent(b);
+  if (a != b) return std::nullopt;
+  Node node;
+  node.view = *odometry->keyframeView();
+  node.T_robot_camera = node_decider_->nodeRobotCamera()[id];
+  return node;
+}
+
 CGaspLoopClosureERD::Node CGaspLoopClosureERD::nodeOf(const mrpt::obs::CObservation3DRangeScan::Ptr& scan,
-                                                       std::string* error) const {
+                                                       std::string* error) {
   Node node;
   if (!scan) return node;
+  ++segmentations_;
   try {
     const RgbdFrame frame = frameFromObservation(*scan, "scan '" + scan->sensorLabel + "'", ColourImage::Skip);
     node.T_robot_camera = frame.T_robot_camera;
@@ -58,7 +82,8 @@ bool CGaspLoopClosureERD::updateState(mrpt::obs::CActionCollection::Ptr /*action
   // The root: the first scan with surface patches, as the odometry's origin is (segmented once,
   // kept until the root is registered).
   if (scan && !root_ && nodes_.empty()) {
-    Node candidate = nodeOf(scan, nullptr);
+    auto shared = keyframeNode(0);
+    Node candidate = shared ? std::move(*shared) : nodeOf(scan, nullptr);
     if (candidate.view && !candidate.view->segmentation.patches.empty()) root_ = std::move(candidate);
   }
   const std::size_t n = m_graph->nodeCount();
@@ -75,7 +100,11 @@ bool CGaspLoopClosureERD::updateState(mrpt::obs::CActionCollection::Ptr /*action
       continue;
     }
     std::string error;
-    Node node = id + 1 == n ? nodeOf(scan, &error) : Node{};
+    Node node;
+    if (id + 1 == n) {
+      if (auto shared = keyframeNode(id)) node = std::move(*shared);
+      else node = nodeOf(scan, &error);
+    }
     if (!node.view) node.T_robot_camera = nodes_.back().T_robot_camera;
     if (!error.empty()) MRPT_LOG_WARN_STREAM("node " << id << " has no view: " << error);
     nodes_.push_back(std::move(node));

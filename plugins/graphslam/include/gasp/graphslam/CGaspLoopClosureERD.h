@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "gasp/graphslam/CGaspOdometryNRD.h"
 #include "gasp/graphslam/graph_types.h"
 #include "gasp/odometry/pose_constraint.h"
 #include "gasp/pipeline/depth_view.h"
@@ -61,6 +62,14 @@ class CGaspLoopClosureERD : public mrpt::graphslam::deciders::CEdgeRegistrationD
   const std::vector<LoopClosureAttempt>& attempts() const { return attempts_; }
   /// Loop closures and relocalisations in the graph (as of the last syncWithGraph()).
   std::size_t insertedEdges() const { return closures_.size(); }
+  /// With GASP's node decider in the same engine: each node takes the segmented view its
+  /// keyframe was registered with (deskewed when it was) instead of segmenting the scan again,
+  /// when both segment with the same parameters (else the loop closer segments as without it).
+  /// `node_decider` must outlive this decider; nullptr unlinks. gasp-graphslam links the two.
+  void useKeyframeViewsOf(const CGaspOdometryNRD* node_decider) { node_decider_ = node_decider; }
+  /// Scans this decider segmented itself (the rest were its node decider's keyframe views).
+  std::size_t segmentations() const { return segmentations_; }
+
   /// Forgets the closures an optimiser removed from the graph (their attempts: not accepted,
   /// with the reason). The relocalisation votes that joined two pieces together go together
   /// once fewer than relocalisation_agreeing of them are left (as in DepthSlam): one alone would
@@ -76,7 +85,11 @@ class CGaspLoopClosureERD : public mrpt::graphslam::deciders::CEdgeRegistrationD
   };
   /// The scan's mounting and segmented view (no view without a scan, or when it cannot be
   /// converted: then `error` says why).
-  Node nodeOf(const mrpt::obs::CObservation3DRangeScan::Ptr& scan, std::string* error) const;
+  Node nodeOf(const mrpt::obs::CObservation3DRangeScan::Ptr& scan, std::string* error);
+  /// Node `id`'s view from the linked node decider, when it registered that node's keyframe in
+  /// this step with the same segmentation parameters (id 0: the root keyframe, before the root
+  /// enters the graph).
+  std::optional<Node> keyframeNode(std::size_t id) const;
   void closeLoops(std::size_t k);
   /// The decider's edges i -> i+1 (not breaks) as constraints between camera frames.
   std::vector<PoseConstraint> treeConstraints() const;
@@ -102,6 +115,8 @@ class CGaspLoopClosureERD : public mrpt::graphslam::deciders::CEdgeRegistrationD
   std::size_t vote_groups_ = 0;
   std::vector<LoopClosureAttempt> attempts_;
   RelocalisationVotes votes_{LoopClosureParams{}};  ///< relocalisations waiting for agreement
+  const CGaspOdometryNRD* node_decider_ = nullptr;
+  std::size_t segmentations_ = 0;
 };
 
 }  // namespace gasp::graphslam
