@@ -72,7 +72,10 @@ class TemporaryIni {
     const std::string dir = std::filesystem::temp_directory_path().string();
     path_ = dir + "/gasp-graphslam-XXXXXX.ini";
     const int fd = ::mkstemps(path_.data(), 4);
-    if (fd < 0) throw gasp::Error("cannot create a temporary configuration file in " + dir + ": " + std::strerror(errno));
+    if (fd < 0) {
+      const int error = errno;
+      throw gasp::Error("cannot create a temporary configuration file in " + dir + ": " + std::strerror(error));
+    }
     std::size_t written = 0;
     int error = 0;
     while (written < text.size()) {
@@ -84,8 +87,8 @@ class TemporaryIni {
       }
       written += static_cast<std::size_t>(w);
     }
-    ::close(fd);
-    if (written < text.size()) {
+    if (::close(fd) != 0 && error == 0) error = errno;
+    if (written < text.size() || error != 0) {
       std::error_code ec;
       std::filesystem::remove(path_, ec);
       throw gasp::Error("cannot write the configuration to " + path_ + ": " + std::strerror(error));

@@ -183,8 +183,44 @@ TEST(CGaspLoopClosureERD, TakesTheNodeDecidersKeyframeViewsInsteadOfSegmentingAg
     EXPECT_EQ(b.accepted, a.accepted) << k;
     EXPECT_EQ(b.inliers, a.inliers) << k;
   }
+  // The newest node's view is the odometry's keyframe view itself (its buffers, not a copy).
+  const std::size_t last = linked.graph().nodeCount() - 1;
+  ASSERT_NE(linked.erd.nodeView(last), nullptr);
+  EXPECT_EQ(linked.erd.nodeView(last)->segmentation.labels.data, linked.nrd.odometry()->keyframeView()->segmentation.labels.data);
+  ASSERT_NE(own.erd.nodeView(last), nullptr);
+  EXPECT_NE(own.erd.nodeView(last)->segmentation.labels.data, own.nrd.odometry()->keyframeView()->segmentation.labels.data);
+
+  // With the rolling-shutter deskew, the loop closer gets the deskewed keyframe views.
+  std::string deskew_sections = kEngineSections;
+  const std::string nrd_section = "[CGaspOdometryNRD]\nclass_verbosity = 3\n";
+  deskew_sections.replace(deskew_sections.find(nrd_section), nrd_section.size(),
+                          nrd_section + "rolling_shutter_readout_s = 0.03\n");
+  // (On the heap: five engines' deciders exceed the test thread's stack.)
+  const auto deskewed_engine = std::make_unique<GaspEngine>(writeFile(dir + "/deskew.ini", deskew_sections));
+  GaspEngine& deskewed = *deskewed_engine;
+  deskewed.erd.useKeyframeViewsOf(&deskewed.nrd);
+  for (std::size_t i = 0; i < 10; ++i) deskewed.step(scanOf(s, i));
+  const std::size_t newest = deskewed.graph().nodeCount() - 1;
+  ASSERT_GE(newest, 1u);
+  EXPECT_TRUE(deskewed.nrd.odometry()->frames()[deskewed.nrd.nodeFrames()[newest]].deskewed);
+  ASSERT_NE(deskewed.erd.nodeView(newest), nullptr);
+  EXPECT_EQ(deskewed.erd.nodeView(newest)->segmentation.labels.data,
+            deskewed.nrd.odometry()->keyframeView()->segmentation.labels.data);
+  EXPECT_EQ(deskewed.erd.segmentations(), 0u);
+
+  // Another sensor label than the node decider's: the loop closer segments its own sensor's scans.
+  const auto labelled_engine = std::make_unique<GaspEngine>(ini);
+  GaspEngine& labelled = *labelled_engine;
+  labelled.erd.useKeyframeViewsOf(&labelled.nrd);
+  labelled.erd.setSensorLabel("OTHER");
+  for (std::size_t i = 0; i < 10; ++i) labelled.step(scanOf(s, i));
+  EXPECT_EQ(labelled.erd.segmentations(), 0u);  // no scan of its sensor: nothing, not the node decider's
+  ASSERT_GE(labelled.graph().nodeCount(), 2u);
+  EXPECT_EQ(labelled.erd.nodeView(labelled.graph().nodeCount() - 1), nullptr);
+
   // Other segmentation parameters than the node decider's: the loop closer segments itself.
-  GaspEngine other(ini);
+  const auto other_engine = std::make_unique<GaspEngine>(ini);
+  GaspEngine& other = *other_engine;
   other.erd.useKeyframeViewsOf(&other.nrd);
   gasp::PairParams pair = other.erd.pairParams();
   pair.superpixels.target_patch_area_m2 *= 1.5;

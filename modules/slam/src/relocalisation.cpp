@@ -101,8 +101,10 @@ RelocalisationVotes::Decision RelocalisationVotes::offer(const PoseConstraint& c
   for (const auto& [chi2_c, i] : agreeing) {
     bool consistent = true;
     for (const std::size_t j : chosen) {
-      const double chi2 = chi2Of(waiting_[j].constraint, waiting_[i].constraint, covarianceOf(waiting_[i].constraint));
-      consistent = consistent && chi2 <= params_.gate_chi2;  // false for NaN (no prediction)
+      const PoseConstraint &a = waiting_[j].constraint, &b = waiting_[i].constraint;
+      double chi2 = chi2Of(a, b, covarianceOf(b));
+      if (std::isnan(chi2)) chi2 = chi2Of(b, a, covarianceOf(a));  // the other way round
+      consistent = consistent && chi2 <= params_.gate_chi2;  // false for NaN (neither predicts the other)
     }
     if (consistent) chosen.push_back(i);
   }

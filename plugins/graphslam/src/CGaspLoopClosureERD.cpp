@@ -37,7 +37,8 @@ void CGaspLoopClosureERD::setParams(const PairParams& pair, const LoopClosurePar
 }
 
 std::optional<CGaspLoopClosureERD::Node> CGaspLoopClosureERD::keyframeNode(std::size_t id) const {
-  if (!node_decider_) return std::nullopt;
+  // Only for the same sensor's scans (the node decider's keyframe is its own sensor's scan).
+  if (!node_decider_ || node_decider_->sensorLabel() != sensor_label_) return std::nullopt;
   const DepthOdometry* odometry = node_decider_->odometry();
   const auto& node_frames = node_decider_->nodeFrames();
   if (!odometry || !odometry->keyframeView() || odometry->frames().empty() || node_frames.size() != id + 1)
@@ -224,7 +225,7 @@ void CGaspLoopClosureERD::closeLoops(std::size_t k) {
     for (const RelocalisationVotes::Vote& v : d.votes)
       insertable = insertable && edgeFromConstraint(v.constraint, nodes_[v.constraint.from].T_robot_camera,
                                                     nodes_[v.constraint.to].T_robot_camera);
-    if (!insertable) {
+    if (!insertable) {  // offer() has let the votes go: they do not wait again
       for (const RelocalisationVotes::Vote& v : d.votes)
         attempts_[v.attempt].reason = "not used: a vote of its group has no positive definite information";
       continue;

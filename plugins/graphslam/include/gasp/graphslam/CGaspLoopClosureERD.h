@@ -64,11 +64,16 @@ class CGaspLoopClosureERD : public mrpt::graphslam::deciders::CEdgeRegistrationD
   std::size_t insertedEdges() const { return closures_.size(); }
   /// With GASP's node decider in the same engine: each node takes the segmented view its
   /// keyframe was registered with (deskewed when it was) instead of segmenting the scan again,
-  /// when both segment with the same parameters (else the loop closer segments as without it).
+  /// when both segment with the same parameters and use the same sensor_label (else the loop
+  /// closer segments as without it).
   /// `node_decider` must outlive this decider; nullptr unlinks. gasp-graphslam links the two.
   void useKeyframeViewsOf(const CGaspOdometryNRD* node_decider) { node_decider_ = node_decider; }
   /// Scans this decider segmented itself (the rest were its node decider's keyframe views).
   std::size_t segmentations() const { return segmentations_; }
+  /// Node `id`'s segmented view (nullptr when it has none or is unknown yet).
+  const DepthView* nodeView(std::size_t id) const {
+    return id < nodes_.size() && nodes_[id].view ? &*nodes_[id].view : nullptr;
+  }
 
   /// Forgets the closures an optimiser removed from the graph (their attempts: not accepted,
   /// with the reason). The relocalisation votes that joined two pieces together go together
