@@ -61,4 +61,11 @@ inline void addOdometryOptions(CLI::App& app, OdometryParams& params) {
       ->check(within(-1, 1));
 }
 
+/// --sequential: no segmentation ahead (frames_ahead.h).
+inline void addSequentialOption(CLI::App& app, bool& sequential) {
+  app.add_flag("--sequential", sequential,
+               "segment each frame only when it is added (by default the next frame is segmented on a second thread "
+               "while the current one is registered; the poses are the same)");
+}
+
 }  // namespace gasp::tools

@@ -20,6 +20,7 @@
 #include "gasp/odometry/odometry.h"
 #include "gasp/rawlog/depth_sequence.h"
 #include "cli.h"
+#include "frames_ahead.h"
 #include "sequence_options.h"
 #include "sequence_report.h"
 
@@ -34,6 +35,8 @@ int main(int argc, char** argv) {
   app.add_option("--graph", graph_path, "pose graph to write (MRPT VERTEX3/EDGE3 text; --rawlog: robot frames from the scans' sensorPose)");
   app.add_option("--frames-csv", frames_csv, "one line per frame: tracked, keyframe, reference, patches, inliers, times, reason");
   gasp::tools::addOdometryOptions(app, params);
+  bool sequential = false;
+  gasp::tools::addSequentialOption(app, sequential);
   if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;
   if (input.tum_dir.empty() && input.rawlog_path.empty()) {
     std::cerr << "error: give --tum DIR or --rawlog FILE\n";
@@ -49,11 +52,13 @@ int main(int argc, char** argv) {
     gasp::DepthSequence sequence(input);
     gasp::tools::reportIntrinsics(stdout, sequence.intrinsicsSummary(), sequence.intrinsicsWarning());
     const gasp::Trajectory gt = gt_path.empty() ? sequence.groundTruth() : gasp::readTumTrajectory(gt_path);
-    while (const std::optional<gasp::RgbdFrame> frame = sequence.next()) {
-      const gasp::OdometryFrame& f = odometry.addFrame(frame->timestamp, frame->depth_m, frame->depth_intrinsics);
-      if (sequence.framesUsed() % 50 == 0)
+    // Each frame is segmented while the one before it is registered (frames_ahead.h).
+    gasp::tools::forEachFrameWithViewAhead(sequence, params, sequential, [&](const gasp::RgbdFrame& frame, auto segmented) {
+      const gasp::OdometryFrame& f =
+          odometry.addFrame(frame.timestamp, frame.depth_m, frame.depth_intrinsics, std::move(segmented));
+      if (odometry.frames().size() % 50 == 0)
         std::fprintf(stderr, "frame %zu: %zu tracked of %zu\n", f.index, odometry.trackedCount(), odometry.frames().size());
-    }
+    });
 
     const auto& frames = odometry.frames();
     gasp::writeTumTrajectory(out_path, odometry.trajectory(), "depth camera trajectory by gasp-odometry");

@@ -25,6 +25,7 @@
 #include "gasp/slam/depth_slam.h"
 #include "gasp/slam/point_map.h"
 #include "cli.h"
+#include "frames_ahead.h"
 #include "map_output.h"
 #include "sequence_options.h"
 #include "sequence_report.h"
@@ -64,6 +65,8 @@ int main(int argc, char** argv) {
   app.add_option("--frames-csv", frames_csv, "one line per frame: tracked, keyframe, reference, patches, inliers, times, reason");
   app.add_option("--loops-csv", loops_csv, "one line per loop-closure registration: keyframes, accepted, inliers, gate chi-square, reason");
   gasp::tools::addOdometryOptions(app, params.odometry);
+  bool sequential = false;
+  gasp::tools::addSequentialOption(app, sequential);
   app.add_flag("--no-loop-closures", no_loops, "odometry only (no loop closures, no optimisation)");
   app.add_option("--search-radius", params.loop.search_radius_m, "loop-closure candidates within this distance [m]")
       ->capture_default_str()
@@ -104,23 +107,26 @@ int main(int argc, char** argv) {
     gasp::Isometry3 T_robot_camera = gasp::Isometry3::Identity();
     std::vector<gasp::RgbdFrame> keyframes;  // for --simplemap and --cloud
     const bool keep_keyframes = map_output.wanted();
-    while (std::optional<gasp::RgbdFrame> frame = sequence.next()) {
+    // Each frame is segmented while the one before it is registered (frames_ahead.h).
+    gasp::tools::forEachFrameWithViewAhead(sequence, params.odometry, sequential, [&](const gasp::RgbdFrame& frame, auto segmented) {
       if (!slam) {
         // World = the first frame's robot frame: the first camera sits at its sensorPose.
-        T_robot_camera = frame->T_robot_camera;
+        T_robot_camera = frame.T_robot_camera;
         slam.emplace(params, T_robot_camera);
       }
-      const gasp::OdometryFrame& f = slam->addFrame(frame->timestamp, frame->depth_m, frame->depth_intrinsics);
+      const gasp::OdometryFrame& f =
+          slam->addFrame(frame.timestamp, frame.depth_m, frame.depth_intrinsics, std::move(segmented));
       if (f.keyframe && keep_keyframes) {
-        frame->rgb.release();  // the map keeps depth only
+        gasp::RgbdFrame kept = frame;
+        kept.rgb.release();  // the map keeps depth only
         // A deskewed keyframe goes to the map as it was registered (keyframe_map.h).
         const gasp::DepthView* view = slam->odometry().keyframeView();
-        keyframes.push_back(f.deskewed && view ? gasp::withViewDepth(std::move(*frame), *view) : std::move(*frame));
+        keyframes.push_back(f.deskewed && view ? gasp::withViewDepth(std::move(kept), *view) : std::move(kept));
       }
-      if (sequence.framesUsed() % 50 == 0)
+      if (slam->odometry().frames().size() % 50 == 0)
         std::fprintf(stderr, "frame %zu: %zu tracked of %zu, %zu loop closures\n", f.index,
                      slam->odometry().trackedCount(), slam->odometry().frames().size(), slam->loopClosures().size());
-    }
+    });
     if (!slam) throw gasp::Error(sequence.describe() + ": no frame to use");
 
     const auto& frames = slam->odometry().frames();

@@ -12,6 +12,7 @@
 #include "gasp/core/tum_dataset.h"
 #include "gasp/eval/ate.h"
 #include "gasp/odometry/odometry.h"
+#include "gasp/odometry/view_ahead.h"
 #include "gasp/sim/simulation.h"
 #include "gasp_test_data.h"
 
@@ -194,6 +195,42 @@ TEST(DepthOdometry, DeskewsWithTheLastMeasuredStepOnly) {
   EXPECT_FALSE(odo.frames()[4].tracked);
   EXPECT_FALSE(odo.frames()[5].deskewed);
   EXPECT_TRUE(odo.frames()[5].tracked) << odo.frames()[5].reason;
+}
+
+TEST(ViewAhead, GivesTheViewsAddFrameWouldMakeAndNothingItWouldRefuse) {
+  // Each frame segmented ahead (while the one before is added): the same frames, bit for bit.
+  const auto& sim = room();
+  const auto K = sim.options().intrinsics;
+  DepthOdometry plain, ahead_odo;
+  gasp::ViewAhead ahead(OdometryParams{});
+  ahead.start(sim.frame(0).depth, K);
+  for (int i = 0; i < 6; ++i) {
+    auto view = ahead.take();
+    ASSERT_TRUE(view.has_value()) << i;
+    EXPECT_GT(view->ms, 0.0);
+    if (i + 1 < 6) ahead.start(sim.frame(i + 1).depth, K);
+    const auto& a = plain.addFrame(sim.frame(i).timestamp, sim.frame(i).depth, K);
+    const auto& b = ahead_odo.addFrame(sim.frame(i).timestamp, sim.frame(i).depth, K, std::move(view));
+    EXPECT_EQ(a.patches, b.patches) << i;
+    EXPECT_EQ(a.tracked, b.tracked) << i;
+    EXPECT_EQ(a.inliers, b.inliers) << i;
+    EXPECT_EQ(a.keyframe, b.keyframe) << i;
+    EXPECT_TRUE(a.T_world_camera.isApprox(b.T_world_camera, 0.0)) << i;  // exactly
+  }
+  EXPECT_FALSE(ahead.take().has_value());  // nothing started since
+  // A depth image addFrame() refuses is not segmented ahead: addFrame() says why, as without it.
+  ahead.start(cv::Mat::zeros(10, 10, CV_32FC1), K);
+  EXPECT_FALSE(ahead.take().has_value());
+  ahead.start(cv::Mat::zeros(K.height, K.width, CV_8UC1), K);
+  EXPECT_FALSE(ahead.take().has_value());
+  // With the deskew (it needs the previous frame's registration) or disabled: nothing ahead.
+  OdometryParams deskew;
+  deskew.rolling_shutter_readout_s = 0.03;
+  gasp::ViewAhead none(deskew), off(OdometryParams{}, false);
+  none.start(sim.frame(0).depth, K);
+  off.start(sim.frame(0).depth, K);
+  EXPECT_FALSE(none.take().has_value());
+  EXPECT_FALSE(off.take().has_value());
 }
 
 TEST(DepthOdometry, TracksTheFirstSecondsOfFr1Xyz) {

@@ -52,6 +52,22 @@ TEST(GaspOdometryProgram, WritesTheTrajectoryGraphAndFramesAndScoresThem) {
   EXPECT_LT(std::stod(run.output.substr(pos + 12)), 0.01) << run.output;
 }
 
+TEST(GaspOdometryProgram, SegmentingAheadGivesTheSameTrajectoryAsSequential) {
+  const std::string out = gasp::test::scratchDir();
+  const std::string sim = simulatedFolder(out);
+  for (const std::string mode : {"", " --sequential"}) {
+    const auto run = runProgram("gasp-odometry", "--tum " + sim + " --max-frames 10 --out " + out + "/traj" +
+                                                     (mode.empty() ? "" : "_seq") + ".txt" + mode);
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+  }
+  std::ifstream a(out + "/traj.txt"), b(out + "/traj_seq.txt");
+  std::stringstream ta, tb;
+  ta << a.rdbuf();
+  tb << b.rdbuf();
+  EXPECT_FALSE(ta.str().empty());
+  EXPECT_EQ(ta.str(), tb.str());
+}
+
 TEST(GaspOdometryProgram, AFrameItCannotTrackExitsWith3AndSaysWhy) {
   // The occluder pops into the scene at frame 19 of 30: the visibility check refuses that frame's
   // pose (a static world is assumed), which is then predicted.

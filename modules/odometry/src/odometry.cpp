@@ -64,7 +64,8 @@ bool DepthOdometry::track(const DepthView& view, const DepthView& ref, std::size
 }
 
 const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& depth_m,
-                                             const CameraIntrinsics& intrinsics) {
+                                             const CameraIntrinsics& intrinsics,
+                                             std::optional<SegmentedDepth> segmented) {
   if (!std::isfinite(timestamp)) throw Error("odometry: frame " + std::to_string(frames_.size()) + ": timestamp is not finite");
   if (!frames_.empty() && !(timestamp > frames_.back().timestamp)) {
     char buf[200];
@@ -92,10 +93,14 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
     view = makeDepthView(deskewDepth(pinhole, k, *velocity_, params_.rolling_shutter_readout_s), k,
                          params_.pair.superpixels);
     f.deskewed = true;
+    f.segmentation_ms = msSince(t_seg);
+  } else if (segmented) {  // made ahead (view_ahead.h): the same view, already there
+    view = std::move(segmented->view);
+    f.segmentation_ms = segmented->ms;
   } else {
     view = makeDepthView(depth_m, intrinsics, params_.pair.superpixels);
+    f.segmentation_ms = msSince(t_seg);
   }
-  f.segmentation_ms = msSince(t_seg);
   f.patches = static_cast<int>(view.segmentation.patches.size());
 
   const auto t_reg = std::chrono::steady_clock::now();

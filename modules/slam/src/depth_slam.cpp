@@ -17,8 +17,10 @@ namespace gasp {
 DepthSlam::DepthSlam(const SlamParams& params, const Isometry3& T_world_first)
     : params_(params), odometry_((validate(params), params.odometry), T_world_first), votes_(params.loop) {}
 
-const OdometryFrame& DepthSlam::addFrame(double timestamp, const cv::Mat& depth_m, const CameraIntrinsics& intrinsics) {
-  const OdometryFrame& f = odometry_.addFrame(timestamp, depth_m, intrinsics);  // throws: nothing added
+const OdometryFrame& DepthSlam::addFrame(double timestamp, const cv::Mat& depth_m, const CameraIntrinsics& intrinsics,
+                                         std::optional<SegmentedDepth> segmented) {
+  // Throws: nothing added.
+  const OdometryFrame& f = odometry_.addFrame(timestamp, depth_m, intrinsics, std::move(segmented));
   const std::vector<OdometryFrame>& frames = odometry_.frames();
   if (f.tracked && f.reference != f.index) {
     const PoseConstraint& c = odometry_.constraints().back();  // the one ending in f

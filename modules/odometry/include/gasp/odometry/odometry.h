@@ -25,6 +25,7 @@
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/odometry/odometry_params.h"
 #include "gasp/odometry/pose_constraint.h"
+#include "gasp/odometry/view_ahead.h"
 #include "gasp/pipeline/depth_view.h"
 
 namespace gasp {
@@ -61,7 +62,11 @@ class DepthOdometry {
   /// Throws gasp::Error, and does not add the frame, for a timestamp that is not finite or not
   /// later than the previous frame's, an empty image, or one whose size or type does not match
   /// its intrinsics.
-  const OdometryFrame& addFrame(double timestamp, const cv::Mat& depth_m, const CameraIntrinsics& intrinsics);
+  /// `segmented`: the frame's view made ahead from the same depth and intrinsics (ViewAhead,
+  /// view_ahead.h), used when the frame is not deskewed (else, or when empty, the frame is
+  /// segmented here).
+  const OdometryFrame& addFrame(double timestamp, const cv::Mat& depth_m, const CameraIntrinsics& intrinsics,
+                                std::optional<SegmentedDepth> segmented = std::nullopt);
 
   const std::vector<OdometryFrame>& frames() const { return frames_; }
   /// One per tracked frame after the first (from = its reference, to = the frame), in frame order.

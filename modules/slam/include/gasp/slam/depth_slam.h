@@ -37,7 +37,8 @@ class DepthSlam {
 
   /// Adds the next frame (DepthOdometry::addFrame(), same errors), then, when it became a
   /// keyframe, searches for loop closures and optimises the graph if one is taken.
-  const OdometryFrame& addFrame(double timestamp, const cv::Mat& depth_m, const CameraIntrinsics& intrinsics);
+  const OdometryFrame& addFrame(double timestamp, const cv::Mat& depth_m, const CameraIntrinsics& intrinsics,
+                                std::optional<SegmentedDepth> segmented = std::nullopt);
 
   const DepthOdometry& odometry() const { return odometry_; }
   /// Every frame's pose in the optimised graph (the odometry's until a loop closure is taken).
