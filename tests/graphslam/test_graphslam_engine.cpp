@@ -100,6 +100,22 @@ struct GaspEngine {
   const Graph3D& graph() const { return engine->getGraph(); }
 };
 
+/// n nodes 0.1 m apart along x, no edges.
+Graph3D nodesAlongX(int n) {
+  Graph3D graph;
+  for (int i = 0; i < n; ++i) graph.nodes[i] = mrpt::poses::CPose3D(0.1 * i, 0, 0, 0, 0, 0);
+  return graph;
+}
+
+/// An edge of `dx` metres along x with `information` on every axis.
+mrpt::poses::CPose3DPDFGaussianInf edgeAlongX(double dx, double information) {
+  mrpt::poses::CPose3DPDFGaussianInf e;
+  e.mean = mrpt::poses::CPose3D(dx, 0, 0, 0, 0, 0);
+  e.cov_inv.setIdentity();
+  e.cov_inv *= information;
+  return e;
+}
+
 /// The truth of node i: the camera pose of its odometry frame.
 Isometry3 truthOfNode(const GaspEngine& e, const gasp::test::LoopSequence& s, std::size_t node) {
   return s.T_world_camera[e.nrd.nodeFrames()[node]];
@@ -311,18 +327,10 @@ TEST(GraphSlamEngine, StartsWithoutWaitingForAKeyPress) {
 
 TEST(CGaspPoseGraphGSO, RemovesAContradictedClosureAndKeepsAConsistentOne) {
   // Six nodes 0.1 m apart along x; a closure 0 -> 5 that agrees and one 1 -> 4 that is 0.5 m off.
-  Graph3D graph;
-  for (int i = 0; i < 6; ++i) graph.nodes[i] = mrpt::poses::CPose3D(0.1 * i, 0, 0, 0, 0, 0);
-  const auto edge = [](double dx, double information) {
-    mrpt::poses::CPose3DPDFGaussianInf e;
-    e.mean = mrpt::poses::CPose3D(dx, 0, 0, 0, 0, 0);
-    e.cov_inv.setIdentity();
-    e.cov_inv *= information;
-    return e;
-  };
-  for (int i = 0; i < 5; ++i) graph.insertEdge(i, i + 1, edge(0.1, 1e4));
-  graph.insertEdge(0, 5, edge(0.5, 1e4));
-  graph.insertEdge(1, 4, edge(0.8, 1e4));
+  Graph3D graph = nodesAlongX(6);
+  for (int i = 0; i < 5; ++i) graph.insertEdge(i, i + 1, edgeAlongX(0.1, 1e4));
+  graph.insertEdge(0, 5, edgeAlongX(0.5, 1e4));
+  graph.insertEdge(1, 4, edgeAlongX(0.8, 1e4));
   gasp::graphslam::CGaspPoseGraphGSO gso;
   gso.setGraphPtr(&graph);
   gso.optimizeNow();
@@ -339,19 +347,11 @@ TEST(CGaspPoseGraphGSO, RemovesAContradictedSecondEdgeBetweenConsecutiveNodesBut
   // Nodes 0.1 m apart along x. Between 2 and 3 the node decider's break edge comes first, then a
   // relocalisation 0.4 m off; a closure 0 -> 5 agrees with the odometry. Between 3 and 4 the
   // node decider's edge itself is off: it is no closure, so it stays.
-  Graph3D graph;
-  for (int i = 0; i < 6; ++i) graph.nodes[i] = mrpt::poses::CPose3D(0.1 * i, 0, 0, 0, 0, 0);
-  const auto edge = [](double dx, double information) {
-    mrpt::poses::CPose3DPDFGaussianInf e;
-    e.mean = mrpt::poses::CPose3D(dx, 0, 0, 0, 0, 0);
-    e.cov_inv.setIdentity();
-    e.cov_inv *= information;
-    return e;
-  };
+  Graph3D graph = nodesAlongX(6);
   for (int i = 0; i < 5; ++i)
-    graph.insertEdge(i, i + 1, edge(i == 3 ? 0.102 : 0.1, i == 2 ? gasp::graphslam::kBreakInformation : 1e4));
-  graph.insertEdge(2, 3, edge(0.5, 1e4));
-  graph.insertEdge(0, 5, edge(0.502, 1e4));
+    graph.insertEdge(i, i + 1, edgeAlongX(i == 3 ? 0.102 : 0.1, i == 2 ? gasp::graphslam::kBreakInformation : 1e4));
+  graph.insertEdge(2, 3, edgeAlongX(0.5, 1e4));
+  graph.insertEdge(0, 5, edgeAlongX(0.502, 1e4));
   EXPECT_FALSE(gasp::graphslam::isClosureEdge(graph, graph.edges.find({3, 4})));
   EXPECT_TRUE(gasp::graphslam::isClosureEdge(graph, std::prev(graph.edges.equal_range({2, 3}).second)));
   EXPECT_FALSE(gasp::graphslam::isClosureEdge(graph, graph.edges.equal_range({2, 3}).first));
@@ -371,17 +371,9 @@ TEST(CGaspPoseGraphGSO, OptimisesAgainWhenAnEdgeIsRemoved) {
   // A loop closer that takes edges out of the graph (the rest of a relocalisation group) leaves
   // poses optimised with them: the optimiser runs again at its next step without a new node,
   // even when a closure was added in the same step.
-  Graph3D graph;
-  for (int i = 0; i < 5; ++i) graph.nodes[i] = mrpt::poses::CPose3D(0.1 * i, 0, 0, 0, 0, 0);
-  mrpt::poses::CPose3DPDFGaussianInf e;
-  e.cov_inv.setIdentity();
-  e.cov_inv *= 1e4;
-  for (int i = 0; i < 4; ++i) {
-    e.mean = mrpt::poses::CPose3D(0.1, 0, 0, 0, 0, 0);
-    graph.insertEdge(i, i + 1, e);
-  }
-  e.mean = mrpt::poses::CPose3D(0.2, 0, 0, 0, 0, 0);
-  graph.insertEdge(0, 2, e);
+  Graph3D graph = nodesAlongX(5);
+  for (int i = 0; i < 4; ++i) graph.insertEdge(i, i + 1, edgeAlongX(0.1, 1e4));
+  graph.insertEdge(0, 2, edgeAlongX(0.2, 1e4));
   gasp::graphslam::CGaspPoseGraphGSO gso;
   gso.setGraphPtr(&graph);
   const auto step = [&] { gso.updateState(nullptr, nullptr, nullptr); };
@@ -391,8 +383,7 @@ TEST(CGaspPoseGraphGSO, OptimisesAgainWhenAnEdgeIsRemoved) {
   step();
   EXPECT_EQ(gso.optimisations(), 1u);  // nothing changed
   graph.edges.erase(graph.edges.find({0, 2}));
-  e.mean = mrpt::poses::CPose3D(0.3, 0, 0, 0, 0, 0);
-  graph.insertEdge(1, 4, e);  // one out, one in: the count of closures is the same
+  graph.insertEdge(1, 4, edgeAlongX(0.3, 1e4));  // one out, one in: the count of closures is the same
   step();
   EXPECT_EQ(gso.optimisations(), 2u);
   graph.edges.erase(graph.edges.find({1, 4}));
@@ -404,18 +395,10 @@ TEST(CGaspPoseGraphGSO, TheHookRemovesEdgesBeforeTheNextOptimisation) {
   // Nodes 0.1 m apart along x. The closure 1 -> 4 is 0.5 m off and removed; the hook then takes
   // out 0 -> 5, which is 2 cm off: node 5 ends where the odometry puts it only when 0 -> 5 takes
   // no part in the optimisation after the removal.
-  Graph3D graph;
-  for (int i = 0; i < 6; ++i) graph.nodes[i] = mrpt::poses::CPose3D(0.1 * i, 0, 0, 0, 0, 0);
-  const auto edge = [](double dx, double information) {
-    mrpt::poses::CPose3DPDFGaussianInf e;
-    e.mean = mrpt::poses::CPose3D(dx, 0, 0, 0, 0, 0);
-    e.cov_inv.setIdentity();
-    e.cov_inv *= information;
-    return e;
-  };
-  for (int i = 0; i < 5; ++i) graph.insertEdge(i, i + 1, edge(0.1, 1e4));
-  graph.insertEdge(1, 4, edge(0.8, 1e4));
-  graph.insertEdge(0, 5, edge(0.52, 1e2));
+  Graph3D graph = nodesAlongX(6);
+  for (int i = 0; i < 5; ++i) graph.insertEdge(i, i + 1, edgeAlongX(0.1, 1e4));
+  graph.insertEdge(1, 4, edgeAlongX(0.8, 1e4));
+  graph.insertEdge(0, 5, edgeAlongX(0.52, 1e2));
   gasp::graphslam::CGaspPoseGraphGSO gso;
   gso.setGraphPtr(&graph);
   std::size_t calls = 0;
