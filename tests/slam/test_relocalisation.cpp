@@ -197,3 +197,48 @@ TEST(RelocalisationVotes, TheVotesThatJoinAgreeAmongThemselves) {
   EXPECT_EQ(d.votes.back().attempt, 3u);
   EXPECT_EQ(votes.waiting().size(), 1u);  // one of the two 6-cm votes is left out
 }
+
+TEST(RelocalisationVotes, TheLargestAgreeingSetJoinsNotTheFirstFound) {
+  // Three needed. A waiting vote 5 cm off one way agrees best with a new exact vote; two
+  // waiting votes 6 cm off the other way (the same registration twice) agree with it too and
+  // with each other, but not with the first. Taking the best-agreeing vote first would leave one vote: the two join instead.
+  const auto tree = odometry();
+  const auto roots = gasp::pieceRoots(12, tree);
+  gasp::LoopClosureParams p;
+  p.relocalisation_agreeing = 3;
+  gasp::RelocalisationVotes votes(p);
+  EXPECT_FALSE(votes.offer(constraint(1, 6, shifted(-0.05)), 0, tree, 12, roots).join);
+  auto d = votes.offer(constraint(2, 7, shifted(0.06)), 1, tree, 12, roots);
+  EXPECT_FALSE(d.join);
+  EXPECT_GT(d.chi2, 22.46) << "the first two must disagree, or the test shows nothing";
+  d = votes.offer(constraint(2, 7, shifted(0.06)), 2, tree, 12, roots);
+  EXPECT_FALSE(d.join) << "the third agrees with the second only: two votes, three needed";
+  EXPECT_LE(d.chi2, 22.46) << "the second and third must agree, or the test shows nothing";
+  d = votes.offer(constraint(4, 9), 3, tree, 12, roots);
+  ASSERT_TRUE(d.join) << d.reason;
+  ASSERT_EQ(d.votes.size(), 3u);
+  EXPECT_EQ(d.votes[0].attempt, 1u);
+  EXPECT_EQ(d.votes[1].attempt, 2u);
+  EXPECT_EQ(d.votes[2].attempt, 3u);
+  ASSERT_EQ(votes.waiting().size(), 1u);
+  EXPECT_EQ(votes.waiting()[0].attempt, 0u);
+}
+
+TEST(RelocalisationVotes, ManyWaitingVotesAreSearchedInBoundedTime) {
+  // 40 waiting votes between the same two pieces, alternately 5 cm off either way, so the
+  // agreement graph is far from complete. With 26 needed the new vote waits (only the best
+  // kMaxCandidates = 24 are searched, and they do not all agree); the search ends quickly.
+  const auto tree = odometry();
+  const auto roots = gasp::pieceRoots(12, tree);
+  gasp::LoopClosureParams p;
+  p.relocalisation_agreeing = 26;
+  static_assert(gasp::RelocalisationVotes::kMaxCandidates == 24);
+  gasp::RelocalisationVotes votes(p);
+  for (std::size_t k = 0; k < 40; ++k) {
+    const std::size_t from = k % 5, to = 5 + (k / 5) % 5;
+    EXPECT_FALSE(votes.offer(constraint(from, to, shifted(k % 2 ? 0.05 : -0.05)), k, tree, 12, roots).join);
+  }
+  const auto d = votes.offer(constraint(4, 9), 40, tree, 12, roots);
+  EXPECT_FALSE(d.join);
+  EXPECT_EQ(votes.waiting().size(), 41u);
+}

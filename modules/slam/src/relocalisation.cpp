@@ -40,6 +40,31 @@ RelativePoseEstimate estimateOf(const PoseConstraint& h, bool inverted) {
   return e;
 }
 
+/// The largest set of mutually agreeing candidates 0..n-1 (agree: n x n, symmetric): a
+/// depth-first branch and bound over the candidates in their order, so among sets of the largest
+/// size the first in lexicographic order (the best-ranked candidates) is returned. n is small
+/// (RelocalisationVotes::kMaxCandidates), so the exponential worst case stays bounded.
+std::vector<std::size_t> largestAgreeingSet(const std::vector<char>& agree, std::size_t n) {
+  std::vector<std::size_t> best, current;
+  const auto extend = [&](const auto& self, const std::vector<std::size_t>& candidates) -> void {
+    if (current.size() > best.size()) best = current;
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+      if (current.size() + (candidates.size() - c) <= best.size()) return;  // cannot beat the best
+      const std::size_t i = candidates[c];
+      std::vector<std::size_t> next;
+      for (std::size_t d = c + 1; d < candidates.size(); ++d)
+        if (agree[i * n + candidates[d]]) next.push_back(candidates[d]);
+      current.push_back(i);
+      self(self, next);
+      current.pop_back();
+    }
+  };
+  std::vector<std::size_t> all(n);
+  for (std::size_t i = 0; i < n; ++i) all[i] = i;
+  extend(extend, all);
+  return best;
+}
+
 }  // namespace
 
 std::optional<RelativePoseEstimate> predictThroughRelocalisation(const std::vector<PoseConstraint>& tree,
@@ -94,20 +119,22 @@ RelocalisationVotes::Decision RelocalisationVotes::offer(const PoseConstraint& c
       if (chi2 <= params_.gate_chi2) agreeing.emplace_back(chi2, i);
     }
   }
-  // The votes that join must agree among themselves too, not only with c: the waiting ones that
-  // agree with c, the best first, each kept when the ones kept before it predict it within the gate.
+  // The votes that join must agree among themselves too, not only with c: the largest set of
+  // waiting ones that agree with c and pairwise with each other (a maximum clique of the
+  // agreement graph), over the best kMaxCandidates of them by their chi-square against c.
   std::sort(agreeing.begin(), agreeing.end());
-  std::vector<std::size_t> chosen;  // positions in waiting_
-  for (const auto& [chi2_c, i] : agreeing) {
-    bool consistent = true;
-    for (const std::size_t j : chosen) {
-      const PoseConstraint &a = waiting_[j].constraint, &b = waiting_[i].constraint;
+  if (agreeing.size() > kMaxCandidates) agreeing.resize(kMaxCandidates);
+  const std::size_t n = agreeing.size();
+  std::vector<char> agree(n * n, 0);  // agree[i n + j]: candidates i and j agree
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const PoseConstraint &a = waiting_[agreeing[i].second].constraint, &b = waiting_[agreeing[j].second].constraint;
       double chi2 = chi2Of(a, b, covarianceOf(b));
       if (std::isnan(chi2)) chi2 = chi2Of(b, a, covarianceOf(a));  // the other way round
-      consistent = consistent && chi2 <= params_.gate_chi2;  // false for NaN (neither predicts the other)
+      agree[i * n + j] = agree[j * n + i] = chi2 <= params_.gate_chi2;  // false for NaN (neither predicts the other)
     }
-    if (consistent) chosen.push_back(i);
-  }
+  std::vector<std::size_t> chosen;  // positions in waiting_
+  for (const std::size_t k : largestAgreeingSet(agree, n)) chosen.push_back(agreeing[k].second);
   if (chosen.size() + 1 >= needed) {
     d.join = true;
     std::sort(chosen.begin(), chosen.end());
@@ -122,7 +149,7 @@ RelocalisationVotes::Decision RelocalisationVotes::offer(const PoseConstraint& c
   d.reason = formatted("waits for %zu more agreeing relocalisation(s) between these pieces", needed - 1 - chosen.size());
   if (std::isfinite(d.chi2) && agreeing.empty())
     d.reason += formatted(" (disagrees with the waiting ones: least chi-square %.1f > %.2f)", d.chi2, params_.gate_chi2);
-  else if (chosen.size() < agreeing.size())
+  else if (chosen.size() < agreeing.size() && agreeing.size() + 1 >= needed)
     d.reason += " (the waiting ones that agree with it disagree among themselves)";
   return d;
 }

@@ -27,7 +27,7 @@ std::optional<RelativePoseEstimate> predictThroughRelocalisation(const std::vect
 /// `LoopClosureParams::relocalisation_agreeing` of them link the same two pieces consistently:
 /// each waiting one predicts the new one's relative pose (predictThroughRelocalisation()), and
 /// agrees when xi^T (S_pred + S_meas)^-1 xi <= gate_chi2. The votes that join agree with each
-/// other as well (every earlier-chosen one predicts every later-chosen one), not only with the new one.
+/// other as well (each pair: one predicts the other within the gate), not only with the new one.
 class RelocalisationVotes {
  public:
   /// A relocalisation and the index of its attempt (the caller's bookkeeping).
@@ -45,13 +45,18 @@ class RelocalisationVotes {
     std::string reason;  ///< why it waits (empty when join)
   };
 
+  /// At most this many waiting votes (the best by their chi-square against the new one) enter
+  /// the search for the largest agreeing set, which bounds its exponential worst case.
+  static constexpr std::size_t kMaxCandidates = 24;
+
   explicit RelocalisationVotes(const LoopClosureParams& params) : params_(params) {}
 
   /// Offers a successful relocalisation `c` (between two pieces under `roots`, pieceRoots()).
   /// With relocalisation_agreeing - 1 waiting ones agreeing with it and among themselves,
-  /// returns join with them (all such that are found: the waiting ones that agree with `c`, the
-  /// best first, each taken when it agrees with those taken before it) and removes them from
-  /// the waiting list; otherwise `c` waits.
+  /// returns join with them and removes them from the waiting list; otherwise `c` waits. The
+  /// ones that join are the largest set of waiting ones that agree with `c` and pairwise among
+  /// themselves (a maximum clique, searched exactly over the kMaxCandidates that agree best with
+  /// `c`); of equally large sets, the one of the best-agreeing votes.
   Decision offer(const PoseConstraint& c, std::size_t attempt, const std::vector<PoseConstraint>& tree,
                  std::size_t frame_count, const std::vector<std::size_t>& roots);
 
