@@ -172,6 +172,13 @@ TEST(RelocalisationVotes, VotesTheOtherWayRoundAndTheNumberNeeded) {
   EXPECT_TRUE(three.waiting().empty());
   p.relocalisation_agreeing = 0;
   EXPECT_THROW(gasp::validate(p), gasp::Error);
+  // The search looks at kMaxCandidates waiting votes, so more than kMaxCandidates + 1 needed
+  // could never join: refused rather than waiting for ever.
+  static_assert(gasp::RelocalisationVotes::kMaxCandidates + 1 == gasp::LoopClosureParams::kMaxRelocalisationAgreeing);
+  p.relocalisation_agreeing = gasp::LoopClosureParams::kMaxRelocalisationAgreeing;
+  EXPECT_NO_THROW(gasp::validate(p));
+  p.relocalisation_agreeing = gasp::LoopClosureParams::kMaxRelocalisationAgreeing + 1;
+  EXPECT_THROW(gasp::validate(p), gasp::Error);
 }
 
 TEST(RelocalisationVotes, TheVotesThatJoinAgreeAmongThemselves) {
@@ -207,6 +214,16 @@ TEST(RelocalisationVotes, TheLargestAgreeingSetJoinsNotTheFirstFound) {
   gasp::LoopClosureParams p;
   p.relocalisation_agreeing = 3;
   gasp::RelocalisationVotes votes(p);
+  {  // what makes a best-first choice fail: the 5 cm vote agrees with the exact one, and best
+    gasp::RelocalisationVotes alone(p), other(p);
+    alone.offer(constraint(1, 6, shifted(-0.05)), 0, tree, 12, roots);
+    other.offer(constraint(2, 7, shifted(0.06)), 0, tree, 12, roots);
+    const double chi2_5cm = alone.offer(constraint(4, 9), 1, tree, 12, roots).chi2;
+    const double chi2_6cm = other.offer(constraint(4, 9), 1, tree, 12, roots).chi2;
+    EXPECT_LE(chi2_5cm, 22.46) << "the test shows nothing";
+    EXPECT_LE(chi2_6cm, 22.46) << "the test shows nothing";
+    EXPECT_LT(chi2_5cm, chi2_6cm) << "the test shows nothing";
+  }
   EXPECT_FALSE(votes.offer(constraint(1, 6, shifted(-0.05)), 0, tree, 12, roots).join);
   auto d = votes.offer(constraint(2, 7, shifted(0.06)), 1, tree, 12, roots);
   EXPECT_FALSE(d.join);
@@ -225,14 +242,14 @@ TEST(RelocalisationVotes, TheLargestAgreeingSetJoinsNotTheFirstFound) {
 }
 
 TEST(RelocalisationVotes, ManyWaitingVotesAreSearchedInBoundedTime) {
-  // 40 waiting votes between the same two pieces, alternately 5 cm off either way, so the
-  // agreement graph is far from complete. With 26 needed the new vote waits (only the best
-  // kMaxCandidates = 24 are searched, and they do not all agree); the search ends quickly.
+  // 40 waiting votes between the same two pieces, alternately 5 cm off either way: two groups
+  // that agree within themselves, not with each other, so the agreement graph is far from
+  // complete. 25 are needed (the most allowed): the new exact vote agrees with every one, but of
+  // the best kMaxCandidates = 24 searched no 24 agree among themselves, so it waits.
   const auto tree = odometry();
   const auto roots = gasp::pieceRoots(12, tree);
   gasp::LoopClosureParams p;
-  p.relocalisation_agreeing = 26;
-  static_assert(gasp::RelocalisationVotes::kMaxCandidates == 24);
+  p.relocalisation_agreeing = gasp::LoopClosureParams::kMaxRelocalisationAgreeing;
   gasp::RelocalisationVotes votes(p);
   for (std::size_t k = 0; k < 40; ++k) {
     const std::size_t from = k % 5, to = 5 + (k / 5) % 5;
@@ -240,5 +257,26 @@ TEST(RelocalisationVotes, ManyWaitingVotesAreSearchedInBoundedTime) {
   }
   const auto d = votes.offer(constraint(4, 9), 40, tree, 12, roots);
   EXPECT_FALSE(d.join);
+  EXPECT_LE(d.chi2, 22.46) << "the new vote must agree with the waiting ones, or the test shows nothing";
+  EXPECT_NE(d.reason.find("disagree among themselves"), std::string::npos) << d.reason;
   EXPECT_EQ(votes.waiting().size(), 41u);
+}
+
+TEST(RelocalisationVotes, TheMostAllowedJoinWhenAllAgree) {
+  // 25 needed, every vote exact: the 25th joins with exactly the 24 waiting ones (the search's
+  // whole candidate list).
+  const auto tree = odometry();
+  const auto roots = gasp::pieceRoots(12, tree);
+  gasp::LoopClosureParams p;
+  p.relocalisation_agreeing = gasp::LoopClosureParams::kMaxRelocalisationAgreeing;
+  gasp::RelocalisationVotes votes(p);
+  for (std::size_t k = 0; k + 1 < p.relocalisation_agreeing; ++k) {
+    const auto d = votes.offer(constraint(k % 5, 5 + (k / 5) % 5), k, tree, 12, roots);
+    EXPECT_FALSE(d.join) << "vote " << k;
+  }
+  const auto d = votes.offer(constraint(4, 9), 99, tree, 12, roots);
+  ASSERT_TRUE(d.join) << d.reason;
+  EXPECT_EQ(d.votes.size(), p.relocalisation_agreeing);
+  EXPECT_EQ(d.votes.back().attempt, 99u);
+  EXPECT_TRUE(votes.waiting().empty());
 }

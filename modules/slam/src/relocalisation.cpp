@@ -119,11 +119,22 @@ RelocalisationVotes::Decision RelocalisationVotes::offer(const PoseConstraint& c
       if (chi2 <= params_.gate_chi2) agreeing.emplace_back(chi2, i);
     }
   }
+  // c waits, `found` waiting ones agreeing with it and among themselves.
+  const auto wait = [&](std::size_t found) {
+    waiting_.push_back({c, attempt});
+    d.reason = formatted("waits for %zu more agreeing relocalisation(s) between these pieces", needed - 1 - found);
+    if (std::isfinite(d.chi2) && agreeing.empty())
+      d.reason += formatted(" (disagrees with the waiting ones: least chi-square %.1f > %.2f)", d.chi2, params_.gate_chi2);
+    else if (found < agreeing.size())
+      d.reason += " (the waiting ones that agree with it disagree among themselves)";
+    return d;
+  };
   // The votes that join must agree among themselves too, not only with c: the largest set of
   // waiting ones that agree with c and pairwise with each other (a maximum clique of the
   // agreement graph), over the best kMaxCandidates of them by their chi-square against c.
   std::sort(agreeing.begin(), agreeing.end());
   if (agreeing.size() > kMaxCandidates) agreeing.resize(kMaxCandidates);
+  if (agreeing.size() + 1 < needed) return wait(agreeing.size());  // no set could join: nothing to search
   const std::size_t n = agreeing.size();
   std::vector<char> agree(n * n, 0);  // agree[i n + j]: candidates i and j agree
   for (std::size_t i = 0; i < n; ++i)
@@ -135,22 +146,14 @@ RelocalisationVotes::Decision RelocalisationVotes::offer(const PoseConstraint& c
     }
   std::vector<std::size_t> chosen;  // positions in waiting_
   for (const std::size_t k : largestAgreeingSet(agree, n)) chosen.push_back(agreeing[k].second);
-  if (chosen.size() + 1 >= needed) {
-    d.join = true;
-    std::sort(chosen.begin(), chosen.end());
-    for (std::size_t k = chosen.size(); k-- > 0;) {  // from the back, so positions stay valid
-      d.votes.insert(d.votes.begin(), waiting_[chosen[k]]);
-      waiting_.erase(waiting_.begin() + static_cast<std::ptrdiff_t>(chosen[k]));
-    }
-    d.votes.push_back({c, attempt});
-    return d;
+  if (chosen.size() + 1 < needed) return wait(chosen.size());
+  d.join = true;
+  std::sort(chosen.begin(), chosen.end());
+  for (std::size_t k = chosen.size(); k-- > 0;) {  // from the back, so positions stay valid
+    d.votes.insert(d.votes.begin(), waiting_[chosen[k]]);
+    waiting_.erase(waiting_.begin() + static_cast<std::ptrdiff_t>(chosen[k]));
   }
-  waiting_.push_back({c, attempt});
-  d.reason = formatted("waits for %zu more agreeing relocalisation(s) between these pieces", needed - 1 - chosen.size());
-  if (std::isfinite(d.chi2) && agreeing.empty())
-    d.reason += formatted(" (disagrees with the waiting ones: least chi-square %.1f > %.2f)", d.chi2, params_.gate_chi2);
-  else if (chosen.size() < agreeing.size() && agreeing.size() + 1 >= needed)
-    d.reason += " (the waiting ones that agree with it disagree among themselves)";
+  d.votes.push_back({c, attempt});
   return d;
 }
 

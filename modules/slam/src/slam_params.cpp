@@ -14,7 +14,9 @@ void validate(const LoopClosureParams& p) {
   if (p.min_keyframe_gap < 1) throw Error("loop closure: min_keyframe_gap must be at least 1");
   if (p.min_inliers < 3 || p.relocalisation_min_inliers < 3)
     throw Error("loop closure: min_inliers and relocalisation_min_inliers must be at least 3");
-  if (p.relocalisation_agreeing < 1) throw Error("loop closure: relocalisation_agreeing must be at least 1");
+  if (p.relocalisation_agreeing < 1 || p.relocalisation_agreeing > LoopClosureParams::kMaxRelocalisationAgreeing)
+    throw Error("loop closure: relocalisation_agreeing must be from 1 to " +
+                std::to_string(LoopClosureParams::kMaxRelocalisationAgreeing));
 }
 
 void validate(const SlamParams& p) {

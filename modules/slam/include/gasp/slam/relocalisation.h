@@ -47,7 +47,7 @@ class RelocalisationVotes {
 
   /// At most this many waiting votes (the best by their chi-square against the new one) enter
   /// the search for the largest agreeing set, which bounds its exponential worst case.
-  static constexpr std::size_t kMaxCandidates = 24;
+  static constexpr std::size_t kMaxCandidates = LoopClosureParams::kMaxRelocalisationAgreeing - 1;
 
   explicit RelocalisationVotes(const LoopClosureParams& params) : params_(params) {}
 

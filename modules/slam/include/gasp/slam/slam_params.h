@@ -38,8 +38,10 @@ struct LoopClosureParams {
   /// Two pieces are joined when this many votes link them consistently (relocalisation.h: each
   /// waiting vote predicts the new one through the odometry inside the two pieces, within
   /// gate_chi2). 1: the first vote joins them, as a single registration with no pose prior
-  /// that the optimised graph can never contradict.
+  /// that the optimised graph can never contradict. At most kMaxRelocalisationAgreeing (the
+  /// search for agreeing votes looks at the best kMaxRelocalisationAgreeing - 1 waiting ones).
   std::size_t relocalisation_agreeing = 2;
+  static constexpr std::size_t kMaxRelocalisationAgreeing = 25;
 };
 
 struct SlamParams {
