@@ -151,6 +151,7 @@ void pairFields(P& p, F&& f) {
   f("visibility_gate_per_m2", p.visibility.gate_per_m2);
   f("visibility_max_violation_ratio", p.visibility.max_violation_ratio);
   f("visibility_max_occluded_ratio", p.visibility.max_occluded_ratio);
+  f("visibility_max_two_way_violation_ratio", p.visibility.max_two_way_violation_ratio);
   f("visibility_min_consistent", p.visibility.min_consistent);
   f("retry_area_factor", p.retry_area_factor);
   f("model_error_t_m", p.model_error.sigma_t_m);

@@ -287,8 +287,8 @@ int main(int argc, char** argv) {
                   std::sqrt(C(4, 4)) * 180.0 / M_PI, std::sqrt(C(5, 5)) * 180.0 / M_PI, params.model_error.sigma_t_m,
                   params.model_error.sigma_r_deg);
     }
-    std::printf("visibility_violations: %.3f\nvisibility_occluded: %.3f\n", r.visibility.violation_ratio,
-                r.visibility.occluded_ratio);
+    std::printf("visibility_violations: %.3f (other direction %.3f)\nvisibility_occluded: %.3f\n",
+                r.visibility.violation_ratio, r.visibility.violation_ratio_lesser, r.visibility.occluded_ratio);
     std::printf("dense_rounds: %d (last step %.1f mm; line search: %d steps shortened%s)\n", r.dense_rounds_run,
                 1000.0 * r.dense_last_step_m, r.dense_steps_shortened,
                 r.dense_line_search_stopped ? ", stopped the rounds" : "");

@@ -107,6 +107,8 @@ int main(int argc, char** argv) {
                  "GASP: visibility check violation limit for poses from the one-way fallback")->capture_default_str()->check(gasp::tools::within(0, 1));
   app.add_option("--max-occluded", base.visibility.max_occluded_ratio,
                  "visibility check: limit on the share of samples behind the other view's surfaces (all methods)")->capture_default_str()->check(gasp::tools::within(0, 1));
+  app.add_option("--max-two-way-violation", base.visibility.max_two_way_violation_ratio,
+                 "visibility check: limit on the violation share seen from both views (all methods; 1 = no limit)")->capture_default_str()->check(gasp::tools::within(0, 1));
   app.add_option("--retry-area-factor", base.retry_area_factor,
                  "GASP: when no estimate is found, segment again with this times the patch area and retry, mutual associations only (0 = never, else in [0.01, 1))")
       ->capture_default_str()

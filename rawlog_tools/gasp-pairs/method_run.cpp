@@ -18,6 +18,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+/// The visibility check's counts and ratios of the pose a run reports.
+void setVisibility(MethodRun& run, const VisibilityCheck& check) {
+  run.violation_ratio = check.violation_ratio;
+  run.violation_ratio_lesser = check.violation_ratio_lesser;
+  run.consistent = check.consistent, run.occluded = check.occluded, run.violations = check.violations;
+  run.occluded_ratio = check.occluded_ratio;
+}
+
 MethodRun runGasp(const std::string& method, std::size_t i, std::size_t j, FrameCache& cache, const MethodSetup& setup,
                   Picture* picture, const std::optional<Isometry3>& T_gt, const std::optional<Isometry3>& T_ref_icp) {
   MethodRun run;
@@ -34,10 +42,7 @@ MethodRun runGasp(const std::string& method, std::size_t i, std::size_t j, Frame
   run.ms = va.ms + vb.ms + reg_ms;
   run.associations = r.association.associations.size();
   run.inliers = r.pose.num_inliers;
-  run.violation_ratio = r.visibility.violation_ratio;
-  run.consistent = r.visibility.consistent, run.occluded = r.visibility.occluded;
-  run.violations = r.visibility.violations;
-  run.occluded_ratio = r.visibility.occluded_ratio;
+  setVisibility(run, r.visibility);
   run.one_way = r.used_one_way ? 1 : 0;
   run.guided_support = r.guided_support;
   run.finer_scale = r.retry_views != nullptr;
@@ -61,9 +66,7 @@ MethodRun runGasp(const std::string& method, std::size_t i, std::size_t j, Frame
       const auto check = checkVisibility(va.view, vb.view, g.T_target_source, setup.gasp.visibility);
       if (check.passed) {
         run.T_target_source = g.T_target_source;
-        run.violation_ratio = check.violation_ratio;
-        run.consistent = check.consistent, run.occluded = check.occluded, run.violations = check.violations;
-        run.occluded_ratio = check.occluded_ratio;
+        setVisibility(run, check);
       } else {
         run.reason = "GICP's pose failed the visibility check (" + check.reason + "); GASP's pose kept";
       }
@@ -130,9 +133,7 @@ MethodRun runGicp(std::size_t i, std::size_t j, FrameCache& cache, const MethodS
     run.reason = "GICP: " + g.reason;
   } else {
     const auto check = checkVisibility(va, vb, g.T_target_source, setup.gasp.visibility);
-    run.violation_ratio = check.violation_ratio;
-    run.consistent = check.consistent, run.occluded = check.occluded, run.violations = check.violations;
-    run.occluded_ratio = check.occluded_ratio;
+    setVisibility(run, check);
     run.estimated = check.passed;
     if (!check.passed) run.reason = check.reason;
   }
@@ -158,10 +159,7 @@ MethodRun runBaseline(const std::string& method, std::size_t i, std::size_t j, F
   run.ms = ka.describe_ms + kb.describe_ms + reg_ms;
   run.associations = r.matches.size();
   run.inliers = r.pose.num_inliers;
-  run.violation_ratio = r.visibility.violation_ratio;
-  run.consistent = r.visibility.consistent, run.occluded = r.visibility.occluded;
-  run.violations = r.visibility.violations;
-  run.occluded_ratio = r.visibility.occluded_ratio;
+  setVisibility(run, r.visibility);
   run.stage_ms = {{"description", ka.describe_ms + kb.describe_ms},
                   {"matching", r.timings.match_ms},
                   {"ransac", r.timings.ransac_ms},

@@ -38,6 +38,7 @@ struct MethodRun {
   std::size_t associations = 0;
   int inliers = 0;
   double violation_ratio = 0;
+  double violation_ratio_lesser = 0;  ///< visibility check, the other direction
   int consistent = 0, occluded = 0, violations = 0;  ///< visibility check samples, both directions
   double occluded_ratio = 0;                          ///< visibility check, the worse direction
   int one_way = 0;          ///< GASP: the pose came from the one-way fallback

@@ -85,6 +85,7 @@ PairParams everythingChanged() {
   p.slide_scan.min_gain = 0.006, p.slide_scan.pixel_step = 6;
   p.visibility.pixel_step = 6, p.visibility.gate_m = 0.035, p.visibility.gate_per_m2 = 0.025;
   p.visibility.max_violation_ratio = 0.2, p.visibility.max_occluded_ratio = 0.6, p.visibility.min_consistent = 40;
+  p.visibility.max_two_way_violation_ratio = 0.07;
   p.retry_area_factor = 0.4, p.model_error.sigma_t_m = 0.02, p.model_error.sigma_r_deg = 1.0;
   return p;
 }

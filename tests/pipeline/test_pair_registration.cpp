@@ -337,6 +337,7 @@ TEST(FinerScaleRetry, ClaimsNoLookAlikePoseOnRepeatedObjects) {
     PairParams loose;
     loose.one_way_max_violation_ratio = 0.3;
     loose.visibility.max_violation_ratio = 0.3;
+    loose.visibility.max_two_way_violation_ratio = 1.0;  // which declines a look-alike too
     loose.slide_scan.enabled = false;  // 3 -> 13's loosened pose slid along a box: the scan moves it right
     if (from == 3) {
       // The 16 rounds with the extrapolation: the default scale's pose, right; nothing to retry.

@@ -106,6 +106,36 @@ TEST(VisibilityCheck, APoseThatHidesAViewBehindTheOtherFails) {
   EXPECT_THROW(checkVisibility(a, b, Isometry3::Identity(), p), Error);
 }
 
+TEST(VisibilityCheck, AnObjectSeenByOneViewIsAllowedViolationsFromBothViewsAreNot) {
+  // The wall at 2 m, a box at 1 m in front of it: a box that appears in b alone violates one
+  // direction only (b's box samples lie in space a saw as empty; a's wall behind it is occluded),
+  // a box that moved between the views violates both (each view's box lies where the other saw
+  // the wall), and so does a wrong alignment of look-alike structure.
+  const auto withBox = [](const cv::Rect& box) {
+    DepthView v = wallView(2.0);
+    v.depth_m(box).setTo(1.0f);
+    return v;
+  };
+  const DepthView wall = wallView(2.0);
+  const cv::Rect left(80, 160, 128, 192), right(432, 160, 128, 192);  // 8 % of the image each
+  const auto appears = checkVisibility(wall, withBox(right), Isometry3::Identity());
+  EXPECT_TRUE(appears.passed) << appears.reason;
+  EXPECT_NEAR(appears.violation_ratio, 0.08, 0.01);
+  EXPECT_EQ(appears.violation_ratio_lesser, 0.0);
+  const auto moved = checkVisibility(withBox(left), withBox(right), Isometry3::Identity());
+  EXPECT_FALSE(moved.passed);
+  EXPECT_NEAR(moved.violation_ratio_lesser, 0.08, 0.01);
+  EXPECT_NE(moved.reason.find("seen from both views"), std::string::npos) << moved.reason;
+  // Below the two-way limit, or with the limit lifted, the moved box is allowed.
+  const cv::Rect small_left(80, 160, 64, 96), small_right(432, 160, 64, 96);  // 2 % each
+  EXPECT_TRUE(checkVisibility(withBox(small_left), withBox(small_right), Isometry3::Identity()).passed);
+  VisibilityCheckParams p;
+  p.max_two_way_violation_ratio = 1.0;
+  EXPECT_TRUE(checkVisibility(withBox(left), withBox(right), Isometry3::Identity(), p).passed);
+  p.max_two_way_violation_ratio = -0.1;
+  EXPECT_THROW(checkVisibility(wall, wall, Isometry3::Identity(), p), Error);
+}
+
 }  // namespace
 
 TEST(DepthViewUndistortion, ADistortedCameraGivesAPinholeView) {

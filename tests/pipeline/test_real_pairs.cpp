@@ -147,6 +147,9 @@ TEST(RealPairs, TheFallbackViolationLimitDeclinesAWrongPose) {
   expectRightOrDeclined(p, retried, "x the patch area");
   PairParams loose = no_retry;
   loose.one_way_max_violation_ratio = 0.15;  // the limit before
+  // Its violations are seen from both views as well: the two-way limit declines it by itself.
+  EXPECT_TRUE(expectRightOrDeclined(p, registerViews(p.a, p.b, loose), "seen from both views"));
+  loose.visibility.max_two_way_violation_ratio = 1.0;  // the check before that too
   // The fallback pose's patch problem is degenerate: the slide scan moves the loosened claim to
   // where the views agree more (2 cm / 1.2 deg from the reference).
   const PairResult moved = registerViews(p.a, p.b, loose);
@@ -186,6 +189,11 @@ TEST(RealPairs, WideEdgeGatesStopTheCabinetSlide) {
   // 3.2 cm (docs/pipeline.md, "Extrapolated rounds").
   narrow.dense_max_rounds = 8;
   narrow.dense_extrapolation_max = 0.0;
+  narrow.retry_area_factor = 0.0;
+  // The slid pose violates the other view's free space from both views (10 % and 7 %): the
+  // two-way limit declines it as well. Without that limit it is claimed.
+  EXPECT_TRUE(expectRightOrDeclined(p, registerViews(p.a, p.b, narrow), "seen from both views"));
+  narrow.visibility.max_two_way_violation_ratio = 1.0;
   const PairResult n = registerViews(p.a, p.b, narrow);
   ASSERT_TRUE(n.pose.success) << n.pose.reason;
   EXPECT_FALSE(n.wide_edge_pose);
@@ -195,6 +203,32 @@ TEST(RealPairs, WideEdgeGatesStopTheCabinetSlide) {
   const PairResult c = registerViews(d.a, d.b, narrow);
   ASSERT_TRUE(c.pose.success) << c.pose.reason;
   EXPECT_LT(translationError(d, c), 0.05);
+}
+
+TEST(RealPairs, ViolationsSeenFromBothViewsDeclineALookAlikeAlignment) {
+  // fr3_cabinet_kf keyframes 12 -> 18 (about 120 frames): the camera orbits the cabinet by 46 deg
+  // and 1.0 m. The associations give a pose as if it had hardly moved (0.96 m / 46 deg off):
+  // floor onto floor, one face of the cabinet onto another. It violates the other view's free
+  // space by 14 %, under the one-direction limit (15 %, which an object that appears between the
+  // views may take), but by 8 % from the other view as well, which no such object explains
+  // (right poses of the benchmarks: at most 2.9 %; docs/pipeline.md "Violations seen from both
+  // views"). Declined at the default scale, the pair goes to the finer-scale retry, whose
+  // pose is right.
+  GASP_REQUIRE_DATA(dir, "tum/fr3_cabinet_kf");
+  const RealPair p = load(dir, 12, 18);
+  EXPECT_TRUE(expectRightOrDeclined(p, registerViews(p.a, p.b, defaultScaleOnly()), "seen from both views"));
+  const PairResult retried = registerViews(p.a, p.b);
+  ASSERT_TRUE(retried.pose.success) << retried.pose.reason;
+  EXPECT_TRUE(retried.retried);
+  EXPECT_LT(translationError(p, retried), 0.05);
+  EXPECT_LT(rotationErrorDeg(p, retried), 2.0);
+  PairParams loose = defaultScaleOnly();
+  loose.visibility.max_two_way_violation_ratio = 1.0;  // the check before
+  const PairResult w = registerViews(p.a, p.b, loose);
+  ASSERT_TRUE(w.pose.success) << w.pose.reason;
+  EXPECT_GT(translationError(p, w), 0.5);
+  EXPECT_GT(w.visibility.violation_ratio_lesser, PairParams{}.visibility.max_two_way_violation_ratio);
+  EXPECT_LT(w.visibility.violation_ratio, PairParams{}.visibility.max_violation_ratio);
 }
 
 TEST(RealPairs, ARolledCabinetPairNeedsMoreThanEightRounds) {

@@ -16,6 +16,8 @@ void validate(const VisibilityCheckParams& p) {
     throw Error("VisibilityCheckParams: max_violation_ratio must be in [0, 1]");
   if (!(p.max_occluded_ratio >= 0 && p.max_occluded_ratio <= 1))
     throw Error("VisibilityCheckParams: max_occluded_ratio must be in [0, 1]");
+  if (!(p.max_two_way_violation_ratio >= 0 && p.max_two_way_violation_ratio <= 1))
+    throw Error("VisibilityCheckParams: max_two_way_violation_ratio must be in [0, 1]");
   if (p.min_consistent < 0) throw Error("VisibilityCheckParams: min_consistent must be >= 0");
 }
 
@@ -71,8 +73,9 @@ VisibilityCheck checkVisibility(const DepthView& source, const DepthView& target
   out.occluded = st.occluded + ts.occluded;
   out.violations = st.violations + ts.violations;
   out.violation_ratio = std::max(st.ratio(), ts.ratio());
+  out.violation_ratio_lesser = std::min(st.ratio(), ts.ratio());
   out.occluded_ratio = std::max(st.occludedRatio(), ts.occludedRatio());
-  char buf[200];
+  char buf[256];
   if (std::min(st.consistent, ts.consistent) < p.min_consistent) {
     std::snprintf(buf, sizeof buf, "visibility check: only %d consistent samples (at least %d needed): the views barely overlap at this pose",
                   std::min(st.consistent, ts.consistent), p.min_consistent);
@@ -82,6 +85,12 @@ VisibilityCheck checkVisibility(const DepthView& source, const DepthView& target
   if (out.violation_ratio > p.max_violation_ratio) {
     std::snprintf(buf, sizeof buf, "visibility check: %.0f%% of the overlapping samples lie in space the other view saw as empty (at most %.0f%%)",
                   100.0 * out.violation_ratio, 100.0 * p.max_violation_ratio);
+    out.reason = buf;
+    return out;
+  }
+  if (out.violation_ratio_lesser > p.max_two_way_violation_ratio) {
+    std::snprintf(buf, sizeof buf, "visibility check: %.0f%% and %.0f%% of the overlapping samples lie in space the other view saw as empty, seen from both views (at most %.0f%% from both)",
+                  100.0 * out.violation_ratio, 100.0 * out.violation_ratio_lesser, 100.0 * p.max_two_way_violation_ratio);
     out.reason = buf;
     return out;
   }
@@ -102,6 +111,7 @@ VisibilityCheckParams agreementParams(int pixel_step) {
   p.gate_per_m2 = 0.005;
   p.max_violation_ratio = 1.0;
   p.max_occluded_ratio = 1.0;
+  p.max_two_way_violation_ratio = 1.0;
   p.min_consistent = 0;
   return p;
 }
