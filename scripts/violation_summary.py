@@ -5,8 +5,8 @@ files (docs/pipeline.md, "Violations seen from both views").
   scripts/violation_summary.py PAIRS.csv [PAIRS.csv ...] [--method gasp]
 
 An estimate is wrong when it is more than 0.10 m or 5 deg from the reference. Per file and over
-all files: pairs, estimates, wrong estimates, pairs declined because of violations seen from both
-views, and the largest violation ratio of the right estimates in the worse direction
+all files: pairs, estimates, wrong estimates, pairs declined by the two-way violation limit (the
+reason says "seen from both views", at the default scale or in the finer-scale retry), and the largest violation ratio of the right estimates in the worse direction
 (violation_ratio) and in the lesser one (violation_ratio_lesser), with the pair; then every wrong
 estimate with its error and both ratios. Python standard library only."""
 import sys
@@ -63,7 +63,7 @@ def main(argv):
     everything = [r for _, rows in files for r in rows]
     if not everything:
         sys.exit("error: no pair of method %s in %s" % (method, ", ".join(paths)))
-    print("| file | pairs | estimates | wrong (> %.2f m or %.0f deg) | declined: seen from both views |"
+    print("| file | pairs | estimates | wrong (> %.2f m or %.0f deg) | declined by the two-way limit |"
           " right: largest violation ratio | right: largest in the lesser direction |"
           % (WRONG_T_M, WRONG_R_DEG))
     print("|---|---|---|---|---|---|---|")

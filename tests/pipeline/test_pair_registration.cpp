@@ -355,6 +355,15 @@ TEST(FinerScaleRetry, ClaimsNoLookAlikePoseOnRepeatedObjects) {
     EXPECT_NE(w.retry_views, nullptr);
     // Wrong: 33 -> 43 90 deg off, 3 -> 13 9 cm off (the converged dense rounds; 3 rounds: 29 cm).
     EXPECT_GT(translationNorm(p.T_b_a.inverse() * w.pose.T_target_source), 0.05) << from << " -> " << to;
+    // The two-way limit alone declines the 90-deg look-alike (33 -> 43), whose violations both
+    // views see; not 3 -> 13's 9 cm slide along a box, which the one-direction limits decline.
+    if (from == 33) {
+      PairParams two_way = loose;
+      two_way.visibility.max_two_way_violation_ratio = PairParams{}.visibility.max_two_way_violation_ratio;
+      const PairResult d = registerViews(p.a, p.b, two_way);
+      EXPECT_FALSE(d.pose.success);
+      EXPECT_NE(d.pose.reason.find("seen from both views"), std::string::npos) << d.pose.reason;
+    }
     loose.slide_scan.enabled = true;
     const PairResult s = registerViews(p.a, p.b, loose);
     std::printf("%d -> %d loosened, with the slide scan: %s, %s, %.3f m / %.2f deg off\n", from, to,

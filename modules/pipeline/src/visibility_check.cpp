@@ -89,7 +89,7 @@ VisibilityCheck checkVisibility(const DepthView& source, const DepthView& target
     return out;
   }
   if (out.violation_ratio_lesser > p.max_two_way_violation_ratio) {
-    std::snprintf(buf, sizeof buf, "visibility check: %.0f%% and %.0f%% of the overlapping samples lie in space the other view saw as empty, seen from both views (at most %.0f%% from both)",
+    std::snprintf(buf, sizeof buf, "visibility check: %.1f%% and %.1f%% of the overlapping samples lie in space the other view saw as empty, seen from both views (at most %.1f%% from both)",
                   100.0 * out.violation_ratio, 100.0 * out.violation_ratio_lesser, 100.0 * p.max_two_way_violation_ratio);
     out.reason = buf;
     return out;

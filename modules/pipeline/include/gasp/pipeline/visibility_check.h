@@ -28,9 +28,10 @@
 /// violation_ratio_lesser). Right GASP poses of fr1_xyz (pairs from every 10th frame, skips
 /// 10-300, 463 estimates) reached 0.029 in the lesser direction, of fr3_cabinet_kf (keyframe skips
 /// 1-8, upright and rolled by 180 deg) 0.006, of the synthetic scenes (three noise seeds, 472)
-/// 0.005; the cabinet's wrong poses at keyframe skips 3-8 -- the camera orbiting the cabinet by
-/// 20-60 deg, registered as if it had hardly moved, 0.3-1.6 m off -- had 0.020-0.125 and 11 of
-/// 13 are now declined (docs/pipeline.md, "Violations seen from both views"). The price: an
+/// 0.005; the cabinet's wrong poses at keyframe skips 3-6 -- the camera turned 13-59 deg round
+/// the cabinet, registered as if it had hardly moved, 0.3-1.0 m off -- had 0.056-0.125 and all
+/// 11 (4 upright, 7 rolled by 180 deg) are now declined; four a quarter turn off at skips 7-8
+/// had 0.020-0.027 and remain (docs/pipeline.md, "Violations seen from both views"). The price: an
 /// object that *moved* between the views (a walking person) violates both directions, and more
 /// than 5 % of the overlap of such an object gives no estimate.
 #include <string>
