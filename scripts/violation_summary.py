@@ -6,32 +6,41 @@ files (docs/pipeline.md, "Violations seen from both views").
 
 An estimate is wrong when it is more than 0.10 m or 5 deg from the reference. Per file and over
 all files: pairs, estimates, wrong estimates, pairs declined by the two-way violation limit (the
-reason says "seen from both views", at the default scale or in the finer-scale retry), and the largest violation ratio of the right estimates in the worse direction
-(violation_ratio) and in the lesser one (violation_ratio_lesser), with the pair; then every wrong
-estimate with its error and both ratios. Python standard library only."""
+reason says "seen from both views", at the default scale or in the finer-scale retry), and the
+largest violation ratio of the right estimates in the worse direction (violation_ratio) and in
+the lesser one (violation_ratio_lesser), with the pair; then every wrong estimate with its error
+and both ratios. A numeric field that is not a number is an error naming the file, pair and
+column. Python standard library only."""
+import os
 import sys
 
 from pairs_csv import read_pairs_csv
 
 WRONG_T_M, WRONG_R_DEG = 0.10, 5.0
-NEEDED = ["skip", "from", "to", "estimated", "t_err_m", "r_err_deg", "violation_ratio",
-          "violation_ratio_lesser", "reason"]
-
-
-def is_wrong(r):
-    return float(r["t_err_m"]) > WRONG_T_M or float(r["r_err_deg"]) > WRONG_R_DEG
-
-
-def largest(rows, column):
-    """(value, row) of the largest `column` among rows, or (None, None)."""
-    if not rows:
-        return None, None
-    best = max(rows, key=lambda r: float(r[column]))
-    return float(best[column]), best
+NUMBERS = ["violation_ratio", "violation_ratio_lesser"]  # every row; the errors too with an estimate
+NEEDED = ["skip", "from", "to", "estimated", "t_err_m", "r_err_deg", "reason"] + NUMBERS
 
 
 def pair_name(r):
     return "skip %s %s -> %s" % (r["skip"], r["from"], r["to"])
+
+
+def read_rows(path, method):
+    """The rows of `method`, their numeric columns as floats; exits naming the file, pair and
+    column when one is not a number."""
+    rows = read_pairs_csv(path, method, NEEDED, "violation columns")
+    for r in rows:
+        for column in NUMBERS + (["t_err_m", "r_err_deg"] if r["estimated"] == "1" else []):
+            try:
+                r[column] = float(r[column])
+            except ValueError:
+                sys.exit("error: %s: %s: column %s is not a number ('%s')"
+                         % (path, pair_name(r), column, r[column]))
+    return rows
+
+
+def is_wrong(r):
+    return r["t_err_m"] > WRONG_T_M or r["r_err_deg"] > WRONG_R_DEG
 
 
 def summary_row(label, rows):
@@ -40,9 +49,9 @@ def summary_row(label, rows):
     right = [r for r in est if not is_wrong(r)]
     both = sum(1 for r in rows if r["estimated"] != "1" and "seen from both views" in r["reason"])
     cells = [label, str(len(rows)), str(len(est)), str(len(wrong)), str(both)]
-    for column in ("violation_ratio", "violation_ratio_lesser"):
-        value, row = largest(right, column)
-        cells.append("-" if row is None else "%.3f (%s)" % (value, pair_name(row)))
+    for column in NUMBERS:
+        worst = max(right, key=lambda r: r[column]) if right else None
+        cells.append("-" if worst is None else "%.3f (%s)" % (worst[column], pair_name(worst)))
     return "| " + " | ".join(cells) + " |", wrong
 
 
@@ -59,7 +68,7 @@ def main(argv):
         i += 1
     if not paths:
         sys.exit(__doc__.split("\n\n")[1])
-    files = [(path.split("/")[-1], read_pairs_csv(path, method, NEEDED, "violation columns")) for path in paths]
+    files = [(os.path.basename(path), read_rows(path, method)) for path in paths]
     everything = [r for _, rows in files for r in rows]
     if not everything:
         sys.exit("error: no pair of method %s in %s" % (method, ", ".join(paths)))
@@ -78,8 +87,8 @@ def main(argv):
     print("wrong estimates: %d" % len(wrong_all))
     for label, r in wrong_all:
         print("  %s %s: %.3f m / %.1f deg off, violations %.3f, lesser direction %.3f"
-              % (label, pair_name(r), float(r["t_err_m"]), float(r["r_err_deg"]),
-                 float(r["violation_ratio"]), float(r["violation_ratio_lesser"])))
+              % (label, pair_name(r), r["t_err_m"], r["r_err_deg"], r["violation_ratio"],
+                 r["violation_ratio_lesser"]))
 
 
 if __name__ == "__main__":
