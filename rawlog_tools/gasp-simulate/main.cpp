@@ -5,9 +5,12 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "gasp/core/error.h"
 #include "gasp/sim/camera_path.h"
+#include "gasp/sim/object_move.h"
 #include "gasp/sim/scene.h"
 #include "gasp/sim/writer.h"
 #include "cli.h"
@@ -17,6 +20,7 @@ int main(int argc, char** argv) {
   std::string out_dir;
   bool no_noise = false;
   bool list_scenes = false;
+  std::vector<std::string> moves;
 
   CLI::App app{"Writes a synthetic depth sequence (ray-cast indoor scene, Kinect-like noise) with "
                "ground truth as a TUM RGB-D folder"};
@@ -31,6 +35,10 @@ int main(int argc, char** argv) {
                  "3 m/s and 6 rad/s, at 5 Hz a sixth of that); 0.001 to 10000")
       ->capture_default_str()
       ->check(gasp::tools::within(gasp::sim::kMinRateHz, gasp::sim::kMaxRateHz));
+  app.add_option("--move", moves,
+                 "Move objects between frames (repeatable): PREFIX:DX,DY,DZ[,YAW_DEG]@FRAME moves every object whose "
+                 "name starts with PREFIX (see surfaces.txt) by DX,DY,DZ metres in the world frame (z up), turned by "
+                 "YAW_DEG about the vertical, from FRAME on; e.g. chair:0,-0.6,0@30 (docs/simulator.md)");
   app.add_flag("--no-noise", no_noise, "Exact ray-cast depth: no noise, quantisation or dropouts");
   app.add_flag("--list-scenes", list_scenes, "List the scenes and exit");
   if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;
@@ -46,6 +54,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "error: --out DIR is required\nRun with --help for more information.\n");
       return 2;
     }
+    for (const auto& m : moves) options.moves.push_back(gasp::sim::parseObjectMove(m));
     if (no_noise) options.noise = gasp::sim::KinectNoiseModel::exact();
 
     const auto summary = gasp::sim::writeSimulation(options, out_dir);

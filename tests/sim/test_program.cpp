@@ -74,3 +74,23 @@ TEST(SimProgram, WritesASequenceAndSummary) {
   EXPECT_TRUE(std::filesystem::exists(dir + "/depth.txt"));
   EXPECT_TRUE(std::filesystem::exists(dir + "/intrinsics.txt"));
 }
+
+TEST(SimProgram, MovesAnObject) {
+  const std::string tmp = gasp::test::scratchDir();
+  const std::string dir = tmp + "/moved";
+  auto r = runSimulate("--frames 8 --no-noise --move chair:0,-0.6,0,30@4 --out " + dir, tmp);
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream scene(dir + "/scene.txt"), surfaces(dir + "/surfaces.txt");
+  const std::string info((std::istreambuf_iterator<char>(scene)), std::istreambuf_iterator<char>());
+  const std::string ids((std::istreambuf_iterator<char>(surfaces)), std::istreambuf_iterator<char>());
+  EXPECT_NE(info.find("move: chair:0,-0.6,0,30@4\n"), std::string::npos) << info;
+  EXPECT_NE(ids.find("chair_back@moved box"), std::string::npos) << ids;
+  r = runSimulate("--frames 8 --move chair:0,-0.6@4 --out " + tmp + "/bad", tmp);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("error: object move 'chair:0,-0.6@4': expected PREFIX:DX,DY,DZ@FRAME"), std::string::npos)
+      << r.output;
+  r = runSimulate("--frames 8 --move sofa:0,0,0@4 --out " + tmp + "/bad", tmp);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("has no object whose name starts with 'sofa'"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(tmp + "/bad/depth.txt"));
+}

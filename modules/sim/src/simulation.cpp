@@ -28,6 +28,7 @@ Simulation::Simulation(const SimulationOptions& options) : options_(options) {
   path_options.rate_hz = options_.rate_hz;
   path_ = makeCameraPath(path_options);
   if (!scene_.degenerate) addOccluder(scene_, path_);
+  applyObjectMoves(scene_, options_.moves, path_.size());
 }
 
 void Simulation::checkIndex(int i) const {

@@ -71,8 +71,11 @@ void writeSceneInfo(const fs::path& path, const Simulation& sim) {
       << "frames: " << sim.size() << '\n'
       << "start_time_s: " << o.start_time_s << '\n'
       << "rate_hz: " << o.rate_hz << '\n'
-      << "occluder: " << (sim.scene().degenerate ? "none" : kOccluderName) << '\n'
-      << "noise.axial_noise: " << n.axial_noise << '\n'
+      << "occluder: " << (sim.scene().degenerate ? "none" : kOccluderName) << '\n';
+  for (const ObjectMove& m : o.moves)  // gasp-simulate --move's form
+    out << "move: " << m.prefix << ':' << m.shift_m.x() << ',' << m.shift_m.y() << ',' << m.shift_m.z() << ','
+        << m.yaw_deg << '@' << m.at_frame << '\n';
+  out << "noise.axial_noise: " << n.axial_noise << '\n'
       << "noise.sigma_a_m: " << n.sigma_a_m << '\n'
       << "noise.sigma_b_per_m2: " << n.sigma_b_per_m2 << '\n'
       << "noise.sigma_c_m: " << n.sigma_c_m << '\n'

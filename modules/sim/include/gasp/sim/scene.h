@@ -3,6 +3,7 @@
 ///
 /// World frame: z up, metres; the floor of the room scenes is z = 0.
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,8 @@ struct SceneObject {
   Isometry3 T_world_object = Isometry3::Identity();      ///< placement
   std::uint16_t first_surface_id = 0;                    ///< assigned by Scene::add (>= 1)
   int visible_from_frame = 0;  ///< the object exists from this frame index on (occluders)
+  /// ... and before this frame index (objects moved away, object_move.h)
+  int visible_until_frame = std::numeric_limits<int>::max();
 
   /// Surface id of a face.
   std::uint16_t surfaceId(int face) const {
@@ -27,7 +30,9 @@ struct SceneObject {
   bool ownsSurface(std::uint16_t id) const {
     return id >= first_surface_id && id < first_surface_id + faceCount(shape);
   }
-  bool visibleAt(int frame_index) const { return frame_index >= visible_from_frame; }
+  bool visibleAt(int frame_index) const {
+    return frame_index >= visible_from_frame && frame_index < visible_until_frame;
+  }
 };
 
 /// A list of objects (a room is an object of shape Room). Surface id 0 means "no surface".

@@ -2,10 +2,12 @@
 /// \file simulation.h A scene, a camera path and the sensor model together: frames on demand.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "gasp/core/camera_intrinsics.h"
 #include "gasp/sim/camera_path.h"
 #include "gasp/sim/noise_model.h"
+#include "gasp/sim/object_move.h"
 #include "gasp/sim/renderer.h"
 #include "gasp/sim/scene.h"
 
@@ -20,6 +22,7 @@ struct SimulationOptions {
   CameraIntrinsics intrinsics = CameraIntrinsics::rosDefault();  ///< 525/525/319.5/239.5, 640x480
   double start_time_s = 1000.0;  ///< timestamp of frame 0 [s]
   double rate_hz = 30.0;         ///< frame rate [Hz]
+  std::vector<ObjectMove> moves;  ///< objects moved between frames (none: a static scene)
 };
 
 /// One simulated frame.
@@ -43,8 +46,9 @@ void addOccluder(Scene& scene, const CameraPath& path);
 /// A simulated sequence. Frames are computed on demand; each depends only on (options, index).
 class Simulation {
  public:
-  /// Builds the scene (plus the occluder unless the scene is degenerate) and the camera path.
-  /// Throws gasp::Error for an unknown scene, too few frames or invalid noise/intrinsics.
+  /// Builds the scene (plus the occluder unless the scene is degenerate, and the moves) and the
+  /// camera path. Throws gasp::Error for an unknown scene, too few frames, invalid
+  /// noise/intrinsics or an invalid move (applyObjectMoves).
   explicit Simulation(const SimulationOptions& options);
 
   const SimulationOptions& options() const { return options_; }
