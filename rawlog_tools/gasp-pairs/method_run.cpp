@@ -22,6 +22,8 @@ using Clock = std::chrono::steady_clock;
 void setVisibility(MethodRun& run, const VisibilityCheck& check) {
   run.violation_ratio = check.violation_ratio;
   run.violation_ratio_lesser = check.violation_ratio_lesser;
+  run.violation_blob_share_lesser = check.violation_blob_share_lesser;
+  run.violation_blob_share = check.violation_blob_share;
   run.consistent = check.consistent, run.occluded = check.occluded, run.violations = check.violations;
   run.occluded_ratio = check.occluded_ratio;
 }

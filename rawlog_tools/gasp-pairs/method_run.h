@@ -39,6 +39,7 @@ struct MethodRun {
   int inliers = 0;
   double violation_ratio = 0;
   double violation_ratio_lesser = 0;  ///< visibility check, the other direction
+  double violation_blob_share_lesser = 1, violation_blob_share = 1;  ///< VisibilityCheck's, both directions
   int consistent = 0, occluded = 0, violations = 0;  ///< visibility check samples, both directions
   double occluded_ratio = 0;                          ///< visibility check, the worse direction
   int one_way = 0;          ///< GASP: the pose came from the one-way fallback

@@ -94,6 +94,7 @@ TEST(PairsCsv, AnEstimateWithEveryCheckFillsItsColumns) {
   run.T_target_source = pose(0.2, {0, 1, 0}, {0.1, -0.2, 0.3});
   run.associations = 120, run.inliers = 80;
   run.violation_ratio = 0.04, run.violation_ratio_lesser = 0.01;
+  run.violation_blob_share_lesser = 0.25, run.violation_blob_share = 0.5;
   run.free_quality = gasp::AssociationQuality{100, 40, 200};
   run.verified_quality = gasp::AssociationQuality{150, 140, 200};
   run.nees = gasp::eval::NeesParts{6.0, 3.5, 2.5};
@@ -114,6 +115,8 @@ TEST(PairsCsv, AnEstimateWithEveryCheckFillsItsColumns) {
   EXPECT_EQ(f["inliers"], "80");
   EXPECT_NEAR(number(f["violation_ratio"]), 0.04, 1e-9);
   EXPECT_NEAR(number(f["violation_ratio_lesser"]), 0.01, 1e-9);
+  EXPECT_NEAR(number(f["violation_blob_share_lesser"]), 0.25, 1e-9);
+  EXPECT_NEAR(number(f["violation_blob_share"]), 0.5, 1e-9);
   EXPECT_NEAR(number(f["precision"]), 0.4, 1e-9);
   EXPECT_EQ(f["verified"], "150");
   EXPECT_NEAR(number(f["verified_precision"]), 140.0 / 150, 1e-5);

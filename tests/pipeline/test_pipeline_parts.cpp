@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "gasp/core/error.h"
 #include "gasp/core/undistortion.h"
@@ -136,6 +137,36 @@ TEST(VisibilityCheck, AnObjectSeenByOneViewIsAllowedViolationsFromBothViewsAreNo
   EXPECT_TRUE(checkVisibility(withBox(left), withBox(right), Isometry3::Identity(), p).passed);
   p.max_two_way_violation_ratio = -0.1;
   EXPECT_THROW(checkVisibility(wall, wall, Isometry3::Identity(), p), Error);
+}
+
+TEST(VisibilityCheck, TheLargestConnectedRegionOfViolationsIsMeasured) {
+  // The share of a direction's violating samples in its largest 8-connected region on the 8-px
+  // sampling grid (a diagnostic: docs/pipeline.md, "Violations seen from both views"). One moved
+  // box: all of them; two boxes of 3 : 1 area in one view: 0.75 there; single violating samples
+  // on every other grid point (none touching another, not even at a corner): 1 / their number.
+  const auto withBoxes = [](const std::vector<cv::Rect>& boxes) {
+    DepthView v = wallView(2.0);
+    for (const auto& b : boxes) v.depth_m(b).setTo(1.0f);
+    return v;
+  };
+  const DepthView wall = wallView(2.0);
+  EXPECT_EQ(checkVisibility(wall, wall, Isometry3::Identity()).violation_blob_share_lesser, 1.0);  // no violation
+  const cv::Rect left(80, 160, 128, 192), right(432, 160, 128, 192);
+  const auto one = checkVisibility(withBoxes({left}), withBoxes({right}), Isometry3::Identity());
+  EXPECT_DOUBLE_EQ(one.violation_blob_share_lesser, 1.0);
+  EXPECT_DOUBLE_EQ(one.violation_blob_share, 1.0);
+  const auto two = checkVisibility(withBoxes({cv::Rect(80, 80, 96, 128), cv::Rect(80, 320, 32, 128)}),
+                                   withBoxes({right}), Isometry3::Identity());
+  EXPECT_DOUBLE_EQ(two.violation_blob_share_lesser, 0.75);
+  EXPECT_DOUBLE_EQ(two.violation_blob_share, 1.0);
+  DepthView specks = wallView(2.0);
+  int n = 0;
+  for (int v = 0; v < specks.depth_m.rows; v += 16)
+    for (int u = 0; u < specks.depth_m.cols; u += 16) specks.depth_m.at<float>(v, u) = 1.0f, ++n;
+  // The 8 x 12 specks inside the other view's box agree with it; the rest violate, one by one.
+  const auto scattered = checkVisibility(specks, withBoxes({right}), Isometry3::Identity());
+  EXPECT_DOUBLE_EQ(scattered.violation_blob_share_lesser, 1.0 / (n - 8 * 12));
+  EXPECT_DOUBLE_EQ(scattered.violation_blob_share, 1.0);
 }
 
 }  // namespace

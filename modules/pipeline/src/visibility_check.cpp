@@ -1,7 +1,11 @@
 #include "gasp/pipeline/visibility_check.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+
+#include <opencv2/imgproc.hpp>
 
 #include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
@@ -25,6 +29,7 @@ namespace {
 
 struct Counts {
   int consistent = 0, occluded = 0, violations = 0;
+  double largest_blob_share = 1.0;  ///< share of the violations in the largest 8-connected blob
   double ratio() const {
     const int n = consistent + violations;
     return n ? static_cast<double>(violations) / n : 0.0;
@@ -38,6 +43,8 @@ struct Counts {
 Counts countOneWay(const DepthView& from, const DepthView& to, const Isometry3& T_to_from, const VisibilityCheckParams& p) {
   Counts c;
   const cv::Mat& d = from.depth_m;
+  // The violating samples on the sampling grid, for their largest 8-connected blob.
+  cv::Mat grid = cv::Mat::zeros((d.rows + p.pixel_step - 1) / p.pixel_step, (d.cols + p.pixel_step - 1) / p.pixel_step, CV_8U);
   for (int v = 0; v < d.rows; v += p.pixel_step)
     for (int u = 0; u < d.cols; u += p.pixel_step) {
       const float z0 = d.at<float>(v, u);
@@ -52,8 +59,18 @@ Counts countOneWay(const DepthView& from, const DepthView& to, const Isometry3& 
       const double gate = p.gate_m + p.gate_per_m2 * zt * zt;
       if (std::abs(q.z() - zt) <= gate) ++c.consistent;
       else if (q.z() > zt) ++c.occluded;
-      else ++c.violations;
+      else {
+        ++c.violations;
+        grid.at<std::uint8_t>(v / p.pixel_step, u / p.pixel_step) = 1;
+      }
     }
+  if (c.violations > 0) {
+    cv::Mat labels, stats, centroids;
+    const int n = cv::connectedComponentsWithStats(grid, labels, stats, centroids, 8, CV_32S);
+    int largest = 0;
+    for (int k = 1; k < n; ++k) largest = std::max(largest, stats.at<int>(k, cv::CC_STAT_AREA));
+    c.largest_blob_share = static_cast<double>(largest) / c.violations;
+  }
   return c;
 }
 
@@ -75,6 +92,8 @@ VisibilityCheck checkVisibility(const DepthView& source, const DepthView& target
   out.violation_ratio = std::max(st.ratio(), ts.ratio());
   out.violation_ratio_lesser = std::min(st.ratio(), ts.ratio());
   out.occluded_ratio = std::max(st.occludedRatio(), ts.occludedRatio());
+  out.violation_blob_share_lesser = std::min(st.largest_blob_share, ts.largest_blob_share);
+  out.violation_blob_share = std::max(st.largest_blob_share, ts.largest_blob_share);
   char buf[256];
   if (std::min(st.consistent, ts.consistent) < p.min_consistent) {
     std::snprintf(buf, sizeof buf, "visibility check: only %d consistent samples (at least %d needed): the views barely overlap at this pose",

@@ -59,6 +59,10 @@ struct VisibilityCheck {
   double violation_ratio = 0.0;  ///< the worse direction
   double violation_ratio_lesser = 0.0;  ///< the other direction
   double occluded_ratio = 0.0;   ///< occluded / (consistent + occluded + violations), the worse direction
+  /// Share of a direction's violating samples in its largest 8-connected blob on the sampling
+  /// grid (1 without violations): one compact object, or violations spread over the view. The
+  /// lesser and the greater of the two directions.
+  double violation_blob_share_lesser = 1.0, violation_blob_share = 1.0;
   std::string reason;            ///< why it failed
   /// consistent / (consistent + occluded + violations), both directions (0 without samples).
   double consistentShare() const {
