@@ -9,7 +9,9 @@ M or later. Per case (the folder name without its `_M`), for the straddling and 
 pairs, right estimates (within 0.10 m and 5 deg of the reference), wrong estimates and no
 estimate, with how many of those the two-way violation limit declined (the reason says "seen from
 both views"), and the largest violation ratio in the lesser direction of the right straddling
-estimates (what the two-way limit would have to allow); then every wrong estimate. Python standard library only."""
+estimates (what the two-way limit would have to allow); then, per skip, how many straddling and
+static pairs gave no estimate (the move's share of the failures, apart from the skip's own); then
+every wrong estimate. Python standard library only."""
 import glob
 import os
 import re
@@ -54,7 +56,7 @@ def main():
     csvs = sorted(glob.glob(os.path.join(out, "*.pairs.csv")))
     if not csvs:
         sys.exit("error: %s holds no *.pairs.csv (run scripts/moved_object_pairs.sh first)" % out)
-    cases, wrong = {}, []
+    cases, wrong, by_skip = {}, [], {}
     for path in csvs:
         folder = path[:-len(".pairs.csv")]
         frames = move_frames(folder)
@@ -65,6 +67,9 @@ def main():
             kind = "straddling" if any(i < m <= j for m in frames) else "static"
             t = c[kind]
             t["pairs"] += 1
+            k = by_skip.setdefault(int(r["skip"]), {"straddling": [0, 0], "static": [0, 0]})[kind]
+            k[0] += 1
+            k[1] += r["estimated"] != "1"
             if r["estimated"] != "1":
                 t["none"] += 1
                 t["two_way"] += "seen from both views" in r["reason"]
@@ -92,6 +97,9 @@ def main():
         print("| %s | %d | %d | %d | %d (%d) | %.3f | %d | %d | %d | %d |"
               % (case, s["pairs"], s["right"], s["wrong"], s["none"], s["two_way"], s["lesser"], st["pairs"],
                  st["right"], st["wrong"], st["none"]))
+    print("\nno estimate by skip (straddling, static): " + ", ".join(
+        "%d: %d/%d, %d/%d" % (skip, k["straddling"][1], k["straddling"][0], k["static"][1], k["static"][0])
+        for skip, k in sorted(by_skip.items())))
     print("\nwrong estimates: %d" % len(wrong))
     for w in wrong:
         print("  " + w)
