@@ -10,7 +10,9 @@ pairs, right estimates (within 0.10 m and 5 deg of the reference), wrong estimat
 estimate, with how many of those the two-way violation limit declined (the reason says "seen from
 both views"), and the largest violation ratio in the lesser direction of the right straddling
 estimates (what the two-way limit would have to allow); then, per skip, how many straddling and
-static pairs gave no estimate (the move's share of the failures, apart from the skip's own); then
+static pairs gave no estimate (the move's share of the failures, apart from the skip's own); how
+compact the violations of the right straddling estimates are (the share of the lesser direction's
+violations in its largest connected region, over those whose lesser ratio is above 0.01); then
 every wrong estimate. Python standard library only."""
 import glob
 import os
@@ -21,7 +23,8 @@ from pairs_csv import read_pairs_csv
 
 WRONG_T_M, WRONG_R_DEG = 0.10, 5.0
 NEEDED = ["skip", "from", "to", "estimated", "t_err_m", "r_err_deg", "violation_ratio", "violation_ratio_lesser",
-          "reason"]
+          "violation_blob_share_lesser", "reason"]
+COMPACT_FROM = 0.01  # the right straddling estimates' region share is reported above this lesser ratio
 
 
 def move_frames(folder):
@@ -56,7 +59,7 @@ def main():
     csvs = sorted(glob.glob(os.path.join(out, "*.pairs.csv")))
     if not csvs:
         sys.exit("error: %s holds no *.pairs.csv (run scripts/moved_object_pairs.sh first)" % out)
-    cases, wrong, by_skip = {}, [], {}
+    cases, wrong, by_skip, shares = {}, [], {}, []
     for path in csvs:
         folder = path[:-len(".pairs.csv")]
         frames = move_frames(folder)
@@ -83,6 +86,8 @@ def main():
             else:
                 t["right"] += 1
                 t["lesser"] = max(t["lesser"], float(r["violation_ratio_lesser"]))
+                if kind == "straddling" and float(r["violation_ratio_lesser"]) > COMPACT_FROM:
+                    shares.append(float(r["violation_blob_share_lesser"]))
     print("| case | straddling pairs | right | wrong | no estimate (two-way limit) | right: largest lesser ratio | "
           "static pairs | right | wrong | no estimate |")
     print("|---|---|---|---|---|---|---|---|---|---|")
@@ -100,6 +105,9 @@ def main():
     print("\nno estimate by skip (straddling, static): " + ", ".join(
         "%d: %d/%d, %d/%d" % (skip, k["straddling"][1], k["straddling"][0], k["static"][1], k["static"][0])
         for skip, k in sorted(by_skip.items())))
+    print("right straddling estimates with a lesser-direction ratio above %.2f: %d%s" % (
+        COMPACT_FROM, len(shares), ", share of its violations in the largest connected region %.2f-%.2f, %d of them "
+        ">= 0.5" % (min(shares), max(shares), sum(x >= 0.5 for x in shares)) if shares else ""))
     print("\nwrong estimates: %d" % len(wrong))
     for w in wrong:
         print("  " + w)

@@ -18,6 +18,8 @@ from pairs_csv import read_pairs_csv
 
 WRONG_T_M, WRONG_R_DEG = 0.10, 5.0
 NUMBERS = ["violation_ratio", "violation_ratio_lesser"]  # every row; the errors too with an estimate
+BLOB = "violation_blob_share_lesser"  # optional (files from before it have no such column)
+COMPACT_FROM = 0.008  # the right estimates' region share is reported above this lesser ratio
 NEEDED = ["skip", "from", "to", "estimated", "t_err_m", "r_err_deg", "reason"] + NUMBERS
 
 
@@ -30,7 +32,8 @@ def read_rows(path, method):
     column when one is not a number."""
     rows = read_pairs_csv(path, method, NEEDED, "violation columns")
     for r in rows:
-        for column in NUMBERS + (["t_err_m", "r_err_deg"] if r["estimated"] == "1" else []):
+        optional = [BLOB] if BLOB in r else []
+        for column in NUMBERS + optional + (["t_err_m", "r_err_deg"] if r["estimated"] == "1" else []):
             try:
                 r[column] = float(r[column])
             except ValueError:
@@ -84,11 +87,18 @@ def main(argv):
     if len(files) > 1:
         print(summary_row("all", everything)[0])
     print()
+    with_blob = all(BLOB in r for r in everything)
+    if with_blob:
+        shares = [r[BLOB] for r in everything if r["estimated"] == "1" and not is_wrong(r)
+                  and r["violation_ratio_lesser"] > COMPACT_FROM]
+        print("right estimates with a lesser-direction ratio above %.3f: %d%s" % (
+            COMPACT_FROM, len(shares), ", share of its violations in the largest connected region %.2f-%.2f"
+            % (min(shares), max(shares)) if shares else ""))
     print("wrong estimates: %d" % len(wrong_all))
     for label, r in wrong_all:
-        print("  %s %s: %.3f m / %.1f deg off, violations %.3f, lesser direction %.3f"
+        print("  %s %s: %.3f m / %.1f deg off, violations %.3f, lesser direction %.3f%s"
               % (label, pair_name(r), r["t_err_m"], r["r_err_deg"], r["violation_ratio"],
-                 r["violation_ratio_lesser"]))
+                 r["violation_ratio_lesser"], " (largest region %.2f)" % r[BLOB] if with_blob else ""))
 
 
 if __name__ == "__main__":
