@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Pairs across an object that moved (docs/pipeline.md, "Violations seen from both views"): the
+# Pairs across an object that moved (docs/pipeline.md, "Objects that moved"): the
 # simulator renders its scenes with one object (or a table with what stands on it) moved at frame
 # M (gasp-simulate --move), and gasp-pairs registers every pair from every 3rd frame at skips 3, 6,
 # 10 and 15; the pairs from before M to M or later straddle the move, the others are static.
@@ -10,12 +10,12 @@
 #   (e.g. --max-two-way-violation 1)
 set -euo pipefail
 build=${1:-build/ci}
-out=${2:-$(mktemp -d)}
-shift $(( $# < 2 ? $# : 2 ))
 [ -x "$build/bin/gasp-pairs" ] && [ -x "$build/bin/gasp-simulate" ] \
   || { echo "error: $build/bin/gasp-pairs and gasp-simulate must be built" >&2; exit 1; }
+out=${2:-$(mktemp -d)}
+shift $(( $# < 2 ? $# : 2 ))
 mkdir -p "$out"
-# name scene moves (comma-free spaces separate several --move of one case)
+# name scene move [move ...] (several moves of one case, at the same frame)
 cases=(
   "chair room chair:0,-0.6,0"
   "chair_turned room chair:0.3,0,0,90"
@@ -30,12 +30,15 @@ cases=(
 )
 frames=(7 16 25 40 52)
 for c in "${cases[@]}"; do
-  read -r name scene moves <<< "$c"
+  read -ra words <<< "$c"
+  name=${words[0]} scene=${words[1]}
   for m in "${frames[@]}"; do
     dir="$out/${name}_$m"
     args=()
-    for mv in $moves; do args+=(--move "$mv@$m"); done
-    if [ "$name" = person ] && [ "$m" -lt 40 ]; then continue; fi  # the person appears at frame 38
+    for mv in "${words[@]:2}"; do args+=(--move "$mv@$m"); done
+    # The person appears at frame 38: only at 52 does every straddling pair (from frame 37 on at
+    # skip 15, every 3rd frame: 39 on) see it before the move as well as after.
+    if [ "$name" = person ] && [ "$m" -lt 52 ]; then continue; fi
     echo "$name moved at frame $m" >&2
     "$build/bin/gasp-simulate" --scene "$scene" "${args[@]}" --out "$dir" > "$dir.sim.txt" \
       || { echo "error: gasp-simulate failed for $name at $m (see $dir.sim.txt)" >&2; exit 1; }

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """What registration gives across a moved object: reads the folders and pairs CSVs that
-scripts/moved_object_pairs.sh writes (docs/pipeline.md, "Violations seen from both views").
+scripts/moved_object_pairs.sh writes (docs/pipeline.md, "Objects that moved").
 
   scripts/moved_object_summary.py OUT_DIR [--method gasp]
 
@@ -11,9 +11,10 @@ estimate, with how many of those the two-way violation limit declined (the reaso
 both views"), and the largest violation ratio in the lesser direction of the right straddling
 estimates (what the two-way limit would have to allow); then, per skip, how many straddling and
 static pairs gave no estimate (the move's share of the failures, apart from the skip's own); how
-compact the violations of the right straddling estimates are (the share of the lesser direction's
-violations in its largest connected region, over those whose lesser ratio is above 0.01); then
-every wrong estimate. Python standard library only."""
+compact the violations of the right straddling estimates are (the smaller of the two directions'
+shares of violations in their largest connected region, over those whose lesser ratio is above
+0.01); then every wrong estimate. A numeric field that is not a number is an error naming the
+file, pair and column. Python standard library only."""
 import glob
 import os
 import re
@@ -66,28 +67,35 @@ def main():
         case = re.sub(r"_\d+$", "", os.path.basename(folder))
         c = cases.setdefault(case, {"straddling": tally(), "static": tally()})
         for r in read_pairs_csv(path, method, NEEDED, "visibility columns"):
-            i, j = int(r["from"]), int(r["to"])
+            pair = "%s -> %s" % (r["from"], r["to"])
+            numbers = ["skip", "from", "to", "violation_ratio", "violation_ratio_lesser", "violation_blob_share_lesser"]
+            for column in numbers + (["t_err_m", "r_err_deg"] if r["estimated"] == "1" else []):
+                try:
+                    r[column] = (int if column in ("skip", "from", "to") else float)(r[column])
+                except ValueError:
+                    sys.exit("error: %s: pair %s: column %s is not a number ('%s')" % (path, pair, column, r[column]))
+            i, j = r["from"], r["to"]
             kind = "straddling" if any(i < m <= j for m in frames) else "static"
             t = c[kind]
             t["pairs"] += 1
-            k = by_skip.setdefault(int(r["skip"]), {"straddling": [0, 0], "static": [0, 0]})[kind]
+            k = by_skip.setdefault(r["skip"], {"straddling": [0, 0], "static": [0, 0]})[kind]
             k[0] += 1
             k[1] += r["estimated"] != "1"
             if r["estimated"] != "1":
                 t["none"] += 1
                 t["two_way"] += "seen from both views" in r["reason"]
                 continue
-            t_err, r_err = float(r["t_err_m"]), float(r["r_err_deg"])
+            t_err, r_err = r["t_err_m"], r["r_err_deg"]
             if t_err > WRONG_T_M or r_err > WRONG_R_DEG:
                 t["wrong"] += 1
-                wrong.append("%s %s: %s -> %s (skip %s): %.3f m / %.1f deg off, violations %.3f, lesser direction %.3f"
+                wrong.append("%s %s: %s -> %s (skip %d): %.3f m / %.1f deg off, violations %.3f, lesser direction %.3f"
                              % (os.path.basename(folder), kind, i, j, r["skip"], t_err, r_err,
-                                float(r["violation_ratio"]), float(r["violation_ratio_lesser"])))
+                                r["violation_ratio"], r["violation_ratio_lesser"]))
             else:
                 t["right"] += 1
-                t["lesser"] = max(t["lesser"], float(r["violation_ratio_lesser"]))
-                if kind == "straddling" and float(r["violation_ratio_lesser"]) > COMPACT_FROM:
-                    shares.append(float(r["violation_blob_share_lesser"]))
+                t["lesser"] = max(t["lesser"], r["violation_ratio_lesser"])
+                if kind == "straddling" and r["violation_ratio_lesser"] > COMPACT_FROM:
+                    shares.append(r["violation_blob_share_lesser"])
     print("| case | straddling pairs | right | wrong | no estimate (two-way limit) | right: largest lesser ratio | "
           "static pairs | right | wrong | no estimate |")
     print("|---|---|---|---|---|---|---|---|---|---|")

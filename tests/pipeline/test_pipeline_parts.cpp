@@ -144,6 +144,7 @@ TEST(VisibilityCheck, TheLargestConnectedRegionOfViolationsIsMeasured) {
   // sampling grid (a diagnostic: docs/pipeline.md, "Violations seen from both views"). One moved
   // box: all of them; two boxes of 3 : 1 area in one view: 0.75 there; single violating samples
   // on every other grid point (none touching another, not even at a corner): 1 / their number.
+  // The check keeps the smaller and the larger of the two directions' shares.
   const auto withBoxes = [](const std::vector<cv::Rect>& boxes) {
     DepthView v = wallView(2.0);
     for (const auto& b : boxes) v.depth_m(b).setTo(1.0f);

@@ -37,7 +37,8 @@ TEST(ObjectMove, ParsesTheProgramsForm) {
   EXPECT_EQ(m.yaw_deg, 45.0);
   EXPECT_EQ(m.at_frame, 7);
   for (const char* bad : {"", "chair", ":0,0,0@3", "chair:0,0@3", "chair:0,0,0,0,0@3", "chair:0,x,0@3",
-                          "chair:0,0,0", "chair:0,0,0@", "chair:0,0,0@3.5", "chair:0,nan,0@3", "chair:0,0,0@x"}) {
+                          "chair:0,0,0", "chair:0,0,0@", "chair:0,0,0@3.5", "chair:0,nan,0@3", "chair:0,0,0@x",
+                          "chair:0,0,0,@3", "chair:,0,0,0@3", "chair: 0,0,0@3", "chair:0,0,0 @3", "chair:0,,0@3", "chair:0,0,0@ 3", "chair:0,0,0@-3"}) {
     try {
       parseObjectMove(bad);
       ADD_FAILURE() << "accepted '" << bad << "'";
@@ -113,6 +114,17 @@ TEST(ObjectMove, BadMovesThrow) {
   throwsWith({ObjectMove{"chair", Eigen::Vector3d::Zero(), 0.0, 3}, ObjectMove{"chair_back", Eigen::Vector3d::Zero(), 0.0, 5}},
              "moved by two moves");
   throwsWith({ObjectMove{"", Eigen::Vector3d::Zero(), 0.0, 3}}, "empty object name prefix");
+  // The occluder appears midway along the path: a move before that would move nothing.
+  SimulationOptions early;
+  early.moves = {ObjectMove{"occluder", Eigen::Vector3d(0.0, 0.8, 0.0), 0.0, 20}};
+  try {
+    Simulation{early};
+    ADD_FAILURE() << "a move before the occluder appears was accepted";
+  } catch (const gasp::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("would move nothing"), std::string::npos) << e.what();
+  }
+  early.moves[0].at_frame = 52;
+  EXPECT_NO_THROW(Simulation{early});
   SimulationOptions o;
   o.moves = {ObjectMove{"sofa", Eigen::Vector3d::Zero(), 0.0, 3}};
   EXPECT_THROW(Simulation{o}, gasp::Error);

@@ -40,11 +40,14 @@ struct Counts {
   }
 };
 
-Counts countOneWay(const DepthView& from, const DepthView& to, const Isometry3& T_to_from, const VisibilityCheckParams& p) {
+/// `regions`: also the largest 8-connected region of the violating samples (not for depthAgreement).
+Counts countOneWay(const DepthView& from, const DepthView& to, const Isometry3& T_to_from, const VisibilityCheckParams& p,
+                   bool regions) {
   Counts c;
   const cv::Mat& d = from.depth_m;
-  // The violating samples on the sampling grid, for their largest 8-connected blob.
-  cv::Mat grid = cv::Mat::zeros((d.rows + p.pixel_step - 1) / p.pixel_step, (d.cols + p.pixel_step - 1) / p.pixel_step, CV_8U);
+  // The violating samples on the sampling grid, for their largest 8-connected region.
+  cv::Mat grid;
+  if (regions) grid = cv::Mat::zeros((d.rows + p.pixel_step - 1) / p.pixel_step, (d.cols + p.pixel_step - 1) / p.pixel_step, CV_8U);
   for (int v = 0; v < d.rows; v += p.pixel_step)
     for (int u = 0; u < d.cols; u += p.pixel_step) {
       const float z0 = d.at<float>(v, u);
@@ -61,10 +64,10 @@ Counts countOneWay(const DepthView& from, const DepthView& to, const Isometry3& 
       else if (q.z() > zt) ++c.occluded;
       else {
         ++c.violations;
-        grid.at<std::uint8_t>(v / p.pixel_step, u / p.pixel_step) = 1;
+        if (regions) grid.at<std::uint8_t>(v / p.pixel_step, u / p.pixel_step) = 1;
       }
     }
-  if (c.violations > 0) {
+  if (regions && c.violations > 0) {
     cv::Mat labels, stats, centroids;
     const int n = cv::connectedComponentsWithStats(grid, labels, stats, centroids, 8, CV_32S);
     int largest = 0;
@@ -74,18 +77,16 @@ Counts countOneWay(const DepthView& from, const DepthView& to, const Isometry3& 
   return c;
 }
 
-}  // namespace
-
-VisibilityCheck checkVisibility(const DepthView& source, const DepthView& target, const Isometry3& T_target_source,
-                                const VisibilityCheckParams& p) {
+VisibilityCheck check(const DepthView& source, const DepthView& target, const Isometry3& T_target_source,
+                      const VisibilityCheckParams& p, bool regions) {
   validate(p);
   VisibilityCheck out;
   if (!T_target_source.matrix().allFinite()) {
     out.reason = "the pose is not finite";
     return out;
   }
-  const Counts st = countOneWay(source, target, T_target_source, p);
-  const Counts ts = countOneWay(target, source, T_target_source.inverse(), p);
+  const Counts st = countOneWay(source, target, T_target_source, p, regions);
+  const Counts ts = countOneWay(target, source, T_target_source.inverse(), p, regions);
   out.consistent = st.consistent + ts.consistent;
   out.occluded = st.occluded + ts.occluded;
   out.violations = st.violations + ts.violations;
@@ -123,6 +124,13 @@ VisibilityCheck checkVisibility(const DepthView& source, const DepthView& target
   return out;
 }
 
+}  // namespace
+
+VisibilityCheck checkVisibility(const DepthView& source, const DepthView& target, const Isometry3& T_target_source,
+                                const VisibilityCheckParams& p) {
+  return check(source, target, T_target_source, p, true);
+}
+
 VisibilityCheckParams agreementParams(int pixel_step) {
   VisibilityCheckParams p;
   p.pixel_step = pixel_step;
@@ -137,7 +145,7 @@ VisibilityCheckParams agreementParams(int pixel_step) {
 
 double depthAgreement(const DepthView& source, const DepthView& target, const Isometry3& T_target_source,
                       int pixel_step) {
-  return checkVisibility(source, target, T_target_source, agreementParams(pixel_step)).consistentShare();
+  return check(source, target, T_target_source, agreementParams(pixel_step), false).consistentShare();
 }
 
 }  // namespace gasp

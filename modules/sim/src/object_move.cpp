@@ -1,5 +1,7 @@
 #include "gasp/sim/object_move.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -24,8 +26,12 @@ ObjectMove parseObjectMove(const std::string& text) {
   if (colon == std::string::npos || colon == 0 || at == std::string::npos || at < colon) return fail();
   ObjectMove m;
   m.prefix = text.substr(0, colon);
+  const std::string numbers_text = text.substr(colon + 1, at - colon - 1);
+  if (numbers_text.empty() || numbers_text.back() == ',') return fail();
+  for (const char ch : numbers_text)
+    if (std::isspace(static_cast<unsigned char>(ch))) return fail();
   std::vector<double> numbers;
-  std::stringstream list(text.substr(colon + 1, at - colon - 1));
+  std::stringstream list(numbers_text);
   for (std::string item; std::getline(list, item, ',');) {
     std::size_t used = 0;
     try {
@@ -39,6 +45,7 @@ ObjectMove parseObjectMove(const std::string& text) {
   m.shift_m = Eigen::Vector3d(numbers[0], numbers[1], numbers[2]);
   if (numbers.size() == 4) m.yaw_deg = numbers[3];
   const std::string frame = text.substr(at + 1);
+  if (frame.empty() || !std::isdigit(static_cast<unsigned char>(frame[0]))) return fail();
   std::size_t used = 0;
   try {
     m.at_frame = std::stoi(frame, &used);
@@ -63,6 +70,10 @@ void applyObjectMoves(Scene& scene, const std::vector<ObjectMove>& moves, int fr
     for (std::size_t k = 0; k < scene.objects.size(); ++k) {
       const SceneObject& o = scene.objects[k];
       if (!startsWith(o.name, m.prefix) || o.name.find('@') != std::string::npos) continue;
+      if (m.at_frame <= o.visible_from_frame)
+        throw Error("object move '" + m.prefix + "': object '" + o.name + "' appears only at frame " +
+                    std::to_string(o.visible_from_frame) + ", so a move at frame " + std::to_string(m.at_frame) +
+                    " would move nothing");
       if (!moved.insert(o.name).second)
         throw Error("object move '" + m.prefix + "': object '" + o.name + "' is moved by two moves");
       parts.push_back(k);

@@ -62,9 +62,11 @@ struct VisibilityCheck {
   double violation_ratio = 0.0;  ///< the worse direction
   double violation_ratio_lesser = 0.0;  ///< the other direction
   double occluded_ratio = 0.0;   ///< occluded / (consistent + occluded + violations), the worse direction
-  /// Share of a direction's violating samples in its largest 8-connected blob on the sampling
+  /// Share of a direction's violating samples in its largest 8-connected region on the sampling
   /// grid (1 without violations): one compact object, or violations spread over the view. The
-  /// lesser and the greater of the two directions.
+  /// smaller and the larger of the two directions' shares (not tied to violation_ratio's
+  /// directions: the smaller share is the one that says whether *both* are compact). A
+  /// diagnostic: no verdict rests on it. depthAgreement() does not measure it.
   double violation_blob_share_lesser = 1.0, violation_blob_share = 1.0;
   std::string reason;            ///< why it failed
   /// consistent / (consistent + occluded + violations), both directions (0 without samples).

@@ -27,7 +27,8 @@ ObjectMove parseObjectMove(const std::string& text);
 /// Applies the moves to a scene of `frames` frames: each moved object exists up to at_frame - 1,
 /// and a copy named "<name>@moved" (new surface ids) from at_frame on. Throws gasp::Error when a
 /// prefix matches no object, an object is matched by two moves, at_frame is outside
-/// [1, frames - 1], or a number is not finite.
+/// [1, frames - 1] or not after the frame the object appears (the occluder appears midway), or a
+/// number is not finite.
 void applyObjectMoves(Scene& scene, const std::vector<ObjectMove>& moves, int frames);
 
 }  // namespace gasp::sim
