@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <string>
 
@@ -13,6 +14,7 @@
 #include "gasp/eval/ate.h"
 #include "gasp/odometry/odometry.h"
 #include "gasp/odometry/view_ahead.h"
+#include "gasp/sim/object_move.h"
 #include "gasp/sim/simulation.h"
 #include "gasp_test_data.h"
 
@@ -91,6 +93,53 @@ TEST(DepthOdometry, FollowsTheSimulatedRoomWithinACentimetre) {
     EXPECT_GT(Eigen::SelfAdjointEigenSolver<gasp::Matrix6d>(c.information).eigenvalues().minCoeff(), 0.0);
     EXPECT_FALSE(c.loop_closure);
     EXPECT_TRUE(a.keyframe || c.from + 1 == c.to) << "frame " << c.to << " was registered to " << c.from;
+  }
+}
+
+TEST(DepthOdometry, AnObjectMovedDuringTheSequenceGivesNoWrongStep) {
+  // The room at 5 Hz, its wide-baseline segment (frames 0-18), with something moved between two
+  // frames (gasp::sim object moves): each step is measured right or refused and predicted, never
+  // wrong. Measured: the chair pushed 0.6 m at frame 8 violates 8.8 % / 7.8 % of the overlap seen
+  // from both views against the keyframe and the previous frame, and that frame is refused by the
+  // two-way violation limit (docs/pipeline.md, "Objects that moved"); the frame after it is
+  // tracked again. The cabinet moved 0.5 m and turned 30 deg at frame 12 is tracked through.
+  struct Case {
+    const char* move;
+    int at;
+    bool refused;
+  };
+  for (const Case c : {Case{"chair:0,-0.6,0@8", 8, true}, Case{"cabinet:-0.4,0.3,0,30@12", 12, false}}) {
+    gasp::sim::SimulationOptions o;
+    o.rate_hz = 5.0;
+    o.moves = {gasp::sim::parseObjectMove(c.move)};
+    const gasp::sim::Simulation sim(o);
+    const auto K = sim.options().intrinsics;
+    DepthOdometry odo;
+    for (int i = 0; i <= 18; ++i) {
+      const auto f = sim.frame(i);
+      // The move is in view: the frames differ from the unchanged room's from it on.
+      const int changed = cv::countNonZero(f.depth != room().frame(i).depth);
+      if (i < c.at) {
+        EXPECT_EQ(changed, 0) << c.move << ", frame " << i;
+      } else if (i == c.at) {
+        EXPECT_GT(changed, 5000) << c.move;
+      }
+      const auto& r = odo.addFrame(f.timestamp, f.depth, K);
+      if (i == c.at && c.refused) {
+        EXPECT_FALSE(r.tracked) << c.move;
+        EXPECT_NE(r.reason.find("seen from both views"), std::string::npos) << r.reason;
+      } else {
+        EXPECT_TRUE(r.tracked) << c.move << ", frame " << i << ": " << r.reason;
+      }
+    }
+    EXPECT_EQ(odo.componentCount(), c.refused ? 2u : 1u) << c.move;
+    for (const auto& k : odo.constraints()) {
+      const Isometry3 T_true = sim.frame(static_cast<int>(k.from)).T_world_camera.inverse() *
+                               sim.frame(static_cast<int>(k.to)).T_world_camera;
+      EXPECT_LT(gasp::translationNorm(T_true.inverse() * k.T_from_to), 0.02) << c.move << ": " << k.from << " -> " << k.to;
+      EXPECT_LT(gasp::rotationAngle(T_true.inverse() * k.T_from_to) * 180.0 / M_PI, 1.0)
+          << c.move << ": " << k.from << " -> " << k.to;
+    }
   }
 }
 
