@@ -20,7 +20,7 @@ import os
 import re
 import sys
 
-from pairs_csv import read_pairs_csv
+from pairs_csv import pop_option, read_pairs_csv
 
 WRONG_T_M, WRONG_R_DEG = 0.10, 5.0
 NEEDED = ["skip", "from", "to", "estimated", "t_err_m", "r_err_deg", "violation_ratio", "violation_ratio_lesser",
@@ -47,13 +47,7 @@ def tally():
 
 def main():
     args = sys.argv[1:]
-    method = "gasp"
-    if "--method" in args:
-        k = args.index("--method")
-        if k + 1 >= len(args):
-            sys.exit("error: --method needs a name")
-        method = args[k + 1]
-        del args[k:k + 2]
+    method = pop_option(args, "--method", "gasp", "a name")
     if len(args) != 1:
         sys.exit(__doc__.split("\n\n")[1])
     out = args[0]

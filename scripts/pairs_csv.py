@@ -16,3 +16,16 @@ def read_pairs_csv(path, method, needed, what):
             return [r for r in reader if r["method"] == method]
     except OSError as e:
         sys.exit("error: cannot read %s: %s" % (path, e.strerror))
+
+
+def pop_option(args, name, default, what):
+    """Removes `name VALUE` from the argument list `args` and returns VALUE (`default` without
+    the option); exits with "error: NAME needs WHAT" when the value is missing."""
+    if name not in args:
+        return default
+    k = args.index(name)
+    if k + 1 >= len(args):
+        sys.exit("error: %s needs %s" % (name, what))
+    value = args[k + 1]
+    del args[k:k + 2]
+    return value

@@ -25,7 +25,7 @@ import random
 import statistics
 import sys
 
-from pairs_csv import read_pairs_csv
+from pairs_csv import pop_option, read_pairs_csv
 
 BLOCK = 10        # pairs per bootstrap block (pairs from neighbouring start frames overlap)
 RESAMPLES = 2000  # bootstrap resamples
@@ -85,13 +85,7 @@ def write_svg(path, panels, cut, title):
 
 def main():
     args = sys.argv[1:]
-    svg = None
-    if "--svg" in args:
-        k = args.index("--svg")
-        if k + 1 >= len(args):
-            sys.exit("error: --svg needs a file name")
-        svg = args[k + 1]
-        del args[k:k + 2]
+    svg = pop_option(args, "--svg", None, "a file name")
     if len(args) < 1:
         sys.exit(__doc__)
     path = args[0]
