@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <vector>
 
 #include "gasp/core/error.h"
@@ -11,6 +13,7 @@
 #include "gasp/eval/ate.h"
 #include "gasp/sim/camera_path.h"
 #include "gasp/sim/noise_model.h"
+#include "gasp/sim/object_move.h"
 #include "gasp/sim/renderer.h"
 #include "gasp/sim/simulation.h"
 #include "gasp/slam/depth_slam.h"
@@ -96,6 +99,49 @@ TEST(DepthSlam, RelocalisesAfterTheCameraLooksAwayAndKeepsTheUnrelatedPieceApart
     EXPECT_LT(gasp::translationNorm(e), 0.02) << "frame " << i;
     EXPECT_LT(gasp::rotationAngle(e) * 180 / M_PI, 1.0) << "frame " << i;
   }
+}
+
+TEST(DepthSlam, AMovedBoxInASymmetricSceneGivesNoWrongConstraint) {
+  // The repeated scene (identical boxes in a grid that a half turn maps onto itself) at 5 Hz,
+  // box 0 moved 0.5 m and turned 20 deg at frame 25, frames 12-40 (gasp::sim object moves). Pair
+  // registration across this move can claim the half turn (docs/pipeline.md, "Objects that
+  // moved"); in the SLAM every constraint in the graph must be right, the move's frame is refused
+  // by the visibility check and predicted, the pieces before and after it are tried against each
+  // other, and the trajectory stays within 1 cm.
+  gasp::sim::SimulationOptions o;
+  o.scene = "repeated";
+  o.rate_hz = 5.0;
+  o.moves = {gasp::sim::parseObjectMove("box0:0.3,0.4,0,20@25")};
+  const gasp::sim::Simulation sim(o);
+  const int first = 12, last = 40;
+  gasp::DepthSlam slam({}, sim.frame(first).T_world_camera);
+  gasp::Trajectory gt;
+  std::vector<Isometry3> truth;
+  for (int i = first; i <= last; ++i) {
+    const auto f = sim.frame(i);
+    const auto& r = slam.addFrame(f.timestamp, f.depth, sim.options().intrinsics);
+    if (i == 25) {
+      EXPECT_FALSE(r.tracked);
+      EXPECT_NE(r.reason.find("visibility check"), std::string::npos) << r.reason;
+    }
+    gt.push_back({f.timestamp, f.T_world_camera});
+    truth.push_back(f.T_world_camera);
+  }
+  const auto check = [&truth](const gasp::PoseConstraint& c, const char* what) {
+    const Isometry3 e = (truth[c.from].inverse() * truth[c.to]).inverse() * c.T_from_to;
+    EXPECT_LT(gasp::translationNorm(e), 0.02) << what << ' ' << c.from + 12 << " -> " << c.to + 12;
+    EXPECT_LT(gasp::rotationAngle(e) * 180 / M_PI, 1.0) << what << ' ' << c.from + 12 << " -> " << c.to + 12;
+  };
+  for (const auto& c : slam.constraints()) check(c, c.loop_closure ? "loop closure" : "odometry");
+  // The pieces before and after the move were registered to each other (relocalisation), so
+  // pairs across the move were tried; measured: none gives an estimate, none is accepted.
+  std::size_t across = 0;
+  for (const auto& a : slam.attempts()) across += (a.from + first < 25 && a.to + first >= 25) ? 1 : 0;
+  EXPECT_GE(across, 3u);
+  const double ate = gasp::eval::computeAte(gt, slam.trajectory()).translation.rmse;
+  std::printf("repeated scene, box moved at 25, frames %d-%d: %zu loop closures of %zu tried (%zu across the move), "
+              "ATE %.4f m\n", first, last, slam.loopClosures().size(), slam.attempts().size(), across, ate);
+  EXPECT_LT(ate, 0.01);
 }
 
 TEST(DepthSlam, WithoutLoopClosuresItIsTheOdometry) {
