@@ -34,7 +34,7 @@
 /// had 0.020-0.027 and remain (docs/pipeline.md, "Violations seen from both views"). The price: an
 /// object that *moved* between the views (a walking person) violates both directions, and more
 /// than 5 % of the overlap of such an object gives no estimate: measured on the simulator's moved
-/// objects, 14 of 497 pairs across a move (docs/pipeline.md, "Objects that moved"). How compact
+/// objects, 14 of 485 pairs across a move (docs/pipeline.md, "Objects that moved"). How compact
 /// the violations are (violation_blob_share_lesser) is measured but decides nothing: moved objects
 /// and wrong poses are both compact (same section).
 #include <string>
