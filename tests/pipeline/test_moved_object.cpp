@@ -13,8 +13,8 @@
 #include <string>
 
 #include "gasp/pipeline/pair_registration.h"
-#include "gasp/sim/noise_model.h"
-#include "gasp/sim/renderer.h"
+#include "gasp/sim/object_move.h"
+#include "gasp/sim/simulation.h"
 #include "synthetic_pairs.h"
 
 namespace {
@@ -22,20 +22,15 @@ namespace {
 using namespace gasp;
 using test::Pair;
 
-/// The room's frames i and j, frame j rendered with the objects whose names start with `prefix`
-/// moved by `shift` (world frame).
+/// The room's frames i and j, with the objects whose names start with `prefix` moved by `shift`
+/// (world frame) from frame j on (gasp::sim object moves).
 Pair pairWithMovedObject(int i, int j, const std::string& prefix, const Eigen::Vector3d& shift) {
-  const auto& s = test::simulation("room");
-  sim::Scene moved = s.scene();
-  int n = 0;
-  for (auto& o : moved.objects)
-    if (o.name.rfind(prefix, 0) == 0) o.T_world_object.translation() += shift, ++n;
-  EXPECT_GT(n, 0) << prefix;
+  sim::SimulationOptions o;
+  o.moves = {sim::ObjectMove{prefix, shift, 0.0, j}};
+  const sim::Simulation s(o);
   const auto K = s.options().intrinsics;
-  const auto fa = s.frame(i);
-  const Isometry3 T_world_b = s.path().poses[static_cast<std::size_t>(j)].T_world_camera;
-  const cv::Mat depth_b = sim::sensorDepth(sim::renderFrame(moved, K, T_world_b, j), s.options().noise, K, s.options().seed, j);
-  return {makeDepthView(fa.depth, K), makeDepthView(depth_b, K), relativePose(T_world_b, fa.T_world_camera)};
+  const auto fa = s.frame(i), fb = s.frame(j);
+  return {makeDepthView(fa.depth, K), makeDepthView(fb.depth, K), relativePose(fb.T_world_camera, fa.T_world_camera)};
 }
 
 struct Moved {

@@ -3,19 +3,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <set>
 #include <sstream>
 
 #include "gasp/core/error.h"
 
 namespace gasp::sim {
-
-namespace {
-
-bool startsWith(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
-
-}  // namespace
 
 ObjectMove parseObjectMove(const std::string& text) {
   const auto fail = [&text]() -> ObjectMove {
@@ -69,7 +62,7 @@ void applyObjectMoves(Scene& scene, const std::vector<ObjectMove>& moves, int fr
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
     for (std::size_t k = 0; k < scene.objects.size(); ++k) {
       const SceneObject& o = scene.objects[k];
-      if (!startsWith(o.name, m.prefix) || o.name.find('@') != std::string::npos) continue;
+      if (o.name.rfind(m.prefix, 0) != 0 || o.name.find('@') != std::string::npos) continue;  // not a prefix, or a copy
       if (m.at_frame <= o.visible_from_frame)
         throw Error("object move '" + m.prefix + "': object '" + o.name + "' appears only at frame " +
                     std::to_string(o.visible_from_frame) + ", so a move at frame " + std::to_string(m.at_frame) +
