@@ -47,7 +47,7 @@ inline std::vector<std::string> sequenceInputs(const DepthSequenceOptions& input
   return files;
 }
 
-/// --keyframe-distance, --keyframe-angle, --rolling-shutter.
+/// --keyframe-distance, --keyframe-angle, --rolling-shutter, --no-scene-change.
 inline void addOdometryOptions(CLI::App& app, OdometryParams& params) {
   app.add_option("--keyframe-distance", params.keyframe_distance_m, "new keyframe beyond this distance from the last [m]")
       ->capture_default_str()
@@ -59,6 +59,9 @@ inline void addOdometryOptions(CLI::App& app, OdometryParams& params) {
                  "deskew each frame for a rolling-shutter readout of S seconds with the last step's velocity (TUM Kinect: 0.03; 0 = off)")
       ->capture_default_str()
       ->check(within(-1, 1));
+  app.add_flag("!--no-scene-change", params.scene_change.enabled,
+               "a frame the visibility check refuses is predicted, never taken with the looser scene-change limits "
+               "under the constant-velocity prediction (docs/odometry.md, \"Scenes that change\")");
 }
 
 /// --sequential: no segmentation ahead (frames_ahead.h).

@@ -14,14 +14,14 @@ namespace gasp::tools {
 void writeFramesCsv(const std::string& path, const std::vector<OdometryFrame>& frames) {
   std::ofstream out(path);
   if (!out) throw Error("cannot write " + path);
-  out << "index,timestamp,tracked,keyframe,reference,patches,inliers,deskewed,segmentation_ms,registration_ms,reason\n";
+  out << "index,timestamp,tracked,keyframe,reference,patches,inliers,deskewed,segmentation_ms,registration_ms,scene_change,reason\n";
   for (const auto& f : frames) {
     std::string reason = f.reason;
     std::replace(reason.begin(), reason.end(), '"', '\'');
     char buf[200];
-    std::snprintf(buf, sizeof buf, "%zu,%.6f,%d,%d,%zu,%d,%d,%d,%.2f,%.2f,", f.index, f.timestamp, f.tracked ? 1 : 0,
+    std::snprintf(buf, sizeof buf, "%zu,%.6f,%d,%d,%zu,%d,%d,%d,%.2f,%.2f,%d,", f.index, f.timestamp, f.tracked ? 1 : 0,
                   f.keyframe ? 1 : 0, f.reference, f.patches, f.inliers, f.deskewed ? 1 : 0, f.segmentation_ms,
-                  f.registration_ms);
+                  f.registration_ms, f.scene_change ? 1 : 0);
     out << buf << '"' << reason << "\"\n";
   }
   if (!out) throw Error("cannot write " + path);

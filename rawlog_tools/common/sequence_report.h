@@ -10,7 +10,7 @@
 namespace gasp::tools {
 
 /// One line per frame: index,timestamp,tracked,keyframe,reference,patches,inliers,deskewed,
-/// segmentation_ms,registration_ms,reason. Throws gasp::Error when it cannot be written.
+/// segmentation_ms,registration_ms,scene_change,reason. Throws gasp::Error when it cannot be written.
 void writeFramesCsv(const std::string& path, const std::vector<OdometryFrame>& frames);
 
 /// Prints frames:, tracked:, keyframes:, graph_components: (the odometry's pieces) and

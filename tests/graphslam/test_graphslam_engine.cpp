@@ -554,6 +554,8 @@ TEST(GraphSlamDeciders, ReadTheirIniSectionsStrictly) {
   const std::string dir = gasp::test::scratchDir();
   const std::string ini = writeFile(dir + "/ok.ini",
                                     "[CGaspOdometryNRD]\nkeyframe_distance_m = 0.2\nsensor_label = KINECT\n"
+                                    "scene_change = 0\nscene_change_max_violation_ratio = 0.4\nscene_change_gate_m = 0.03\n"
+                                    "scene_change_max_angular_accel_radps2 = 4\n"
                                     "[CGaspLoopClosureERD]\nsearch_radius_m = 0.8\nmax_candidates = 4\nenabled = 0\n"
                                     "[CGaspPoseGraphGSO]\nmax_iterations = 7\ndrop_chi2 = 0\n");
   gasp::graphslam::CGaspOdometryNRD nrd;
@@ -563,6 +565,11 @@ TEST(GraphSlamDeciders, ReadTheirIniSectionsStrictly) {
   erd.loadParams(ini);
   gso.loadParams(ini);
   EXPECT_DOUBLE_EQ(nrd.params().keyframe_distance_m, 0.2);
+  EXPECT_FALSE(nrd.params().scene_change.enabled);
+  EXPECT_DOUBLE_EQ(nrd.params().scene_change.max_violation_ratio, 0.4);
+  EXPECT_DOUBLE_EQ(nrd.params().scene_change.gate_m, 0.03);
+  EXPECT_DOUBLE_EQ(nrd.params().scene_change.max_angular_accel_radps2, 4.0);
+  EXPECT_DOUBLE_EQ(nrd.params().scene_change.gate_deg, gasp::SceneChangeParams{}.gate_deg);  // not in the file
   EXPECT_DOUBLE_EQ(erd.loopParams().search_radius_m, 0.8);
   EXPECT_EQ(erd.loopParams().max_candidates, 4u);
   EXPECT_FALSE(erd.loopParams().enabled);
@@ -572,6 +579,9 @@ TEST(GraphSlamDeciders, ReadTheirIniSectionsStrictly) {
   EXPECT_THROW(nrd.loadParams(writeFile(dir + "/a.ini", "[CGaspOdometryNRD]\nkeyframe_distanse_m = 0.2\n")),
                std::exception);
   EXPECT_THROW(nrd.loadParams(writeFile(dir + "/b.ini", "[CGaspOdometryNRD]\nkeyframe_distance_m = -1\n")),
+               std::exception);
+  EXPECT_THROW(nrd.loadParams(writeFile(dir + "/g.ini", "[CGaspOdometryNRD]\nscene_change = 2\n")), std::exception);
+  EXPECT_THROW(nrd.loadParams(writeFile(dir + "/h.ini", "[CGaspOdometryNRD]\nscene_change_max_occluded_ratio = 1.5\n")),
                std::exception);
   EXPECT_THROW(erd.loadParams(writeFile(dir + "/c.ini", "[CGaspLoopClosureERD]\nmax_candidates = -2\n")),
                std::exception);

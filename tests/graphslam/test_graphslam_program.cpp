@@ -482,13 +482,21 @@ TEST(GaspGraphSlamProgram, StandardOutputHoldsOnlyItsOwnLines) {
 }
 
 TEST(GaspGraphSlamProgram, SaysWhenTrackingWasLost) {
-  // The room simulated in 20 frames moves faster: one frame is not tracked, the node decider
-  // inserts a break edge; exit 3, and the outputs are still written.
+  // The room simulated in 20 frames moves faster, and the occluder pops in: with the node
+  // decider's scene-change attempt off (scene_change = 0) that frame is not tracked and the node
+  // decider inserts a break edge; exit 3, and the outputs are still written.
   const std::string out = gasp::test::scratchDir();
-  const auto run = runProgram("gasp-graphslam", "--rawlog " + simulatedRawlog(out, 2, 20, 20) + " --out " + out + "/t.txt");
+  const std::string rawlog = simulatedRawlog(out, 2, 20, 20);
+  std::ofstream(out + "/no_scene_change.ini") << "[CGaspOdometryNRD]\nscene_change = 0\n";
+  auto run = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --ini " + out + "/no_scene_change.ini --out " + out +
+                                              "/t.txt");
   EXPECT_EQ(run.exit_code, 3) << run.output;
   EXPECT_TRUE(contains(run.output, "\nbreak_edges: 1\n")) << run.output;
   EXPECT_EQ(gasp::readTumTrajectory(out + "/t.txt").size(), printedCount(run.output, "nodes: "));
+  // By default the frame is taken through the scene change (docs/odometry.md): no break edge.
+  run = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --out " + out + "/t2.txt");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "\nbreak_edges: 0\n")) << run.output;
 }
 
 TEST(GaspGraphSlamProgram, BadInputGivesExitCodesAndReasons) {

@@ -28,6 +28,24 @@ std::string simulatedFolder(const std::string& dir) {
   return d;
 }
 
+/// The line of frame `index` in a --frames-csv file ("" when there is none).
+std::string frameLine(const std::string& csv, int index) {
+  std::ifstream in(csv);
+  const std::string head = std::to_string(index) + ",";
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(head, 0) == 0) return line;
+  return "";
+}
+
+/// Cell `k` of a CSV line whose cells before the last hold no comma.
+std::string csvCell(const std::string& line, int k) {
+  std::stringstream fields(line);
+  std::string cell;
+  for (int i = 0; i <= k; ++i)
+    if (!std::getline(fields, cell, ',')) return "";
+  return cell;
+}
+
 }  // namespace
 
 TEST(GaspOdometryProgram, WritesTheTrajectoryGraphAndFramesAndScoresThem) {
@@ -70,25 +88,46 @@ TEST(GaspOdometryProgram, SegmentingAheadGivesTheSameTrajectoryAsSequential) {
 
 TEST(GaspOdometryProgram, AFrameItCannotTrackExitsWith3AndSaysWhy) {
   // The occluder pops into the scene at frame 19 of 30: the visibility check refuses that frame's
-  // pose (a static world is assumed), which is then predicted.
+  // pose (a static world is assumed). With --no-scene-change the frame is then predicted.
   const std::string out = gasp::test::scratchDir();
-  const auto run = runProgram("gasp-odometry", "--tum " + simulatedFolder(out) + " --out " + out + "/traj.txt --frames-csv " +
-                                                   out + "/f.csv");
+  const auto run = runProgram("gasp-odometry", "--tum " + simulatedFolder(out) + " --no-scene-change --out " + out +
+                                                   "/traj.txt --frames-csv " + out + "/f.csv");
   EXPECT_EQ(run.exit_code, 3) << run.output;
   EXPECT_TRUE(contains(run.output, "tracked: 29\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "graph_components: 2\n")) << run.output;
   EXPECT_TRUE(contains(run.output, "not_tracked: 1 frames")) << run.output;
   EXPECT_EQ(gasp::readTumTrajectory(out + "/traj.txt").size(), 30u);  // the lost frame's pose is predicted
-  std::ifstream in(out + "/f.csv");
-  std::string line, frame19;
-  while (std::getline(in, line))
-    if (line.rfind("19,", 0) == 0) frame19 = line;
-  std::stringstream fields(frame19);
-  std::string index, stamp, tracked;
-  std::getline(fields, index, ',');
-  std::getline(fields, stamp, ',');
-  std::getline(fields, tracked, ',');
-  EXPECT_EQ(tracked, "0") << frame19;
+  const std::string frame19 = frameLine(out + "/f.csv", 19);
+  EXPECT_EQ(frame19.rfind("19,", 0), 0u) << frame19;
+  EXPECT_EQ(csvCell(frame19, 2), "0") << frame19;   // tracked
+  EXPECT_EQ(csvCell(frame19, 10), "0") << frame19;  // scene_change
   EXPECT_TRUE(contains(frame19, "visibility check")) << frame19;
+  EXPECT_FALSE(contains(frame19, "scene change:")) << frame19;
+}
+
+TEST(GaspOdometryProgram, TracksThroughASceneChangeByDefault) {
+  // The same folder without the flag: frame 19 is taken through the scene change (the pose agrees
+  // with the constant-velocity prediction), every frame is tracked and the graph is in one piece.
+  const std::string out = gasp::test::scratchDir();
+  const auto run = runProgram("gasp-odometry", "--tum " + simulatedFolder(out) + " --out " + out +
+                                                   "/traj.txt --frames-csv " + out + "/f.csv");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "tracked: 30\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "graph_components: 1\n")) << run.output;
+  std::ifstream in(out + "/f.csv");
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "index,timestamp,tracked,keyframe,reference,patches,inliers,deskewed,segmentation_ms,"
+                    "registration_ms,scene_change,reason");
+  for (int i = 0; i < 30; ++i) {
+    const std::string line = frameLine(out + "/f.csv", i);
+    EXPECT_EQ(csvCell(line, 2), "1") << line;
+    EXPECT_EQ(csvCell(line, 10), i == 19 ? "1" : "0") << line;
+  }
+  const std::string frame19 = frameLine(out + "/f.csv", 19);
+  EXPECT_EQ(csvCell(frame19, 3), "1") << frame19;   // the new keyframe
+  EXPECT_EQ(csvCell(frame19, 4), "18") << frame19;  // registered to the previous frame
+  EXPECT_TRUE(contains(frame19, "scene change: against the previous frame 18: taken")) << frame19;
 }
 
 TEST(GaspOdometryProgram, ARawlogGivesTheFoldersPosesAndRobotFrameGraph) {

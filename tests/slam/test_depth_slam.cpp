@@ -105,9 +105,12 @@ TEST(DepthSlam, AMovedBoxInASymmetricSceneGivesNoWrongConstraint) {
   // The repeated scene (identical boxes in a grid that a half turn maps onto itself) at 5 Hz,
   // box 0 moved 0.5 m and turned 20 deg at frame 25, frames 12-40 (gasp::sim object moves). Pair
   // registration across this move can claim the half turn (docs/pipeline.md, "Objects that
-  // moved"); in the SLAM every constraint in the graph must be right, the move's frame is refused
-  // by the visibility check and predicted, the pieces before and after it are tried against each
-  // other, and the trajectory stays within 1 cm.
+  // moved"); in the SLAM every constraint in the graph must be right. The move's frame is refused
+  // by the strict visibility check and taken through the scene change (measured: 13.6 % / 13.1 %
+  // of the overlap violated against frame 24, 2 mm / 0.09 deg from the constant-velocity
+  // prediction), so the graph stays in one piece, and the trajectory stays within 1 cm. (Before
+  // the scene-change attempt the frame was predicted, and the pieces before and after it could
+  // not be joined: docs/odometry.md, "Scenes that change".)
   gasp::sim::SimulationOptions o;
   o.scene = "repeated";
   o.rate_hz = 5.0;
@@ -120,8 +123,10 @@ TEST(DepthSlam, AMovedBoxInASymmetricSceneGivesNoWrongConstraint) {
   for (int i = first; i <= last; ++i) {
     const auto f = sim.frame(i);
     const auto& r = slam.addFrame(f.timestamp, f.depth, sim.options().intrinsics);
+    EXPECT_TRUE(r.tracked) << "frame " << i << ": " << r.reason;
+    // Frame 38: the simulator's occluder pops in (42 % of the overlap violated in one direction).
+    EXPECT_EQ(r.scene_change, i == 25 || i == 38) << "frame " << i << ": " << r.reason;
     if (i == 25) {
-      EXPECT_FALSE(r.tracked);
       EXPECT_NE(r.reason.find("visibility check"), std::string::npos) << r.reason;
     }
     gt.push_back({f.timestamp, f.T_world_camera});
@@ -133,11 +138,9 @@ TEST(DepthSlam, AMovedBoxInASymmetricSceneGivesNoWrongConstraint) {
     EXPECT_LT(gasp::rotationAngle(e) * 180 / M_PI, 1.0) << what << ' ' << c.from + 12 << " -> " << c.to + 12;
   };
   for (const auto& c : slam.constraints()) check(c, c.loop_closure ? "loop closure" : "odometry");
-  // The pieces before and after the move were registered to each other (relocalisation), so
-  // pairs across the move were tried; measured: none gives an estimate, none is accepted.
-  std::size_t across = 0;
+  EXPECT_EQ(slam.pieceCount(), 1u);
+  std::size_t across = 0;  // loop closures tried across the move
   for (const auto& a : slam.attempts()) across += (a.from + first < 25 && a.to + first >= 25) ? 1 : 0;
-  EXPECT_GE(across, 3u);
   const double ate = gasp::eval::computeAte(gt, slam.trajectory()).translation.rmse;
   std::printf("repeated scene, box moved at 25, frames %d-%d: %zu loop closures of %zu tried (%zu across the move), "
               "ATE %.4f m\n", first, last, slam.loopClosures().size(), slam.attempts().size(), across, ate);

@@ -173,13 +173,20 @@ TEST(GaspSlamProgram, BadInputExitsWith1OrAUsageCode) {
 }
 
 TEST(GaspSlamProgram, TheOccluderFrameLeavesTheGraphInPiecesOrRejoinsItAndSaysSo) {
-  // All 30 frames: the occluder pops in at frame 19, which the odometry cannot track; the frames
-  // after it are registered to it, a new piece. The program exits 3 and says why.
+  // All 30 frames: the occluder pops in at frame 19. With --no-scene-change the odometry cannot
+  // track it; the frames after it are registered to it, a new piece. The program exits 3 and says
+  // why.
   const std::string out = gasp::test::scratchDir();
-  const auto run = runProgram("gasp-slam", "--tum " + simulatedFolder(out) + " --out " + out + "/t.txt --loops-csv " +
-                                               out + "/loops.csv");
+  const std::string sim = simulatedFolder(out);
+  auto run = runProgram("gasp-slam", "--tum " + sim + " --no-scene-change --out " + out + "/t.txt --loops-csv " + out +
+                                         "/loops.csv");
   EXPECT_EQ(run.exit_code, 3) << run.output;
   EXPECT_TRUE(contains(run.output, "not_tracked: 1 frames")) << run.output;
   EXPECT_TRUE(contains(run.output, "(odometry alone: 2)")) << run.output;
   EXPECT_EQ(gasp::readTumTrajectory(out + "/t.txt").size(), 30u);
+  // By default the frame is taken through the scene change: every frame tracked, one piece.
+  run = runProgram("gasp-slam", "--tum " + sim + " --out " + out + "/t2.txt");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "tracked: 30\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "(odometry alone: 1)")) << run.output;
 }

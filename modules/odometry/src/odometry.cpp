@@ -39,15 +39,27 @@ DepthOdometry::DepthOdometry(const OdometryParams& params, const Isometry3& T_wo
 }
 
 bool DepthOdometry::track(const DepthView& view, const DepthView& ref, std::size_t ref_index, OdometryFrame& f,
-                          const char* attempt) {
-  const PairResult r = registerViews(view, ref, params_.pair);  // T_ref_frame
+                          const char* attempt, const PairParams& pair, const std::optional<Isometry3>& T_ref_predicted) {
+  const PairResult r = registerViews(view, ref, pair);  // T_ref_frame
   std::string why = r.pose.success ? std::string() : r.pose.reason;
   const double dt = f.timestamp - frames_[ref_index].timestamp;
   if (why.empty()) why = implausibleMotion(r.pose.T_target_source, dt, params_);
+  PredictionGate gate;
+  if (why.empty() && T_ref_predicted) {
+    gate = predictionGate(r.pose.T_target_source, *T_ref_predicted, dt, params_.scene_change);
+    if (!gate.within()) why = gate.describe();
+  }
+  const std::string head = (f.reason.empty() ? "" : "; ") + std::string(attempt) + " frame " + std::to_string(ref_index);
   if (!why.empty()) {
-    f.reason += (f.reason.empty() ? "" : "; ") + std::string(attempt) + " frame " + std::to_string(ref_index) +
-                ": " + why;
+    f.reason += head + ": " + why;
     return false;
+  }
+  if (T_ref_predicted) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, ": taken, %.1f%% and %.1f%% of the overlap violated, seen from both views, ",
+                  100.0 * r.visibility.violation_ratio, 100.0 * r.visibility.violation_ratio_lesser);
+    f.reason += head + buf + gate.describe();
+    f.scene_change = true;
   }
   f.tracked = true;
   f.reference = ref_index;
@@ -116,16 +128,22 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
     }
   } else {
     const std::size_t prev = f.index - 1;
-    if (track(view, *keyframe_view_, keyframe_index_, f, "against keyframe")) {
+    const double dt = timestamp - frames_[prev].timestamp;
+    if (track(view, *keyframe_view_, keyframe_index_, f, "against keyframe", params_.pair)) {
       const Isometry3 T_key_frame = frames_[keyframe_index_].T_world_camera.inverse() * f.T_world_camera;
       new_keyframe = translationNorm(T_key_frame) > params_.keyframe_distance_m ||
                      rotationAngle(T_key_frame) * 180.0 / M_PI > params_.keyframe_angle_deg;
-    } else if (prev != keyframe_index_ && track(view, *previous_view_, prev, f, "against the previous")) {
+    } else if (prev != keyframe_index_ && track(view, *previous_view_, prev, f, "against the previous", params_.pair)) {
       new_keyframe = true;  // the keyframe no longer reaches this far
+    } else if (params_.scene_change.enabled && velocity_ &&
+               track(view, *previous_view_, prev, f, "scene change: against the previous",
+                     sceneChangePairParams(params_.pair, params_.scene_change), stepOf(*velocity_, dt))) {
+      // A velocity exists only when the previous frame was tracked. The scene changed: the old
+      // keyframe shows what is no longer there.
+      new_keyframe = true;
     }
     if (!f.tracked) {
       // Predicted with the last velocity (standing still without one); the keyframe stays.
-      const double dt = timestamp - frames_[prev].timestamp;
       f.T_world_camera = frames_[prev].T_world_camera * (velocity_ ? stepOf(*velocity_, dt) : Isometry3::Identity());
     }
   }

@@ -14,6 +14,7 @@ void validate(const OdometryParams& params) {
   requirePositive(params.max_rate_radps, "odometry: max_rate_radps");
   if (!std::isfinite(params.rolling_shutter_readout_s) || std::abs(params.rolling_shutter_readout_s) > 1.0)
     throw Error("odometry: rolling_shutter_readout_s must be a finite time of at most 1 s (either sign)");
+  validate(params.scene_change);
   validate(params.pair);
 }
 

@@ -113,13 +113,28 @@ void CGaspOdometryNRD::loadParams(const std::string& source_fname) {
   const mrpt::config::CConfigFile cfg(source_fname);
   OdometryParams p = params_;
   const std::set<std::string> own = {"keyframe_distance_m", "keyframe_angle_deg", "max_speed_mps", "max_rate_radps",
-                                     "rolling_shutter_readout_s", "sensor_label", "class_verbosity"};
+                                     "rolling_shutter_readout_s", "sensor_label", "class_verbosity",
+                                     "scene_change", "scene_change_max_violation_ratio",
+                                     "scene_change_max_two_way_violation_ratio", "scene_change_max_occluded_ratio",
+                                     "scene_change_gate_m", "scene_change_gate_deg", "scene_change_max_accel_mps2",
+                                     "scene_change_max_angular_accel_radps2"};
   readPairParams(cfg, kSection, p.pair, own);
   readValue(cfg, kSection, "keyframe_distance_m", p.keyframe_distance_m);
   readValue(cfg, kSection, "keyframe_angle_deg", p.keyframe_angle_deg);
   readValue(cfg, kSection, "max_speed_mps", p.max_speed_mps);
   readValue(cfg, kSection, "max_rate_radps", p.max_rate_radps);
   readValue(cfg, kSection, "rolling_shutter_readout_s", p.rolling_shutter_readout_s);
+  int scene_change = p.scene_change.enabled ? 1 : 0;
+  readValue(cfg, kSection, "scene_change", scene_change);
+  if (scene_change != 0 && scene_change != 1) THROW_EXCEPTION_FMT("[%s] scene_change: must be 0 or 1", kSection);
+  p.scene_change.enabled = scene_change == 1;
+  readValue(cfg, kSection, "scene_change_max_violation_ratio", p.scene_change.max_violation_ratio);
+  readValue(cfg, kSection, "scene_change_max_two_way_violation_ratio", p.scene_change.max_two_way_violation_ratio);
+  readValue(cfg, kSection, "scene_change_max_occluded_ratio", p.scene_change.max_occluded_ratio);
+  readValue(cfg, kSection, "scene_change_gate_m", p.scene_change.gate_m);
+  readValue(cfg, kSection, "scene_change_gate_deg", p.scene_change.gate_deg);
+  readValue(cfg, kSection, "scene_change_max_accel_mps2", p.scene_change.max_accel_mps2);
+  readValue(cfg, kSection, "scene_change_max_angular_accel_radps2", p.scene_change.max_angular_accel_radps2);
   int verbosity = static_cast<int>(getMinLoggingLevel());
   readValue(cfg, kSection, "class_verbosity", verbosity);
   try {
@@ -138,6 +153,12 @@ void CGaspOdometryNRD::printParams() const {
             << "max_speed_mps             = " << params_.max_speed_mps << '\n'
             << "max_rate_radps            = " << params_.max_rate_radps << '\n'
             << "rolling_shutter_readout_s = " << params_.rolling_shutter_readout_s << '\n'
+            << "scene_change              = " << (params_.scene_change.enabled ? 1 : 0) << " (violations "
+            << params_.scene_change.max_violation_ratio << ", " << params_.scene_change.max_two_way_violation_ratio
+            << " from both, occluded " << params_.scene_change.max_occluded_ratio << "; gate "
+            << params_.scene_change.gate_m << " m + " << params_.scene_change.max_accel_mps2 << " m/s^2, "
+            << params_.scene_change.gate_deg << " deg + " << params_.scene_change.max_angular_accel_radps2
+            << " rad/s^2)\n"
             << "sensor_label              = " << (sensor_label_.empty() ? "(any)" : sensor_label_) << '\n';
 }
 

@@ -6,7 +6,8 @@
 /// front-end) to the current keyframe. When that gives no estimate, it is registered to the frame
 /// before it, and then becomes the keyframe. When neither gives one, its pose is predicted with
 /// the last measured velocity and marked as not tracked: the trajectory goes on, the pose graph
-/// has no edge to it from the past (a break). Every measured pose is a PoseConstraint with GASP's
+/// has no edge to it from the past (a break) -- unless the scene changed and the motion prediction
+/// vouches for a pose found with looser visibility limits (scene_change.h). Every measured pose is a PoseConstraint with GASP's
 /// edge information, so the constraints form a tree over the frames, to which a back-end adds
 /// loop closures.
 ///
@@ -45,6 +46,11 @@ struct OdometryFrame {
   std::string reason;
   int patches = 0;             ///< superpixels of the frame
   int inliers = 0;             ///< RANSAC inliers of the pose (0 when not tracked)
+  /// Tracked through a scene change (scene_change.h): both strict attempts were refused, the
+  /// pose is the scene-change attempt's against the previous frame, within the gate of the
+  /// constant-velocity prediction; `reason` says why the strict attempts failed and what the
+  /// scene-change attempt measured. The frame becomes the keyframe.
+  bool scene_change = false;
   bool deskewed = false;       ///< the depth was deskewed for the rolling shutter before segmenting
   double segmentation_ms = 0.0;  ///< deskew + superpixels
   double registration_ms = 0.0;  ///< all registration attempts
@@ -86,9 +92,11 @@ class DepthOdometry {
   const DepthView* keyframeView() const { return keyframe_view_ ? &*keyframe_view_ : nullptr; }
 
  private:
-  /// Registers `view` (frame i at time t) to `ref`; on success sets f's pose and adds the constraint.
+  /// Registers `view` (frame i at time t) to `ref` with `pair`; on success sets f's pose and adds
+  /// the constraint. With `T_ref_predicted` (the scene-change attempt) the pose must also lie
+  /// within the gate of that prediction (predictionGate()).
   bool track(const DepthView& view, const DepthView& ref, std::size_t ref_index, OdometryFrame& f,
-             const char* attempt);
+             const char* attempt, const PairParams& pair, const std::optional<Isometry3>& T_ref_predicted = std::nullopt);
 
   OdometryParams params_;
   Isometry3 T_world_first_;

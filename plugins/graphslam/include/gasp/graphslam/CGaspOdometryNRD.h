@@ -12,7 +12,11 @@
 ///
 /// Parameters: ini section [CGaspOdometryNRD] (docs/graphslam.md): the pair keys of params_io.h,
 /// keyframe_distance_m, keyframe_angle_deg, max_speed_mps, max_rate_radps,
-/// rolling_shutter_readout_s, sensor_label, class_verbosity.
+/// rolling_shutter_readout_s, the scene-change attempt (scene_change.h: scene_change 0/1,
+/// scene_change_max_violation_ratio, scene_change_max_two_way_violation_ratio,
+/// scene_change_max_occluded_ratio, scene_change_gate_m, scene_change_gate_deg,
+/// scene_change_max_accel_mps2, scene_change_max_angular_accel_radps2), sensor_label,
+/// class_verbosity.
 #include <mrpt/graphslam/interfaces/CNodeRegistrationDecider.h>
 
 #include <cstddef>
