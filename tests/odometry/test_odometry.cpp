@@ -180,6 +180,22 @@ TEST(DepthOdometry, APoseOutsideThePredictionGateIsNotTakenThroughASceneChange) 
   EXPECT_EQ(odo.componentCount(), 2u);
 }
 
+TEST(DepthOdometry, ASceneChangeIsNotTriedWhenThePredictionIsTooUncertain) {
+  // The same frames as above with the chair pushed at frame 8, stamped at 2 Hz: over 0.5 s the
+  // prediction's gate (0.27 m / 37.8 deg) is wider than SceneChangeParams::max_gate_m / _deg, so
+  // the frame the strict attempts refuse is predicted without a scene-change attempt.
+  gasp::sim::SimulationOptions o;
+  o.rate_hz = 2.0;
+  o.moves = {gasp::sim::parseObjectMove("chair:0,-0.6,0@8")};
+  const gasp::sim::Simulation sim(o);
+  DepthOdometry odo;
+  for (int i = 0; i <= 8; ++i) odo.addFrame(sim.frame(i).timestamp, sim.frame(i).depth, sim.options().intrinsics);
+  const auto& r = odo.frames().back();
+  EXPECT_FALSE(r.tracked) << r.reason;
+  EXPECT_NE(r.reason.find("scene change: not tried: over 0.500 s the prediction's gate"), std::string::npos) << r.reason;
+  EXPECT_EQ(odo.trackedCount(), 8u);
+}
+
 TEST(DepthOdometry, AFrameWithoutDepthIsPredictedAndTheNextIsTrackedAgain) {
   const auto& sim = room();
   const auto K = sim.options().intrinsics;

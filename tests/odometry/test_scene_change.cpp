@@ -56,6 +56,20 @@ TEST(SceneChange, TheGateGrowsWithTheTimeSinceTheReference) {
   EXPECT_FALSE(gasp::predictionGate(pose(0.5, 190.0), predicted, 0.2, p).within());
 }
 
+TEST(SceneChange, ALongPredictionVouchesForNothing) {
+  const SceneChangeParams p;  // at most 0.10 m / 10 deg: frames up to 0.236 s apart
+  EXPECT_EQ(gasp::predictionTooWide(1.0 / 30, p), "");
+  EXPECT_EQ(gasp::predictionTooWide(0.2, p), "");
+  EXPECT_EQ(gasp::predictionTooWide(0.25, p),
+            "not tried: over 0.250 s the prediction's gate, 0.083 m / 10.95 deg, is wider than 0.100 m / 10.00 deg");
+  // fr3_cabinet_kf's keyframes four apart.
+  EXPECT_NE(gasp::predictionTooWide(2.7, p).find("7.310 m"), std::string::npos) << gasp::predictionTooWide(2.7, p);
+  SceneChangeParams wide = p;
+  wide.max_gate_m = 10.0;
+  wide.max_gate_deg = 1e6;
+  EXPECT_EQ(gasp::predictionTooWide(2.7, wide), "");
+}
+
 TEST(SceneChange, TheReasonSaysHowFarAndTheGate) {
   const auto g = gasp::predictionGate(pose(0.6, 10.0), pose(0.5, 10.0), 0.2, SceneChangeParams{});
   EXPECT_EQ(g.describe(), "0.100 m / 0.00 deg from the constant-velocity prediction (gate 0.060 m / 7.73 deg)");
@@ -107,6 +121,8 @@ TEST(SceneChange, InvalidParametersAreErrorsThatNameTheField) {
   EXPECT_NE(with([](SceneChangeParams& p) { p.gate_deg = -1; }).find("scene_change.gate_deg"), std::string::npos);
   EXPECT_NE(with([](SceneChangeParams& p) { p.max_accel_mps2 = INFINITY; }).find("scene_change.max_accel_mps2"),
             std::string::npos);
+  EXPECT_NE(with([](SceneChangeParams& p) { p.max_gate_m = 0; }).find("scene_change.max_gate_m"), std::string::npos);
+  EXPECT_NE(with([](SceneChangeParams& p) { p.max_gate_deg = NAN; }).find("scene_change.max_gate_deg"), std::string::npos);
   EXPECT_NE(with([](SceneChangeParams& p) { p.max_angular_accel_radps2 = -1; })
                 .find("scene_change.max_angular_accel_radps2"),
             std::string::npos);

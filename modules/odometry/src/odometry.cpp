@@ -135,12 +135,15 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
                      rotationAngle(T_key_frame) * 180.0 / M_PI > params_.keyframe_angle_deg;
     } else if (prev != keyframe_index_ && track(view, *previous_view_, prev, f, "against the previous", params_.pair)) {
       new_keyframe = true;  // the keyframe no longer reaches this far
-    } else if (params_.scene_change.enabled && velocity_ &&
-               track(view, *previous_view_, prev, f, "scene change: against the previous",
-                     sceneChangePairParams(params_.pair, params_.scene_change), stepOf(*velocity_, dt))) {
-      // A velocity exists only when the previous frame was tracked. The scene changed: the old
-      // keyframe shows what is no longer there.
-      new_keyframe = true;
+    } else if (params_.scene_change.enabled && velocity_) {
+      // A velocity exists only when the previous frame was tracked.
+      const std::string too_wide = predictionTooWide(dt, params_.scene_change);
+      if (!too_wide.empty()) {
+        f.reason += "; scene change: " + too_wide;
+      } else if (track(view, *previous_view_, prev, f, "scene change: against the previous",
+                       sceneChangePairParams(params_.pair, params_.scene_change), stepOf(*velocity_, dt))) {
+        new_keyframe = true;  // the scene changed: the old keyframe shows what is no longer there
+      }
     }
     if (!f.tracked) {
       // Predicted with the last velocity (standing still without one); the keyframe stays.

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <tuple>
+#include <utility>
 
 #include "gasp/core/error.h"
 
@@ -28,6 +30,8 @@ void validate(const SceneChangeParams& p) {
   requirePositive(p.gate_deg, "odometry: scene_change.gate_deg");
   requireNonNegative(p.max_accel_mps2, "max_accel_mps2");
   requireNonNegative(p.max_angular_accel_radps2, "max_angular_accel_radps2");
+  requirePositive(p.max_gate_m, "odometry: scene_change.max_gate_m");
+  requirePositive(p.max_gate_deg, "odometry: scene_change.max_gate_deg");
 }
 
 PairParams sceneChangePairParams(const PairParams& pair, const SceneChangeParams& p) {
@@ -39,12 +43,29 @@ PairParams sceneChangePairParams(const PairParams& pair, const SceneChangeParams
   return out;
 }
 
+namespace {
+
+/// The gate dt seconds after the reference.
+std::pair<double, double> gateAt(double dt, const SceneChangeParams& p) {
+  const double half_dt2 = 0.5 * dt * dt;
+  return {p.gate_m + p.max_accel_mps2 * half_dt2, p.gate_deg + p.max_angular_accel_radps2 * half_dt2 * 180.0 / M_PI};
+}
+
+}  // namespace
+
+std::string predictionTooWide(double dt, const SceneChangeParams& p) {
+  const auto [gate_m, gate_deg] = gateAt(dt, p);
+  if (gate_m <= p.max_gate_m && gate_deg <= p.max_gate_deg) return {};
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "not tried: over %.3f s the prediction's gate, %.3f m / %.2f deg, is wider than %.3f m / %.2f deg",
+                dt, gate_m, gate_deg, p.max_gate_m, p.max_gate_deg);
+  return buf;
+}
+
 PredictionGate predictionGate(const Isometry3& T_ref_estimated, const Isometry3& T_ref_predicted, double dt,
                               const SceneChangeParams& p) {
   PredictionGate g;
-  const double half_dt2 = 0.5 * dt * dt;
-  g.gate_m = p.gate_m + p.max_accel_mps2 * half_dt2;
-  g.gate_deg = p.gate_deg + p.max_angular_accel_radps2 * half_dt2 * 180.0 / M_PI;
+  std::tie(g.gate_m, g.gate_deg) = gateAt(dt, p);
   g.off_m = (T_ref_estimated.translation() - T_ref_predicted.translation()).norm();
   g.off_deg = rotationAngle(T_ref_predicted.inverse() * T_ref_estimated) * 180.0 / M_PI;
   return g;

@@ -117,7 +117,8 @@ void CGaspOdometryNRD::loadParams(const std::string& source_fname) {
                                      "scene_change", "scene_change_max_violation_ratio",
                                      "scene_change_max_two_way_violation_ratio", "scene_change_max_occluded_ratio",
                                      "scene_change_gate_m", "scene_change_gate_deg", "scene_change_max_accel_mps2",
-                                     "scene_change_max_angular_accel_radps2"};
+                                     "scene_change_max_angular_accel_radps2", "scene_change_max_gate_m",
+                                     "scene_change_max_gate_deg"};
   readPairParams(cfg, kSection, p.pair, own);
   readValue(cfg, kSection, "keyframe_distance_m", p.keyframe_distance_m);
   readValue(cfg, kSection, "keyframe_angle_deg", p.keyframe_angle_deg);
@@ -135,6 +136,8 @@ void CGaspOdometryNRD::loadParams(const std::string& source_fname) {
   readValue(cfg, kSection, "scene_change_gate_deg", p.scene_change.gate_deg);
   readValue(cfg, kSection, "scene_change_max_accel_mps2", p.scene_change.max_accel_mps2);
   readValue(cfg, kSection, "scene_change_max_angular_accel_radps2", p.scene_change.max_angular_accel_radps2);
+  readValue(cfg, kSection, "scene_change_max_gate_m", p.scene_change.max_gate_m);
+  readValue(cfg, kSection, "scene_change_max_gate_deg", p.scene_change.max_gate_deg);
   int verbosity = static_cast<int>(getMinLoggingLevel());
   readValue(cfg, kSection, "class_verbosity", verbosity);
   try {
@@ -158,7 +161,8 @@ void CGaspOdometryNRD::printParams() const {
             << " from both, occluded " << params_.scene_change.max_occluded_ratio << "; gate "
             << params_.scene_change.gate_m << " m + " << params_.scene_change.max_accel_mps2 << " m/s^2, "
             << params_.scene_change.gate_deg << " deg + " << params_.scene_change.max_angular_accel_radps2
-            << " rad/s^2)\n"
+            << " rad/s^2, at most " << params_.scene_change.max_gate_m << " m / "
+            << params_.scene_change.max_gate_deg << " deg)\n"
             << "sensor_label              = " << (sensor_label_.empty() ? "(any)" : sensor_label_) << '\n';
 }
 

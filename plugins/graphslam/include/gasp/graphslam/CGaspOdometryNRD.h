@@ -15,7 +15,8 @@
 /// rolling_shutter_readout_s, the scene-change attempt (scene_change.h: scene_change 0/1,
 /// scene_change_max_violation_ratio, scene_change_max_two_way_violation_ratio,
 /// scene_change_max_occluded_ratio, scene_change_gate_m, scene_change_gate_deg,
-/// scene_change_max_accel_mps2, scene_change_max_angular_accel_radps2), sensor_label,
+/// scene_change_max_accel_mps2, scene_change_max_angular_accel_radps2, scene_change_max_gate_m,
+/// scene_change_max_gate_deg), sensor_label,
 /// class_verbosity.
 #include <mrpt/graphslam/interfaces/CNodeRegistrationDecider.h>
 
