@@ -206,6 +206,8 @@ TEST(DepthOdometry, AFrameWithoutDepthIsPredictedAndTheNextIsTrackedAgain) {
   EXPECT_EQ(lost.patches, 0);
   EXPECT_NE(lost.reason.find("against keyframe frame"), std::string::npos) << lost.reason;
   EXPECT_NE(lost.reason.find("no usable patch"), std::string::npos) << lost.reason;
+  // No pose was refused by the visibility check: no scene-change attempt.
+  EXPECT_EQ(lost.reason.find("scene change"), std::string::npos) << lost.reason;
   // All-NaN depth: the same, never a crash.
   const auto nan = odo.addFrame(sim.frame(5).timestamp,
                                 cv::Mat(K.height, K.width, CV_32FC1, cv::Scalar(std::nan(""))), K);

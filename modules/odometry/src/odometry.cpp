@@ -39,8 +39,12 @@ DepthOdometry::DepthOdometry(const OdometryParams& params, const Isometry3& T_wo
 }
 
 bool DepthOdometry::track(const DepthView& view, const DepthView& ref, std::size_t ref_index, OdometryFrame& f,
-                          const char* attempt, const PairParams& pair, const std::optional<Isometry3>& T_ref_predicted) {
+                          const char* attempt, const PairParams& pair, const std::optional<Isometry3>& T_ref_predicted,
+                          bool* visibility_refused) {
   const PairResult r = registerViews(view, ref, pair);  // T_ref_frame
+  // The free-space check ran on the pose found at the default scale (or the retry's) and failed.
+  if (visibility_refused && !r.pose.success && !r.visibility.passed && !r.visibility.reason.empty())
+    *visibility_refused = true;
   std::string why = r.pose.success ? std::string() : r.pose.reason;
   const double dt = f.timestamp - frames_[ref_index].timestamp;
   if (why.empty()) why = implausibleMotion(r.pose.T_target_source, dt, params_);
@@ -129,13 +133,17 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
   } else {
     const std::size_t prev = f.index - 1;
     const double dt = timestamp - frames_[prev].timestamp;
-    if (track(view, *keyframe_view_, keyframe_index_, f, "against keyframe", params_.pair)) {
+    bool visibility_refused = false;  // by a strict attempt: the scene may have changed
+    if (track(view, *keyframe_view_, keyframe_index_, f, "against keyframe", params_.pair, std::nullopt,
+              &visibility_refused)) {
       const Isometry3 T_key_frame = frames_[keyframe_index_].T_world_camera.inverse() * f.T_world_camera;
       new_keyframe = translationNorm(T_key_frame) > params_.keyframe_distance_m ||
                      rotationAngle(T_key_frame) * 180.0 / M_PI > params_.keyframe_angle_deg;
-    } else if (prev != keyframe_index_ && track(view, *previous_view_, prev, f, "against the previous", params_.pair)) {
+    } else if (prev != keyframe_index_ &&
+               track(view, *previous_view_, prev, f, "against the previous", params_.pair, std::nullopt,
+                     &visibility_refused)) {
       new_keyframe = true;  // the keyframe no longer reaches this far
-    } else if (params_.scene_change.enabled && velocity_) {
+    } else if (params_.scene_change.enabled && velocity_ && visibility_refused) {
       // A velocity exists only when the previous frame was tracked.
       const std::string too_wide = predictionTooWide(dt, params_.scene_change);
       if (!too_wide.empty()) {

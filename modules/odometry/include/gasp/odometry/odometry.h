@@ -46,7 +46,8 @@ struct OdometryFrame {
   std::string reason;
   int patches = 0;             ///< superpixels of the frame
   int inliers = 0;             ///< RANSAC inliers of the pose (0 when not tracked)
-  /// Tracked through a scene change (scene_change.h): both strict attempts were refused, the
+  /// Tracked through a scene change (scene_change.h): the visibility check refused the pose of a
+  /// strict attempt and no strict attempt gave one, the
   /// pose is the scene-change attempt's against the previous frame, within the gate of the
   /// constant-velocity prediction; `reason` says why the strict attempts failed and what the
   /// scene-change attempt measured. The frame becomes the keyframe.
@@ -95,8 +96,10 @@ class DepthOdometry {
   /// Registers `view` (frame i at time t) to `ref` with `pair`; on success sets f's pose and adds
   /// the constraint. With `T_ref_predicted` (the scene-change attempt) the pose must also lie
   /// within the gate of that prediction (predictionGate()).
+  /// `visibility_refused` (when given) is set when the visibility check refused the pose it found.
   bool track(const DepthView& view, const DepthView& ref, std::size_t ref_index, OdometryFrame& f,
-             const char* attempt, const PairParams& pair, const std::optional<Isometry3>& T_ref_predicted = std::nullopt);
+             const char* attempt, const PairParams& pair, const std::optional<Isometry3>& T_ref_predicted = std::nullopt,
+             bool* visibility_refused = nullptr);
 
   OdometryParams params_;
   Isometry3 T_world_first_;
