@@ -150,9 +150,10 @@ def main():
             t["taken_worst"][1], t["worst"][0], t["worst"][1], t["beyond"], t["steps"], t["ate"]))
     for v in ("on", "off"):
         rows = [t for (n, var), t in table.items() if var == v]
-        print("all | %s | %d | %d | %d (%d) | %d | | %.3f / %.2f | %d of %d | %.4f" % (
+        print("all | %s | %d | %d | %d (%d) | %d | %.3f / %.2f | %.3f / %.2f | %d of %d | %.4f" % (
             v, sum(t["runs"] for t in rows), sum(t["lost"] for t in rows), sum(t["broken"] for t in rows),
-            sum(t["pieces"] for t in rows), sum(t["taken"] for t in rows), max(t["worst"][0] for t in rows),
+            sum(t["pieces"] for t in rows), sum(t["taken"] for t in rows), max(t["taken_worst"][0] for t in rows),
+            max(t["taken_worst"][1] for t in rows), max(t["worst"][0] for t in rows),
             max(t["worst"][1] for t in rows), sum(t["beyond"] for t in rows), sum(t["steps"] for t in rows),
             max(t["ate"] for t in rows)))
     print("\nscene-change steps (run, from, to, error, what was measured):")

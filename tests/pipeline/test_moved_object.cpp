@@ -54,8 +54,10 @@ TEST(MovedObject, GivesTheRightPoseOrNoEstimateNeverAWrongOne) {
     if (r.pose.success) {
       EXPECT_LT(test::translationError(p, r), 0.02) << m.prefix;
       EXPECT_LT(test::rotationErrorDeg(p, r), 1.0) << m.prefix;
+      EXPECT_FALSE(r.visibility_refused) << m.prefix;
     } else {
       EXPECT_NE(r.pose.reason.find("visibility check"), std::string::npos) << r.pose.reason;
+      EXPECT_TRUE(r.visibility_refused) << r.pose.reason;  // the odometry's cue for a scene change
     }
     // The one-direction limits alone register each of them right (the check before the two-way limit).
     ASSERT_TRUE(l.pose.success) << m.prefix << ": " << l.pose.reason;

@@ -1,6 +1,8 @@
 // The pipeline's own parts on hand-made views: projective terms, view degeneracy, visibility.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <Eigen/Geometry>
 #include <vector>
 
@@ -79,9 +81,22 @@ TEST(VisibilityCheck, TruePosePassesAPoseInFreeSpaceFails) {
   EXPECT_FALSE(c.passed);
   EXPECT_GT(c.violation_ratio, 0.9);
   EXPECT_FALSE(c.reason.empty());
-  // Views that do not overlap at this pose: too few consistent samples.
+  // Nothing of either view is consistent with the other at this pose: refused for too little
+  // overlap before the violation limits are looked at, so not a free-space refusal (the flag the
+  // odometry's scene_change.h takes for a changed scene; set by the tests below).
+  EXPECT_NE(c.reason.find("consistent samples"), std::string::npos) << c.reason;
+  EXPECT_FALSE(c.free_space_refused);
+  // Views that do not overlap at this pose: too few consistent samples, not a free-space refusal.
   T.translation() = Eigen::Vector3d(50, 0, 0);
-  EXPECT_FALSE(checkVisibility(a, a, T).passed);
+  const auto apart = checkVisibility(a, a, T);
+  EXPECT_FALSE(apart.passed);
+  EXPECT_FALSE(apart.free_space_refused) << apart.reason;
+  // Nor is a pose that is not finite.
+  T.translation() = Eigen::Vector3d(std::nan(""), 0, 0);
+  const auto nan = checkVisibility(a, a, T);
+  EXPECT_FALSE(nan.passed);
+  EXPECT_FALSE(nan.free_space_refused);
+  EXPECT_FALSE(checkVisibility(a, a, Isometry3::Identity()).free_space_refused);
 }
 
 TEST(VisibilityCheck, APoseThatHidesAViewBehindTheOtherFails) {
@@ -101,6 +116,7 @@ TEST(VisibilityCheck, APoseThatHidesAViewBehindTheOtherFails) {
   const auto strict = checkVisibility(a, b, Isometry3::Identity(), p);
   EXPECT_FALSE(strict.passed);
   EXPECT_NE(strict.reason.find("behind"), std::string::npos) << strict.reason;
+  EXPECT_TRUE(strict.free_space_refused);
   // The true pose of one view against itself has nothing occluded.
   EXPECT_EQ(checkVisibility(a, a, Isometry3::Identity()).occluded_ratio, 0.0);
   p.max_occluded_ratio = 1.5;
@@ -127,6 +143,7 @@ TEST(VisibilityCheck, AnObjectSeenByOneViewIsAllowedViolationsFromBothViewsAreNo
   EXPECT_FALSE(moved.passed);
   EXPECT_NEAR(moved.violation_ratio_lesser, 0.08, 0.01);
   EXPECT_NE(moved.reason.find("seen from both views"), std::string::npos) << moved.reason;
+  EXPECT_TRUE(moved.free_space_refused);
   // Below the two-way limit, or with the limit lifted, the moved box is allowed.
   const cv::Rect small_left(80, 160, 64, 96), small_right(432, 160, 64, 96);  // 2 % each
   const auto small = checkVisibility(withBox(small_left), withBox(small_right), Isometry3::Identity());

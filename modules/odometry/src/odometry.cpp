@@ -42,9 +42,8 @@ bool DepthOdometry::track(const DepthView& view, const DepthView& ref, std::size
                           const char* attempt, const PairParams& pair, const std::optional<Isometry3>& T_ref_predicted,
                           bool* visibility_refused) {
   const PairResult r = registerViews(view, ref, pair);  // T_ref_frame
-  // The free-space check ran on the pose found at the default scale (or the retry's) and failed.
-  if (visibility_refused && !r.pose.success && !r.visibility.passed && !r.visibility.reason.empty())
-    *visibility_refused = true;
+  // The free-space check refused a pose, at the default scale or in the finer-scale retry.
+  if (visibility_refused && !r.pose.success && r.visibility_refused) *visibility_refused = true;
   std::string why = r.pose.success ? std::string() : r.pose.reason;
   const double dt = f.timestamp - frames_[ref_index].timestamp;
   if (why.empty()) why = implausibleMotion(r.pose.T_target_source, dt, params_);
@@ -75,6 +74,7 @@ bool DepthOdometry::track(const DepthView& view, const DepthView& ref, std::size
   c.T_from_to = r.pose.T_target_source;
   c.information = r.edge_information;
   c.inliers = r.pose.num_inliers;
+  c.scene_change = f.scene_change;
   constraints_.push_back(c);
   return true;
 }
@@ -167,10 +167,14 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
     const double dt = timestamp - p.timestamp;
     // Anything but a measured, plausible step leaves no velocity (a prediction is not a
     // measurement): the next frame is then not deskewed, and stands still if it is lost.
-    if (f.tracked && p.tracked && implausibleMotion(T_p_f, dt, params_).empty())
-      velocity_ = twistBetween(p.T_world_camera, f.T_world_camera, dt);
-    else
+    // A step taken through a scene change keeps the velocity its prediction was gated by: a run
+    // of such frames (a person walking through the view) is then held to one constant-velocity
+    // prediction, and cannot drift off with what moves in the scene.
+    if (f.tracked && p.tracked && implausibleMotion(T_p_f, dt, params_).empty()) {
+      if (!f.scene_change) velocity_ = twistBetween(p.T_world_camera, f.T_world_camera, dt);
+    } else {
       velocity_.reset();
+    }
   }
 
   if (new_keyframe) {

@@ -52,6 +52,7 @@ void verify(const DepthView& source, const DepthView& target, const PairParams& 
   if (!r.visibility.passed) {
     r.pose.success = false;
     r.pose.reason = r.visibility.reason;
+    r.visibility_refused = r.visibility.free_space_refused;
   }
 }
 
@@ -301,6 +302,7 @@ PairResult registerWithRetry(const DepthView& source, const DepthView& target, c
   r.retried = true;
   r.timings = total;
   r.pose.reason += "; " + finerScaleReason(f, retry.pose.reason);
+  r.visibility_refused = r.visibility_refused || retry.visibility_refused;
   return r;
 }
 

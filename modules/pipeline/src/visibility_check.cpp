@@ -106,18 +106,21 @@ VisibilityCheck check(const DepthView& source, const DepthView& target, const Is
     std::snprintf(buf, sizeof buf, "visibility check: %.0f%% of the overlapping samples lie in space the other view saw as empty (at most %.0f%%)",
                   100.0 * out.violation_ratio, 100.0 * p.max_violation_ratio);
     out.reason = buf;
+    out.free_space_refused = true;
     return out;
   }
   if (out.violation_ratio_lesser > p.max_two_way_violation_ratio) {
     std::snprintf(buf, sizeof buf, "visibility check: %.1f%% and %.1f%% of the overlapping samples lie in space the other view saw as empty, seen from both views (at most %.1f%% from both)",
                   100.0 * out.violation_ratio, 100.0 * out.violation_ratio_lesser, 100.0 * p.max_two_way_violation_ratio);
     out.reason = buf;
+    out.free_space_refused = true;
     return out;
   }
   if (out.occluded_ratio > p.max_occluded_ratio) {
     std::snprintf(buf, sizeof buf, "visibility check: %.0f%% of the samples lie behind the other view's surfaces (at most %.0f%%): the pose hides one view behind the other",
                   100.0 * out.occluded_ratio, 100.0 * p.max_occluded_ratio);
     out.reason = buf;
+    out.free_space_refused = true;
     return out;
   }
   out.passed = true;

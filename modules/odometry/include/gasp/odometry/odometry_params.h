@@ -23,9 +23,10 @@ struct OdometryParams {
   /// 0.03, docs/pipeline.md "Rolling shutter"); 0 = off. Each frame is deskewed with the velocity
   /// of the last tracked step (frames i-2 -> i-1), so only the past is used.
   double rolling_shutter_readout_s = 0.0;
-  /// A frame both attempts refuse is registered to the previous frame once more with looser
-  /// visibility limits, and taken when the pose agrees with the constant-velocity prediction
-  /// (scene_change.h): a moved object or a person walking in no longer breaks the trajectory.
+  /// A frame both attempts refuse, one of them for violating the other view's free space, is
+  /// registered to the previous frame once more with looser visibility limits while the
+  /// constant-velocity prediction is narrow enough, and taken when the pose lies within its
+  /// gate (scene_change.h): a moved object or a person walking in no longer breaks the trajectory.
   SceneChangeParams scene_change;
 };
 

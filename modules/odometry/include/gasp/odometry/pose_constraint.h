@@ -20,6 +20,11 @@ struct PoseConstraint {
   Matrix6d information = Matrix6d::Zero();
   int inliers = 0;            ///< RANSAC inliers behind the pose
   bool loop_closure = false;  ///< false: odometry (a frame against its keyframe or predecessor)
+  /// Odometry taken through a scene change (scene_change.h): the views contradict each other's
+  /// free space beyond the pair's limits, and the constant-velocity prediction vouched for the
+  /// pose. The information is GASP's as for any edge (the steps measured so: within 1.1 cm /
+  /// 0.36 deg, docs/odometry.md); a back-end may weigh such edges down.
+  bool scene_change = false;
 };
 
 }  // namespace gasp

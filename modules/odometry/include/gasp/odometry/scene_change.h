@@ -6,8 +6,9 @@
 /// view's surfaces stand in space the other saw as empty is refused. Between two frames of a
 /// sequence a moved object does exactly that, so the frame is lost and the pose graph breaks
 /// in two (docs/odometry.md, "Scenes that change"). Pair registration has nothing else to go
-/// on; the odometry has the camera's last velocity. When both strict attempts fail, the frame is
-/// registered to the previous frame once more with the looser limits below, and the pose is
+/// on; the odometry has the camera's last velocity. When both strict attempts fail and the
+/// visibility check refused the pose of one of them (PairResult::visibility_refused), the frame
+/// is registered to the previous frame once more with the looser limits below, and the pose is
 /// taken only when it lies within a gate of the constant-velocity prediction: the prediction,
 /// not the free-space test, then vouches that the alignment is not a look-alike one (look-alike
 /// poses are a quarter or half turn, or tens of centimetres, away from the truth;
@@ -22,8 +23,10 @@ namespace gasp {
 struct SceneChangeParams {
   bool enabled = true;  ///< false: a refused frame is predicted, as before
   /// Visibility limits of the scene-change attempt (the pair's defaults: 0.15, 0.05, 0.5). The
-  /// simulator's moved objects reach 16 % in one direction and 13.6 % / 13.1 % seen from both
-  /// (a box moved 0.5 m), a person stepping in 44 % in one direction (docs/odometry.md).
+  /// frames taken on the simulator's moved objects had 7.8-15.1 % in one direction and up to
+  /// 14.9 % in the other (the chair pushed 0.6 m: 15.1 % / 14.9 %), the occluder popping in 42 %
+  /// in one direction and the person stepping aside 56.7 %, near the 60 % (docs/odometry.md
+  /// "Scenes that change"): a larger change is refused.
   double max_violation_ratio = 0.6;          ///< in [0, 1]; also the one-way fallback's and the retry's limit
   double max_two_way_violation_ratio = 0.3;  ///< in [0, 1]
   double max_occluded_ratio = 0.8;           ///< in [0, 1]

@@ -218,6 +218,10 @@ struct PairResult {
   /// pose it left (dense_last_step_m is then 0, and the pose is the round before's).
   bool dense_line_search_stopped = false;
   VisibilityCheck visibility;  ///< of the final pose (when one was found)
+  /// The visibility check refused a pose on its violation or occlusion limits
+  /// (VisibilityCheck::free_space_refused), at the default scale or in the finer-scale retry:
+  /// what a scene that changed between the views does (odometry's scene_change.h).
+  bool visibility_refused = false;
   bool wide_edge_pose = false;  ///< the final pose came from the wide-edge-gate refinement
   /// Share of the source edge points on the target's depth with a target edge within the last gate at the first dense
   /// refinement's pose (-1: not measured -- no edge terms, no dense rounds or no pose).

@@ -69,6 +69,9 @@ struct VisibilityCheck {
   /// diagnostic: no verdict rests on it. depthAgreement() does not measure it.
   double violation_blob_share_lesser = 1.0, violation_blob_share = 1.0;
   std::string reason;            ///< why it failed
+  /// Failed on its violation or occlusion limits: the views contradict each other's free space
+  /// (false when it failed for a non-finite pose or too little overlap, min_consistent).
+  bool free_space_refused = false;
   /// consistent / (consistent + occluded + violations), both directions (0 without samples).
   double consistentShare() const {
     const int n = consistent + occluded + violations;
