@@ -35,6 +35,13 @@ void printOdometrySummary(const DepthOdometry& odometry) {
   const auto median = [](const std::vector<double>& v) { return eval::computeStatistics(v).median; };
   std::printf("frames: %zu\n", frames.size());
   std::printf("tracked: %zu\n", odometry.trackedCount());
+  std::string changed;  // the first frames taken through a scene change
+  std::size_t listed = 0;
+  for (const auto& f : frames)
+    if (f.scene_change && listed++ < 10) changed += (changed.empty() ? "" : ", ") + std::to_string(f.index);
+  if (listed > 10) changed += ", ...";
+  std::printf("scene_changes: %zu%s\n", odometry.sceneChangeCount(),
+              changed.empty() ? "" : (" (frames " + changed + ")").c_str());
   std::printf("keyframes: %zu\n", odometry.keyframeCount());
   std::printf("graph_components: %zu\n", odometry.componentCount());
   std::printf("median_ms_per_frame: %.1f (medians: segmentation %.1f, registration %.1f)\n", median(total), median(seg),

@@ -95,6 +95,7 @@ TEST(GaspOdometryProgram, AFrameItCannotTrackExitsWith3AndSaysWhy) {
   EXPECT_EQ(run.exit_code, 3) << run.output;
   EXPECT_TRUE(contains(run.output, "tracked: 29\n")) << run.output;
   EXPECT_TRUE(contains(run.output, "graph_components: 2\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "scene_changes: 0\n")) << run.output;
   EXPECT_TRUE(contains(run.output, "not_tracked: 1 frames")) << run.output;
   EXPECT_EQ(gasp::readTumTrajectory(out + "/traj.txt").size(), 30u);  // the lost frame's pose is predicted
   const std::string frame19 = frameLine(out + "/f.csv", 19);
@@ -114,6 +115,7 @@ TEST(GaspOdometryProgram, TracksThroughASceneChangeByDefault) {
   EXPECT_EQ(run.exit_code, 0) << run.output;
   EXPECT_TRUE(contains(run.output, "tracked: 30\n")) << run.output;
   EXPECT_TRUE(contains(run.output, "graph_components: 1\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "scene_changes: 1 (frames 19)\n")) << run.output;
   std::ifstream in(out + "/f.csv");
   std::string header;
   std::getline(in, header);

@@ -200,6 +200,12 @@ std::size_t DepthOdometry::trackedCount() const {
   return n;
 }
 
+std::size_t DepthOdometry::sceneChangeCount() const {
+  std::size_t n = 0;
+  for (const OdometryFrame& f : frames_) n += f.scene_change ? 1 : 0;
+  return n;
+}
+
 std::size_t DepthOdometry::keyframeCount() const {
   std::size_t n = 0;
   for (const OdometryFrame& f : frames_) n += f.keyframe ? 1 : 0;

@@ -172,6 +172,7 @@ void CGaspOdometryNRD::getDescriptiveReport(std::string* report_str) const {
   ss << "GASP depth odometry: a node per keyframe\n";
   if (odometry_)
     ss << "scans: " << odometry_->frames().size() << ", tracked: " << odometry_->trackedCount()
+       << " (through a scene change: " << odometry_->sceneChangeCount() << ")"
        << ", keyframes: " << odometry_->keyframeCount() << '\n';
   ss << "nodes: " << node_frames_.size() << ", break edges: " << break_edges_ << ", scans skipped: " << skipped_scans_
      << '\n';

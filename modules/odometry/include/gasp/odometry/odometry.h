@@ -81,6 +81,8 @@ class DepthOdometry {
   /// Every frame's pose (tracked or predicted), in frame order.
   Trajectory trajectory() const;
   std::size_t trackedCount() const;
+  /// Frames tracked through a scene change (OdometryFrame::scene_change).
+  std::size_t sceneChangeCount() const;
   std::size_t keyframeCount() const;
   /// Connected pieces of the pose graph the constraints make over all frames: 1 when every frame
   /// is linked to the first, 0 without frames. A lost frame that no later frame is registered to
