@@ -345,6 +345,11 @@ void readValue(const mrpt::config::CConfigFileBase& source, const std::string& s
   readOne(source, section, key, value);
 }
 
+void readValue(const mrpt::config::CConfigFileBase& source, const std::string& section, const std::string& key,
+               bool& value) {
+  readOne(source, section, key, value);
+}
+
 void writeValue(mrpt::config::CConfigFileBase& target, const std::string& section, const std::string& key,
                 double value) {
   target.write(section, key, toText(value));

@@ -13,7 +13,8 @@ namespace gasp::tools {
 /// segmentation_ms,registration_ms,scene_change,reason. Throws gasp::Error when it cannot be written.
 void writeFramesCsv(const std::string& path, const std::vector<OdometryFrame>& frames);
 
-/// Prints frames:, tracked:, keyframes:, graph_components: (the odometry's pieces) and
+/// Prints frames:, tracked:, scene_changes: (with the first ten such frames), keyframes:,
+/// graph_components: (the odometry's pieces) and
 /// median_ms_per_frame: (the median of each frame's segmentation + registration, then the two
 /// stages' own medians).
 void printOdometrySummary(const DepthOdometry& odometry);

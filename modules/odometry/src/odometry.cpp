@@ -43,7 +43,7 @@ bool DepthOdometry::track(const DepthView& view, const DepthView& ref, std::size
                           bool* visibility_refused) {
   const PairResult r = registerViews(view, ref, pair);  // T_ref_frame
   // The free-space check refused a pose, at the default scale or in the finer-scale retry.
-  if (visibility_refused && !r.pose.success && r.visibility_refused) *visibility_refused = true;
+  if (visibility_refused && r.visibility_refused) *visibility_refused = true;
   std::string why = r.pose.success ? std::string() : r.pose.reason;
   const double dt = f.timestamp - frames_[ref_index].timestamp;
   if (why.empty()) why = implausibleMotion(r.pose.T_target_source, dt, params_);

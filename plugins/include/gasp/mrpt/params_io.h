@@ -37,6 +37,9 @@ void readValue(const mrpt::config::CConfigFileBase& source, const std::string& s
                double& value);
 void readValue(const mrpt::config::CConfigFileBase& source, const std::string& section, const std::string& key,
                int& value);
+/// A flag: true/false, 1/0, yes/no, on/off (as the pair keys read them).
+void readValue(const mrpt::config::CConfigFileBase& source, const std::string& section, const std::string& key,
+               bool& value);
 /// Writes a number so that it reads back exactly (%.17g; MRPT's write(double) keeps 6 decimals).
 void writeValue(mrpt::config::CConfigFileBase& target, const std::string& section, const std::string& key,
                 double value);

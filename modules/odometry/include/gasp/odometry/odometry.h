@@ -7,8 +7,8 @@
 /// before it, and then becomes the keyframe. When neither gives one, its pose is predicted with
 /// the last measured velocity and marked as not tracked: the trajectory goes on, the pose graph
 /// has no edge to it from the past (a break) -- unless the scene changed and the motion prediction
-/// vouches for a pose found with looser visibility limits (scene_change.h). Every measured pose is a PoseConstraint with GASP's
-/// edge information, so the constraints form a tree over the frames, to which a back-end adds
+/// vouches for a pose found with looser visibility limits (scene_change.h). Every measured pose
+/// is a PoseConstraint with GASP's edge information, so the constraints form a tree over the frames, to which a back-end adds
 /// loop closures.
 ///
 /// Deterministic: the same frames and parameters give the same poses, whatever the thread count
@@ -46,11 +46,11 @@ struct OdometryFrame {
   std::string reason;
   int patches = 0;             ///< superpixels of the frame
   int inliers = 0;             ///< RANSAC inliers of the pose (0 when not tracked)
-  /// Tracked through a scene change (scene_change.h): the visibility check refused the pose of a
-  /// strict attempt and no strict attempt gave one, the
-  /// pose is the scene-change attempt's against the previous frame, within the gate of the
-  /// constant-velocity prediction; `reason` says why the strict attempts failed and what the
-  /// scene-change attempt measured. The frame becomes the keyframe.
+  /// Tracked through a scene change (scene_change.h): no strict attempt gave a pose and the
+  /// visibility check refused one of theirs; the pose is the scene-change attempt's against the
+  /// previous frame, within the gate of the constant-velocity prediction. `reason` says why the
+  /// strict attempts failed and what the scene-change attempt measured. The frame becomes the
+  /// keyframe.
   bool scene_change = false;
   bool deskewed = false;       ///< the depth was deskewed for the rolling shutter before segmenting
   double segmentation_ms = 0.0;  ///< deskew + superpixels
