@@ -1,61 +1,20 @@
 #include "gasp/slam/pose_graph_optimizer.h"
 
 #include <ceres/ceres.h>
-#include <ceres/rotation.h>
-#include <Eigen/Cholesky>
 
 #include <memory>
 #include <string>
 
 #include "gasp/core/error.h"
 #include "gasp/slam/pose_graph.h"
+#include "edge_residual.h"
 
 namespace gasp {
 
 namespace {
 
-/// r = L^T xi with Lambda = L L^T and T_from^-1 T_to = Exp(xi) T_meas (pose_graph.h): translation
-/// of E = T_from^-1 T_to T_meas^-1, then the angle-axis of its rotation.
-struct EdgeResidual {
-  EdgeResidual(const Isometry3& T_meas, const Matrix6d& L_transposed)
-      : q_meas_inv(Eigen::Quaterniond(T_meas.rotation()).conjugate()),
-        t_meas(T_meas.translation()),
-        sqrt_information(L_transposed) {}
-
-  template <typename T>
-  bool operator()(const T* q_from_p, const T* t_from_p, const T* q_to_p, const T* t_to_p, T* r) const {
-    using Q = Eigen::Quaternion<T>;
-    using V = Eigen::Matrix<T, 3, 1>;
-    const Eigen::Map<const Q> q_from(q_from_p), q_to(q_to_p);
-    const Eigen::Map<const V> t_from(t_from_p), t_to(t_to_p);
-    const Q q_from_inv = q_from.conjugate();
-    const Q q_est = q_from_inv * q_to;                      // rotation of T_from^-1 T_to
-    const V t_est = q_from_inv * (t_to - t_from);           // its translation
-    const Q q_e = q_est * q_meas_inv.cast<T>();             // E's rotation
-    const V t_e = t_est - q_e * t_meas.cast<T>();           // E's translation
-    Eigen::Matrix<T, 6, 1> xi;
-    xi.template head<3>() = t_e;
-    const T q_wxyz[4] = {q_e.w(), q_e.x(), q_e.y(), q_e.z()};
-    T aa[3];
-    ceres::QuaternionToAngleAxis(q_wxyz, aa);
-    xi(3) = aa[0], xi(4) = aa[1], xi(5) = aa[2];
-    Eigen::Map<Eigen::Matrix<T, 6, 1>> residual(r);
-    residual = sqrt_information.cast<T>() * xi;
-    return true;
-  }
-
-  Eigen::Quaterniond q_meas_inv;
-  Eigen::Vector3d t_meas;
-  Matrix6d sqrt_information;  ///< L^T
-};
-
-Matrix6d sqrtInformation(const PoseConstraint& c) {
-  const Eigen::LLT<Matrix6d> llt(c.information);
-  if (!c.information.allFinite() || llt.info() != Eigen::Success)
-    throw Error("pose graph: the information of constraint " + std::to_string(c.from) + " -> " +
-                std::to_string(c.to) + " is not positive definite");
-  return llt.matrixU();  // L^T
-}
+using detail::EdgeResidual;
+using detail::sqrtInformation;
 
 double totalChi2(const std::vector<Isometry3>& T, const std::vector<PoseConstraint>& edges) {
   double s = 0.0;
@@ -68,15 +27,7 @@ double totalChi2(const std::vector<Isometry3>& T, const std::vector<PoseConstrai
 PoseGraphResult optimizePoseGraph(const std::vector<Isometry3>& T_world_node, const std::vector<PoseConstraint>& edges,
                                   const PoseGraphSettings& settings) {
   const std::size_t n = T_world_node.size();
-  for (std::size_t i = 0; i < n; ++i)
-    if (!T_world_node[i].matrix().allFinite()) throw Error("pose graph: node " + std::to_string(i) + " is not finite");
-  for (const PoseConstraint& c : edges) {
-    if (c.from >= n || c.to >= n || c.from == c.to)
-      throw Error("pose graph: constraint " + std::to_string(c.from) + " -> " + std::to_string(c.to) +
-                  " names a node out of range or links a node to itself (" + std::to_string(n) + " nodes)");
-    if (!c.T_from_to.matrix().allFinite())
-      throw Error("pose graph: constraint " + std::to_string(c.from) + " -> " + std::to_string(c.to) + " is not finite");
-  }
+  detail::checkPoseGraph(T_world_node, edges);
   if (settings.max_iterations < 1 || settings.num_threads < 1 || !(settings.function_tolerance > 0.0))
     throw Error("pose graph: max_iterations, num_threads and function_tolerance must be positive");
 

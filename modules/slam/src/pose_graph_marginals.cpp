@@ -1,0 +1,121 @@
+#include "gasp/slam/pose_graph_marginals.h"
+
+#include <ceres/ceres.h>
+
+#include <chrono>
+#include <memory>
+#include <utility>
+
+#include "gasp/core/error.h"
+#include "gasp/core/pose_perturbation.h"
+#include "gasp/slam/pose_graph.h"
+#include "edge_residual.h"
+
+namespace gasp {
+
+namespace {
+
+/// d omega / d q for a perturbed unit quaternion q' = q + dq (Eigen's x y z w order), with omega
+/// the rotation vector of q' q^-1 (a left perturbation): omega = 2 vec(dq q^-1) to first order,
+/// = 2 [w I + [v]x, -v] dq for q = (v, w).
+Eigen::Matrix<double, 3, 4> leftRotationOfQuaternion(const Eigen::Quaterniond& q) {
+  Eigen::Matrix<double, 3, 4> M;
+  M.leftCols<3>() = 2.0 * (q.w() * Eigen::Matrix3d::Identity() + skew(q.vec()));
+  M.col(3) = -2.0 * q.vec();
+  return M;
+}
+
+}  // namespace
+
+PoseGraphMarginals poseGraphMarginals(const std::vector<Isometry3>& T_world_node,
+                                      const std::vector<PoseConstraint>& edges, int num_threads) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t n = T_world_node.size();
+  detail::checkPoseGraph(T_world_node, edges);
+  if (num_threads < 1) throw Error("pose graph marginals: num_threads must be positive");
+
+  PoseGraphMarginals out;
+  out.covariance.assign(n, std::nullopt);
+  out.piece_root = pieceRoots(n, edges);
+
+  std::vector<Eigen::Quaterniond> q(n);
+  std::vector<Eigen::Vector3d> t(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    q[i] = Eigen::Quaterniond(T_world_node[i].rotation()).normalized();
+    t[i] = T_world_node[i].translation();
+  }
+  // The same problem as the optimiser's (pose_graph_optimizer.cpp), borrowing costs and manifold.
+  const auto manifold = std::make_unique<ceres::EigenQuaternionManifold>();
+  std::vector<std::unique_ptr<ceres::CostFunction>> costs;
+  costs.reserve(edges.size());
+  ceres::Problem::Options problem_options;
+  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  std::vector<bool> used(n, false);
+  for (const PoseConstraint& c : edges) {
+    costs.push_back(std::make_unique<ceres::AutoDiffCostFunction<detail::EdgeResidual, 6, 4, 3, 4, 3>>(
+        new detail::EdgeResidual(c.T_from_to, detail::sqrtInformation(c))));
+    problem.AddResidualBlock(costs.back().get(), nullptr, q[c.from].coeffs().data(), t[c.from].data(),
+                             q[c.to].coeffs().data(), t[c.to].data());
+    for (const std::size_t i : {c.from, c.to}) {
+      if (!used[i]) problem.SetManifold(q[i].coeffs().data(), manifold.get());
+      used[i] = true;
+    }
+  }
+  std::vector<std::size_t> free_nodes;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!used[i]) continue;
+    if (out.piece_root[i] == i) {
+      problem.SetParameterBlockConstant(q[i].coeffs().data());
+      problem.SetParameterBlockConstant(t[i].data());
+    } else {
+      free_nodes.push_back(i);
+    }
+  }
+
+  std::vector<std::pair<const double*, const double*>> blocks;
+  blocks.reserve(3 * free_nodes.size());
+  for (const std::size_t i : free_nodes) {
+    blocks.emplace_back(q[i].coeffs().data(), q[i].coeffs().data());
+    blocks.emplace_back(q[i].coeffs().data(), t[i].data());
+    blocks.emplace_back(t[i].data(), t[i].data());
+  }
+  ceres::Covariance::Options options;
+  options.algorithm_type = ceres::SPARSE_QR;
+  options.num_threads = num_threads;
+  ceres::Covariance covariance(options);
+  if (!blocks.empty() && !covariance.Compute(blocks, &problem)) {
+    out.message = "the pose graph's Jacobian is rank deficient: no covariance can be claimed";
+    out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return out;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (used[i] && out.piece_root[i] == i) out.covariance[i] = Matrix6d::Zero();
+  for (const std::size_t i : free_nodes) {
+    // Ambient blocks (quaternion x y z w, translation), row-major as Ceres writes them.
+    Eigen::Matrix<double, 4, 4, Eigen::RowMajor> C_qq;
+    Eigen::Matrix<double, 4, 3, Eigen::RowMajor> C_qt;
+    Eigen::Matrix<double, 3, 3, Eigen::RowMajor> C_tt;
+    covariance.GetCovarianceBlock(q[i].coeffs().data(), q[i].coeffs().data(), C_qq.data());
+    covariance.GetCovarianceBlock(q[i].coeffs().data(), t[i].data(), C_qt.data());
+    covariance.GetCovarianceBlock(t[i].data(), t[i].data(), C_tt.data());
+    // z = [dt; omega] with omega = M dq; then xi = [dt + [t]x omega; omega] (Exp(xi) T moves
+    // the translation by omega x t + rho, so rho = dt - omega x t).
+    const Eigen::Matrix<double, 3, 4> M = leftRotationOfQuaternion(q[i]);
+    Matrix6d C_z;
+    C_z.topLeftCorner<3, 3>() = C_tt;
+    C_z.topRightCorner<3, 3>() = (M * C_qt).transpose();
+    C_z.bottomLeftCorner<3, 3>() = M * C_qt;
+    C_z.bottomRightCorner<3, 3>() = M * C_qq * M.transpose();
+    Matrix6d A = Matrix6d::Identity();
+    A.topRightCorner<3, 3>() = skew(t[i]);
+    const Matrix6d C = A * C_z * A.transpose();
+    out.covariance[i] = 0.5 * (C + C.transpose());
+  }
+  out.computed = true;
+  out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace gasp
