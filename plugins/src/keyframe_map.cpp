@@ -7,20 +7,29 @@
 
 #include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
+#include "gasp/mrpt/pose_covariance.h"
 #include "gasp/rawlog/observation_conversion.h"
 
 namespace gasp {
 
 mrpt::maps::CSimpleMap keyframeSimpleMap(const std::vector<RgbdFrame>& keyframes,
-                                         const std::vector<Isometry3>& T_world_camera) {
+                                         const std::vector<Isometry3>& T_world_camera,
+                                         const std::vector<Matrix6>& covariance_world_camera) {
   if (keyframes.size() != T_world_camera.size())
     throw Error("keyframe map: " + std::to_string(keyframes.size()) + " keyframes but " +
                 std::to_string(T_world_camera.size()) + " poses");
+  if (!covariance_world_camera.empty() && covariance_world_camera.size() != keyframes.size())
+    throw Error("keyframe map: " + std::to_string(keyframes.size()) + " keyframes but " +
+                std::to_string(covariance_world_camera.size()) + " covariances");
   mrpt::maps::CSimpleMap map;
   for (std::size_t i = 0; i < keyframes.size(); ++i) {
     const RgbdFrame& f = keyframes[i];
     auto gaussian = mrpt::poses::CPose3DPDFGaussian::Create();
-    gaussian->mean = toCPose3D(T_world_camera[i] * f.T_robot_camera.inverse());
+    const Isometry3 T_world_robot = T_world_camera[i] * f.T_robot_camera.inverse();
+    if (covariance_world_camera.empty())
+      gaussian->mean = toCPose3D(T_world_robot);
+    else
+      *gaussian = poseWithCovariance(T_world_robot, covariance_world_camera[i]);
     const mrpt::poses::CPose3DPDF::Ptr pose = gaussian;
     auto sf = mrpt::obs::CSensoryFrame::Create();
     sf->insert(observationFromFrame(f));

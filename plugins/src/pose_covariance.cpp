@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "gasp/core/error.h"
 #include "gasp/rawlog/observation_conversion.h"
 
 namespace gasp {
@@ -50,6 +51,18 @@ std::optional<mrpt::poses::CPose3DPDFGaussian> poseWithInformation(const Isometr
   if (!cov_xi.allFinite()) return std::nullopt;
   const Matrix6 J = yprJacobian(T);
   Matrix6 cov = J * cov_xi * J.transpose();
+  cov = 0.5 * (cov + cov.transpose());
+  mrpt::math::CMatrixDouble66 c;
+  for (int r = 0; r < 6; ++r)
+    for (int k = 0; k < 6; ++k) c(r, k) = cov(r, k);
+  return mrpt::poses::CPose3DPDFGaussian(toCPose3D(T), c);
+}
+
+mrpt::poses::CPose3DPDFGaussian poseWithCovariance(const Isometry3& T, const Matrix6& covariance) {
+  if (!covariance.allFinite() || (covariance - covariance.transpose()).norm() > 1e-9 * (1.0 + covariance.norm()))
+    throw Error("pose covariance: not finite or not symmetric");
+  const Matrix6 J = yprJacobian(T);
+  Matrix6 cov = J * covariance * J.transpose();
   cov = 0.5 * (cov + cov.transpose());
   mrpt::math::CMatrixDouble66 c;
   for (int r = 0; r < 6; ++r)

@@ -21,9 +21,10 @@ void addMapOutputOptions(CLI::App& app, MapOutputOptions& o, const std::string& 
 }
 
 void writeMapOutputs(const MapOutputOptions& o, const std::vector<RgbdFrame>& frames,
-                     const std::vector<Isometry3>& T_world_camera, const std::string& scans) {
+                     const std::vector<Isometry3>& T_world_camera, const std::string& scans,
+                     const std::vector<Matrix6>& covariance_world_camera) {
   if (!o.simplemap_path.empty()) {
-    saveSimpleMap(keyframeSimpleMap(frames, T_world_camera), o.simplemap_path);
+    saveSimpleMap(keyframeSimpleMap(frames, T_world_camera, covariance_world_camera), o.simplemap_path);
     std::printf("simplemap: %s (%zu %s)\n", o.simplemap_path.c_str(), frames.size(), scans.c_str());
   }
   if (!o.cloud_path.empty()) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gasp/core/pose.h"
+#include "gasp/core/pose_perturbation.h"
 #include "gasp/rawlog/rgbd_frame.h"
 
 namespace gasp::tools {
@@ -25,8 +26,10 @@ void addMapOutputOptions(CLI::App& app, MapOutputOptions& options, const std::st
 
 /// Writes what `options` asks for from frames[i] at T_world_camera[i] and prints the lines
 /// "simplemap: PATH (N <scans>)" and "cloud: PATH (N points, voxel V m)" (a warning on stderr for
-/// points beyond the voxel grid). Throws gasp::Error when a file cannot be written.
+/// points beyond the voxel grid). The simple map's poses carry covariance_world_camera[i]
+/// (keyframeSimpleMap()), zero when it is empty. Throws gasp::Error when a file cannot be written.
 void writeMapOutputs(const MapOutputOptions& options, const std::vector<RgbdFrame>& frames,
-                     const std::vector<Isometry3>& T_world_camera, const std::string& scans);
+                     const std::vector<Isometry3>& T_world_camera, const std::string& scans,
+                     const std::vector<Matrix6>& covariance_world_camera = {});
 
 }  // namespace gasp::tools

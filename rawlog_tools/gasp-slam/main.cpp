@@ -1,11 +1,13 @@
 // gasp-slam: a map built offline from a depth sequence with GASP: odometry, loop closures and the
 // optimised pose graph (gasp/slam/depth_slam.h).
 //   gasp-slam --tum DIR | --rawlog FILE [--sensor LABEL] [--gt TRAJ.txt] --out TRAJ.txt
-//             [--graph G.graph] [--simplemap MAP.simplemap] [--cloud MAP.ply] [options]
+//             [--graph G.graph] [--simplemap MAP.simplemap] [--cloud MAP.ply]
+//             [--marginals-csv M.csv] [options]
 // Writes the optimised trajectory of the depth camera (TUM format) in the world of the first
 // frame's robot frame (MRPT's sensorPose; TUM folders: the camera looking along the robot's +X),
 // optionally the pose graph with its loop closures (MRPT VERTEX3 / EDGE3), the keyframes as an
-// MRPT simple map (for MRPT's observations2map) and a voxel point map (PLY).
+// MRPT simple map (for MRPT's observations2map; each pose with its marginal covariance in the
+// graph) and a voxel point map (PLY).
 // Exit codes: 0 every frame tracked and the graph in one piece, 1 bad input, 2 usage error,
 // 3 written, but some frames were not tracked or the graph stayed in pieces.
 #include <CLI/CLI.hpp>
@@ -27,6 +29,7 @@
 #include "cli.h"
 #include "frames_ahead.h"
 #include "map_output.h"
+#include "marginals_report.h"
 #include "sequence_options.h"
 #include "sequence_report.h"
 
@@ -53,7 +56,7 @@ int main(int argc, char** argv) {
   CLI::App app{"gasp-slam: a map built offline from a depth sequence with GASP: odometry, loop closures between "
                "keyframes and the optimised pose graph"};
   gasp::DepthSequenceOptions input;
-  std::string gt_path, out_path, odometry_out, graph_path, frames_csv, loops_csv;
+  std::string gt_path, out_path, odometry_out, graph_path, frames_csv, loops_csv, marginals_csv;
   gasp::tools::MapOutputOptions map_output;
   bool no_loops = false;
   gasp::SlamParams params;
@@ -64,6 +67,9 @@ int main(int argc, char** argv) {
   gasp::tools::addMapOutputOptions(app, map_output, "keyframes");
   app.add_option("--frames-csv", frames_csv, "one line per frame: tracked, keyframe, reference, patches, inliers, times, reason");
   app.add_option("--loops-csv", loops_csv, "one line per loop-closure registration: keyframes, accepted, inliers, gate chi-square, reason");
+  app.add_option("--marginals-csv", marginals_csv,
+                 "one line per constrained frame: its pose's marginal covariance in the optimised graph "
+                 "(left perturbation [t r] in the world, relative to the first frame of its piece)");
   gasp::tools::addOdometryOptions(app, params.odometry);
   bool sequential = false;
   gasp::tools::addSequentialOption(app, sequential);
@@ -97,7 +103,7 @@ int main(int argc, char** argv) {
     const gasp::VoxelPointMap probe(map_output.voxel_m, map_output.cloud_max_depth_m);  // checked before the run
     const std::string missing = gasp::tools::outputPathProblem(
         {{"--out", out_path}, {"--odometry-out", odometry_out}, {"--graph", graph_path}, {"--frames-csv", frames_csv},
-         {"--loops-csv", loops_csv}, {"--simplemap", map_output.simplemap_path}, {"--cloud", map_output.cloud_path}},
+         {"--loops-csv", loops_csv}, {"--marginals-csv", marginals_csv}, {"--simplemap", map_output.simplemap_path}, {"--cloud", map_output.cloud_path}},
         gasp::tools::sequenceInputs(input, gt_path));
     if (!missing.empty()) throw gasp::Error(missing);  // before the run, not after it
     gasp::DepthSequence sequence(input);
@@ -141,10 +147,23 @@ int main(int argc, char** argv) {
       std::printf("graph: %s (%zu nodes, %zu edges%s)\n", graph_path.c_str(), g.graph.nodes.size(), g.graph.edgeCount(),
                   g.skipped_constraints ? (", " + std::to_string(g.skipped_constraints) + " without a covariance left out").c_str() : "");
     }
+    // The poses' uncertainty in the graph: relative to the first frame of each piece.
+    const gasp::PoseGraphMarginals marginals = slam->marginals();
+    const gasp::Trajectory trajectory = slam->trajectory();
+    if (!marginals_csv.empty()) gasp::tools::writeMarginalsCsv(marginals_csv, marginals, trajectory);
     std::vector<gasp::Isometry3> keyframe_poses;
+    std::vector<gasp::Matrix6> keyframe_covariances;  // a keyframe no constraint reaches is its own piece: zero
     for (const auto& f : frames)
-      if (f.keyframe && keep_keyframes) keyframe_poses.push_back(slam->poses()[f.index]);
-    gasp::tools::writeMapOutputs(map_output, keyframes, keyframe_poses, "keyframes");
+      if (f.keyframe && keep_keyframes) {
+        keyframe_poses.push_back(slam->poses()[f.index]);
+        keyframe_covariances.push_back(marginals.covariance[f.index].value_or(gasp::Matrix6::Zero()));
+      }
+    if (!marginals.computed) {
+      keyframe_covariances.clear();
+      if (!map_output.simplemap_path.empty())
+        std::fprintf(stderr, "warning: the simple map's poses carry a zero covariance: %s\n", marginals.message.c_str());
+    }
+    gasp::tools::writeMapOutputs(map_output, keyframes, keyframe_poses, "keyframes", keyframe_covariances);
 
     gasp::tools::printOdometrySummary(slam->odometry());
     std::size_t tried = 0, relocalisations = 0;
@@ -159,7 +178,8 @@ int main(int argc, char** argv) {
     std::printf("trajectory: %s\n", out_path.c_str());
     const std::size_t tracked = slam->odometry().trackedCount();
     gasp::tools::printEvaluation(gt, slam->odometry().trajectory(), tracked, "odometry_");
-    gasp::tools::printEvaluation(gt, slam->trajectory(), tracked);
+    gasp::tools::printEvaluation(gt, trajectory, tracked);
+    gasp::tools::printMarginals(marginals, trajectory, gt);
     const std::size_t lost = frames.size() - tracked;
     if (lost > 0) std::printf("not_tracked: %zu frames (poses predicted; reasons in --frames-csv)\n", lost);
     if (lost > 0 || slam->pieceCount() > 1) return 3;

@@ -3,13 +3,19 @@
 #include <gtest/gtest.h>
 
 #include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/math/wrap2pi.h>
 #include <mrpt/poses/CPose3DPDF.h>
+#include <mrpt/poses/CPose3DPDFGaussian.h>
+
+#include <Eigen/Cholesky>
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "gasp/core/error.h"
 #include "gasp/core/pose.h"
+#include "gasp/core/pose_perturbation.h"
 #include "gasp/mrpt/keyframe_map.h"
 #include "gasp/rawlog/frame_convention.h"
 #include "gasp/rawlog/observation_conversion.h"
@@ -74,6 +80,53 @@ TEST(KeyframeMap, HoldsEachKeyframesScanAtItsRobotPose) {
   EXPECT_TRUE(scan->hasIntensityImage);
 
   EXPECT_THROW(keyframeSimpleMap({f}, {}), Error);
+}
+
+TEST(KeyframeMap, EachPoseCarriesTheCameraPosesCovarianceInMrptsTerms) {
+  const RgbdFrame f = recordedFrame();
+  Isometry3 T_world_camera = Isometry3::Identity();
+  T_world_camera.translation() << 2.0, -1.0, 0.5;
+  T_world_camera.linear() = (Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(-0.3, Eigen::Vector3d::UnitX()))
+                                .toRotationMatrix();
+  // A correlated covariance of the camera's left perturbation [t r]: about 1 cm and 0.5 deg.
+  Matrix6 B;
+  std::mt19937 rng(7);
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c) B(r, c) = 0.5 * n(rng);
+  Vector6 sigma;
+  sigma << 0.01, 0.02, 0.005, 0.008, 0.004, 0.01;
+  const Matrix6 C = sigma.asDiagonal() * (Matrix6::Identity() + B * B.transpose()) * sigma.asDiagonal();
+  const mrpt::maps::CSimpleMap map = keyframeSimpleMap({f, f}, {Isometry3::Identity(), T_world_camera}, {Matrix6::Zero(), C});
+  const auto gaussian = std::dynamic_pointer_cast<const mrpt::poses::CPose3DPDFGaussian>(std::get<0>(map.get(1)));
+  ASSERT_TRUE(gaussian);
+  // The robot pose's [x y z yaw pitch roll] when the camera pose moves by xi ~ N(0, C), sampled.
+  const Isometry3 T_world_robot = T_world_camera * f.T_robot_camera.inverse();
+  const Eigen::LLT<Matrix6> llt(C);
+  const mrpt::poses::CPose3D mean = toCPose3D(T_world_robot);
+  Matrix6 sampled = Matrix6::Zero();
+  const int samples = 20000;
+  for (int k = 0; k < samples; ++k) {
+    Vector6 z;
+    for (int j = 0; j < 6; ++j) z(j) = n(rng);
+    const mrpt::poses::CPose3D p = toCPose3D(expLeft(llt.matrixL() * z) * T_world_camera * f.T_robot_camera.inverse());
+    Vector6 d;
+    d << p.x() - mean.x(), p.y() - mean.y(), p.z() - mean.z(), mrpt::math::wrapToPi(p.yaw() - mean.yaw()),
+        mrpt::math::wrapToPi(p.pitch() - mean.pitch()), mrpt::math::wrapToPi(p.roll() - mean.roll());
+    sampled += d * d.transpose() / samples;
+  }
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c)
+      EXPECT_NEAR(gaussian->cov(r, c), sampled(r, c), 0.05 * std::sqrt(sampled(r, r) * sampled(c, c)))
+          << r << "," << c;
+  const auto root = std::dynamic_pointer_cast<const mrpt::poses::CPose3DPDFGaussian>(std::get<0>(map.get(0)));
+  ASSERT_TRUE(root);
+  EXPECT_EQ(root->cov.norm(), 0.0);
+
+  EXPECT_THROW(keyframeSimpleMap({f, f}, {Isometry3::Identity(), T_world_camera}, {C}), Error);  // one too few
+  Matrix6 bad = C;
+  bad(1, 1) = std::nan("");
+  EXPECT_THROW(keyframeSimpleMap({f}, {T_world_camera}, {bad}), Error);
 }
 
 TEST(KeyframeMap, ADeskewedKeyframeTakesTheDepthItWasRegisteredWith) {

@@ -6,8 +6,10 @@
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose3DPDF.h>
+#include <mrpt/poses/CPose3DPDFGaussian.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -49,7 +51,8 @@ TEST(GaspSlamProgram, WritesTheTrajectoryGraphSimpleMapAndCloud) {
   const auto run = runProgram("gasp-slam", "--tum " + simulatedFolder(out) + " --max-frames 16 --out " + out +
                                                "/traj.txt --odometry-out " + out + "/odo.txt --graph " + out +
                                                "/g.graph --simplemap " + out + "/map.simplemap --cloud " + out +
-                                               "/map.ply --loops-csv " + out + "/loops.csv --frames-csv " + out + "/f.csv");
+                                               "/map.ply --loops-csv " + out + "/loops.csv --frames-csv " + out + "/f.csv --marginals-csv " +
+                                               out + "/m.csv");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_TRUE(contains(run.output, "frames: 16\n")) << run.output;
   EXPECT_TRUE(contains(run.output, "tracked: 16\n")) << run.output;
@@ -85,6 +88,27 @@ TEST(GaspSlamProgram, WritesTheTrajectoryGraphSimpleMapAndCloud) {
   EXPECT_TRUE(T_world_robot.isApprox(gasp::Isometry3::Identity(), 1e-6));
   // The point map has points.
   EXPECT_GT(printedCount(run.output, "cloud: " + out + "/map.ply ("), 1000u) << run.output;
+
+  // The poses' marginal covariances: zero at frame 0 (the gauge), a few millimetres further on,
+  // in the map (MRPT's [x y z yaw pitch roll]), the CSV and the printout.
+  EXPECT_TRUE(contains(run.output, "marginals: 16 frames (")) << run.output;
+  EXPECT_TRUE(contains(run.output, "marginals_nees: median ")) << run.output;
+  const auto gaussian = [&](std::size_t k) {
+    return std::dynamic_pointer_cast<const mrpt::poses::CPose3DPDFGaussian>(std::get<0>(map.get(k)));
+  };
+  ASSERT_TRUE(gaussian(0));
+  EXPECT_EQ(gaussian(0)->cov.norm(), 0.0);
+  ASSERT_GE(keyframes, 2u);
+  const auto last = gaussian(keyframes - 1);
+  ASSERT_TRUE(last);
+  const double sigma_x = std::sqrt(last->cov(0, 0)), sigma_yaw = std::sqrt(last->cov(3, 3));
+  EXPECT_GT(sigma_x, 1e-4);
+  EXPECT_LT(sigma_x, 0.1);
+  EXPECT_GT(sigma_yaw, 1e-5);
+  EXPECT_LT(sigma_yaw, 0.1);
+  EXPECT_EQ(countLinesStartingWith(out + "/m.csv", "frame,timestamp,root,sigma_t_m,sigma_r_deg,c00,"), 1u);
+  EXPECT_EQ(countLinesStartingWith(out + "/m.csv", "0,"), 1u);
+  EXPECT_EQ(countLinesStartingWith(out + "/m.csv", "15,"), 1u);
 }
 
 TEST(GaspSlamProgram, WithTheDeskewTheMapHoldsTheDepthEachKeyframeWasRegisteredWith) {

@@ -152,6 +152,8 @@ void DepthSlam::optimise() {
   optimisation_ms_ += msSince(t0);
 }
 
+PoseGraphMarginals DepthSlam::marginals() const { return poseGraphMarginals(T_world_frame_, constraints()); }
+
 std::vector<PoseConstraint> DepthSlam::constraints() const {
   std::vector<PoseConstraint> all = odometry_.constraints();
   all.insert(all.end(), loop_closures_.begin(), loop_closures_.end());

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gasp/core/pose.h"
+#include "gasp/core/pose_perturbation.h"
 #include "gasp/pipeline/depth_view.h"
 #include "gasp/rawlog/rgbd_frame.h"
 
@@ -15,11 +16,14 @@ namespace gasp {
 
 /// One (pose, sensory frame) pair per keyframe: the robot's pose T_world_camera[i]
 /// T_robot_camera^-1 (T_robot_camera = the frame's own, MRPT's sensorPose), as a
-/// CPose3DPDFGaussian with a zero covariance (the graph's marginals are not computed), and a
-/// sensory frame holding the scan (observationFromFrame()). Throws gasp::Error when the sizes
-/// differ or a frame cannot be converted.
+/// CPose3DPDFGaussian, and a sensory frame holding the scan (observationFromFrame()). Its
+/// covariance is covariance_world_camera[i] (the left perturbation [t r] of T_world_camera[i],
+/// which is also the robot pose's: pose_graph_marginals.h) in [x y z yaw pitch roll]
+/// (poseWithCovariance()), or zero when covariance_world_camera is empty. Throws gasp::Error
+/// when the sizes differ, a covariance is not finite and symmetric or a frame cannot be converted.
 mrpt::maps::CSimpleMap keyframeSimpleMap(const std::vector<RgbdFrame>& keyframes,
-                                         const std::vector<Isometry3>& T_world_camera);
+                                         const std::vector<Isometry3>& T_world_camera,
+                                         const std::vector<Matrix6>& covariance_world_camera = {});
 
 /// The keyframe as GASP registered it, for the map: `frame` with the depth of `view`, the
 /// keyframe's segmented view (DepthOdometry::keyframeView()). With rolling_shutter_readout_s the

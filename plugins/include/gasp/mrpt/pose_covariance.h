@@ -24,4 +24,8 @@ Matrix6 yprJacobian(const Isometry3& T);
 /// definite (some direction unobservable: no covariance can be claimed).
 std::optional<mrpt::poses::CPose3DPDFGaussian> poseWithInformation(const Isometry3& T, const Matrix6& information);
 
+/// T with covariance J C J^T, C over the left perturbation [t r] (the marginals of a pose graph,
+/// gasp/slam/pose_graph_marginals.h). Throws gasp::Error when C is not finite or not symmetric.
+mrpt::poses::CPose3DPDFGaussian poseWithCovariance(const Isometry3& T, const Matrix6& covariance);
+
 }  // namespace gasp

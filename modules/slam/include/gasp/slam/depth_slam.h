@@ -25,6 +25,7 @@
 #include "gasp/odometry/pose_constraint.h"
 #include "gasp/pipeline/depth_view.h"
 #include "gasp/slam/loop_closure.h"
+#include "gasp/slam/pose_graph_marginals.h"
 #include "gasp/slam/relocalisation.h"
 #include "gasp/slam/slam_params.h"
 
@@ -49,6 +50,11 @@ class DepthSlam {
   const std::vector<PoseConstraint>& loopClosures() const { return loop_closures_; }
   /// The odometry's constraints, then the loop closures: the graph's edges.
   std::vector<PoseConstraint> constraints() const;
+  /// The marginal covariance of every frame's pose in the graph (pose_graph_marginals.h): the
+  /// uncertainty [t r] of poses()[i] relative to the first frame of its piece (zero there), as the
+  /// constraints' informations give it; nullopt for frames no constraint reaches. Computed on
+  /// request (sparse QR over the whole graph: about 0.3 s for fr1_xyz's 798 frames).
+  PoseGraphMarginals marginals() const;
   /// Every registration tried for a loop closure or relocalisation, in order.
   const std::vector<LoopClosureAttempt>& attempts() const { return attempts_; }
   /// Connected pieces of the graph over all frames (the odometry's componentCount() before

@@ -1,0 +1,31 @@
+#pragma once
+/// \file marginals_report.h What gasp-slam prints and writes about the uncertainty of its poses:
+/// the pose graph's marginal covariances (gasp/slam/pose_graph_marginals.h).
+#include <string>
+
+#include "gasp/core/tum_trajectory.h"
+#include "gasp/slam/pose_graph_marginals.h"
+
+namespace gasp::tools {
+
+/// 1-sigma sizes of a [t r] covariance: sqrt of the translation block's trace [m] and of the
+/// rotation block's trace [deg] (the root-mean-square length of the error, in 3D).
+struct Sigma {
+  double t_m = 0.0, r_deg = 0.0;
+};
+Sigma sigmaOf(const Matrix6d& covariance);
+
+/// Prints "marginals: N frames (MS ms); largest at frame F: 1-sigma T m / R deg (relative to
+/// frame ROOT)", or "marginals: not computed (REASON)". With ground truth (matched by timestamp
+/// within 20 ms), also "marginals_nees: median M, 95 % Q over N frames (chi-square, 6 degrees of
+/// freedom: median 5.35, 95 % 12.59)": each frame's error against the ground truth moved to agree
+/// at its piece's root, T_ref_i = T_root T_gt_root^-1 T_gt_i, weighed by its covariance's
+/// inverse (gasp::eval::nees). `estimate` holds every frame's timestamp and pose, in frame order.
+void printMarginals(const PoseGraphMarginals& marginals, const Trajectory& estimate, const Trajectory& ground_truth);
+
+/// One line per frame with a covariance: frame,timestamp,root,sigma_t_m,sigma_r_deg, then the
+/// 36 entries c00..c55 (row-major) of the covariance of the left perturbation [tx ty tz rx ry rz]
+/// in the world [m^2, m rad, rad^2]. Throws gasp::Error when it cannot be written.
+void writeMarginalsCsv(const std::string& path, const PoseGraphMarginals& marginals, const Trajectory& estimate);
+
+}  // namespace gasp::tools
