@@ -31,7 +31,9 @@ Sigma sigmaOf(const Matrix6d& covariance) {
           std::sqrt(std::max(0.0, covariance.bottomRightCorner<3, 3>().trace())) * kRadToDeg};
 }
 
-void printMarginals(const PoseGraphMarginals& m, const Trajectory& estimate, const Trajectory& gt) {
+void printMarginals(const PoseGraphMarginals& m, const Trajectory& estimate, const Trajectory& gt,
+                    const std::string& what) {
+  const char* w = what.c_str();
   if (!m.computed) {
     std::printf("marginals: not computed (%s)\n", m.message.c_str());
     return;
@@ -45,12 +47,12 @@ void printMarginals(const PoseGraphMarginals& m, const Trajectory& estimate, con
     if (s > largest_t) largest_t = s, largest = i;
   }
   if (known == 0) {
-    std::printf("marginals: none (no frame is constrained)\n");
+    std::printf("marginals: none (no %s is constrained)\n", w);
     return;
   }
   const Sigma s = sigmaOf(*m.covariance[largest]);
-  std::printf("marginals: %zu frames (%.1f ms); largest at frame %zu: 1-sigma %.4f m / %.3f deg (relative to frame %zu)\n",
-              known, m.ms, largest, s.t_m, s.r_deg, m.piece_root[largest]);
+  std::printf("marginals: %zu %ss (%.1f ms); largest at %s %zu: 1-sigma %.4f m / %.3f deg (relative to %s %zu)\n",
+              known, w, m.ms, w, largest, s.t_m, s.r_deg, w, m.piece_root[largest]);
   if (gt.empty()) return;
   std::vector<double> nees;
   for (std::size_t i = 0; i < m.covariance.size() && i < estimate.size(); ++i) {
@@ -70,14 +72,14 @@ void printMarginals(const PoseGraphMarginals& m, const Trajectory& estimate, con
     }
   }
   if (nees.empty()) {
-    std::printf("marginals_nees: no frame with ground truth\n");
+    std::printf("marginals_nees: no %s with ground truth\n", w);
     return;
   }
   const std::size_t n = nees.size();
   const double q95 = quantile(nees, 0.95), median = quantile(nees, 0.5);
-  std::printf("marginals_nees: median %.2f, 95 %% %.2f over %zu frames (chi-square, 6 degrees of freedom: median %.2f, "
+  std::printf("marginals_nees: median %.2f, 95 %% %.2f over %zu %ss (chi-square, 6 degrees of freedom: median %.2f, "
               "95 %% %.2f)\n",
-              median, q95, n, eval::kChiSquare6Median, eval::kChiSquare6Quantile95);
+              median, q95, n, w, eval::kChiSquare6Median, eval::kChiSquare6Quantile95);
 }
 
 void writeMarginalsCsv(const std::string& path, const PoseGraphMarginals& m, const Trajectory& estimate) {

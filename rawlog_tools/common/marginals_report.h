@@ -15,13 +15,14 @@ struct Sigma {
 };
 Sigma sigmaOf(const Matrix6d& covariance);
 
-/// Prints "marginals: N frames (MS ms); largest at frame F: 1-sigma T m / R deg (relative to
-/// frame ROOT)", or "marginals: not computed (REASON)". With ground truth (matched by timestamp
+/// Prints "marginals: N <what>s (MS ms); largest at <what> F: 1-sigma T m / R deg (relative to
+/// <what> ROOT)", or "marginals: not computed (REASON)"; <what> is "frame" or "node". With ground truth (matched by timestamp
 /// within 20 ms), also "marginals_nees: median M, 95 % Q over N frames (chi-square, 6 degrees of
-/// freedom: median 5.35, 95 % 12.59)": each frame's error against the ground truth moved to agree
+/// freedom: median 5.35, 95 % 12.59)": each one's error against the ground truth moved to agree
 /// at its piece's root, T_ref_i = T_root T_gt_root^-1 T_gt_i, weighed by its covariance's
 /// inverse (gasp::eval::nees). `estimate` holds every frame's timestamp and pose, in frame order.
-void printMarginals(const PoseGraphMarginals& marginals, const Trajectory& estimate, const Trajectory& ground_truth);
+void printMarginals(const PoseGraphMarginals& marginals, const Trajectory& estimate, const Trajectory& ground_truth,
+                    const std::string& what = "frame");
 
 /// One line per frame with a covariance: frame,timestamp,root,sigma_t_m,sigma_r_deg, then the
 /// 36 entries c00..c55 (row-major) of the covariance of the left perturbation [tx ty tz rx ry rz]

@@ -35,6 +35,7 @@
 #include "gasp/graphslam/CGaspOdometryNRD.h"
 #include "gasp/graphslam/CGaspPoseGraphGSO.h"
 #include "gasp/graphslam/engine.h"
+#include "gasp/graphslam/graph_marginals.h"
 #include "gasp/graphslam/ini_check.h"
 #include "gasp/graphslam/options_checker.h"
 #include "gasp/graphslam/rawlog_run.h"
@@ -43,6 +44,7 @@
 #include "gasp/rawlog/rawlog_format.h"
 #include "cli.h"
 #include "map_output.h"
+#include "marginals_report.h"
 #include "sequence_report.h"
 
 namespace {
@@ -228,10 +230,12 @@ int main(int argc, char** argv) {
       throw gasp::Error(rawlog_path + ": no graph: fewer than two nodes were registered (" + std::to_string(run.scans) +
                         " scans; with CGaspOdometryNRD, fewer than two keyframes)");
     gasp::Trajectory trajectory;
+    gasp::PoseGraphMarginals marginals;  // the nodes' uncertainty in the optimised graph
     std::size_t node_count = 0, edge_count = 0;
     {  // the graph's outputs, while the engine lives
       const Graph3D& graph = engine->getGraph();
       trajectory = gasp::graphslam::nodeTrajectory(graph, run.nodes);
+      marginals = gasp::graphslam::graphMarginals(graph);
 
       if (!out_path.empty())
         gasp::writeTumTrajectory(out_path, trajectory, "node (keyframe) depth-camera trajectory by gasp-graphslam");
@@ -256,15 +260,19 @@ int main(int argc, char** argv) {
     mrpt_log_to_stderr.reset();
     std::vector<gasp::RgbdFrame> map_frames;  // for --simplemap and --cloud: nodes with a converted scan
     std::vector<gasp::Isometry3> map_poses;
+    std::vector<gasp::Matrix6> map_covariances;  // a node no edge reaches is its own piece: zero
     for (std::size_t i = 0; i < run.nodes.size() && run_options.keep_depth; ++i) {
       if (!run.nodes[i].frame) continue;
       map_poses.push_back(trajectory[i].T_world_camera);
       map_frames.push_back(std::move(*run.nodes[i].frame));
+      if (marginals.computed) map_covariances.push_back(marginals.covariance[i].value_or(gasp::Matrix6::Zero()));
     }
+    if (!marginals.computed && !map_output.simplemap_path.empty())
+      std::fprintf(stderr, "warning: the simple map's poses carry a zero covariance: %s\n", marginals.message.c_str());
     if (run_options.keep_depth && map_frames.size() < run.nodes.size())
       std::fprintf(stderr, "warning: %zu of %zu nodes have no depth scan that could be converted; the map leaves them out\n",
                    run.nodes.size() - map_frames.size(), run.nodes.size());
-    gasp::tools::writeMapOutputs(map_output, map_frames, map_poses, "nodes");
+    gasp::tools::writeMapOutputs(map_output, map_frames, map_poses, "nodes", map_covariances);
 
     std::printf("rawlog_entries: %zu\n", run.steps);
     std::printf("scans: %zu\n", run.scans);
@@ -296,6 +304,7 @@ int main(int argc, char** argv) {
     if (!out_path.empty()) std::printf("trajectory: %s\n", out_path.c_str());
     if (!graph_path.empty()) std::printf("graph: %s\n", graph_path.c_str());
     gasp::tools::printEvaluation(gt, trajectory, trajectory.size());  // every node is a registered scan
+    gasp::tools::printMarginals(marginals, trajectory, gt, "node");
     if (gasp_nrd && (gasp_nrd->breakEdges() > 0 || gasp_nrd->skippedScans() > 0)) return 3;
   } catch (const std::exception& e) {  // gasp::Error, MRPT's (configuration, rawlog), filesystem
     std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';

@@ -9,6 +9,7 @@
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose3DPDF.h>
+#include <mrpt/poses/CPose3DPDFGaussian.h>
 
 #include <algorithm>
 #include <cmath>
@@ -157,6 +158,7 @@ TEST(GaspGraphSlamProgram, WritesTheTrajectoryGraphAndReports) {
   const auto pos = run.output.find("\nate_rmse_m: ");
   ASSERT_NE(pos, std::string::npos) << run.output;
   EXPECT_LT(std::stod(run.output.substr(pos + 13)), 0.01) << run.output;
+  EXPECT_TRUE(contains(run.output, "\nmarginals_nees: median ")) << run.output;
 }
 
 TEST(GaspGraphSlamProgram, WritesAMapOfTheNodesScansAtTheirOptimisedPoses) {
@@ -172,6 +174,19 @@ TEST(GaspGraphSlamProgram, WritesAMapOfTheNodesScansAtTheirOptimisedPoses) {
   EXPECT_GT(printedCount(run.output, "cloud: " + out + "/map.ply ("), 1000u) << run.output;
   EXPECT_FALSE(contains(run.output, "warning")) << run.output;
   expectTheMapHoldsEachNodesScan(out, nodes);
+  // Each node's pose carries its marginal covariance in the optimised graph: zero at the root,
+  // millimetres to centimetres further on.
+  EXPECT_TRUE(contains(run.output, "marginals: " + std::to_string(nodes) + " nodes (")) << run.output;
+  mrpt::maps::CSimpleMap map;
+  ASSERT_TRUE(map.loadFromFile(out + "/map.simplemap"));
+  const auto root = std::dynamic_pointer_cast<const mrpt::poses::CPose3DPDFGaussian>(std::get<0>(map.get(0)));
+  const auto last = std::dynamic_pointer_cast<const mrpt::poses::CPose3DPDFGaussian>(std::get<0>(map.get(nodes - 1)));
+  ASSERT_TRUE(root && last);
+  EXPECT_EQ(root->cov.norm(), 0.0);
+  EXPECT_GT(std::sqrt(last->cov(0, 0)), 1e-4);
+  EXPECT_LT(std::sqrt(last->cov(0, 0)), 0.1);
+  EXPECT_GT(std::sqrt(last->cov(3, 3)), 1e-5);
+  EXPECT_LT(std::sqrt(last->cov(3, 3)), 0.1);
   // Output folders are checked before the run.
   const auto bad = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --cloud /nonexistent-dir/m.ply");
   EXPECT_EQ(bad.exit_code, 1) << bad.output;
