@@ -111,6 +111,46 @@ TEST(GaspSlamProgram, WritesTheTrajectoryGraphSimpleMapAndCloud) {
   EXPECT_EQ(countLinesStartingWith(out + "/m.csv", "15,"), 1u);
 }
 
+TEST(GaspSlamProgram, ARawlogGivesTheFoldersPosesLoopClosuresAndMap) {
+  // The folder's first 16 frames through gasp-tum2rawlog: the same depth, intrinsics and stamps,
+  // so the same odometry, loop closures and optimised poses; the map's poses are robot poses,
+  // the first one the world's origin.
+  const std::string out = gasp::test::scratchDir();
+  const std::string sim = simulatedFolder(out);
+  auto run = runProgram("gasp-tum2rawlog", sim + " " + out + "/sim.rawlog --max-frames 16 --no-rgb");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto folder_run = runProgram("gasp-slam", "--tum " + sim + " --max-frames 16 --out " + out + "/tum.txt");
+  ASSERT_EQ(folder_run.exit_code, 0) << folder_run.output;
+  run = runProgram("gasp-slam", "--rawlog " + out + "/sim.rawlog --gt " + out + "/sim_groundtruth.txt --out " + out +
+                                    "/rawlog.txt --simplemap " + out + "/map.simplemap --marginals-csv " + out + "/m.csv");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "frames: 16\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "graph_pieces: 1 ")) << run.output;
+  EXPECT_TRUE(contains(run.output, "marginals: 16 frames (")) << run.output;
+  EXPECT_TRUE(contains(run.output, "ate_rmse_m: ")) << run.output;
+  const std::size_t loops = printedCount(run.output, "loop_closures: ");
+  EXPECT_EQ(loops, printedCount(folder_run.output, "loop_closures: ")) << run.output << folder_run.output;
+  const auto from_tum = gasp::readTumTrajectory(out + "/tum.txt");
+  const auto from_rawlog = gasp::readTumTrajectory(out + "/rawlog.txt");
+  ASSERT_EQ(from_tum.size(), 16u);
+  ASSERT_EQ(from_rawlog.size(), 16u);
+  for (std::size_t i = 0; i < 16; ++i) {
+    EXPECT_NEAR(from_rawlog[i].timestamp, from_tum[i].timestamp, 1e-6);
+    EXPECT_TRUE(from_rawlog[i].T_world_camera.isApprox(from_tum[i].T_world_camera, 1e-6)) << i;
+  }
+  mrpt::maps::CSimpleMap map;
+  ASSERT_TRUE(map.loadFromFile(out + "/map.simplemap"));
+  const std::size_t keyframes = printedCount(run.output, "keyframes: ");
+  ASSERT_EQ(map.size(), keyframes);
+  const auto [pose, sf] = map.get(0);
+  ASSERT_TRUE(pose && sf);
+  EXPECT_TRUE(gasp::fromCPose3D(pose->getMeanVal()).isApprox(gasp::Isometry3::Identity(), 1e-6));
+  const auto scan = sf->getObservationByClass<mrpt::obs::CObservation3DRangeScan>();
+  ASSERT_TRUE(scan);
+  EXPECT_TRUE(scan->hasRangeImage);
+  EXPECT_EQ(countLinesStartingWith(out + "/m.csv", "15,"), 1u);
+}
+
 TEST(GaspSlamProgram, WithTheDeskewTheMapHoldsTheDepthEachKeyframeWasRegisteredWith) {
   // --rolling-shutter deskews each frame (with the last step's velocity) before registering it;
   // a deskewed keyframe's scan in the map is that depth, not the recorded one (keyframe_map.h).
