@@ -7,10 +7,11 @@ the ground truth beside the 1-sigma its covariance claims, as a table and an SVG
 TRAJ.txt is gasp-slam's --out (TUM format), MARGINALS.csv its --marginals-csv. A frame's error is
 measured as the NEES of gasp-slam is (docs/slam.md "How sure the poses are"): the ground truth is
 moved to agree with the estimate at the frame's root (the first frame of its piece of the graph),
-T_ref = T_root T_gt_root^-1 T_gt, and the error is t_est - t_ref. The table gives, per run: frames,
-the median error and 1-sigma (sqrt of the translation block's trace), the share of frames with the
-error within 1 and 2 sigma (about 61 % and 99 % if the covariance were right and isotropic) and the
-median translation NEES e^T C_tt^-1 e (chi-square with 3 degrees of freedom: median 2.37).
+T_ref = T_root T_gt_root^-1 T_gt, and the error is e = p_est - p_ref (positions). Its covariance is
+the position's, C_p = B C B^T with B = [I, -[p]x] (C over the left perturbation [t r]). The table
+gives, per run: frames, the median error and 1-sigma (sqrt of trace C_p), the share of frames with
+the error within 1 and 2 sigma (about 61 % and 99 % if C_p were right and isotropic) and the
+median position NEES e^T C_p^-1 e (chi-square with 3 degrees of freedom: median 2.37).
 Only the Python standard library. Poses are matched to the ground truth by nearest timestamp
 within 0.02 s; frames without a match are left out.
 """
@@ -93,6 +94,15 @@ def solve3(A, b):
     return out
 
 
+def position_covariance(C, p):
+    """B C B^T with B = [I, -[p]x]: the covariance of the position p of a pose whose left
+    perturbation [t r] has covariance C (Exp(xi) T moves the position by t + r x p)."""
+    skew = [[0.0, -p[2], p[1]], [p[2], 0.0, -p[0]], [-p[1], p[0], 0.0]]
+    B = [[(1.0 if i == k else 0.0) for k in range(3)] + [-skew[i][k] for k in range(3)] for i in range(3)]
+    BC = [[sum(B[i][m] * C[m][k] for m in range(6)) for k in range(6)] for i in range(3)]
+    return [[sum(BC[i][m] * B[k][m] for m in range(6)) for k in range(3)] for i in range(3)]
+
+
 def read_run(spec, gt):
     if '=' not in spec or ',' not in spec.split('=', 1)[1]:
         fail("--run needs NAME=TRAJ.txt,MARGINALS.csv, not '%s'" % spec)
@@ -105,7 +115,7 @@ def read_run(spec, gt):
         fail('cannot read %s (%s)' % (marg_path, e.strerror))
     with f:
         reader = csv.DictReader(f)
-        need = ['frame', 'timestamp', 'root', 'sigma_t_m'] + ['c%d%d' % (r, c) for r in range(3) for c in range(3)]
+        need = ['frame', 'timestamp', 'root', 'sigma_t_m'] + ['c%d%d' % (r, c) for r in range(6) for c in range(6)]
         missing = [k for k in need if k not in (reader.fieldnames or [])]
         if missing:
             fail('%s has no column %s (not a gasp-slam --marginals-csv?)' % (marg_path, missing[0]))
@@ -127,10 +137,14 @@ def read_run(spec, gt):
         d = [g[1][k] - g_root[1][k] for k in range(3)]
         t_ref = [a + b for a, b in zip(mat_vec(est_root[0], mat_t_vec(g_root[0], d)), est_root[1])]
         e = [est[1][k] - t_ref[k] for k in range(3)]
-        C = [[float(r['c%d%d' % (i, k)]) for k in range(3)] for i in range(3)]
-        x = solve3(C, e)
-        nees_t = sum(a * b for a, b in zip(e, x)) if x is not None else float('nan')
-        points.append((t - stamps[min(stamps)], math.sqrt(sum(v * v for v in e)), float(r['sigma_t_m']), nees_t))
+        C6 = [[float(r['c%d%d' % (i, k)]) for k in range(6)] for i in range(6)]
+        Cp = position_covariance(C6, est[1])
+        x = solve3(Cp, e)
+        if x is None:
+            continue
+        nees_t = sum(a * b for a, b in zip(e, x))
+        sigma = math.sqrt(max(0.0, Cp[0][0] + Cp[1][1] + Cp[2][2]))
+        points.append((t - stamps[min(stamps)], math.sqrt(sum(v * v for v in e)), sigma, nees_t))
     if not points:
         fail('%s: no frame with a covariance matched the ground truth' % name)
     return name, points
@@ -193,7 +207,7 @@ def main():
     a = ap.parse_args()
     gt = read_tum(a.gt)
     runs = [read_run(spec, gt) for spec in a.run]
-    print('| run | frames | median error [m] | median 1-sigma [m] | within 1 sigma | within 2 sigma | median translation NEES (chi-square 3: 2.37) |')
+    print('| run | frames | median error [m] | median 1-sigma [m] | within 1 sigma | within 2 sigma | median position NEES (chi-square 3: 2.37) |')
     print('|---|---|---|---|---|---|---|')
     for name, pts in runs:
         n = len(pts)

@@ -64,6 +64,7 @@ mrpt::poses::CPose3DPDFGaussian poseWithCovariance(const Isometry3& T, const Mat
   const Matrix6 J = yprJacobian(T);
   Matrix6 cov = J * covariance * J.transpose();
   cov = 0.5 * (cov + cov.transpose());
+  if (!cov.allFinite()) throw Error("pose covariance: no [x y z yaw pitch roll] covariance at pitch +-90 deg (gimbal lock)");
   mrpt::math::CMatrixDouble66 c;
   for (int r = 0; r < 6; ++r)
     for (int k = 0; k < 6; ++k) c(r, k) = cov(r, k);

@@ -26,8 +26,8 @@ double quantile(std::vector<double>& v, double q) {
 
 }  // namespace
 
-Sigma sigmaOf(const Matrix6d& covariance) {
-  return {std::sqrt(std::max(0.0, covariance.topLeftCorner<3, 3>().trace())),
+Sigma sigmaOf(const Matrix6d& covariance, const Isometry3& T_world) {
+  return {std::sqrt(std::max(0.0, positionCovariance(covariance, T_world).trace())),
           std::sqrt(std::max(0.0, covariance.bottomRightCorner<3, 3>().trace())) * kRadToDeg};
 }
 
@@ -43,14 +43,15 @@ void printMarginals(const PoseGraphMarginals& m, const Trajectory& estimate, con
   for (std::size_t i = 0; i < m.covariance.size(); ++i) {
     if (!m.covariance[i]) continue;
     ++known;
-    const double s = sigmaOf(*m.covariance[i]).t_m;
+    if (i >= estimate.size()) continue;
+    const double s = sigmaOf(*m.covariance[i], estimate[i].T_world_camera).t_m;
     if (s > largest_t) largest_t = s, largest = i;
   }
-  if (known == 0) {
+  if (known == 0 || largest_t < 0.0) {
     std::printf("marginals: none (no %s is constrained)\n", w);
     return;
   }
-  const Sigma s = sigmaOf(*m.covariance[largest]);
+  const Sigma s = sigmaOf(*m.covariance[largest], estimate[largest].T_world_camera);
   std::printf("marginals: %zu %ss (%.1f ms); largest at %s %zu: 1-sigma %.4f m / %.3f deg (relative to %s %zu)\n",
               known, w, m.ms, w, largest, s.t_m, s.r_deg, w, m.piece_root[largest]);
   if (gt.empty()) return;
@@ -89,11 +90,11 @@ void writeMarginalsCsv(const std::string& path, const PoseGraphMarginals& m, con
   for (int r = 0; r < 6; ++r)
     for (int c = 0; c < 6; ++c) out << ",c" << r << c;
   out << '\n';
-  for (std::size_t i = 0; i < m.covariance.size(); ++i) {
+  for (std::size_t i = 0; i < m.covariance.size() && i < estimate.size(); ++i) {
     if (!m.covariance[i]) continue;
-    const Sigma s = sigmaOf(*m.covariance[i]);
+    const Sigma s = sigmaOf(*m.covariance[i], estimate[i].T_world_camera);
     char buf[160];
-    std::snprintf(buf, sizeof buf, "%zu,%.6f,%zu,%.6g,%.6g", i, i < estimate.size() ? estimate[i].timestamp : 0.0,
+    std::snprintf(buf, sizeof buf, "%zu,%.6f,%zu,%.6g,%.6g", i, estimate[i].timestamp,
                   m.piece_root[i], s.t_m, s.r_deg);
     out << buf;
     for (int r = 0; r < 6; ++r)

@@ -8,12 +8,13 @@
 
 namespace gasp::tools {
 
-/// 1-sigma sizes of a [t r] covariance: sqrt of the translation block's trace [m] and of the
-/// rotation block's trace [deg] (the root-mean-square length of the error, in 3D).
+/// 1-sigma sizes of a [t r] covariance of T_world: sqrt of the trace of the position's covariance
+/// (positionCovariance(), the root-mean-square length of the position error in 3D) [m] and of
+/// the rotation block's [deg].
 struct Sigma {
   double t_m = 0.0, r_deg = 0.0;
 };
-Sigma sigmaOf(const Matrix6d& covariance);
+Sigma sigmaOf(const Matrix6d& covariance, const Isometry3& T_world);
 
 /// Prints "marginals: N <what>s (MS ms); largest at <what> F: 1-sigma T m / R deg (relative to
 /// <what> ROOT)", or "marginals: not computed (REASON)"; <what> is "frame" or "node". With ground truth (matched by timestamp
@@ -24,9 +25,9 @@ Sigma sigmaOf(const Matrix6d& covariance);
 void printMarginals(const PoseGraphMarginals& marginals, const Trajectory& estimate, const Trajectory& ground_truth,
                     const std::string& what = "frame");
 
-/// One line per frame with a covariance: frame,timestamp,root,sigma_t_m,sigma_r_deg, then the
-/// 36 entries c00..c55 (row-major) of the covariance of the left perturbation [tx ty tz rx ry rz]
-/// in the world [m^2, m rad, rad^2]. Throws gasp::Error when it cannot be written.
+/// One line per frame with a covariance: frame,timestamp,root,sigma_t_m,sigma_r_deg (sigmaOf():
+/// the position's and the rotation's), then the 36 entries c00..c55 (row-major) of the
+/// covariance of the left perturbation [tx ty tz rx ry rz] in the world [m^2, m rad, rad^2]. Throws gasp::Error when it cannot be written.
 void writeMarginalsCsv(const std::string& path, const PoseGraphMarginals& marginals, const Trajectory& estimate);
 
 }  // namespace gasp::tools

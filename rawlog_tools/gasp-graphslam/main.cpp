@@ -235,7 +235,11 @@ int main(int argc, char** argv) {
     {  // the graph's outputs, while the engine lives
       const Graph3D& graph = engine->getGraph();
       trajectory = gasp::graphslam::nodeTrajectory(graph, run.nodes);
-      marginals = gasp::graphslam::graphMarginals(graph);
+      try {
+        marginals = gasp::graphslam::graphMarginals(graph);
+      } catch (const gasp::Error& e) {  // no covariance, but the outputs are still written
+        marginals.message = e.what();
+      }
 
       if (!out_path.empty())
         gasp::writeTumTrajectory(out_path, trajectory, "node (keyframe) depth-camera trajectory by gasp-graphslam");
@@ -269,6 +273,10 @@ int main(int argc, char** argv) {
     }
     if (!marginals.computed && !map_output.simplemap_path.empty())
       std::fprintf(stderr, "warning: the simple map's poses carry a zero covariance: %s\n", marginals.message.c_str());
+    if (marginals.computed && !map_output.simplemap_path.empty() && gasp_nrd && gasp_nrd->breakEdges() > 0)
+      std::fprintf(stderr, "warning: the graph has %zu break edge(s): a simple-map pose's covariance is relative to the "
+                           "first node of its piece, and the pieces are placed only by the odometry's prediction\n",
+                   gasp_nrd->breakEdges());
     if (run_options.keep_depth && map_frames.size() < run.nodes.size())
       std::fprintf(stderr, "warning: %zu of %zu nodes have no depth scan that could be converted; the map leaves them out\n",
                    run.nodes.size() - map_frames.size(), run.nodes.size());

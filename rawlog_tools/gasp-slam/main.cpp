@@ -148,7 +148,12 @@ int main(int argc, char** argv) {
                   g.skipped_constraints ? (", " + std::to_string(g.skipped_constraints) + " without a covariance left out").c_str() : "");
     }
     // The poses' uncertainty in the graph: relative to the first frame of each piece.
-    const gasp::PoseGraphMarginals marginals = slam->marginals();
+    gasp::PoseGraphMarginals marginals;
+    try {
+      marginals = slam->marginals();
+    } catch (const gasp::Error& e) {  // no covariance, but the outputs are still written
+      marginals.message = e.what();
+    }
     const gasp::Trajectory trajectory = slam->trajectory();
     if (!marginals_csv.empty()) gasp::tools::writeMarginalsCsv(marginals_csv, marginals, trajectory);
     std::vector<gasp::Isometry3> keyframe_poses;
@@ -162,6 +167,10 @@ int main(int argc, char** argv) {
       keyframe_covariances.clear();
       if (!map_output.simplemap_path.empty())
         std::fprintf(stderr, "warning: the simple map's poses carry a zero covariance: %s\n", marginals.message.c_str());
+    } else if (!map_output.simplemap_path.empty() && slam->pieceCount() > 1) {
+      std::fprintf(stderr, "warning: the graph is in %zu pieces: a simple-map pose's covariance is relative to the first "
+                           "keyframe of its piece, and the pieces are placed only by the odometry's prediction\n",
+                   slam->pieceCount());
     }
     gasp::tools::writeMapOutputs(map_output, keyframes, keyframe_poses, "keyframes", keyframe_covariances);
 

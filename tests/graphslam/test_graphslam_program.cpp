@@ -175,7 +175,7 @@ TEST(GaspGraphSlamProgram, WritesAMapOfTheNodesScansAtTheirOptimisedPoses) {
   EXPECT_FALSE(contains(run.output, "warning")) << run.output;
   expectTheMapHoldsEachNodesScan(out, nodes);
   // Each node's pose carries its marginal covariance in the optimised graph: zero at the root,
-  // millimetres to centimetres further on.
+  // centimetres further on.
   EXPECT_TRUE(contains(run.output, "marginals: " + std::to_string(nodes) + " nodes (")) << run.output;
   mrpt::maps::CSimpleMap map;
   ASSERT_TRUE(map.loadFromFile(out + "/map.simplemap"));
@@ -183,9 +183,9 @@ TEST(GaspGraphSlamProgram, WritesAMapOfTheNodesScansAtTheirOptimisedPoses) {
   const auto last = std::dynamic_pointer_cast<const mrpt::poses::CPose3DPDFGaussian>(std::get<0>(map.get(nodes - 1)));
   ASSERT_TRUE(root && last);
   EXPECT_EQ(root->cov.norm(), 0.0);
-  EXPECT_GT(std::sqrt(last->cov(0, 0)), 1e-4);
+  EXPECT_GT(std::sqrt(last->cov(0, 0)), 0.01);  // a few centimetres after 16 scans (the model error)
   EXPECT_LT(std::sqrt(last->cov(0, 0)), 0.1);
-  EXPECT_GT(std::sqrt(last->cov(3, 3)), 1e-5);
+  EXPECT_GT(std::sqrt(last->cov(3, 3)), 0.01);
   EXPECT_LT(std::sqrt(last->cov(3, 3)), 0.1);
   // Output folders are checked before the run.
   const auto bad = runProgram("gasp-graphslam", "--rawlog " + rawlog + " --cloud /nonexistent-dir/m.ply");

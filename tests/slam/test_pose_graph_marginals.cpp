@@ -193,6 +193,39 @@ TEST(PoseGraphMarginals, PiecesAreRelativeToTheirRootsAndLoneNodesHaveNone) {
   for (const auto& c : none.covariance) EXPECT_FALSE(c.has_value());
 }
 
+TEST(PoseGraphMarginals, ThePositionsCovarianceIsTheSampledOne) {
+  // Far from the origin, a rotation's lever arm dominates: the [t] block alone is not the position's.
+  std::mt19937 rng(9);
+  Isometry3 T = expLeft((Vector6d() << 4.0, -3.0, 2.0, 0.3, 0.2, -0.5).finished());
+  const Matrix6d C = randomInformation(rng).inverse();
+  const Eigen::Matrix3d expected = gasp::positionCovariance(C, T);
+  const Eigen::LLT<Matrix6d> llt(C);
+  Eigen::Matrix3d sampled = Eigen::Matrix3d::Zero();
+  const int samples = 20000;
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (int k = 0; k < samples; ++k) {
+    Vector6d z;
+    for (int j = 0; j < 6; ++j) z(j) = n(rng);
+    const Eigen::Vector3d d = (expLeft(llt.matrixL() * z) * T).translation() - T.translation();
+    sampled += d * d.transpose() / samples;
+  }
+  EXPECT_LT((expected - sampled).norm(), 0.05 * sampled.norm()) << expected << "\nsampled\n" << sampled;
+  EXPECT_GT((expected - C.topLeftCorner<3, 3>()).norm(), 0.5 * sampled.norm());  // the lever arm matters here
+}
+
+TEST(PoseGraphMarginals, AnUnobservableDirectionIsReportedNotInverted) {
+  // An edge that pins five directions and leaves the sixth all but free (1e-30 against 1e4):
+  // Ceres's sparse QR sees the Jacobian as rank deficient, and no covariance is claimed.
+  std::mt19937 rng(1);
+  const std::vector<Isometry3> T = bentPath(2, rng);
+  Vector6d d;
+  d << 1e4, 1e4, 1e4, 1e4, 1e4, 1e-30;
+  const gasp::PoseGraphMarginals m = gasp::poseGraphMarginals(T, {edge(0, 1, T[0].inverse() * T[1], d.asDiagonal())});
+  EXPECT_FALSE(m.computed);
+  EXPECT_NE(m.message.find("rank-deficient"), std::string::npos) << m.message;
+  for (const auto& c : m.covariance) EXPECT_FALSE(c.has_value());
+}
+
 TEST(PoseGraphMarginals, BadGraphsAreErrors) {
   std::mt19937 rng(4);
   std::vector<Isometry3> T = bentPath(3, rng);

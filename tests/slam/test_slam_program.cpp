@@ -89,7 +89,7 @@ TEST(GaspSlamProgram, WritesTheTrajectoryGraphSimpleMapAndCloud) {
   // The point map has points.
   EXPECT_GT(printedCount(run.output, "cloud: " + out + "/map.ply ("), 1000u) << run.output;
 
-  // The poses' marginal covariances: zero at frame 0 (the gauge), a few millimetres further on,
+  // The poses' marginal covariances: zero at frame 0 (the gauge), centimetres further on,
   // in the map (MRPT's [x y z yaw pitch roll]), the CSV and the printout.
   EXPECT_TRUE(contains(run.output, "marginals: 16 frames (")) << run.output;
   EXPECT_TRUE(contains(run.output, "marginals_nees: median ")) << run.output;
@@ -102,9 +102,9 @@ TEST(GaspSlamProgram, WritesTheTrajectoryGraphSimpleMapAndCloud) {
   const auto last = gaussian(keyframes - 1);
   ASSERT_TRUE(last);
   const double sigma_x = std::sqrt(last->cov(0, 0)), sigma_yaw = std::sqrt(last->cov(3, 3));
-  EXPECT_GT(sigma_x, 1e-4);
+  EXPECT_GT(sigma_x, 0.01);  // measured 3-6 cm per axis after 3 s at 5 Hz (the model error, slam.md)
   EXPECT_LT(sigma_x, 0.1);
-  EXPECT_GT(sigma_yaw, 1e-5);
+  EXPECT_GT(sigma_yaw, 0.01);
   EXPECT_LT(sigma_yaw, 0.1);
   EXPECT_EQ(countLinesStartingWith(out + "/m.csv", "frame,timestamp,root,sigma_t_m,sigma_r_deg,c00,"), 1u);
   EXPECT_EQ(countLinesStartingWith(out + "/m.csv", "0,"), 1u);

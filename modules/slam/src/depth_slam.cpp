@@ -152,7 +152,9 @@ void DepthSlam::optimise() {
   optimisation_ms_ += msSince(t0);
 }
 
-PoseGraphMarginals DepthSlam::marginals() const { return poseGraphMarginals(T_world_frame_, constraints()); }
+PoseGraphMarginals DepthSlam::marginals() const {
+  return poseGraphMarginals(T_world_frame_, constraints(), params_.graph.num_threads);
+}
 
 std::vector<PoseConstraint> DepthSlam::constraints() const {
   std::vector<PoseConstraint> all = odometry_.constraints();

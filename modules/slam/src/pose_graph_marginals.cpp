@@ -27,6 +27,14 @@ Eigen::Matrix<double, 3, 4> leftRotationOfQuaternion(const Eigen::Quaterniond& q
 
 }  // namespace
 
+Eigen::Matrix3d positionCovariance(const Matrix6d& covariance, const Isometry3& T_world_node) {
+  Eigen::Matrix<double, 3, 6> B;
+  B.leftCols<3>() = Eigen::Matrix3d::Identity();
+  B.rightCols<3>() = -skew(T_world_node.translation());
+  const Eigen::Matrix3d C = B * covariance * B.transpose();
+  return 0.5 * (C + C.transpose());
+}
+
 PoseGraphMarginals poseGraphMarginals(const std::vector<Isometry3>& T_world_node,
                                       const std::vector<PoseConstraint>& edges, int num_threads) {
   const auto start = std::chrono::steady_clock::now();
@@ -86,7 +94,7 @@ PoseGraphMarginals poseGraphMarginals(const std::vector<Isometry3>& T_world_node
   options.num_threads = num_threads;
   ceres::Covariance covariance(options);
   if (!blocks.empty() && !covariance.Compute(blocks, &problem)) {
-    out.message = "the pose graph's Jacobian is rank deficient: no covariance can be claimed";
+    out.message = "Ceres could not compute the covariance (a rank-deficient Jacobian: some direction is unobservable)";
     out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return out;
   }

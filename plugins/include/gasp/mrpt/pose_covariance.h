@@ -25,7 +25,8 @@ Matrix6 yprJacobian(const Isometry3& T);
 std::optional<mrpt::poses::CPose3DPDFGaussian> poseWithInformation(const Isometry3& T, const Matrix6& information);
 
 /// T with covariance J C J^T, C over the left perturbation [t r] (the marginals of a pose graph,
-/// gasp/slam/pose_graph_marginals.h). Throws gasp::Error when C is not finite or not symmetric.
+/// gasp/slam/pose_graph_marginals.h). Throws gasp::Error when C is not finite or not symmetric,
+/// or when the result is not finite (pitch at +-90 deg, where yaw and roll are not defined).
 mrpt::poses::CPose3DPDFGaussian poseWithCovariance(const Isometry3& T, const Matrix6& covariance);
 
 }  // namespace gasp

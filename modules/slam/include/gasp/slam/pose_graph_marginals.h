@@ -25,10 +25,16 @@ struct PoseGraphMarginals {
   /// `computed` is false.
   std::vector<std::optional<Matrix6d>> covariance;
   std::vector<std::size_t> piece_root;  ///< per node, the node its covariance is relative to
-  bool computed = false;  ///< false when Ceres found the Jacobian rank deficient (see message)
+  bool computed = false;  ///< false when Ceres could not compute it (see message)
   std::string message;    ///< why not computed; empty otherwise
   double ms = 0.0;        ///< wall time
 };
+
+/// The covariance of the position (the translation of T_world_node) from a [t r] covariance of the
+/// left perturbation: Exp(xi) T moves the position by t + r x p, so C_p = B C B^T with
+/// B = [I, -[p]x]. (The [t] block alone is not the position's: a rotation about the world's
+/// origin moves the position with t = 0.)
+Eigen::Matrix3d positionCovariance(const Matrix6d& covariance, const Isometry3& T_world_node);
 
 /// Throws gasp::Error for the graphs optimizePoseGraph() refuses (a node or edge not finite, an
 /// edge out of range or linking a node to itself, an information not positive definite).
