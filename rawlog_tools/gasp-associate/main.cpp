@@ -87,6 +87,8 @@ int main(int argc, char** argv) {
   app.add_option("--theta-dev", theta_dev_deg, "match tolerance of the angle components [deg]")->capture_default_str()->check(gasp::tools::above(0));
   app.add_flag("!--no-mutual", params.association.mutual_check, "keep one-way best partners too (no mutual check)");
   app.add_flag("!--no-refine", params.refine, "RANSAC pose only (no point-to-plane refinement)");
+  app.add_flag("!--no-dense-line-search", params.dense_line_search,
+               "no line search at the dense rounds' last gate (docs/pipeline.md, \"Line search at the last gate\")");
   app.add_flag("!--no-slide-scan", params.slide_scan.enabled,
                "no slide scan of a pose whose patch problem was degenerate (docs/pipeline.md, \"Slide scan\")");
   app.add_option("--retry-area-factor", params.retry_area_factor,

@@ -175,6 +175,11 @@ int main(int argc, char** argv) {
                  "optical axis, on real data (gasp and gasp-norefine only; --pairs-csv's motion columns include the roll)")
       ->capture_default_str()
       ->check(CLI::IsMember({0, 90, 180, 270}));
+  bool reverse = false;
+  app.add_flag("--reverse", reverse,
+               "register each pair the other way round: target frame I, source frame I+skip (the direction "
+               "gasp-odometry registers a frame to its keyframe), scored against the inverse reference; with "
+               "--roll-target frame I is the one turned");
   double gt_offset = 0.0;
   app.add_option("--gt-offset", gt_offset,
                  "look ground truth up at depth timestamp + OFFSET [s] (nearest within 0.02 s; TUM fr1 depth lags "
@@ -219,6 +224,7 @@ int main(int argc, char** argv) {
       if (polish_reference || rgb_rotation_check)
         throw CLI::ValidationError("--roll-target: not with --polish-reference or --rgb-rotation-check");
     }
+    if (reverse && rgb_rotation_check) throw CLI::ValidationError("--reverse: not with --rgb-rotation-check");
     if (rgb_rotation_check && pairs_csv_path.empty())
       throw CLI::ValidationError("--rgb-rotation-check writes its columns to the --pairs-csv file: give --pairs-csv");
   } catch (const CLI::ParseError& e) {
@@ -349,10 +355,12 @@ int main(int argc, char** argv) {
     for (const auto& [i, skip] : all) {
       cache.dropBefore(i);
       const std::size_t j = i + skip;
+      // Source a, target b: frame i onto frame j, or with --reverse frame j onto frame i.
+      const std::size_t a = reverse ? j : i, b = reverse ? i : j;
       gasp::pairs::PairsCsvChecks checks;
-      checks.T_gt = *reference.pair(i, j);
+      checks.T_gt = *reference.pair(a, b);
       // The reference polished by GICP (once per pair): how far the depth pulls it, and where to.
-      if (polish_reference) checks.T_ref_icp = gasp::pairs::polishWithGicp(cache, i, j, base.superpixels, checks.T_gt);
+      if (polish_reference) checks.T_ref_icp = gasp::pairs::polishWithGicp(cache, a, b, base.superpixels, checks.T_gt);
 #ifdef GASP_HAVE_BASELINES
       if (rgb_rotation_check)
         checks.rgb = gasp::pairs::checkRgbRotation(ds, cache, reference, i, j, rgb_camera, epipolar);
@@ -362,7 +370,7 @@ int main(int argc, char** argv) {
           ++tally.no_rgb[{skip, method}];
           continue;
         }
-        const auto run = gasp::pairs::runMethod(method, i, j, cache, setup, nullptr, checks.T_gt, checks.T_ref_icp);
+        const auto run = gasp::pairs::runMethod(method, a, b, cache, setup, nullptr, checks.T_gt, checks.T_ref_icp);
         gasp::eval::PairOutcome o;
         o.skip = skip;
         o.from = i;
@@ -375,7 +383,7 @@ int main(int argc, char** argv) {
         tally.by_method[method].push_back(o);
         if (pairs_csv) {
           checks.T_est_icp = run.estimated && polish_reference
-                                 ? gasp::pairs::polishWithGicp(cache, i, j, base.superpixels, run.T_target_source)
+                                 ? gasp::pairs::polishWithGicp(cache, a, b, base.superpixels, run.T_target_source)
                                  : std::nullopt;
           pairs_csv << gasp::pairs::pairsCsvRow(o, method, run, checks) << '\n';
         }
@@ -391,6 +399,7 @@ int main(int argc, char** argv) {
     std::size_t total_pairs = 0;
     const auto rows = gasp::pairs::printPairsTable(skips, methods, tally, total_pairs);
     gasp::pairs::printStageTimes(methods, tally);
+    if (reverse) std::printf("direction: reversed (each pair's frame I+skip registered onto frame I)\n");
     if (roll_target != 0)
       std::printf("roll_target: %d deg clockwise (each pair's target view turned; scored against the rolled reference)\n",
                   roll_target);

@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 #include "gasp/core/pose.h"
 #include "gasp/core/tum_dataset.h"
 #include "gasp_test_data.h"
@@ -68,6 +70,11 @@ TEST(GaspAssociateProgram, PoseAndPictureOnARealPair) {
   ASSERT_TRUE(std::regex_search(none.output, m, std::regex("edge_sigma: ([0-9.]+) ")));
   EXPECT_LT(std::stod(m[1]), 0.005) << none.output;
   EXPECT_EQ(run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --model-error 0.01,-1").exit_code, 2);
+  // --no-dense-line-search: no step is shortened and the rounds are never stopped by it.
+  const ProgramRun plain = run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --no-dense-line-search");
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_TRUE(std::regex_search(plain.output, std::regex("dense_rounds: [0-9]+ \\(last step [0-9.]+ mm; line search: 0 steps shortened\\)\n")))
+      << plain.output;
 }
 
 // --rawlog: two scans of an MRPT rawlog (fr1_desk9 converted by gasp-tum2rawlog) give the same
@@ -358,6 +365,73 @@ TEST(GaspPairsProgram, RollTargetTurnsTheTargetViewAndItsReference) {
     EXPECT_EQ(r.exit_code, 2) << extra << ": " << r.output;
     EXPECT_NE(r.output.find("--roll-target: "), std::string::npos) << extra << ": " << r.output;
   }
+#endif
+}
+
+// --reverse: each pair registered the other way round (frame I+skip onto frame I, as the
+// odometry registers a frame to its keyframe), scored against the inverse reference: the two
+// directions' estimates are each other's inverse within a centimetre and a degree; with
+// --roll-target the turned view is frame I.
+TEST(GaspPairsProgram, ReverseRegistersEachPairTheOtherWayRound) {
+  GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
+  const std::string scratch = gasp::test::scratchDir();
+  const std::string args = "--tum " + dir + " --skips 2 --starts-every 3 --method gasp --pairs-csv ";
+  const auto poses = [](const std::string& csv) {
+    std::ifstream f(csv);
+    std::string line;
+    std::getline(f, line);
+    const auto header = splitCsv(line);
+    const auto col = [&](const std::string& name) {
+      return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+    };
+    std::vector<std::pair<gasp::Isometry3, std::pair<double, double>>> out;  // estimate, (t_err, r_err)
+    while (std::getline(f, line)) {
+      const auto c = splitCsv(line);
+      if (c[col("estimated")] != "1") continue;
+      gasp::Isometry3 T = gasp::Isometry3::Identity();
+      T.linear() = Eigen::Quaterniond(std::stod(c[col("qw")]), std::stod(c[col("qx")]), std::stod(c[col("qy")]),
+                                      std::stod(c[col("qz")]))
+                       .normalized()
+                       .toRotationMatrix();
+      T.translation() << std::stod(c[col("tx")]), std::stod(c[col("ty")]), std::stod(c[col("tz")]);
+      out.push_back({T, {std::stod(c[col("t_err_m")]), std::stod(c[col("r_err_deg")])}});
+    }
+    return out;
+  };
+  ProgramRun r = run("gasp-pairs", args + scratch + "/fwd.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("direction: reversed"), std::string::npos) << r.output;
+  r = run("gasp-pairs", args + scratch + "/rev.csv --reverse");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("direction: reversed (each pair's frame I+skip registered onto frame I)"), std::string::npos)
+      << r.output;
+  const auto fwd = poses(scratch + "/fwd.csv"), rev = poses(scratch + "/rev.csv");
+  ASSERT_EQ(fwd.size(), 3u);
+  ASSERT_EQ(rev.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_LT(rev[k].second.first, 0.03) << k;
+    EXPECT_LT(rev[k].second.second, 2.0) << k;
+    const gasp::Isometry3 loop = fwd[k].first * rev[k].first;  // T_j_i T_i_j
+    EXPECT_LT(loop.translation().norm(), 0.01) << k;
+    EXPECT_LT(Eigen::AngleAxisd(loop.rotation()).angle() * 180.0 / M_PI, 1.0) << k;
+    // Not the same pose twice: fr1_desk9 moves a few centimetres between the frames.
+    EXPECT_GT((fwd[k].first.translation() - rev[k].first.translation()).norm(), 0.5 * fwd[k].first.translation().norm())
+        << k;
+  }
+  // With the roll, frame I is turned: still scored against the matching reference.
+  r = run("gasp-pairs", args + scratch + "/rev180.csv --reverse --roll-target 180");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto rolled = poses(scratch + "/rev180.csv");
+  ASSERT_EQ(rolled.size(), 3u);
+  for (const auto& [T, err] : rolled) {
+    EXPECT_LT(err.first, 0.03);
+    EXPECT_LT(err.second, 2.0);
+    EXPECT_NEAR(Eigen::AngleAxisd(T.rotation()).angle() * 180.0 / M_PI, 180.0, 10.0);
+  }
+#ifdef GASP_HAVE_BASELINES
+  r = run("gasp-pairs", "--tum " + dir + " --skips 2 --reverse --rgb-rotation-check --pairs-csv " + scratch + "/x.csv");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--reverse: not with --rgb-rotation-check"), std::string::npos) << r.output;
 #endif
 }
 
