@@ -3,13 +3,12 @@
 #include <ceres/ceres.h>
 
 #include <chrono>
-#include <memory>
 #include <utility>
 
 #include "gasp/core/error.h"
 #include "gasp/core/pose_perturbation.h"
 #include "gasp/slam/pose_graph.h"
-#include "edge_residual.h"
+#include "pose_graph_problem.h"
 
 namespace gasp {
 
@@ -39,85 +38,52 @@ PoseGraphMarginals poseGraphMarginals(const std::vector<Isometry3>& T_world_node
                                       const std::vector<PoseConstraint>& edges, int num_threads) {
   const auto start = std::chrono::steady_clock::now();
   const std::size_t n = T_world_node.size();
-  detail::checkPoseGraph(T_world_node, edges);
   if (num_threads < 1) throw Error("pose graph marginals: num_threads must be positive");
+  detail::PoseGraphProblem graph(T_world_node, edges);  // the optimiser's problem
 
   PoseGraphMarginals out;
   out.covariance.assign(n, std::nullopt);
-  out.piece_root = pieceRoots(n, edges);
-
-  std::vector<Eigen::Quaterniond> q(n);
-  std::vector<Eigen::Vector3d> t(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    q[i] = Eigen::Quaterniond(T_world_node[i].rotation()).normalized();
-    t[i] = T_world_node[i].translation();
-  }
-  // The same problem as the optimiser's (pose_graph_optimizer.cpp), borrowing costs and manifold.
-  const auto manifold = std::make_unique<ceres::EigenQuaternionManifold>();
-  std::vector<std::unique_ptr<ceres::CostFunction>> costs;
-  costs.reserve(edges.size());
-  ceres::Problem::Options problem_options;
-  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  ceres::Problem problem(problem_options);
-  std::vector<bool> used(n, false);
-  for (const PoseConstraint& c : edges) {
-    costs.push_back(std::make_unique<ceres::AutoDiffCostFunction<detail::EdgeResidual, 6, 4, 3, 4, 3>>(
-        new detail::EdgeResidual(c.T_from_to, detail::sqrtInformation(c))));
-    problem.AddResidualBlock(costs.back().get(), nullptr, q[c.from].coeffs().data(), t[c.from].data(),
-                             q[c.to].coeffs().data(), t[c.to].data());
-    for (const std::size_t i : {c.from, c.to}) {
-      if (!used[i]) problem.SetManifold(q[i].coeffs().data(), manifold.get());
-      used[i] = true;
-    }
-  }
+  out.piece_root = graph.roots();
   std::vector<std::size_t> free_nodes;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!used[i]) continue;
-    if (out.piece_root[i] == i) {
-      problem.SetParameterBlockConstant(q[i].coeffs().data());
-      problem.SetParameterBlockConstant(t[i].data());
-    } else {
-      free_nodes.push_back(i);
-    }
-  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (graph.used(i) && !graph.fixed(i)) free_nodes.push_back(i);
 
   std::vector<std::pair<const double*, const double*>> blocks;
   blocks.reserve(3 * free_nodes.size());
   for (const std::size_t i : free_nodes) {
-    blocks.emplace_back(q[i].coeffs().data(), q[i].coeffs().data());
-    blocks.emplace_back(q[i].coeffs().data(), t[i].data());
-    blocks.emplace_back(t[i].data(), t[i].data());
+    blocks.emplace_back(graph.q(i), graph.q(i));
+    blocks.emplace_back(graph.q(i), graph.t(i));
+    blocks.emplace_back(graph.t(i), graph.t(i));
   }
   ceres::Covariance::Options options;
   options.algorithm_type = ceres::SPARSE_QR;
   options.num_threads = num_threads;
   ceres::Covariance covariance(options);
-  if (!blocks.empty() && !covariance.Compute(blocks, &problem)) {
+  if (!blocks.empty() && !covariance.Compute(blocks, &graph.problem())) {
     out.message = "Ceres could not compute the covariance (a rank-deficient Jacobian: some direction is unobservable)";
     out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return out;
   }
   for (std::size_t i = 0; i < n; ++i)
-    if (used[i] && out.piece_root[i] == i) out.covariance[i] = Matrix6d::Zero();
+    if (graph.fixed(i)) out.covariance[i] = Matrix6d::Zero();
   for (const std::size_t i : free_nodes) {
     // Ambient blocks (quaternion x y z w, translation), row-major as Ceres writes them.
     Eigen::Matrix<double, 4, 4, Eigen::RowMajor> C_qq;
     Eigen::Matrix<double, 4, 3, Eigen::RowMajor> C_qt;
     Eigen::Matrix<double, 3, 3, Eigen::RowMajor> C_tt;
-    covariance.GetCovarianceBlock(q[i].coeffs().data(), q[i].coeffs().data(), C_qq.data());
-    covariance.GetCovarianceBlock(q[i].coeffs().data(), t[i].data(), C_qt.data());
-    covariance.GetCovarianceBlock(t[i].data(), t[i].data(), C_tt.data());
+    covariance.GetCovarianceBlock(graph.q(i), graph.q(i), C_qq.data());
+    covariance.GetCovarianceBlock(graph.q(i), graph.t(i), C_qt.data());
+    covariance.GetCovarianceBlock(graph.t(i), graph.t(i), C_tt.data());
     // z = [dt; omega] with omega = M dq; then xi = [dt + [t]x omega; omega] (Exp(xi) T moves
     // the translation by omega x t + rho, so rho = dt - omega x t).
-    const Eigen::Matrix<double, 3, 4> M = leftRotationOfQuaternion(q[i]);
+    const Eigen::Matrix<double, 3, 4> M = leftRotationOfQuaternion(graph.quaternion(i));
     Matrix6d C_z;
     C_z.topLeftCorner<3, 3>() = C_tt;
     C_z.topRightCorner<3, 3>() = (M * C_qt).transpose();
     C_z.bottomLeftCorner<3, 3>() = M * C_qt;
     C_z.bottomRightCorner<3, 3>() = M * C_qq * M.transpose();
     Matrix6d A = Matrix6d::Identity();
-    A.topRightCorner<3, 3>() = skew(t[i]);
+    A.topRightCorner<3, 3>() = skew(graph.translation(i));
     const Matrix6d C = A * C_z * A.transpose();
     out.covariance[i] = 0.5 * (C + C.transpose());
   }
