@@ -119,16 +119,25 @@ def read_run(spec, gt):
         missing = [k for k in need if k not in (reader.fieldnames or [])]
         if missing:
             fail('%s has no column %s (not a gasp-slam --marginals-csv?)' % (marg_path, missing[0]))
-        rows = list(reader)
+        rows = []
+        for n, r in enumerate(reader, 2):
+            try:
+                row = {'frame': int(r['frame']), 'root': int(r['root']), 'timestamp': float(r['timestamp']),
+                       'C': [[float(r['c%d%d' % (i, k)]) for k in range(6)] for i in range(6)]}
+            except (TypeError, ValueError):
+                fail('%s:%d: frame, root, timestamp and c00..c55 must be numbers' % (marg_path, n))
+            if not all(math.isfinite(v) for line in row['C'] for v in line) or not math.isfinite(row['timestamp']):
+                fail('%s:%d: a covariance entry or the timestamp is not finite' % (marg_path, n))
+            rows.append(row)
     stamps = {}
     for r in rows:
-        stamps[int(r['frame'])] = float(r['timestamp'])
+        stamps[r['frame']] = r['timestamp']
     points = []
     for r in rows:
-        frame, root = int(r['frame']), int(r['root'])
+        frame, root = r['frame'], r['root']
         if frame == root or root not in stamps:
             continue
-        t, t_root = float(r['timestamp']), stamps[root]
+        t, t_root = r['timestamp'], stamps[root]
         est, est_root = nearest(traj, t, 1e-4), nearest(traj, t_root, 1e-4)
         g, g_root = nearest(gt, t, 0.02), nearest(gt, t_root, 0.02)
         if None in (est, est_root, g, g_root):
@@ -137,8 +146,7 @@ def read_run(spec, gt):
         d = [g[1][k] - g_root[1][k] for k in range(3)]
         t_ref = [a + b for a, b in zip(mat_vec(est_root[0], mat_t_vec(g_root[0], d)), est_root[1])]
         e = [est[1][k] - t_ref[k] for k in range(3)]
-        C6 = [[float(r['c%d%d' % (i, k)]) for k in range(6)] for i in range(6)]
-        Cp = position_covariance(C6, est[1])
+        Cp = position_covariance(r['C'], est[1])
         x = solve3(Cp, e)
         if x is None:
             continue
