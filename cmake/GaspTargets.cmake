@@ -1,4 +1,6 @@
-# Helpers shared by every GASP target: warnings, the gasp:: alias, installation.
+# Helpers shared by every GASP target: warnings, sanitizers, the gasp:: alias, installation.
+
+include(GaspSanitize)
 
 function(gasp_set_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor
@@ -27,6 +29,7 @@ function(gasp_add_library name)
   target_link_libraries(${target} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
   target_compile_features(${target} PUBLIC cxx_std_17)
   gasp_set_warnings(${target})
+  gasp_set_sanitizers(${target})
   install(TARGETS ${target} EXPORT gaspTargets
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -40,5 +43,6 @@ function(gasp_add_program name)
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS})
   gasp_set_warnings(${name})
+  gasp_set_sanitizers(${name})
   install(TARGETS ${name} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endfunction()
