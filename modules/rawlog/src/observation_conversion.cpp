@@ -221,7 +221,10 @@ RgbdFrame frameFromObservation(const mrpt::obs::CObservation3DRangeScan& obs, co
   }
   // A pose with NaN would compare unequal to itself ("another sensorPose than the first").
   for (const auto* pose : {&obs.sensorPose, &obs.relativePoseIntensityWRTDepth}) {
-    const auto m = pose->getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>().asEigen();
+    // The matrix held here: asEigen() of the temporary would map memory freed at the end of
+    // the statement (ASan: stack-use-after-scope, found by fuzz_rawlog).
+    const auto matrix = pose->getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>();
+    const auto m = matrix.asEigen();
     if (!m.allFinite() || m.block<3, 1>(0, 3).cwiseAbs().maxCoeff() > 1e8)
       throw Error(what + ": " + (pose == &obs.sensorPose ? "sensorPose" : "relativePoseIntensityWRTDepth") +
                   " is not finite or beyond 1e8 m");
