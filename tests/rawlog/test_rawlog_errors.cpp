@@ -471,3 +471,43 @@ TEST(RawlogReader, ObservationClassesOfMrptMapsAreKnownToEveryReader) {
   EXPECT_TRUE(contains(msg, "no CObservation3DRangeScan in the file (it holds 1 x CObservationRotatingScan)")) << msg;
   EXPECT_FALSE(contains(msg, "does not know")) << msg;
 }
+
+// Crash inputs found by fuzz/fuzz_rawlog (docs/experiments/2026-11-28-fuzzing.md), kept in
+// tests/rawlog/data: rawlogs of 32 x 24 frames with one corrupted size field, which MRPT allocated
+// from before reading what follows (MRPT's serialisation has no length prefix). Before the size
+// check (object_size_check.h) the range image of 480 x 16712320 pixels segfaulted (issue 44: a
+// byte flipped at offset 171), the 1370953473 points ended in std::bad_alloc thrown through
+// noexcept (abort), the sensory frame's count in a bad_alloc, the camera name in a 4 GB string.
+// Each is now a gasp::Error naming the file, the object and the field, gzip-compressed or not.
+TEST(RawlogErrors, CorruptSizeFieldsAreErrorsNamingTheObject) {
+  const std::filesystem::path data = std::filesystem::path(__FILE__).parent_path() / "data";
+  const struct {
+    const char* file;
+    const char* expected;
+  } cases[] = {
+      {"range_image_size_flipped.rawlog",
+       "object #0 (at byte 0 of 13479): corrupt or truncated: CObservation3DRangeScan: range image of 480 x 16712320 pixels needs "
+       "16043827200 bytes but 13306 bytes remain in the stream"},
+      {"point_count_flipped.rawlog",
+       "object #0 (at byte 0 of 13479): corrupt or truncated: CObservation3DRangeScan: 1370953473 3D points need 21935255568 bytes"},
+      {"sensory_frame_count_flipped.rawlog",
+       "object #1 (at byte 35 of 13677): corrupt or truncated: CSensoryFrame claims 4278190081 objects but 13612 bytes remain"},
+      {"camera_name_length_flipped.rawlog",
+       "object #5 (at byte 4485 of 6675): corrupt or truncated: CObservation3DRangeScan: cameraParamsIntensity camera name claims "
+       "4025563904 bytes but 165 bytes remain"},
+  };
+  const std::string dir = gasp::test::scratchDir();
+  for (const auto& c : cases) {
+    const std::string plain = (data / c.file).string();
+    EXPECT_PRED2(contains, readError(plain), "rawlog '" + plain + "': " + c.expected) << c.file;
+    // The same content gzip-compressed: its length comes from the zlib stream, not the file size.
+    std::ifstream in(plain, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string gz = dir + "/" + c.file;
+    {
+      mrpt::io::CFileGZOutputStream out(gz);
+      out.Write(bytes.data(), bytes.size());
+    }
+    EXPECT_PRED2(contains, readError(gz), "rawlog '" + gz + "': " + c.expected) << c.file << " (gzip)";
+  }
+}

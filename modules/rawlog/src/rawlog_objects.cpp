@@ -8,13 +8,17 @@
 #include <exception>
 #include <filesystem>
 
+#include "content_scan.h"
 #include "gasp/core/error.h"
-#include "gzip_content.h"
+#include "lookahead_stream.h"
+#include "object_size_check.h"
 
 namespace gasp {
 
 struct RawlogObjects::Impl {
   mrpt::io::CFileGZInputStream file;
+  detail::LookaheadStream stream{file};  ///< what MRPT reads: the file, its next bytes checked first
+  detail::ContentScan content;           ///< the content's length (and damage), scanned at open
   bool at_end = false;
 };
 
@@ -54,6 +58,9 @@ RawlogObjects::RawlogObjects(const std::string& path) : path_(path), impl_(std::
   } catch (const std::exception& e) {
     throw Error("rawlog '" + path + "': cannot open the file: " + e.what());
   }
+  // The content's length bounds every size an object may claim (object_size_check.h). A damaged
+  // gzip stream is reported where MRPT's reading ends, after the objects before the damage.
+  impl_->content = detail::scanContent(path);
 }
 
 RawlogObjects::~RawlogObjects() = default;
@@ -63,15 +70,23 @@ RawlogObjects& RawlogObjects::operator=(RawlogObjects&&) noexcept = default;
 mrpt::serialization::CSerializable::Ptr RawlogObjects::next() {
   while (!impl_->at_end) {
     mrpt::serialization::CSerializable::Ptr object;
-    const std::uint64_t start = impl_->file.getPosition();  // of the object, in the content
+    const std::uint64_t start = impl_->stream.getPosition();  // of the object, in the content
+    const std::uint64_t length = impl_->content.length;
+    // Sizes MRPT would allocate from, checked against what the stream holds (no length prefix).
+    const std::string problem = detail::ObjectSizeCheck(impl_->stream, length > start ? length - start : 0).run();
+    if (!problem.empty()) {
+      impl_->at_end = true;
+      throw Error("rawlog '" + path_ + "': object #" + std::to_string(objects_read_) + " (at byte " +
+                  std::to_string(start) + " of " + std::to_string(length) + "): corrupt or truncated: " + problem);
+    }
     try {
-      auto archive = mrpt::serialization::archiveFrom(impl_->file);
+      auto archive = mrpt::serialization::archiveFrom(impl_->stream);
       object = archive.ReadObject();
     } catch (const mrpt::serialization::CExceptionEOF&) {
       // The end, if the object was to start where the content ends. MRPT also throws "EOF" for
       // an object cut short, and CFileGZInputStream ends early at a damaged gzip stream.
       impl_->at_end = true;
-      const std::uint64_t length = detail::readGzipContent(path_, "rawlog").length;  // throws for a damaged gzip stream
+      if (!impl_->content.error.empty()) throw Error("rawlog '" + path_ + "': " + impl_->content.error);
       if (start != length)
         throw Error("rawlog '" + path_ + "': corrupt or truncated stream after " + std::to_string(objects_read_) +
                     " objects: the next object, at byte " + std::to_string(start) + " of " + std::to_string(length) +

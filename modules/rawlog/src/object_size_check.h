@@ -1,0 +1,229 @@
+#pragma once
+/// \file object_size_check.h (private) The size fields of a rawlog object checked against the
+/// bytes that remain in the stream, before MRPT deserialises it.
+///
+/// MRPT's serialisation has no length prefix: CObservation3DRangeScan::serializeFrom() reads
+/// `rows` and `cols` and calls rangeImage_setSize(rows, cols) before it reads the pixels, so one
+/// corrupted size field makes it allocate gigabytes or, the product overflowing Eigen's int
+/// sizes, crash (issue 44: a byte flipped at offset 171 of a rawlog segfaulted). A count or an
+/// image that needs more bytes than the rest of the stream holds cannot be right, so it is
+/// refused here. The check walks the object's header fields as MRPT 2.5 writes them (an object:
+/// 0x80 | name length, class name, version byte, fields, 0x88) and looks only at what MRPT will
+/// allocate from:
+///  - CObservation3DRangeScan (versions 9 and 10, MRPT 2.x): the 3D points' count and the range
+///    image's rows x cols (and each side on its own, Eigen's sizes being int);
+///    then the intensity and confidence images (CImage version 9: raw sizes, JPEG byte count,
+///    external file name), the two cameras (TCamera version 6: camera name), the relative pose,
+///    the sensor label, the external file names and the extra range layers (version 10);
+///  - CSensoryFrame (version 2) and CActionCollection (version 0): the count of objects, and the
+///    first object of a sensory frame as above (GASP writes one scan per frame);
+/// A class, a version or a nested layout it does not know (pixel labels, a JPEG's own header) is
+/// left to MRPT as before: it does not make a valid file an error.
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+
+#include "lookahead_stream.h"
+
+namespace gasp::detail {
+
+class ObjectSizeCheck {
+ public:
+  /// `remaining`: the bytes of the content from the read position to its end.
+  ObjectSizeCheck(LookaheadStream& stream, std::uint64_t remaining) : s_(stream), remaining_(remaining) {}
+
+  /// "" when the sizes fit (or the object is not one it knows), else what does not fit (a corrupt
+  /// size field, or the file cut inside the object).
+  std::string run() {
+    cursor_ = 0;
+    return object(0);
+  }
+
+ private:
+  LookaheadStream& s_;
+  std::uint64_t remaining_;
+  std::uint64_t cursor_ = 0;  ///< bytes after the read position looked at so far
+
+  std::uint64_t left() const { return remaining_ > cursor_ ? remaining_ - cursor_ : 0; }
+
+  template <class T>
+  bool read(T& value) {
+    if (s_.peek(cursor_, &value, sizeof(T)) != sizeof(T)) return false;  // cut short: MRPT reports it
+    cursor_ += sizeof(T);
+    return true;
+  }
+  bool skip(std::uint64_t bytes) {
+    if (bytes > left()) return false;
+    cursor_ += bytes;
+    return true;
+  }
+  /// An object header: false when it is not one (null objects included); else its class name.
+  bool header(std::string& name, std::uint8_t& version) {
+    std::uint8_t lead = 0;
+    if (!read(lead) || (lead & 0x80) == 0 || (lead & 0x7f) == 0) return false;
+    name.assign(lead & 0x7f, '\0');
+    if (s_.peek(cursor_, name.data(), name.size()) != name.size()) return false;
+    cursor_ += name.size();
+    return read(version);
+  }
+  static std::string bytes(std::uint64_t n) { return std::to_string(n) + " bytes"; }
+
+  std::string object(int depth) {
+    std::string name;
+    std::uint8_t version = 0;
+    if (!header(name, version)) return "";
+    if (name == "mrpt::obs::CObservation3DRangeScan") return rangeScan(version);
+    if ((name == "mrpt::obs::CSensoryFrame" && version == 2) || (name == "mrpt::obs::CActionCollection" && version == 0)) {
+      std::uint32_t n = 0;
+      if (!read(n)) return "";
+      if (n > left())  // every object takes at least one byte
+        return name.substr(name.rfind(':') + 1) + " claims " + std::to_string(n) + " objects but " + bytes(left()) +
+               " remain in the stream";
+      if (n > 0 && depth == 0 && name == "mrpt::obs::CSensoryFrame") return object(depth + 1);
+    }
+    return "";
+  }
+
+  std::string rangeScan(std::uint8_t version) {
+    if (version < 9 || version > 10) return "";  // older layouts: left to MRPT
+    float max_range = 0;
+    if (!read(max_range)) return "";
+    std::string pose;
+    std::uint8_t pose_version = 0;
+    if (!header(pose, pose_version) || pose != "mrpt::poses::CPose3D" || pose_version != 3) return "";
+    std::uint8_t end = 0;
+    if (!skip(12 * sizeof(double)) || !read(end) || end != 0x88) return "";
+    std::uint8_t has_points = 0;
+    if (!read(has_points)) return "";
+    const std::string what = "CObservation3DRangeScan: ";
+    if (has_points) {
+      std::uint32_t n = 0;
+      if (!read(n)) return "";
+      const std::uint64_t need = std::uint64_t{n} * (3 * sizeof(float) + 2 * sizeof(std::uint16_t));
+      if (need > left())
+        return what + std::to_string(n) + " 3D points need " + bytes(need) + " but " + bytes(left()) + " remain";
+      skip(need);
+    }
+    std::uint8_t has_range = 0;
+    float range_units = 0;
+    if (!read(has_range) || !read(range_units)) return "";
+    if (has_range) {
+      if (auto problem = rangeImage(what + "range image"); !problem.empty()) return problem;
+    }
+    std::string problem;
+    std::uint8_t has_image = 0;
+    if (!read(has_image)) return "";
+    if (has_image && (!image(what + "intensity image", problem) || !problem.empty())) return problem;
+    if (!read(has_image)) return "";
+    if (has_image && (!image(what + "confidence image", problem) || !problem.empty())) return problem;
+    for (const char* camera : {"cameraParams", "cameraParamsIntensity"})
+      if (!this->camera(what + camera, problem) || !problem.empty()) return problem;
+    if (!header(name_, version_) || name_ != "mrpt::poses::CPose3D" || version_ != 3) return "";
+    if (!skip(12 * sizeof(double)) || !read(end) || end != 0x88) return "";
+    if (!skip(sizeof(float) + sizeof(std::uint64_t))) return "";  // stdError, timestamp
+    if (!string(what + "sensorLabel", problem) || !problem.empty()) return problem;
+    for (const char* file : {"points3D external file", "rangeImage external file"}) {
+      if (!skip(1) || !string(what + file, problem) || !problem.empty()) return problem;
+    }
+    std::uint8_t has_labels = 0;
+    if (!skip(2) || !read(has_labels) || has_labels) return "";  // range_is_depth, channel; labels: MRPT's
+    if (version < 10) return "";
+    std::uint8_t layers = 0;
+    if (!read(layers)) return "";
+    for (int i = 0; i < layers; ++i) {
+      if (!string(what + "range layer name", problem) || !problem.empty()) return problem;
+      if (auto layer = rangeImage(what + "range layer #" + std::to_string(i)); !layer.empty()) return layer;
+    }
+    return "";
+  }
+
+  std::string name_;        ///< scratch for nested headers
+  std::uint8_t version_ = 0;
+
+  /// rows, cols (uint32) and rows x cols uint16 values; "" when they fit (skipped) or cannot be read.
+  std::string rangeImage(const std::string& what) {
+    std::uint32_t rows = 0, cols = 0;
+    if (!read(rows) || !read(cols)) return "";
+    const std::uint64_t need = std::uint64_t{rows} * cols * sizeof(std::uint16_t);
+    const std::uint64_t max_side = std::numeric_limits<std::int32_t>::max();
+    if (need > left() || rows > max_side || cols > max_side)
+      return what + " of " + std::to_string(rows) + " x " + std::to_string(cols) + " pixels needs " + bytes(need) +
+             " but " + bytes(left()) + " remain in the stream";
+    skip(need);
+    return "";
+  }
+
+  /// A string (uint32 length, bytes). False when it cannot be followed (problem set when too long).
+  bool string(const std::string& what, std::string& problem) {
+    std::uint32_t n = 0;
+    if (!read(n)) return false;
+    if (n > left()) {
+      problem = what + " claims " + bytes(n) + " but " + bytes(left()) + " remain in the stream";
+      return false;
+    }
+    return skip(n);
+  }
+
+  /// A mrpt::img::CImage object (version 9). False when it cannot be followed.
+  bool image(const std::string& what, std::string& problem) {
+    std::string name;
+    std::uint8_t version = 0;
+    if (!header(name, version) || name != "mrpt::img::CImage" || version != 9) return false;
+    std::uint8_t external = 0, colour = 0;
+    if (!read(external)) return false;
+    if (external) return string(what + " file name", problem) && read(external) && external == 0x88;
+    if (!read(colour)) return false;
+    std::int32_t width = 0, height = 0;
+    if (!read(width) || !read(height)) return false;
+    const std::string size = " of " + std::to_string(width) + " x " + std::to_string(height) + " pixels";
+    if (!colour) {  // grey: width, height, origin, byte count, depth, zip flag, bytes
+      std::int32_t origin = 0, count = 0, depth = 0;
+      std::uint8_t zip = 0;
+      if (!read(origin) || !read(count) || !read(depth) || !read(zip)) return false;
+      const std::uint64_t pixels = width < 0 || height < 0 ? 0 : std::uint64_t(width) * std::uint64_t(height);
+      if (width < 0 || height < 0 || count < 0 || pixels > left() || std::uint64_t(count) > left()) {
+        problem = what + size + " (" + bytes(std::uint64_t(std::max(count, 0))) + ") needs more than the " +
+                  bytes(left()) + " that remain in the stream";
+        return false;
+      }
+      if (zip) return false;  // MRPT refuses it
+      return skip(std::uint64_t(count)) && read(external) && external == 0x88;
+    }
+    if (width >= 1 && height >= 1) {  // JPEG: byte count and bytes (the JPEG's own header: OpenCV's)
+      std::uint32_t n = 0;
+      if (!read(n)) return false;
+      if (n > left()) {
+        problem = what + " (JPEG) claims " + bytes(n) + " but " + bytes(left()) + " remain in the stream";
+        return false;
+      }
+      return skip(n) && read(external) && external == 0x88;
+    }
+    if (width < 0 && height < 0) {  // raw BGR, the sizes negated
+      const std::uint64_t need = width == std::numeric_limits<std::int32_t>::min() ||
+                                         height == std::numeric_limits<std::int32_t>::min()
+                                     ? std::numeric_limits<std::uint64_t>::max()
+                                     : std::uint64_t(-std::int64_t{width}) * std::uint64_t(-std::int64_t{height}) * 3;
+      if (need > left()) {
+        problem = what + " of " + std::to_string(-std::int64_t{width}) + " x " + std::to_string(-std::int64_t{height}) +
+                  " BGR pixels needs " + (need == std::numeric_limits<std::uint64_t>::max() ? std::string("more than 2^64 bytes") : bytes(need)) +
+                  " but " + bytes(left()) + " remain in the stream";
+        return false;
+      }
+      return skip(need) && read(external) && external == 0x88;
+    }
+    return false;  // an empty colour image of one negative side: MRPT's (OpenCV refuses it)
+  }
+
+  /// A mrpt::img::TCamera object (version 6). False when it cannot be followed.
+  bool camera(const std::string& what, std::string& problem) {
+    std::string name;
+    std::uint8_t version = 0, end = 0;
+    if (!header(name, version) || name != "mrpt::img::TCamera" || version != 6) return false;
+    if (!skip(13 * sizeof(double) + 2 * sizeof(std::uint32_t))) return false;  // focal length, 8 dist, fx fy cx cy, size
+    return string(what + " camera name", problem) && skip(1) && read(end) && end == 0x88;
+  }
+};
+
+}  // namespace gasp::detail
