@@ -12,13 +12,15 @@
 /// allocate from:
 ///  - CObservation3DRangeScan (versions 9 and 10, MRPT 2.x): the 3D points' count and the range
 ///    image's rows x cols (and each side on its own, Eigen's sizes being int);
-///    then the intensity and confidence images (CImage version 9: raw sizes, JPEG byte count,
-///    external file name), the two cameras (TCamera version 6: camera name), the relative pose,
+///    then the intensity and confidence images (CImage versions 6-9: raw sizes, JPEG byte count,
+///    external file name), the two cameras (TCamera versions 4-6: camera name), the relative pose,
 ///    the sensor label, the external file names and the extra range layers (version 10);
 ///  - CSensoryFrame (version 2) and CActionCollection (version 0): the count of objects, and the
 ///    first object of a sensory frame as above (GASP writes one scan per frame);
 /// A class, a version or a nested layout it does not know (pixel labels, a JPEG's own header) is
-/// left to MRPT as before: it does not make a valid file an error.
+/// left to MRPT as before: it does not make a valid file an error. Inside a version 9/10 scan
+/// (MRPT 2), a pose, camera or image of a version MRPT 2 does not write is an error: MRPT would
+/// read the sizes that follow from the wrong bytes. (The poses: CPose3D versions 2 and 3.)
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -90,14 +92,11 @@ class ObjectSizeCheck {
     if (version < 9 || version > 10) return "";  // older layouts: left to MRPT
     float max_range = 0;
     if (!read(max_range)) return "";
-    std::string pose;
-    std::uint8_t pose_version = 0;
-    if (!header(pose, pose_version) || pose != "mrpt::poses::CPose3D" || pose_version != 3) return "";
-    std::uint8_t end = 0;
-    if (!skip(12 * sizeof(double)) || !read(end) || end != 0x88) return "";
+    const std::string what = "CObservation3DRangeScan: ";
+    std::string problem;
+    if (!pose(what + "sensorPose", problem)) return problem;
     std::uint8_t has_points = 0;
     if (!read(has_points)) return "";
-    const std::string what = "CObservation3DRangeScan: ";
     if (has_points) {
       std::uint32_t n = 0;
       if (!read(n)) return "";
@@ -109,10 +108,7 @@ class ObjectSizeCheck {
     std::uint8_t has_range = 0;
     float range_units = 0;
     if (!read(has_range) || !read(range_units)) return "";
-    if (has_range) {
-      if (auto problem = rangeImage(what + "range image"); !problem.empty()) return problem;
-    }
-    std::string problem;
+    if (has_range && !(problem = rangeImage(what + "range image")).empty()) return problem;
     std::uint8_t has_image = 0;
     if (!read(has_image)) return "";
     if (has_image && (!image(what + "intensity image", problem) || !problem.empty())) return problem;
@@ -120,8 +116,7 @@ class ObjectSizeCheck {
     if (has_image && (!image(what + "confidence image", problem) || !problem.empty())) return problem;
     for (const char* camera : {"cameraParams", "cameraParamsIntensity"})
       if (!this->camera(what + camera, problem) || !problem.empty()) return problem;
-    if (!header(name_, version_) || name_ != "mrpt::poses::CPose3D" || version_ != 3) return "";
-    if (!skip(12 * sizeof(double)) || !read(end) || end != 0x88) return "";
+    if (!pose(what + "relativePoseIntensityWRTDepth", problem)) return problem;
     if (!skip(sizeof(float) + sizeof(std::uint64_t))) return "";  // stdError, timestamp
     if (!string(what + "sensorLabel", problem) || !problem.empty()) return problem;
     for (const char* file : {"points3D external file", "rangeImage external file"}) {
@@ -134,13 +129,29 @@ class ObjectSizeCheck {
     if (!read(layers)) return "";
     for (int i = 0; i < layers; ++i) {
       if (!string(what + "range layer name", problem) || !problem.empty()) return problem;
-      if (auto layer = rangeImage(what + "range layer #" + std::to_string(i)); !layer.empty()) return layer;
+      if (!(problem = rangeImage(what + "range layer #" + std::to_string(i))).empty()) return problem;
     }
     return "";
   }
 
-  std::string name_;        ///< scratch for nested headers
-  std::uint8_t version_ = 0;
+  /// A nested object's version that no MRPT writing a version 9 or 10 scan (MRPT 2) writes: the
+  /// layout of what follows is unknown, and MRPT would read sizes from the wrong bytes. (MRPT
+  /// reads a nested object of a known type without checking its class name, so neither does this.)
+  bool unknownVersion(const std::string& what, const char* type, std::uint8_t version, std::string& problem) {
+    problem = what + ": a " + type + " of serialisation version " + std::to_string(version) +
+              ", which MRPT 2 does not write in a version 9 or 10 scan (a corrupt byte)";
+    return false;
+  }
+
+  /// A mrpt::poses::CPose3D object (version 2: 7 doubles, 3: 12 doubles). False when it cannot be
+  /// followed (problem set when it is not a layout MRPT 2 writes).
+  bool pose(const std::string& what, std::string& problem) {
+    std::string name;
+    std::uint8_t version = 0, end = 0;
+    if (!header(name, version)) return false;
+    if (version != 2 && version != 3) return unknownVersion(what, "CPose3D", version, problem);
+    return skip((version == 2 ? 7 : 12) * sizeof(double)) && read(end) && end == 0x88;
+  }
 
   /// rows, cols (uint32) and rows x cols uint16 values; "" when they fit (skipped) or cannot be read.
   std::string rangeImage(const std::string& what) {
@@ -166,22 +177,24 @@ class ObjectSizeCheck {
     return skip(n);
   }
 
-  /// A mrpt::img::CImage object (version 9). False when it cannot be followed.
+  /// A mrpt::img::CImage object (versions 6 to 9). False when it cannot be followed (problem set
+  /// when a size does not fit or the version is not one MRPT 2 writes).
   bool image(const std::string& what, std::string& problem) {
     std::string name;
     std::uint8_t version = 0;
-    if (!header(name, version) || name != "mrpt::img::CImage" || version != 9) return false;
+    if (!header(name, version)) return false;
+    if (version < 6 || version > 9) return unknownVersion(what, "CImage", version, problem);
     std::uint8_t external = 0, colour = 0;
     if (!read(external)) return false;
     if (external) return string(what + " file name", problem) && read(external) && external == 0x88;
     if (!read(colour)) return false;
-    std::int32_t width = 0, height = 0;
-    if (!read(width) || !read(height)) return false;
+    std::int32_t width = 1, height = 1;
+    if ((!colour || version >= 7) && (!read(width) || !read(height))) return false;  // colour before 7: JPEG
     const std::string size = " of " + std::to_string(width) + " x " + std::to_string(height) + " pixels";
-    if (!colour) {  // grey: width, height, origin, byte count, depth, zip flag, bytes
+    if (!colour) {  // grey: width, height, origin, byte count, depth (version 9), zip flag, bytes
       std::int32_t origin = 0, count = 0, depth = 0;
       std::uint8_t zip = 0;
-      if (!read(origin) || !read(count) || !read(depth) || !read(zip)) return false;
+      if (!read(origin) || !read(count) || (version >= 9 && !read(depth)) || !read(zip)) return false;
       const std::uint64_t pixels = width < 0 || height < 0 ? 0 : std::uint64_t(width) * std::uint64_t(height);
       if (width < 0 || height < 0 || count < 0 || pixels > left() || std::uint64_t(count) > left()) {
         problem = what + size + " (" + bytes(std::uint64_t(std::max(count, 0))) + ") needs more than the " +
@@ -216,13 +229,15 @@ class ObjectSizeCheck {
     return false;  // an empty colour image of one negative side: MRPT's (OpenCV refuses it)
   }
 
-  /// A mrpt::img::TCamera object (version 6). False when it cannot be followed.
+  /// A mrpt::img::TCamera object (versions 4 to 6). False when it cannot be followed.
   bool camera(const std::string& what, std::string& problem) {
     std::string name;
     std::uint8_t version = 0, end = 0;
-    if (!header(name, version) || name != "mrpt::img::TCamera" || version != 6) return false;
+    if (!header(name, version)) return false;
+    if (version < 4 || version > 6) return unknownVersion(what, "TCamera", version, problem);
     if (!skip(13 * sizeof(double) + 2 * sizeof(std::uint32_t))) return false;  // focal length, 8 dist, fx fy cx cy, size
-    return string(what + " camera name", problem) && skip(1) && read(end) && end == 0x88;
+    if (version >= 5 && !string(what + " camera name", problem)) return false;
+    return skip(version >= 6 ? 1 : 0) && read(end) && end == 0x88;
   }
 };
 
