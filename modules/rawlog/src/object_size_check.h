@@ -76,14 +76,17 @@ class ObjectSizeCheck {
     std::string name;
     std::uint8_t version = 0;
     if (!header(name, version)) return "";
-    if (name == "mrpt::obs::CObservation3DRangeScan") return rangeScan(version);
-    if ((name == "mrpt::obs::CSensoryFrame" && version == 2) || (name == "mrpt::obs::CActionCollection" && version == 0)) {
+    // MRPT finds the class by the name after the last "::" (the namespace may be anything).
+    const auto colon = name.rfind("::");
+    if (colon != std::string::npos) name = name.substr(colon + 2);
+    if (name == "CObservation3DRangeScan") return rangeScan(version);
+    if ((name == "CSensoryFrame" && version == 2) || (name == "CActionCollection" && version == 0)) {
       std::uint32_t n = 0;
       if (!read(n)) return "";
       if (n > left())  // every object takes at least one byte
-        return name.substr(name.rfind(':') + 1) + " claims " + std::to_string(n) + " objects but " + bytes(left()) +
+        return name + " claims " + std::to_string(n) + " objects but " + bytes(left()) +
                " remain in the stream";
-      if (n > 0 && depth == 0 && name == "mrpt::obs::CSensoryFrame") return object(depth + 1);
+      if (n > 0 && depth == 0 && name == "CSensoryFrame") return object(depth + 1);
     }
     return "";
   }
