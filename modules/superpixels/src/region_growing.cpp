@@ -119,8 +119,9 @@ int growPatches(int* L, const DepthLinks& links, const Eigen::Vector3f* points, 
     L[i] = label;
     ++m.pixels;
     ++grown;
+    const auto grown_label = label;  // a structured binding cannot be captured before C++20 (clang 14)
     links.forEachNeighbour(i, [&](int j) {
-      if (L[j] < 0) push(j, label);
+      if (L[j] < 0) push(j, grown_label);
     });
   }
   return grown;

@@ -277,9 +277,10 @@ int refineStepBorders(int* L, int count, SurfacePlanes sp, const std::vector<Pla
     const SurfacePlane& pa = sp.planes[static_cast<std::size_t>(key.first)];
     const SurfacePlane& pb = sp.planes[static_cast<std::size_t>(key.second)];
     for (std::size_t s = 0; s < region.size(); ++s) slot[static_cast<std::size_t>(region[s])] = static_cast<int>(s);
+    const auto planes = key;  // a structured binding cannot be captured before C++20 (clang 14)
     const auto sideOfPlane = [&](int l) -> std::int8_t {  // by the patch's plane
       const int q = sp.plane_of[static_cast<std::size_t>(l)];
-      return q == key.first ? 0 : (q == key.second ? 1 : -1);
+      return q == planes.first ? 0 : (q == planes.second ? 1 : -1);
     };
     side_of.resize(region.size());
     for (std::size_t s = 0; s < region.size(); ++s) side_of[s] = sideOfPlane(region[s]);
