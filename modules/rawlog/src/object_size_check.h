@@ -76,7 +76,9 @@ class ObjectSizeCheck {
     std::string name;
     std::uint8_t version = 0;
     if (!header(name, version)) return "";
-    // MRPT finds the class by the name after the last "::" (the namespace may be anything).
+    // MRPT finds the class by the name as a C string (up to a zero byte) after the last "::" (the
+    // namespace may be anything).
+    name.resize(std::min(name.size(), name.find('\0')));
     const auto colon = name.rfind("::");
     if (colon != std::string::npos) name = name.substr(colon + 2);
     if (name == "CObservation3DRangeScan") return rangeScan(version);
