@@ -480,7 +480,8 @@ TEST(RawlogReader, ObservationClassesOfMrptMapsAreKnownToEveryReader) {
 // noexcept (abort), the sensory frame's count in a bad_alloc, the camera name in a 4 GB string, a
 // sensor pose whose class name is garbled (MRPT reads it anyway) in a 92 GB range image, a
 // sensory frame whose namespace is garbled (MRPT finds the class by its last part) in a 2 GB deque,
-// likewise an action collection inside a sensory frame whose name has a zero byte after it.
+// likewise an action collection inside a sensory frame whose name has a zero byte after it, and a
+// sensory frame of serialisation version 0 (an ID and a timestamp before its count).
 // Each is now a gasp::Error naming the file, the object and the field, gzip-compressed or not.
 TEST(RawlogErrors, CorruptSizeFieldsAreErrorsNamingTheObject) {
   const std::filesystem::path data = std::filesystem::path(__FILE__).parent_path() / "data";
@@ -504,6 +505,9 @@ TEST(RawlogErrors, CorruptSizeFieldsAreErrorsNamingTheObject) {
       {"action_collection_name_with_zero.rawlog",  // a zero byte ends the name MRPT looks up
        "object #1 (at byte 35 of 278): corrupt or truncated: CActionCollection claims 2281701452 objects but 173 "
        "bytes remain"},
+      {"sensory_frame_version0_count.rawlog",  // version 0: an ID and a timestamp before the count
+       "object #1 (at byte 35 of 118): corrupt or truncated: CSensoryFrame claims 976909154 objects but 41 bytes "
+       "remain"},
       {"camera_name_length_flipped.rawlog",
        "object #5 (at byte 4485 of 6675): corrupt or truncated: CObservation3DRangeScan: cameraParamsIntensity camera name claims "
        "4025563904 bytes but 165 bytes remain"},

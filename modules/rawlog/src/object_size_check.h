@@ -15,7 +15,7 @@
 ///    then the intensity and confidence images (CImage versions 6-9: raw sizes, JPEG byte count,
 ///    external file name), the two cameras (TCamera versions 4-6: camera name), the relative pose,
 ///    the sensor label, the external file names and the extra range layers (version 10);
-///  - CSensoryFrame (version 2) and CActionCollection (version 0): the count of objects, and the
+///  - CSensoryFrame (versions 0-2) and CActionCollection (version 0): the count of objects, and the
 ///    first object of a sensory frame as above (GASP writes one scan per frame);
 /// A class, a version or a nested layout it does not know (pixel labels, a JPEG's own header) is
 /// left to MRPT as before: it does not make a valid file an error. Inside a version 9/10 scan
@@ -82,7 +82,9 @@ class ObjectSizeCheck {
     const auto colon = name.rfind("::");
     if (colon != std::string::npos) name = name.substr(colon + 2);
     if (name == "CObservation3DRangeScan") return rangeScan(version);
-    if ((name == "CSensoryFrame" && version == 2) || (name == "CActionCollection" && version == 0)) {
+    if ((name == "CSensoryFrame" && version <= 2) || (name == "CActionCollection" && version == 0)) {
+      // CSensoryFrame before version 2: an ID (uint32), in version 0 also a timestamp (uint64).
+      if (name == "CSensoryFrame" && !skip((version < 2 ? 4 : 0) + (version == 0 ? 8 : 0))) return "";
       std::uint32_t n = 0;
       if (!read(n)) return "";
       if (n > left())  // every object takes at least one byte
