@@ -2,12 +2,14 @@
 
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose3DPDFGaussian.h>
+#include <mrpt/serialization/CArchive.h>
 
 #include <string>
 
 #include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
 #include "gasp/mrpt/pose_covariance.h"
+#include "gasp/rawlog/gz_output_stream.h"
 #include "gasp/rawlog/observation_conversion.h"
 
 namespace gasp {
@@ -53,13 +55,20 @@ RgbdFrame withViewDepth(RgbdFrame frame, const DepthView& view) {
 }
 
 void saveSimpleMap(const mrpt::maps::CSimpleMap& map, const std::string& path) {
-  bool ok = false;
+  OutputFile file(path, "simple map");
+  saveSimpleMap(map, file);
+}
+
+void saveSimpleMap(const mrpt::maps::CSimpleMap& map, OutputFile& file) {
+  GzOutputStream stream(file, 1);  // gzip, as CSimpleMap::saveToFile() writes it
   try {
-    ok = map.saveToFile(path);
+    mrpt::serialization::archiveFrom(stream) << map;
+  } catch (const Error&) {
+    throw;
   } catch (const std::exception& e) {
-    throw Error("cannot write " + path + ": " + e.what());
+    throw Error("cannot write simple map '" + file.path() + "': " + exceptionMessage(e));
   }
-  if (!ok) throw Error("cannot write " + path);
+  stream.finish();
 }
 
 }  // namespace gasp

@@ -1,29 +1,32 @@
 // CSuperpixelMap::saveMetricMapRepresentationToFile: PLY of the patches, a text table, and a
 // .3Dscene of the visualisation for SceneViewer3D.
 #include <mrpt/core/exceptions.h>
+#include <mrpt/serialization/CArchive.h>
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/opengl/CSetOfObjects.h>
 
 #include <Eigen/Geometry>
 #include <cstdio>
-#include <fstream>
 #include <iomanip>
 
+#include "gasp/core/output_file.h"
 #include "gasp/mrpt/CSuperpixelMap.h"
+#include "gasp/rawlog/gz_output_stream.h"
 
 namespace gasp {
 
 namespace {
 
-std::ofstream openOrThrow(const std::string& path) {
-  std::ofstream f(path);
-  if (!f) THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: cannot write '%s'", path.c_str());
-  f.precision(9);
+/// Opened now, published whole by commit() (gasp/core/output_file.h); errors name the file.
+OutputFile openOutput(const std::string& path, const std::string& what) {
+  OutputFile f(path, what);
+  f.stream().precision(9);
   return f;
 }
 
 void writePly(const std::string& path, const std::vector<MapPatch>& patches) {
-  std::ofstream f = openOrThrow(path);
+  OutputFile file = openOutput(path, "superpixel map PLY");
+  std::ostream& f = file.stream();
   f << "ply\nformat ascii 1.0\n"
        "comment gasp::CSuperpixelMap surface patches in the map frame: centroid [m], unit normal, colour, "
        "area [m^2], source view and patch\n"
@@ -37,12 +40,13 @@ void writePly(const std::string& path, const std::vector<MapPatch>& patches) {
       << p.normal.y() << ' ' << p.normal.z() << ' ' << int(p.rgb[0]) << ' ' << int(p.rgb[1]) << ' ' << int(p.rgb[2])
       << ' ' << p.area_m2 << ' ' << p.view << ' ' << p.patch << '\n';
   }
-  if (!f) THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: error writing '%s'", path.c_str());
+  file.commit();
 }
 
 void writeTable(const std::string& path, const std::vector<SuperpixelMapView>& views,
                 const std::vector<MapPatch>& patches) {
-  std::ofstream f = openOrThrow(path);
+  OutputFile file = openOutput(path, "superpixel map table");
+  std::ostream& f = file.stream();
   f << "# gasp::CSuperpixelMap: " << views.size() << " views, " << patches.size() << " patches (map frame)\n";
   for (std::size_t i = 0; i < views.size(); ++i) {
     const auto& t = views[i].T_map_camera;
@@ -59,7 +63,7 @@ void writeTable(const std::string& path, const std::vector<SuperpixelMapView>& v
       << p.normal.x() << ' ' << p.normal.y() << ' ' << p.normal.z() << ' ' << p.area_m2 << ' ' << s.pixel_count
       << ' ' << s.planarity << ' ' << int(p.rgb[0]) << ' ' << int(p.rgb[1]) << ' ' << int(p.rgb[2]) << '\n';
   }
-  if (!f) THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: error writing '%s'", path.c_str());
+  file.commit();
 }
 
 }  // namespace
@@ -72,8 +76,10 @@ void CSuperpixelMap::saveMetricMapRepresentationToFile(const std::string& prefix
   auto objects = mrpt::opengl::CSetOfObjects::Create();
   getVisualizationInto(*objects);
   scene.insert(objects);
-  const std::string scene_path = prefix + "_3D.3Dscene";
-  if (!scene.saveToFile(scene_path)) THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: cannot write '%s'", scene_path.c_str());
+  OutputFile scene_file(prefix + "_3D.3Dscene", "superpixel map 3D scene");
+  GzOutputStream stream(scene_file, 1);  // gzip, as COpenGLScene::saveToFile() writes it
+  mrpt::serialization::archiveFrom(stream) << scene;
+  stream.finish();
 }
 
 }  // namespace gasp

@@ -3,6 +3,8 @@
 /// for any usage error, whatever CLI11's own code) and validators with plain messages.
 #include <CLI/CLI.hpp>
 
+#include "run_outputs.h"
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -10,7 +12,6 @@
 #include <utility>
 #include <vector>
 
-#include <unistd.h>
 
 namespace gasp::tools {
 
@@ -51,6 +52,12 @@ inline bool finiteValue(const std::string& text, double& v, std::string& error) 
   }
   if (!std::isfinite(v)) {
     error = "must be a finite number (got " + text + ")";
+    return false;
+  }
+  // Beyond what a 64-bit integer option holds, CLI11 would clamp or wrap it; no GASP option needs
+  // such a value.
+  if (std::fabs(v) >= 9.2e18) {
+    error = "is too large (got " + text + ")";
     return false;
   }
   return true;
@@ -142,69 +149,6 @@ inline CLI::Validator finite() {
 inline void reportIntrinsics(std::FILE* out, const std::string& summary, const std::string& warning) {
   std::fprintf(out, "intrinsics: %s\n", summary.c_str());
   if (!warning.empty()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
-}
-
-/// The files a TUM folder's reader takes as input (depth.txt, rgb.txt, groundtruth.txt,
-/// associations.txt, intrinsics.txt), for outputPathProblem(); none when `dir` is empty.
-inline std::vector<std::string> tumFolderInputs(const std::string& dir) {
-  if (dir.empty()) return {};
-  std::vector<std::string> files;
-  for (const char* name : {"depth.txt", "rgb.txt", "groundtruth.txt", "associations.txt", "intrinsics.txt"})
-    files.push_back((std::filesystem::path(dir) / name).string());
-  return files;
-}
-
-/// `--intrinsics` as an input file for outputPathProblem(): none when it is empty or a preset
-/// name such as fr1 (a file of that name is read only where it is not a preset).
-inline std::vector<std::string> intrinsicsFileInput(const std::string& intrinsics) {
-  std::error_code ec;
-  if (intrinsics.empty() || !std::filesystem::is_regular_file(intrinsics, ec)) return {};
-  return {intrinsics};
-}
-
-/// The output files can be written, checked before a long run rather than after it. Returns ""
-/// or the first problem, naming the option:
-/// - the path is a folder ("--graph 'out': is a folder, not a file");
-/// - its folder does not exist or cannot be written (output files need an existing folder;
-///   output folders, such as gasp-rawlog2tum's, are created by their programs);
-/// - the file exists and cannot be overwritten;
-/// - two options name the same file, or an output is one of `inputs` (it would be destroyed
-///   before or while it is read). Paths are compared after resolving "..", "." and symbolic
-///   links; existing files also by identity (hard links).
-/// Empty paths (option not given) are skipped.
-inline std::string outputPathProblem(const std::vector<std::pair<std::string, std::string>>& option_paths,
-                                     const std::vector<std::string>& inputs = {}) {
-  namespace fs = std::filesystem;
-  const auto resolved = [](const std::string& path) {
-    std::error_code ec;
-    const fs::path p = fs::weakly_canonical(fs::absolute(path, ec), ec);
-    return ec ? fs::path(path).lexically_normal() : p;
-  };
-  const auto same = [&resolved](const std::string& a, const std::string& b) {
-    std::error_code ec;
-    if (resolved(a) == resolved(b)) return true;
-    return fs::exists(a, ec) && fs::exists(b, ec) && fs::equivalent(a, b, ec);
-  };
-  for (std::size_t i = 0; i < option_paths.size(); ++i) {
-    const auto& [option, path] = option_paths[i];
-    if (path.empty()) continue;
-    const fs::path parent = fs::path(path).parent_path();
-    const std::string folder = parent.empty() ? std::string(".") : parent.string();
-    std::error_code ec;
-    if (fs::is_directory(path, ec)) return option + " '" + path + "': is a folder, not a file";
-    if (!fs::is_directory(folder, ec)) return option + " '" + path + "': the folder '" + folder + "' does not exist";
-    if (::access(folder.c_str(), W_OK | X_OK) != 0)
-      return option + " '" + path + "': the folder '" + folder + "' cannot be written";
-    if (fs::exists(path, ec) && ::access(path.c_str(), W_OK) != 0)
-      return option + " '" + path + "': the file exists and cannot be overwritten";
-    for (const std::string& input : inputs)
-      if (!input.empty() && same(path, input))
-        return option + " '" + path + "': is an input of this run ('" + input + "'); write it elsewhere";
-    for (std::size_t j = 0; j < i; ++j)
-      if (!option_paths[j].second.empty() && same(path, option_paths[j].second))
-        return option + " '" + path + "': the same file as " + option_paths[j].first + " '" + option_paths[j].second + "'";
-  }
-  return {};
 }
 
 }  // namespace gasp::tools

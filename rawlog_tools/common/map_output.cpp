@@ -20,18 +20,24 @@ void addMapOutputOptions(CLI::App& app, MapOutputOptions& o, const std::string& 
       ->check(above(0));
 }
 
-void writeMapOutputs(const MapOutputOptions& o, const std::vector<RgbdFrame>& frames,
+std::vector<std::pair<std::string, std::string>> mapOutputPaths(const MapOutputOptions& o) {
+  return {{"--simplemap", o.simplemap_path}, {"--cloud", o.cloud_path}};
+}
+
+void writeMapOutputs(const MapOutputOptions& o, RunOutputs& outputs, const std::vector<RgbdFrame>& frames,
                      const std::vector<Isometry3>& T_world_camera, const std::string& scans,
                      const std::vector<Matrix6>& covariance_world_camera) {
   if (!o.simplemap_path.empty()) {
-    saveSimpleMap(keyframeSimpleMap(frames, T_world_camera, covariance_world_camera), o.simplemap_path);
+    saveSimpleMap(keyframeSimpleMap(frames, T_world_camera, covariance_world_camera), outputs.at("--simplemap"));
     std::printf("simplemap: %s (%zu %s)\n", o.simplemap_path.c_str(), frames.size(), scans.c_str());
   }
   if (!o.cloud_path.empty()) {
     VoxelPointMap map(o.voxel_m, o.cloud_max_depth_m);
     for (std::size_t i = 0; i < frames.size() && i < T_world_camera.size(); ++i)
       map.insert(frames[i].depth_m, frames[i].depth_intrinsics, T_world_camera[i]);
-    map.writePly(o.cloud_path);
+    OutputFile& cloud = outputs.at("--cloud");
+    map.writePly(cloud.stream());
+    cloud.commit();
     std::printf("cloud: %s (%zu points, voxel %.3f m)\n", o.cloud_path.c_str(), map.size(), o.voxel_m);
     if (map.pointsOutside() > 0)
       std::fprintf(stderr, "warning: %zu points lie beyond the voxel grid (+-2^20 voxels) and are not in the cloud\n",

@@ -4,11 +4,13 @@
 #include <CLI/CLI.hpp>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gasp/core/pose.h"
 #include "gasp/core/pose_perturbation.h"
 #include "gasp/rawlog/rgbd_frame.h"
+#include "run_outputs.h"
 
 namespace gasp::tools {
 
@@ -24,11 +26,15 @@ struct MapOutputOptions {
 /// Adds the four options; `scans` names what the map holds in the help ("keyframes", "nodes").
 void addMapOutputOptions(CLI::App& app, MapOutputOptions& options, const std::string& scans);
 
-/// Writes what `options` asks for from frames[i] at T_world_camera[i] and prints the lines
-/// "simplemap: PATH (N <scans>)" and "cloud: PATH (N points, voxel V m)" (a warning on stderr for
-/// points beyond the voxel grid). The simple map's poses carry covariance_world_camera[i]
-/// (keyframeSimpleMap()), zero when it is empty. Throws gasp::Error when a file cannot be written.
-void writeMapOutputs(const MapOutputOptions& options, const std::vector<RgbdFrame>& frames,
+/// The outputs of addMapOutputOptions(), for RunOutputs: {"--simplemap", path}, {"--cloud", path}.
+std::vector<std::pair<std::string, std::string>> mapOutputPaths(const MapOutputOptions& options);
+
+/// Writes what `options` asks for into `outputs`' "--simplemap" and "--cloud" files from
+/// frames[i] at T_world_camera[i] and prints the lines "simplemap: PATH (N <scans>)" and "cloud:
+/// PATH (N points, voxel V m)" (a warning on stderr for points beyond the voxel grid). The simple
+/// map's poses carry covariance_world_camera[i] (keyframeSimpleMap()), zero when it is empty.
+/// Throws gasp::Error when a file cannot be written.
+void writeMapOutputs(const MapOutputOptions& options, RunOutputs& outputs, const std::vector<RgbdFrame>& frames,
                      const std::vector<Isometry3>& T_world_camera, const std::string& scans,
                      const std::vector<Matrix6>& covariance_world_camera = {});
 

@@ -83,9 +83,7 @@ void printMarginals(const PoseGraphMarginals& m, const Trajectory& estimate, con
               median, q95, n, w, eval::kChiSquare6Median, eval::kChiSquare6Quantile95);
 }
 
-void writeMarginalsCsv(const std::string& path, const PoseGraphMarginals& m, const Trajectory& estimate) {
-  std::ofstream out(path);
-  if (!out) throw Error("cannot write " + path);
+void writeMarginalsCsv(std::ostream& out, const PoseGraphMarginals& m, const Trajectory& estimate) {
   out << "frame,timestamp,root,sigma_t_m,sigma_r_deg";
   for (int r = 0; r < 6; ++r)
     for (int c = 0; c < 6; ++c) out << ",c" << r << c;
@@ -104,7 +102,6 @@ void writeMarginalsCsv(const std::string& path, const PoseGraphMarginals& m, con
       }
     out << '\n';
   }
-  if (!out) throw Error("cannot write " + path);
 }
 
 }  // namespace gasp::tools

@@ -1,6 +1,7 @@
 #pragma once
 /// \file marginals_report.h What gasp-slam prints and writes about the uncertainty of its poses:
 /// the pose graph's marginal covariances (gasp/slam/pose_graph_marginals.h).
+#include <ostream>
 #include <string>
 
 #include "gasp/core/tum_trajectory.h"
@@ -27,7 +28,8 @@ void printMarginals(const PoseGraphMarginals& marginals, const Trajectory& estim
 
 /// One line per frame with a covariance: frame,timestamp,root,sigma_t_m,sigma_r_deg (sigmaOf():
 /// the position's and the rotation's), then the 36 entries c00..c55 (row-major) of the
-/// covariance of the left perturbation [tx ty tz rx ry rz] in the world [m^2, m rad, rad^2]. Throws gasp::Error when it cannot be written.
-void writeMarginalsCsv(const std::string& path, const PoseGraphMarginals& marginals, const Trajectory& estimate);
+/// covariance of the left perturbation [tx ty tz rx ry rz] in the world [m^2, m rad, rad^2], into
+/// `out` (RunOutputs' file; its commit() checks the writes).
+void writeMarginalsCsv(std::ostream& out, const PoseGraphMarginals& marginals, const Trajectory& estimate);
 
 }  // namespace gasp::tools

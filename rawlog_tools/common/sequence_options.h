@@ -37,12 +37,12 @@ inline void addSequenceOptions(CLI::App& app, DepthSequenceOptions& input, std::
   app.add_flag("!--no-undistort", input.undistort, "with --tum: ignore lens distortion (images as stored)")->needs(tum);
 }
 
-/// The files the sequence options read (a TUM folder's lists, the rawlog, --gt, an intrinsics
-/// file), which no output may overwrite (outputPathProblem()).
+/// The files the sequence options read (a TUM folder's lists and images, the rawlog and its
+/// external images, --gt, an intrinsics file), which no output may overwrite (RunOutputs).
 inline std::vector<std::string> sequenceInputs(const DepthSequenceOptions& input, const std::string& gt_path) {
   std::vector<std::string> files = tumFolderInputs(input.tum_dir);
-  for (const std::string& f : {input.rawlog_path, gt_path})
-    if (!f.empty()) files.push_back(f);
+  for (const std::string& f : rawlogInputs(input.rawlog_path)) files.push_back(f);
+  if (!gt_path.empty()) files.push_back(gt_path);
   for (const std::string& f : intrinsicsFileInput(input.intrinsics)) files.push_back(f);
   return files;
 }

@@ -11,9 +11,20 @@
 
 namespace gasp::tools {
 
-void writeFramesCsv(const std::string& path, const std::vector<OdometryFrame>& frames) {
-  std::ofstream out(path);
-  if (!out) throw Error("cannot write " + path);
+std::string trajectoryHeader(const std::string& what, const SequenceEnd& end) {
+  if (end.complete) return what;
+  return what + "\n# PARTIAL: the first " + std::to_string(end.frames) + " frames only; the input ended with an error: " +
+         end.error;
+}
+
+int reportPartial(const SequenceEnd& end) {
+  if (end.complete) return -1;
+  std::printf("partial: %zu frames (the input ended with an error); the outputs hold these frames only\n", end.frames);
+  std::fprintf(stderr, "error: %s\n", end.error.c_str());
+  return 1;
+}
+
+void writeFramesCsv(std::ostream& out, const std::vector<OdometryFrame>& frames) {
   out << "index,timestamp,tracked,keyframe,reference,patches,inliers,deskewed,segmentation_ms,registration_ms,scene_change,reason\n";
   for (const auto& f : frames) {
     std::string reason = f.reason;
@@ -24,7 +35,6 @@ void writeFramesCsv(const std::string& path, const std::vector<OdometryFrame>& f
                   f.registration_ms, f.scene_change ? 1 : 0);
     out << buf << '"' << reason << "\"\n";
   }
-  if (!out) throw Error("cannot write " + path);
 }
 
 void printOdometrySummary(const DepthOdometry& odometry) {

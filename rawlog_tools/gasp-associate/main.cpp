@@ -127,7 +127,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return gasp::tools::usageExit(app, e);  // --help: 0; any usage error: 2
   } catch (const gasp::Error& e) {
-    std::cerr << "error: " << e.what() << '\n';
+    std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';
     return 2;
   }
   if (tum_dir.empty() && rawlog_path.empty() && depth_a_path.empty()) {
@@ -141,10 +141,15 @@ int main(int argc, char** argv) {
     out_path = depth_a_path.empty() ? "associations_" + std::to_string(from) + "_" + std::to_string(to) + ".png"
                                     : "associations.png";
   std::vector<std::string> inputs = gasp::tools::tumFolderInputs(tum_dir);
-  for (const std::string& f : {rawlog_path, gt_path, depth_a_path, depth_b_path})
+  for (const std::string& f : gasp::tools::rawlogInputs(rawlog_path)) inputs.push_back(f);
+  for (const std::string& f : {gt_path, depth_a_path, depth_b_path})
     if (!f.empty()) inputs.push_back(f);
-  if (const std::string missing = gasp::tools::outputPathProblem({{"--out", out_path}}, inputs); !missing.empty()) {
-    std::cerr << "error: " << missing << '\n';  // before the work, not after it
+  std::optional<gasp::tools::RunOutputs> outputs;
+  try {
+    gasp::requireImageWriter(out_path, "--out");
+    outputs.emplace(std::vector<std::pair<std::string, std::string>>{{"--out", out_path}}, inputs);  // before the work
+  } catch (const gasp::Error& e) {
+    std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';
     return 1;
   }
   try {
@@ -208,8 +213,8 @@ int main(int argc, char** argv) {
       K = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg.empty() ? "ros" : intrinsics_arg);
       if (no_undistort) K.distortion.fill(0.0);
       const gasp::Undistortion undistortion(K);
-      depth_a = undistortion.applyToDepth(gasp::loadDepth(depth_a_path, depth_scale));
-      depth_b = undistortion.applyToDepth(gasp::loadDepth(depth_b_path, depth_scale));
+      depth_a = undistortion.applyToDepth(gasp::loadDepth(depth_a_path, depth_scale, K.width, K.height));
+      depth_b = undistortion.applyToDepth(gasp::loadDepth(depth_b_path, depth_scale, K.width, K.height));
       K = undistortion.pinhole();
     }
     // Each view resampled to its pinhole camera where its intrinsics carry lens distortion.
@@ -253,7 +258,7 @@ int main(int argc, char** argv) {
     const cv::Mat picture = gasp::drawAssociations(pva->depth_m, pva->segmentation, pva->intrinsics, pvb->depth_m,
                                                    pvb->segmentation, pvb->intrinsics,
                                                    r.association.associations, correct);
-    gasp::writeImage(out_path, picture, "picture");
+    gasp::writeImage(outputs->at("--out"), picture, "picture");
     std::printf("picture: %s\n", out_path.c_str());
     if (r.association.associations.empty()) {
       std::printf("no associations: %s\n",
@@ -307,7 +312,7 @@ int main(int argc, char** argv) {
       std::printf("pose_error: %.4f m %.3f deg\n", gasp::translationNorm(E), gasp::rotationAngle(E) * 180.0 / M_PI);
     }
   } catch (const std::exception& e) {  // gasp::Error, and anything a library throws
-    std::cerr << "error: " << e.what() << '\n';
+    std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';
     return 1;
   }
   return 0;

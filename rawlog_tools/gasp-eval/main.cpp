@@ -36,8 +36,8 @@ int main(int argc, char** argv) {
   auto* ate = app.add_subcommand("ate", "absolute trajectory error after rigid alignment (no scale)");
   auto* rpe = app.add_subcommand("rpe", "relative pose error over a fixed delta");
   for (auto* sub : {ate, rpe}) {
-    sub->add_option("--gt", gt_path, "ground-truth trajectory (TUM format)")->required()->check(CLI::ExistingFile);
-    sub->add_option("--est", est_path, "estimated trajectory (TUM format)")->required()->check(CLI::ExistingFile);
+    sub->add_option("--gt", gt_path, "ground-truth trajectory (TUM format)")->required();
+    sub->add_option("--est", est_path, "estimated trajectory (TUM format)")->required();
     sub->add_option("--max-dt", max_dt, "timestamp association window [s]")->capture_default_str()->check(gasp::tools::above(0));
     sub->add_option("--offset", offset, "time offset added to the estimate [s]")->capture_default_str()->check(gasp::tools::finite());
     sub->add_option("--scale", scale, "scale applied to the estimate's translations")->capture_default_str()->check(gasp::tools::above(0));
@@ -50,9 +50,7 @@ int main(int argc, char** argv) {
   if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;
 
   try {
-    if (const std::string problem = gasp::tools::outputPathProblem({{"--aligned", aligned_path}}, {gt_path, est_path});
-        !problem.empty())
-      throw gasp::Error(problem);  // before the work, not after it
+    gasp::tools::RunOutputs outputs({{"--aligned", aligned_path}}, {gt_path, est_path});  // before the work
     const auto gt = gasp::readTumTrajectory(gt_path);
     const auto est = gasp::readTumTrajectory(est_path);
     if (ate->parsed()) {
@@ -66,7 +64,9 @@ int main(int argc, char** argv) {
           p.T_world_camera.translation() *= scale;
           p.T_world_camera = r.T_gt_est * p.T_world_camera;
         }
-        gasp::writeTumTrajectory(aligned_path, aligned, "estimate aligned to " + gt_path + " by gasp-eval ate");
+        gasp::OutputFile& out = outputs.at("--aligned");
+        gasp::writeTumTrajectory(out.stream(), aligned, "estimate aligned to " + gt_path + " by gasp-eval ate");
+        out.commit();
         std::printf("aligned_estimate: %s\n", aligned_path.c_str());
       }
     } else {
@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
       printStats("rotational_error", r.rotation_deg, "deg");
     }
   } catch (const std::exception& e) {  // gasp::Error, and anything a library throws
-    std::cerr << "error: " << e.what() << '\n';
+    std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';
     return 1;
   }
   return 0;

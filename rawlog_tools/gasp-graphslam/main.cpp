@@ -171,10 +171,12 @@ int main(int argc, char** argv) {
 
   try {
     if (!mrpt::system::fileExists(rawlog_path)) throw gasp::Error("cannot open rawlog " + rawlog_path);
-    const std::string missing = gasp::tools::outputPathProblem(
-        {{"--out", out_path}, {"--graph", graph_path}, {"--simplemap", map_output.simplemap_path}, {"--cloud", map_output.cloud_path}},
-        {rawlog_path, gt_path, ini_path});
-    if (!missing.empty()) throw gasp::Error(missing);  // before the run, not after it
+    std::vector<std::string> inputs = gasp::tools::rawlogInputs(rawlog_path);
+    for (const std::string& f : {gt_path, ini_path})
+      if (!f.empty()) inputs.push_back(f);
+    std::vector<std::pair<std::string, std::string>> output_paths{{"--out", out_path}, {"--graph", graph_path}};
+    for (const auto& p : gasp::tools::mapOutputPaths(map_output)) output_paths.push_back(p);
+    gasp::tools::RunOutputs outputs(output_paths, inputs);  // before the run, not after it
     if (!ini_path.empty() && !mrpt::system::fileExists(ini_path)) throw gasp::Error("cannot open configuration " + ini_path);
     if (!ini_path.empty()) {
       if (std::filesystem::is_directory(ini_path)) throw gasp::Error("configuration " + ini_path + " is a folder");
@@ -241,9 +243,16 @@ int main(int argc, char** argv) {
         marginals.message = e.what();
       }
 
-      if (!out_path.empty())
-        gasp::writeTumTrajectory(out_path, trajectory, "node (keyframe) depth-camera trajectory by gasp-graphslam");
-      if (!graph_path.empty()) {
+      if (auto* out = outputs.find("--out")) {
+        gasp::tools::SequenceEnd end;
+        end.complete = run.complete;
+        end.error = run.input_error;
+        end.frames = run.scans;
+        gasp::writeTumTrajectory(out->stream(), trajectory,
+                                 gasp::tools::trajectoryHeader("node (keyframe) depth-camera trajectory by gasp-graphslam", end));
+        out->commit();
+      }
+      if (auto* graph_file = outputs.find("--graph")) {
         // The engine's graph as it is, except that an edge with non-finite information (MRPT's
         // CFixedIntervalsNRD gives its first edge NaN) is written as a break edge: a file of
         // `nan` information matrices is no graph another tool can read.
@@ -251,7 +260,7 @@ int main(int argc, char** argv) {
         if (const std::size_t broken = gasp::graphslam::breakNonFiniteEdges(written))
           std::fprintf(stderr, "warning: %zu edge(s) with non-finite information from the node decider written as break edges (information %g)\n",
                        broken, gasp::graphslam::kBreakInformation);
-        written.saveToTextFile(graph_path);
+        gasp::tools::writeGraph(*graph_file, written);
       }
       if (!report_dir.empty()) {
         std::filesystem::create_directories(report_dir);
@@ -280,7 +289,7 @@ int main(int argc, char** argv) {
     if (run_options.keep_depth && map_frames.size() < run.nodes.size())
       std::fprintf(stderr, "warning: %zu of %zu nodes have no depth scan that could be converted; the map leaves them out\n",
                    run.nodes.size() - map_frames.size(), run.nodes.size());
-    gasp::tools::writeMapOutputs(map_output, map_frames, map_poses, "nodes", map_covariances);
+    gasp::tools::writeMapOutputs(map_output, outputs, map_frames, map_poses, "nodes", map_covariances);
 
     std::printf("rawlog_entries: %zu\n", run.steps);
     std::printf("scans: %zu\n", run.scans);
@@ -313,6 +322,11 @@ int main(int argc, char** argv) {
     if (!graph_path.empty()) std::printf("graph: %s\n", graph_path.c_str());
     gasp::tools::printEvaluation(gt, trajectory, trajectory.size());  // every node is a registered scan
     gasp::tools::printMarginals(marginals, trajectory, gt, "node");
+    if (!run.complete) {
+      std::printf("partial: %zu scans (the rawlog ended with an error); the outputs hold these scans only\n", run.scans);
+      std::fprintf(stderr, "error: %s\n", run.input_error.c_str());
+      return 1;
+    }
     if (gasp_nrd && (gasp_nrd->breakEdges() > 0 || gasp_nrd->skippedScans() > 0)) return 3;
   } catch (const std::exception& e) {  // gasp::Error, MRPT's (configuration, rawlog), filesystem
     std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';

@@ -6,8 +6,10 @@
 // optionally the pose graph (MRPT VERTEX3 / EDGE3 lines, CNetworkOfPoses::saveToTextFile) and a
 // line per frame. Where ground truth exists it prints the ATE and the RPE over 1 s (TUM's
 // definitions, gasp/eval).
-// Exit codes: 0 every frame tracked, 1 bad input, 2 usage error, 3 written but some frames were
-// not tracked (their poses are predicted; see --frames-csv).
+// Every output is opened before the run and written whole or not at all (run_outputs.h).
+// Exit codes: 0 every frame tracked, 1 bad input (when the input ends with an error after some
+// frames, the outputs are written for those frames, marked partial), 2 usage error, 3 written but
+// some frames were not tracked (their poses are predicted; see --frames-csv).
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -45,15 +47,14 @@ int main(int argc, char** argv) {
 
   try {
     gasp::validate(params);
-    const std::string missing = gasp::tools::outputPathProblem(
-        {{"--out", out_path}, {"--graph", graph_path}, {"--frames-csv", frames_csv}}, gasp::tools::sequenceInputs(input, gt_path));
-    if (!missing.empty()) throw gasp::Error(missing);  // before the run, not after it
+    gasp::tools::RunOutputs outputs({{"--out", out_path}, {"--graph", graph_path}, {"--frames-csv", frames_csv}},
+                                    gasp::tools::sequenceInputs(input, gt_path));  // before the run, not after it
     gasp::DepthOdometry odometry(params);
     gasp::DepthSequence sequence(input);
     gasp::tools::reportIntrinsics(stdout, sequence.intrinsicsSummary(), sequence.intrinsicsWarning());
     const gasp::Trajectory gt = gt_path.empty() ? sequence.groundTruth() : gasp::readTumTrajectory(gt_path);
     // Each frame is segmented while the one before it is registered (frames_ahead.h).
-    gasp::tools::forEachFrameWithViewAhead(sequence, params, sequential, [&](const gasp::RgbdFrame& frame, auto segmented) {
+    const gasp::tools::SequenceEnd end = gasp::tools::forEachFrameWithViewAhead(sequence, params, sequential, [&](const gasp::RgbdFrame& frame, auto segmented) {
       const gasp::OdometryFrame& f =
           odometry.addFrame(frame.timestamp, frame.depth_m, frame.depth_intrinsics, std::move(segmented));
       if (odometry.frames().size() % 50 == 0)
@@ -61,11 +62,17 @@ int main(int argc, char** argv) {
     });
 
     const auto& frames = odometry.frames();
-    gasp::writeTumTrajectory(out_path, odometry.trajectory(), "depth camera trajectory by gasp-odometry");
-    if (!frames_csv.empty()) gasp::tools::writeFramesCsv(frames_csv, frames);
-    if (!graph_path.empty()) {
+    gasp::OutputFile& out = outputs.at("--out");
+    gasp::writeTumTrajectory(out.stream(), odometry.trajectory(),
+                             gasp::tools::trajectoryHeader("depth camera trajectory by gasp-odometry", end));
+    out.commit();
+    if (auto* f = outputs.find("--frames-csv")) {
+      gasp::tools::writeFramesCsv(f->stream(), frames);
+      f->commit();
+    }
+    if (auto* graph_file = outputs.find("--graph")) {
       const auto g = gasp::toPoseGraph(frames, odometry.constraints(), sequence.robotCamera());
-      g.graph.saveToTextFile(graph_path);
+      gasp::tools::writeGraph(*graph_file, g.graph);
       std::printf("graph: %s (%zu nodes, %zu edges%s)\n", graph_path.c_str(), g.graph.nodes.size(), g.graph.edgeCount(),
                   g.skipped_constraints ? (", " + std::to_string(g.skipped_constraints) + " without a covariance left out").c_str() : "");
     }
@@ -73,6 +80,7 @@ int main(int argc, char** argv) {
     gasp::tools::printOdometrySummary(odometry);
     std::printf("trajectory: %s\n", out_path.c_str());
     gasp::tools::printEvaluation(gt, odometry.trajectory(), odometry.trackedCount());
+    if (const int code = gasp::tools::reportPartial(end); code >= 0) return code;
     if (odometry.trackedCount() < frames.size()) {
       std::printf("not_tracked: %zu frames (poses predicted; reasons in --frames-csv)\n",
                   frames.size() - odometry.trackedCount());

@@ -238,13 +238,16 @@ int main(int argc, char** argv) {
     methods = unique;
   }
   // Every output, the pictures included, is checked before the work.
-  std::vector<std::pair<std::string, std::string>> outputs{{"--csv", csv_path}, {"--pairs-csv", pairs_csv_path}};
+  const auto pictureOption = [](const std::string& method) { return "--picture-prefix (" + method + ")"; };
+  std::vector<std::pair<std::string, std::string>> output_paths{{"--csv", csv_path}, {"--pairs-csv", pairs_csv_path}};
   if (!picture_pair.empty())
     for (const auto& method : methods)
-      if (method != "gicp") outputs.emplace_back("--picture-prefix", picture_prefix + method + "." + picture_format);
-  if (const std::string missing = gasp::tools::outputPathProblem(outputs, gasp::tools::tumFolderInputs(tum_dir));
-      !missing.empty()) {
-    std::cerr << "error: " << missing << '\n';  // before the benchmark, not after it
+      if (method != "gicp") output_paths.emplace_back(pictureOption(method), picture_prefix + method + "." + picture_format);
+  std::optional<gasp::tools::RunOutputs> outputs;
+  try {
+    outputs.emplace(output_paths, gasp::tools::tumFolderInputs(tum_dir));  // before the benchmark, not after it
+  } catch (const gasp::Error& e) {
+    std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';
     return 1;
   }
   bool progress_line_open = false;  // an error then starts on a line of its own
@@ -302,7 +305,7 @@ int main(int argc, char** argv) {
         gasp::pairs::Picture pic;
         const auto run = gasp::pairs::runMethod(method, i, j, cache, setup, &pic, T_gt);
         const std::string path = picture_prefix + method + "." + picture_format;
-        gasp::writeImage(path, pic.image, "picture");
+        gasp::writeImage(outputs->at(pictureOption(method)), pic.image, "picture");
         std::printf("picture %s: %s, %zu associations/matches, %zu correct by ground truth", method.c_str(),
                     path.c_str(), pic.shown, pic.correct);
         if (run.estimated && T_gt) {
@@ -332,12 +335,8 @@ int main(int argc, char** argv) {
     }
     std::stable_sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
 
-    std::ofstream pairs_csv;
-    if (!pairs_csv_path.empty()) {
-      pairs_csv.open(pairs_csv_path);
-      if (!pairs_csv) throw gasp::Error("cannot write " + pairs_csv_path);
-      pairs_csv << gasp::pairs::pairsCsvHeader() << '\n';
-    }
+    gasp::OutputFile* pairs_csv = outputs->find("--pairs-csv");
+    if (pairs_csv) pairs_csv->stream() << gasp::pairs::pairsCsvHeader() << '\n';
     // The colour camera of the (undistorted) rgb images: the folder's, or --rgb-intrinsics' K.
     gasp::CameraIntrinsics rgb_camera = ds.intrinsics();
 #ifdef GASP_HAVE_BASELINES
@@ -385,7 +384,7 @@ int main(int argc, char** argv) {
           checks.T_est_icp = run.estimated && polish_reference
                                  ? gasp::pairs::polishWithGicp(cache, a, b, base.superpixels, run.T_target_source)
                                  : std::nullopt;
-          pairs_csv << gasp::pairs::pairsCsvRow(o, method, run, checks) << '\n';
+          pairs_csv->stream() << gasp::pairs::pairsCsvRow(o, method, run, checks) << '\n';
         }
       }
       ++done;
@@ -412,11 +411,11 @@ int main(int argc, char** argv) {
       std::printf("\n");
     }
     std::printf("wall_time_s: %.1f\n", msSince(bench_t0) / 1000.0);
-    if (!csv_path.empty()) {
-      std::ofstream csv(csv_path);
-      if (!csv) throw gasp::Error("cannot write " + csv_path);
-      csv << gasp::eval::csvHeader() << '\n';
-      for (const auto& s : rows) csv << gasp::eval::csvRow(s) << '\n';
+    if (pairs_csv) pairs_csv->commit();
+    if (auto* csv = outputs->find("--csv")) {
+      csv->stream() << gasp::eval::csvHeader() << '\n';
+      for (const auto& s : rows) csv->stream() << gasp::eval::csvRow(s) << '\n';
+      csv->commit();
     }
     if (total_pairs == 0 && picture_pair.empty()) {
       if (ds.size() < 2)
@@ -426,7 +425,7 @@ int main(int argc, char** argv) {
       return 4;
     }
   } catch (const std::exception& e) {  // gasp::Error, or e.g. a cv::Exception from a library
-    std::cerr << (progress_line_open ? "\n" : "") << "error: " << e.what() << '\n';
+    std::cerr << (progress_line_open ? "\n" : "") << "error: " << gasp::exceptionMessage(e) << '\n';
     return 1;
   }
   return 0;

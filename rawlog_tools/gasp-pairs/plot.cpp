@@ -145,12 +145,11 @@ int main(int argc, char** argv) {
   try {
     gasp::requireImageWriter(out, "--out figure");  // a usage error, before the work
   } catch (const gasp::Error& e) {
-    std::cerr << "error: " << e.what() << '\n';
+    std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';
     return 2;
   }
   try {
-    if (const std::string problem = gasp::tools::outputPathProblem({{"--out", out}}, csvs); !problem.empty())
-      throw gasp::Error(problem);
+    gasp::tools::RunOutputs outputs({{"--out", out}}, csvs);  // before the work
     const int panel_w = 330, panel_h = 230, legend_w = 165, row_title = 22;
     const int height = static_cast<int>(csvs.size()) * (panel_h + row_title) + (caption.empty() ? 8 : 30);
     cv::Mat img(height, 3 * panel_w + legend_w, CV_8UC3, cv::Scalar(255, 255, 255));
@@ -177,10 +176,10 @@ int main(int argc, char** argv) {
     }
     if (!caption.empty())
       cv::putText(img, caption, {8, height - 10}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(60, 60, 60), 1, cv::LINE_AA);
-    gasp::writeImage(out, img, "figure");
+    gasp::writeImage(outputs.at("--out"), img, "figure");
     std::printf("figure: %s\n", out.c_str());
   } catch (const std::exception& e) {  // gasp::Error, and anything a library throws
-    std::cerr << "error: " << e.what() << '\n';
+    std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';
     return 1;
   }
   return 0;

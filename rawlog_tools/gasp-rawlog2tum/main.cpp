@@ -7,6 +7,7 @@
 #include <iostream>
 #include <string>
 
+#include "gasp/core/error.h"
 #include "gasp/rawlog/rawlog_to_tum.h"
 #include "cli.h"
 
@@ -52,7 +53,7 @@ int main(int argc, char** argv) {
       std::cout << " (skipped)\n";
     }
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << gasp::exceptionMessage(e) << "\n";
     return 1;
   }
   return 0;

@@ -41,8 +41,8 @@ void report(const gasp::SuperpixelSegmentation& seg) {
               t.total(), t.cloud_ms, t.normals_ms, t.components_ms, t.kmeans_ms, t.cleanup_ms, t.patches_ms);
 }
 
-void writePicture(const std::string& path, const cv::Mat& depth, const gasp::SuperpixelSegmentation& seg) {
-  gasp::writeImage(path, gasp::drawSegmentation(depth, seg), "picture");
+void writePicture(gasp::OutputFile& out, const cv::Mat& depth, const gasp::SuperpixelSegmentation& seg) {
+  gasp::writeImage(out, gasp::drawSegmentation(depth, seg), "picture");
 }
 
 /// Repeatability of patches over pairs (i, i + skip); prints one line per pair and the mean.
@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
     try {
       gasp::requireImageWriter(out, "--out picture");  // a usage error, before the work
     } catch (const gasp::Error& e) {
-      std::cerr << "error: " << e.what() << '\n';
+      std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';
       return 2;
     }
   }
@@ -121,8 +121,7 @@ int main(int argc, char** argv) {
     if (area_cm2 > 0) params.target_patch_area_m2 = area_cm2 * 1e-4;
     params.step_borders = step_borders;
     if (!depth_path.empty()) {
-      if (const std::string problem = gasp::tools::outputPathProblem({{"--out", out}}, {depth_path}); !problem.empty())
-        throw gasp::Error(problem);  // before the work, not after it
+      gasp::tools::RunOutputs outputs({{"--out", out}}, {depth_path});  // before the work, not after it
       auto k = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg.empty() ? "ros" : intrinsics_arg);
       if (no_undistort) k.distortion.fill(0.0);
       const gasp::Undistortion undistortion(k);
@@ -130,7 +129,7 @@ int main(int argc, char** argv) {
       k = undistortion.pinhole();
       const auto seg = gasp::segmentDepthSuperpixels(depth, k, params);
       report(seg);
-      writePicture(out, depth, seg);
+      writePicture(outputs.at("--out"), depth, seg);
       std::printf("picture: %s\n", out.c_str());
       return 0;
     }
@@ -146,6 +145,7 @@ int main(int argc, char** argv) {
     std::filesystem::create_directories(out, ec);
     if (ec || !std::filesystem::is_directory(out))
       throw gasp::Error("cannot create the output folder '" + out + "'" + (ec ? ": " + ec.message() : " (a file of that name exists)"));
+    const gasp::tools::InputFiles inputs(gasp::tools::tumFolderInputs(tum_dir));
     for (std::size_t i = 0; i < ds.size(); i += static_cast<std::size_t>(every)) {
       const cv::Mat depth = ds.loadDepth(i);
       const auto seg = gasp::segmentDepthSuperpixels(depth, ds.intrinsics(), params);
@@ -153,11 +153,12 @@ int main(int argc, char** argv) {
       report(seg);
       char name[64];
       std::snprintf(name, sizeof(name), "/%06zu.png", i);
-      writePicture(out + name, depth, seg);
+      gasp::tools::RunOutputs picture({{"--out", out + name}}, inputs);  // never onto one of the folder's images
+      writePicture(picture.at("--out"), depth, seg);
     }
     std::printf("pictures: %s\n", out.c_str());
   } catch (const std::exception& e) {  // gasp::Error, and anything a library throws
-    std::cerr << "error: " << e.what() << '\n';
+    std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';
     return 1;
   }
   return 0;

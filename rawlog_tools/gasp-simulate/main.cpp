@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
       std::printf("  %-18s frames %3d - %3d\n", s.name.c_str(), s.first_frame, s.last_frame);
     std::printf("written to: %s\n", summary.out_dir.c_str());
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << '\n';
+    std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';
     return 1;
   }
   return 0;

@@ -8,13 +8,15 @@
 // optionally the pose graph with its loop closures (MRPT VERTEX3 / EDGE3), the keyframes as an
 // MRPT simple map (for MRPT's observations2map; each pose with its marginal covariance in the
 // graph) and a voxel point map (PLY).
-// Exit codes: 0 every frame tracked and the graph in one piece, 1 bad input, 2 usage error,
-// 3 written, but some frames were not tracked or the graph stayed in pieces.
+// Every output is opened before the run and written whole or not at all (run_outputs.h).
+// Exit codes: 0 every frame tracked and the graph in one piece, 1 bad input (when the input ends
+// with an error after some frames, the outputs are written for those frames, marked partial),
+// 2 usage error, 3 written, but some frames were not tracked or the graph stayed in pieces.
 #include <CLI/CLI.hpp>
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <ostream>
 #include <iostream>
 #include <optional>
 #include <vector>
@@ -35,9 +37,7 @@
 
 namespace {
 
-void writeLoopsCsv(const std::string& path, const std::vector<gasp::LoopClosureAttempt>& attempts) {
-  std::ofstream out(path);
-  if (!out) throw gasp::Error("cannot write " + path);
+void writeLoopsCsv(std::ostream& out, const std::vector<gasp::LoopClosureAttempt>& attempts) {
   out << "from,to,relocalisation,accepted,inliers,gate_chi2,registration_ms,reason\n";
   for (const auto& a : attempts) {
     std::string reason = a.reason;
@@ -47,7 +47,6 @@ void writeLoopsCsv(const std::string& path, const std::vector<gasp::LoopClosureA
                   a.accepted ? 1 : 0, a.inliers, a.gate_chi2, a.registration_ms);
     out << buf << '"' << reason << "\"\n";
   }
-  if (!out) throw gasp::Error("cannot write " + path);
 }
 
 }  // namespace
@@ -101,11 +100,11 @@ int main(int argc, char** argv) {
   try {
     gasp::validate(params);
     const gasp::VoxelPointMap probe(map_output.voxel_m, map_output.cloud_max_depth_m);  // checked before the run
-    const std::string missing = gasp::tools::outputPathProblem(
-        {{"--out", out_path}, {"--odometry-out", odometry_out}, {"--graph", graph_path}, {"--frames-csv", frames_csv},
-         {"--loops-csv", loops_csv}, {"--marginals-csv", marginals_csv}, {"--simplemap", map_output.simplemap_path}, {"--cloud", map_output.cloud_path}},
-        gasp::tools::sequenceInputs(input, gt_path));
-    if (!missing.empty()) throw gasp::Error(missing);  // before the run, not after it
+    std::vector<std::pair<std::string, std::string>> output_paths{
+        {"--out", out_path}, {"--odometry-out", odometry_out}, {"--graph", graph_path}, {"--frames-csv", frames_csv},
+        {"--loops-csv", loops_csv}, {"--marginals-csv", marginals_csv}};
+    for (const auto& p : gasp::tools::mapOutputPaths(map_output)) output_paths.push_back(p);
+    gasp::tools::RunOutputs outputs(output_paths, gasp::tools::sequenceInputs(input, gt_path));  // before the run
     gasp::DepthSequence sequence(input);
     gasp::tools::reportIntrinsics(stdout, sequence.intrinsicsSummary(), sequence.intrinsicsWarning());
     const gasp::Trajectory gt = gt_path.empty() ? sequence.groundTruth() : gasp::readTumTrajectory(gt_path);
@@ -114,7 +113,7 @@ int main(int argc, char** argv) {
     std::vector<gasp::RgbdFrame> keyframes;  // for --simplemap and --cloud
     const bool keep_keyframes = map_output.wanted();
     // Each frame is segmented while the one before it is registered (frames_ahead.h).
-    gasp::tools::forEachFrameWithViewAhead(sequence, params.odometry, sequential, [&](const gasp::RgbdFrame& frame, auto segmented) {
+    const gasp::tools::SequenceEnd end = gasp::tools::forEachFrameWithViewAhead(sequence, params.odometry, sequential, [&](const gasp::RgbdFrame& frame, auto segmented) {
       if (!slam) {
         // World = the first frame's robot frame: the first camera sits at its sensorPose.
         T_robot_camera = frame.T_robot_camera;
@@ -136,14 +135,26 @@ int main(int argc, char** argv) {
     if (!slam) throw gasp::Error(sequence.describe() + ": no frame to use");
 
     const auto& frames = slam->odometry().frames();
-    gasp::writeTumTrajectory(out_path, slam->trajectory(), "depth camera trajectory by gasp-slam (optimised)");
-    if (!odometry_out.empty())
-      gasp::writeTumTrajectory(odometry_out, slam->odometry().trajectory(), "depth camera trajectory by gasp-slam (odometry)");
-    if (!frames_csv.empty()) gasp::tools::writeFramesCsv(frames_csv, frames);
-    if (!loops_csv.empty()) writeLoopsCsv(loops_csv, slam->attempts());
-    if (!graph_path.empty()) {
+    gasp::OutputFile& out = outputs.at("--out");
+    gasp::writeTumTrajectory(out.stream(), slam->trajectory(),
+                             gasp::tools::trajectoryHeader("depth camera trajectory by gasp-slam (optimised)", end));
+    out.commit();
+    if (auto* f = outputs.find("--odometry-out")) {
+      gasp::writeTumTrajectory(f->stream(), slam->odometry().trajectory(),
+                               gasp::tools::trajectoryHeader("depth camera trajectory by gasp-slam (odometry)", end));
+      f->commit();
+    }
+    if (auto* f = outputs.find("--frames-csv")) {
+      gasp::tools::writeFramesCsv(f->stream(), frames);
+      f->commit();
+    }
+    if (auto* f = outputs.find("--loops-csv")) {
+      writeLoopsCsv(f->stream(), slam->attempts());
+      f->commit();
+    }
+    if (auto* graph_file = outputs.find("--graph")) {
       const auto g = gasp::toPoseGraph(slam->poses(), slam->constraints(), T_robot_camera);
-      g.graph.saveToTextFile(graph_path);
+      gasp::tools::writeGraph(*graph_file, g.graph);
       std::printf("graph: %s (%zu nodes, %zu edges%s)\n", graph_path.c_str(), g.graph.nodes.size(), g.graph.edgeCount(),
                   g.skipped_constraints ? (", " + std::to_string(g.skipped_constraints) + " without a covariance left out").c_str() : "");
     }
@@ -155,7 +166,10 @@ int main(int argc, char** argv) {
       marginals.message = e.what();
     }
     const gasp::Trajectory trajectory = slam->trajectory();
-    if (!marginals_csv.empty()) gasp::tools::writeMarginalsCsv(marginals_csv, marginals, trajectory);
+    if (auto* f = outputs.find("--marginals-csv")) {
+      gasp::tools::writeMarginalsCsv(f->stream(), marginals, trajectory);
+      f->commit();
+    }
     std::vector<gasp::Isometry3> keyframe_poses;
     std::vector<gasp::Matrix6> keyframe_covariances;  // a keyframe no constraint reaches is its own piece: zero
     for (const auto& f : frames)
@@ -172,7 +186,7 @@ int main(int argc, char** argv) {
                            "keyframe of its piece, and the pieces are placed only by the odometry's prediction\n",
                    slam->pieceCount());
     }
-    gasp::tools::writeMapOutputs(map_output, keyframes, keyframe_poses, "keyframes", keyframe_covariances);
+    gasp::tools::writeMapOutputs(map_output, outputs, keyframes, keyframe_poses, "keyframes", keyframe_covariances);
 
     gasp::tools::printOdometrySummary(slam->odometry());
     std::size_t tried = 0, relocalisations = 0;
@@ -189,6 +203,7 @@ int main(int argc, char** argv) {
     gasp::tools::printEvaluation(gt, slam->odometry().trajectory(), tracked, "odometry_");
     gasp::tools::printEvaluation(gt, trajectory, tracked);
     gasp::tools::printMarginals(marginals, trajectory, gt);
+    if (const int code = gasp::tools::reportPartial(end); code >= 0) return code;
     const std::size_t lost = frames.size() - tracked;
     if (lost > 0) std::printf("not_tracked: %zu frames (poses predicted; reasons in --frames-csv)\n", lost);
     if (lost > 0 || slam->pieceCount() > 1) return 3;

@@ -39,10 +39,9 @@ int main(int argc, char** argv) {
   try {
     std::vector<std::string> inputs = gasp::tools::tumFolderInputs(tum_dir);
     for (const std::string& f : gasp::tools::intrinsicsFileInput(intrinsics)) inputs.push_back(f);
-    if (const std::string problem = gasp::tools::outputPathProblem(
-            {{"OUT", out_rawlog}, {"OUT's ground truth", gasp::groundTruthPathForRawlog(out_rawlog)}}, inputs);
-        !problem.empty())
-      throw gasp::Error(problem);
+    // Checked before the work (the writer opens OUT itself): not an input, a regular file or new.
+    static_cast<void>(gasp::tools::RunOutputs(
+        {{"OUT", out_rawlog}, {"OUT's ground truth", gasp::groundTruthPathForRawlog(out_rawlog)}}, inputs));
     gasp::TumToRawlogOptions options;
     if (!intrinsics.empty()) options.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics);
     options.writer.format = gasp::rawlogFormatFromNumber(format);
@@ -67,7 +66,7 @@ int main(int argc, char** argv) {
                                               : s.ground_truth_path)
               << "\n";
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << gasp::exceptionMessage(e) << "\n";
     return 1;
   }
   return 0;

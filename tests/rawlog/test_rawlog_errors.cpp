@@ -385,7 +385,6 @@ TEST(RawlogWriter, AFailedRunLeavesTheEarlierRawlogAsItWas) {
     gasp::RawlogWriter writer(path);
     for (int i = 0; i < 2; ++i) writer.write(gasp::test::syntheticFrame(1.0 + i));
     EXPECT_FALSE(std::filesystem::exists(path)) << "published before close()";
-    EXPECT_TRUE(std::filesystem::exists(path + ".partial"));
     writer.close();
   }
   const std::string before = fileText(path);
@@ -417,7 +416,10 @@ TEST(RawlogWriter, AFailedRunLeavesTheEarlierRawlogAsItWas) {
     for (int i = 0; i < 3; ++i) writer.write(gasp::test::syntheticFrame(7.0 + i));
   }
   EXPECT_EQ(gasp::readRawlogFrames(path).size(), 3u);
-  EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
+  // Nothing but the rawlog is left in its folder (no temporary file of any of the runs).
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) names.push_back(entry.path().filename().string());
+  EXPECT_EQ(names, std::vector<std::string>{"kept.rawlog"});
 
   // A folder where the rawlog should be: a clear error.
   std::filesystem::create_directories(dir + "/folder.rawlog");

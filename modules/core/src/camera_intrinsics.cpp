@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "gasp/core/error.h"
+#include "gasp/core/output_file.h"
 #include "gasp/core/text_file.h"
 
 namespace gasp {
@@ -116,15 +117,20 @@ CameraIntrinsics CameraIntrinsics::load(const std::string& path) {
 }
 
 void CameraIntrinsics::save(const std::string& path) const {
-  std::ofstream out(path);
-  if (!out) throw Error("cannot write intrinsics file '" + path + "'");
+  OutputFile file(path, "intrinsics file");
+  save(file.stream());
+  file.commit();
+}
+
+void CameraIntrinsics::save(std::ostream& out) const {
+  const auto precision = out.precision();
   out << std::setprecision(10);
   out << "# GASP camera intrinsics (pinhole; pixels)\n"
       << "width: " << width << "\nheight: " << height << "\nfx: " << fx << "\nfy: " << fy
       << "\ncx: " << cx << "\ncy: " << cy << "\ndistortion:";
   for (double d : distortion) out << ' ' << d;
   out << '\n';
-  if (!out) throw Error("error while writing intrinsics file '" + path + "'");
+  out.precision(precision);
 }
 
 bool operator==(const CameraIntrinsics& a, const CameraIntrinsics& b) {

@@ -2,7 +2,10 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <filesystem>
 #include <fstream>
+#include <string_view>
+#include <vector>
 
 #include "gasp/core/error.h"
 
@@ -26,15 +29,25 @@ void requireImageWriter(const std::string& path, const std::string& what) {
     throw Error(what + " '" + path + "': no image format for this file name; use .png, .jpg, .bmp, .tif or .ppm");
 }
 
-void writeImage(const std::string& path, const cv::Mat& image, const std::string& what) {
+void writeImage(OutputFile& out, const cv::Mat& image, const std::string& what) {
+  const std::string& path = out.path();
   requireImageWriter(path, what);
+  std::vector<uchar> bytes;
   bool ok = false;
   try {
-    ok = cv::imwrite(path, image);
+    ok = cv::imencode(std::filesystem::path(path).extension().string(), image, bytes);
   } catch (const cv::Exception& e) {
     throw Error("cannot write " + what + " '" + path + "': " + openCvMessage(e));
   }
-  if (!ok) throw Error("cannot write " + what + " '" + path + "'");
+  if (!ok) throw Error("cannot write " + what + " '" + path + "': the image cannot be encoded in this format");
+  out.write(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  out.commit();
+}
+
+void writeImage(const std::string& path, const cv::Mat& image, const std::string& what) {
+  requireImageWriter(path, what);
+  OutputFile out(path, what);
+  writeImage(out, image, what);
 }
 
 cv::Mat readImage(const std::string& path, int flags, const std::string& what) {

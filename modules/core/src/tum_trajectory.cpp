@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "gasp/core/error.h"
+#include "gasp/core/output_file.h"
 #include "gasp/core/text_file.h"
 
 namespace gasp {
@@ -43,8 +44,14 @@ Trajectory readTumTrajectory(const std::string& path) {
 }
 
 void writeTumTrajectory(const std::string& path, const Trajectory& traj, const std::string& header) {
-  std::ofstream out(path);
-  if (!out) throw Error("cannot write trajectory file '" + path + "'");
+  OutputFile file(path, "trajectory");
+  writeTumTrajectory(file.stream(), traj, header);
+  file.commit();
+}
+
+void writeTumTrajectory(std::ostream& out, const Trajectory& traj, const std::string& header) {
+  const auto flags = out.flags();
+  const auto precision = out.precision();
   if (!header.empty()) out << "# " << header << '\n';
   out << "# timestamp tx ty tz qx qy qz qw\n";
   out << std::fixed;
@@ -55,7 +62,8 @@ void writeTumTrajectory(const std::string& path, const Trajectory& traj, const s
         << t.y() << ' ' << t.z() << ' ' << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << q.w()
         << '\n';
   }
-  if (!out) throw Error("error while writing trajectory file '" + path + "'");
+  out.flags(flags);
+  out.precision(precision);
 }
 
 std::size_t findClosestIndex(const std::vector<double>& sorted, double t) {

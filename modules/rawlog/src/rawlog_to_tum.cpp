@@ -8,11 +8,13 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <set>
 #include <vector>
 
 #include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
+#include "gasp/core/output_file.h"
 #include "gasp/core/image_file.h"
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/rawlog/frame_convention.h"
@@ -78,7 +80,7 @@ RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std:
   RawlogToTumSummary s;
   std::set<std::string> stamps;
   double last_timestamp = 0.0;
-  std::ofstream depth_txt, rgb_txt;
+  std::optional<OutputFile> depth_txt, rgb_txt;  // published whole at the end
   constexpr double kMaxUnits = std::numeric_limits<std::uint16_t>::max();  // depthToRaw() writes 0 beyond
   while (auto f = reader.next()) {
     if (!options.sensor_label.empty() && f->sensor_label != options.sensor_label) {
@@ -95,9 +97,8 @@ RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std:
       created.file(root / "intrinsics.txt");
       s.intrinsics.save((root / "intrinsics.txt").string());
       created.file(root / "depth.txt");
-      depth_txt.open(root / "depth.txt");
-      if (!depth_txt) throw Error("cannot write '" + (root / "depth.txt").string() + "'");
-      depth_txt << "# depth maps\n# converted from " << rawlog_path << " by gasp-rawlog2tum\n# timestamp filename\n";
+      depth_txt.emplace((root / "depth.txt").string(), "depth list");
+      depth_txt->stream() << "# depth maps\n# converted from " << rawlog_path << " by gasp-rawlog2tum\n# timestamp filename\n";
     } else if (f->depth_intrinsics != s.intrinsics) {
       throw Error(rawlog_path + ": scan " + std::to_string(reader.scansRead() - 1) +
                   " has other depth intrinsics than the first: a TUM folder holds one camera");
@@ -123,7 +124,7 @@ RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std:
       if (fs::exists(p)) throw Error("'" + p.string() + "' exists already: write into a new folder");
     created.file(root / "depth" / (t + ".png"));
     saveDepth((root / "depth" / (t + ".png")).string(), f->depth_m, kTumDepthUnitsPerMetre);
-    depth_txt << t << " depth/" << t << ".png\n";
+    depth_txt->stream() << t << " depth/" << t << ".png\n";
     if (options.with_rgb && !f->rgb.empty()) {
       const bool registered =
           f->rgb_intrinsics == f->depth_intrinsics && f->T_depth_rgb.isApprox(Isometry3::Identity(), 1e-12);
@@ -133,13 +134,12 @@ RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std:
         if (s.frames_with_rgb == 0) {
           created.dir(root / "rgb");
           created.file(root / "rgb.txt");
-          rgb_txt.open(root / "rgb.txt");
-          if (!rgb_txt) throw Error("cannot write '" + (root / "rgb.txt").string() + "'");
-          rgb_txt << "# color images\n# converted from " << rawlog_path << " by gasp-rawlog2tum\n# timestamp filename\n";
+          rgb_txt.emplace((root / "rgb.txt").string(), "rgb list");
+          rgb_txt->stream() << "# color images\n# converted from " << rawlog_path << " by gasp-rawlog2tum\n# timestamp filename\n";
         }
         created.file(root / "rgb" / (t + ".png"));
         writeImage(root / "rgb" / (t + ".png"), f->rgb);
-        rgb_txt << t << " rgb/" << t << ".png\n";
+        rgb_txt->stream() << t << " rgb/" << t << ".png\n";
         ++s.frames_with_rgb;
       }
     }
@@ -153,12 +153,8 @@ RawlogToTumSummary convertRawlogToTum(const std::string& rawlog_path, const std:
   if (s.frames_without_depth == s.frames_written)
     throw Error(rawlog_path + ": none of the " + std::to_string(s.frames_written) +
                 " scans has a depth GASP can write (0 to 13.107 m; rangeUnits and the range image give none)");
-  depth_txt.close();
-  if (!depth_txt) throw Error("error while writing '" + (root / "depth.txt").string() + "'");
-  if (rgb_txt.is_open()) {
-    rgb_txt.close();
-    if (!rgb_txt) throw Error("error while writing '" + (root / "rgb.txt").string() + "'");
-  }
+  depth_txt->commit();
+  if (rgb_txt) rgb_txt->commit();
   if (!options.ground_truth_path.empty()) {
     created.file(root / "groundtruth.txt");
     writeTumTrajectory((root / "groundtruth.txt").string(), ground_truth,

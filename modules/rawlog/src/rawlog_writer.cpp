@@ -1,7 +1,5 @@
 #include "gasp/rawlog/rawlog_writer.h"
 
-#include <mrpt/io/CFileGZOutputStream.h>
-#include <mrpt/io/CFileOutputStream.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
@@ -9,21 +7,25 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <optional>
 #include <opencv2/imgcodecs.hpp>
 
 #include "gasp/core/error.h"
 #include "gasp/core/image_file.h"
+#include "gasp/core/output_file.h"
+#include "gasp/rawlog/gz_output_stream.h"
 #include "gasp/rawlog/observation_conversion.h"
 
 namespace gasp {
 
 struct RawlogWriter::Impl {
-  std::unique_ptr<mrpt::io::CStream> stream;
+  std::optional<OutputFile> file;
+  std::optional<GzOutputStream> stream;
 };
 
 RawlogWriter::RawlogWriter(const std::string& path, const RawlogWriterOptions& options)
-    : path_(path), partial_path_(path + ".partial"), images_dir_(rawlogImagesDirectory(path)),
-      uncaught_at_construction_(std::uncaught_exceptions()), options_(options), impl_(std::make_unique<Impl>()) {
+    : path_(path), images_dir_(rawlogImagesDirectory(path)), uncaught_at_construction_(std::uncaught_exceptions()),
+      options_(options), impl_(std::make_unique<Impl>()) {
   namespace fs = std::filesystem;
   if (options_.compress_level < 0 || options_.compress_level > 9)
     throw Error("rawlog '" + path + "': compress_level must be 0..9");
@@ -33,22 +35,8 @@ RawlogWriter::RawlogWriter(const std::string& path, const RawlogWriterOptions& o
   if (!parent.empty()) fs::create_directories(parent, ec);
   if (!parent.empty() && !fs::is_directory(parent, ec))
     throw Error("rawlog '" + path + "': cannot create the output folder '" + parent.string() + "'");
-  try {
-    if (options_.compress_level == 0) {
-      auto f = std::make_unique<mrpt::io::CFileOutputStream>();
-      if (!f->open(partial_path_)) throw Error("rawlog '" + path + "': cannot create '" + partial_path_ + "'");
-      impl_->stream = std::move(f);
-    } else {
-      auto f = std::make_unique<mrpt::io::CFileGZOutputStream>();
-      if (!f->open(partial_path_, options_.compress_level))
-        throw Error("rawlog '" + path + "': cannot create '" + partial_path_ + "'");
-      impl_->stream = std::move(f);
-    }
-  } catch (const Error&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw Error("rawlog '" + path + "': cannot create the file: " + e.what());
-  }
+  impl_->file.emplace(path, "rawlog");
+  impl_->stream.emplace(*impl_->file, options_.compress_level);
   if (options_.external_storage) {
     fs::create_directories(images_dir_, ec);
     if (!fs::is_directory(images_dir_)) {
@@ -73,6 +61,7 @@ RawlogWriter& RawlogWriter::operator=(RawlogWriter&&) noexcept = default;
 
 void RawlogWriter::write(const RgbdFrame& frame) {
   if (!impl_ || !impl_->stream) throw Error("rawlog '" + path_ + "': writer already closed");
+  if (impl_->file->committed()) throw Error("rawlog '" + path_ + "': writer already closed");
   auto obs = observationFromFrame(frame);
 
   if (options_.external_storage) {
@@ -103,25 +92,29 @@ void RawlogWriter::write(const RgbdFrame& frame) {
     } else {
       ar << *obs;
     }
+  } catch (const Error&) {
+    throw;  // names the file and the system's reason (OutputFile)
   } catch (const std::exception& e) {
-    throw Error("rawlog '" + path_ + "': write failed: " + e.what());
+    throw Error("rawlog '" + path_ + "': write failed: " + exceptionMessage(e));
   }
   ++frames_written_;
 }
 
 void RawlogWriter::close() {
   if (!impl_ || !impl_->stream) return;
-  impl_->stream.reset();  // flushes and closes
-  std::error_code ec;
-  std::filesystem::rename(partial_path_, path_, ec);
-  if (ec) throw Error("rawlog '" + path_ + "': cannot rename '" + partial_path_ + "' to it: " + ec.message());
+  try {
+    impl_->stream->finish();  // ends the gzip stream, checks, fsyncs and renames (OutputFile::commit())
+  } catch (...) {
+    impl_->stream.reset();  // closed: the file was dropped
+    throw;
+  }
+  impl_->stream.reset();
 }
 
 void RawlogWriter::discard() {
   if (!impl_ || !impl_->stream) return;
   impl_->stream.reset();
-  std::error_code ec;
-  std::filesystem::remove(partial_path_, ec);
+  impl_->file->discard();
 }
 
 }  // namespace gasp

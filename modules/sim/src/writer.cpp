@@ -12,6 +12,7 @@
 #include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
 #include "gasp/core/image_file.h"
+#include "gasp/core/output_file.h"
 
 namespace fs = std::filesystem;
 
@@ -44,17 +45,14 @@ void refuseForeignSequence(const fs::path& root) {
                 "' holds a depth.txt that gasp-simulate did not write (real data?); write into a new folder");
 }
 
-std::ofstream openText(const fs::path& path) {
-  std::ofstream out(path);
-  if (!out) throw Error("cannot write '" + path.string() + "'");
-  out << std::setprecision(9) << std::boolalpha;
+/// A text output of the sequence, written whole or not at all (closeText() commits it).
+OutputFile openText(const fs::path& path) {
+  OutputFile out(path.string(), "simulated sequence file");
+  out.stream() << std::setprecision(9) << std::boolalpha;
   return out;
 }
 
-void closeText(std::ofstream& out, const fs::path& path) {
-  out.close();
-  if (!out) throw Error("error while writing '" + path.string() + "'");
-}
+void closeText(OutputFile& out) { out.commit(); }
 
 void writeLabels(const fs::path& path, const cv::Mat& labels) {
   writeImage(path.string(), labels, "label image");
@@ -63,7 +61,8 @@ void writeLabels(const fs::path& path, const cv::Mat& labels) {
 void writeSceneInfo(const fs::path& path, const Simulation& sim) {
   const auto& o = sim.options();
   const auto& n = o.noise;
-  std::ofstream out = openText(path);
+  OutputFile file = openText(path);
+  std::ostream& out = file.stream();
   out << "# GASP simulated sequence (gasp-simulate); see docs/simulator.md\n"
       << "scene: " << sim.scene().name << '\n'
       << "description: " << sim.scene().description << '\n'
@@ -89,7 +88,7 @@ void writeSceneInfo(const fs::path& path, const Simulation& sim) {
       << "noise.drop_grazing: " << n.drop_grazing << '\n'
       << "noise.max_incidence_deg: " << n.max_incidence_deg << '\n'
       << "depth_units_per_metre: " << kTumDepthUnitsPerMetre << '\n';
-  closeText(out, path);
+  closeText(file);
 }
 
 }  // namespace
@@ -108,7 +107,8 @@ SimulationSummary writeSimulation(const SimulationOptions& options, const std::s
   makeDir(root / "labels");
 
   const fs::path depth_list = root / "depth.txt";
-  std::ofstream depth_txt = openText(depth_list);
+  OutputFile depth_file = openText(depth_list);
+  std::ostream& depth_txt = depth_file.stream();
   depth_txt << kDepthListMark << ", scene " << sim.scene().name << ", seed " << options.seed
             << ")\n# timestamp filename\n";
   double valid = 0.0, total = 0.0;
@@ -121,29 +121,31 @@ SimulationSummary writeSimulation(const SimulationOptions& options, const std::s
     valid += static_cast<double>(cv::countNonZero(f.depth));
     total += static_cast<double>(f.depth.total());
   }
-  closeText(depth_txt, depth_list);
+  closeText(depth_file);
 
   writeTumTrajectory((root / "groundtruth.txt").string(), sim.path().poses,
                      "ground truth of the simulated optical camera frame (T_world_camera)");
   options.intrinsics.save((root / "intrinsics.txt").string());
 
   const fs::path seg_path = root / "segments.txt";
-  std::ofstream seg = openText(seg_path);
+  OutputFile seg_file = openText(seg_path);
+  std::ostream& seg = seg_file.stream();
   seg << "# name first_frame last_frame first_timestamp last_timestamp\n";
   for (const auto& s : sim.path().segments)
     seg << s.name << ' ' << s.first_frame << ' ' << s.last_frame << ' '
         << formatTimestamp(sim.path().poses[static_cast<std::size_t>(s.first_frame)].timestamp) << ' '
         << formatTimestamp(sim.path().poses[static_cast<std::size_t>(s.last_frame)].timestamp) << '\n';
-  closeText(seg, seg_path);
+  closeText(seg_file);
 
   const fs::path surf_path = root / "surfaces.txt";
-  std::ofstream surf = openText(surf_path);
+  OutputFile surf_file = openText(surf_path);
+  std::ostream& surf = surf_file.stream();
   surf << "# surface_id object shape face (label images hold surface ids; 0 = no surface)\n";
   for (const auto& o : sim.scene().objects)
     for (int face = 0; face < faceCount(o.shape); ++face)
       surf << o.surfaceId(face) << ' ' << o.name << ' ' << shapeTypeName(o.shape) << ' '
            << faceName(o.shape, face) << '\n';
-  closeText(surf, surf_path);
+  closeText(surf_file);
 
   writeSceneInfo(root / "scene.txt", sim);
 

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "gasp/core/error.h"
+#include "gasp/core/output_file.h"
 #include "gasp/core/point_cloud.h"
 #include "gasp/core/undistortion.h"
 
@@ -61,14 +62,19 @@ std::vector<Eigen::Vector3f> VoxelPointMap::points() const {
 }
 
 void VoxelPointMap::writePly(const std::string& path) const {
-  std::ofstream out(path);
-  if (!out) throw Error("cannot write " + path);
+  OutputFile file(path, "point cloud");
+  writePly(file.stream());
+  file.commit();
+}
+
+void VoxelPointMap::writePly(std::ostream& out) const {
+  const auto precision = out.precision();
   const std::vector<Eigen::Vector3f> pts = points();
   out << "ply\nformat ascii 1.0\ncomment GASP point map, voxel " << voxel_m_ << " m\nelement vertex " << pts.size()
       << "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
   out << std::setprecision(std::numeric_limits<float>::max_digits10);
   for (const Eigen::Vector3f& p : pts) out << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
-  if (!out) throw Error("cannot write " + path);
+  out.precision(precision);
 }
 
 }  // namespace gasp

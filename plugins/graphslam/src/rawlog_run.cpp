@@ -55,7 +55,15 @@ RawlogRunResult runOverRawlog(GraphSlamEngine& engine, RawlogEntries& entries, c
   // before the root enters the graph, with the second node).
   std::vector<std::optional<RgbdFrame>> keyframe_depth;
   while (!options.selection.done(run.scans)) {
-    auto next_entry = entries.next();
+    std::optional<RawlogEntry> next_entry;
+    try {
+      next_entry = entries.next();
+    } catch (const Error& e) {
+      if (run.steps == 0) throw;
+      run.complete = false;  // the entries before the damage are kept
+      run.input_error = e.what();
+      break;
+    }
     if (!next_entry) break;
     auto [action, observations, observation] = *next_entry;
     std::size_t entry = entries.objectsRead();  // the engine takes it by reference

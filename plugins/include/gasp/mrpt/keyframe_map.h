@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "gasp/core/output_file.h"
 #include "gasp/core/pose.h"
 #include "gasp/core/pose_perturbation.h"
 #include "gasp/pipeline/depth_view.h"
@@ -36,8 +37,11 @@ mrpt::maps::CSimpleMap keyframeSimpleMap(const std::vector<RgbdFrame>& keyframes
 /// view's depth is not CV_32FC1 of its intrinsics' size.
 RgbdFrame withViewDepth(RgbdFrame frame, const DepthView& view);
 
-/// Writes the map with MRPT's serialization (CSimpleMap::saveToFile, gzip-compressed as MRPT's
-/// own .simplemap files). Throws gasp::Error when it cannot be written.
+/// Writes the map with MRPT's serialization, gzip-compressed as MRPT's own .simplemap files
+/// (CSimpleMap::loadFromFile reads it), whole or not at all (gasp/core/output_file.h). Throws
+/// gasp::Error naming the file when it cannot be written.
 void saveSimpleMap(const mrpt::maps::CSimpleMap& map, const std::string& path);
+/// The same into an output opened before the work; commits it.
+void saveSimpleMap(const mrpt::maps::CSimpleMap& map, OutputFile& file);
 
 }  // namespace gasp

@@ -2,6 +2,7 @@
 /// \file camera_intrinsics.h Pinhole intrinsics of a depth camera, presets and a text file format.
 #include <Eigen/Core>
 #include <array>
+#include <ostream>
 #include <string>
 
 namespace gasp {
@@ -43,8 +44,10 @@ struct CameraIntrinsics {
   /// Reads `key: value` lines (width, height, fx, fy, cx, cy, optional distortion with 5 numbers;
   /// '#' starts a comment). Errors name the file and line.
   static CameraIntrinsics load(const std::string& path);
-  /// Writes the format read by load().
+  /// Writes the format read by load() (whole or not at all: gasp/core/output_file.h).
   void save(const std::string& path) const;
+  /// The same into a stream; the caller checks it.
+  void save(std::ostream& out) const;
 };
 
 bool operator==(const CameraIntrinsics& a, const CameraIntrinsics& b);

@@ -2,6 +2,7 @@
 /// \file tum_trajectory.h TUM trajectory files (`timestamp tx ty tz qx qy qz qw`) and timestamp
 /// association as in the TUM benchmark's associate.py.
 #include <optional>
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,7 +24,12 @@ using Trajectory = std::vector<StampedPose>;
 /// missing file. The result is sorted by timestamp; duplicated timestamps are an error.
 Trajectory readTumTrajectory(const std::string& path);
 
-/// Writes a TUM trajectory with an optional '#' header line (stamps with 6 decimals, poses with 9).
+/// Writes a TUM trajectory with an optional '#' header line (stamps with 6 decimals, poses with 9)
+/// to `out`; the caller checks the stream (OutputFile::commit()).
+void writeTumTrajectory(std::ostream& out, const Trajectory& trajectory, const std::string& header = "");
+
+/// The same into the file `path`, whole or not at all (gasp/core/output_file.h); throws
+/// gasp::Error naming the file when it cannot be written.
 void writeTumTrajectory(const std::string& path, const Trajectory& trajectory,
                         const std::string& header = "");
 

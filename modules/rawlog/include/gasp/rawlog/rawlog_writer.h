@@ -20,14 +20,17 @@ struct RawlogWriterOptions {
   int compress_level = 1;
 };
 
-/// Writes a rawlog. The frames go to "<path>.partial", which close() renames to `path`: a run
-/// that fails half-way leaves an existing rawlog at `path` as it was, never a shorter one that
-/// reads as complete. The destructor closes too, except while an exception unwinds the stack:
-/// then (as with discard()) the partial file is removed. External images are written in place.
+/// Writes a rawlog, whole or not at all: the frames go to a temporary file in the rawlog's folder
+/// (gasp/core/output_file.h) that close() renames to `path`, so a run that fails or is killed
+/// half-way leaves an existing rawlog at `path` as it was, never a shorter one that reads as
+/// complete, and nothing beside it. The destructor closes too, except while an exception unwinds
+/// the stack: then (as with discard()) the temporary file is dropped. A `path` that is a symbolic
+/// link keeps it (the file it names is replaced); a device, FIFO or folder is refused. External
+/// images are written in place.
 class RawlogWriter {
  public:
-  /// Creates "<path>.partial" (overwriting one a killed run left), creating the rawlog's folder if
-  /// needed; with external storage also creates "<name>_Images".
+  /// Opens the temporary file, creating the rawlog's folder if needed; with external storage also
+  /// creates "<name>_Images".
   /// Throws gasp::Error when the file or folder cannot be created.
   explicit RawlogWriter(const std::string& path, const RawlogWriterOptions& options = {});
   ~RawlogWriter();
@@ -36,10 +39,11 @@ class RawlogWriter {
 
   /// Converts the frame (observationFromFrame()) and appends it. Throws gasp::Error.
   void write(const RgbdFrame& frame);
-  /// Flushes and closes the file and renames it to path() (also done by the destructor, unless
-  /// an exception is unwinding). Throws gasp::Error when the rename fails; no-op once closed.
+  /// Ends the stream, checks every write, and renames the file to path() (also done by the
+  /// destructor, unless an exception is unwinding, where errors cannot be reported: call it).
+  /// Throws gasp::Error naming the file when a write or the rename failed; no-op once closed.
   void close();
-  /// Closes and removes the partial file: path() is left as it was. No-op once closed.
+  /// Drops what was written: path() is left as it was. No-op once closed.
   void discard();
 
   std::size_t framesWritten() const { return frames_written_; }
@@ -50,7 +54,6 @@ class RawlogWriter {
  private:
   struct Impl;
   std::string path_;
-  std::string partial_path_;  ///< path_ + ".partial", renamed to path_ by close()
   std::string images_dir_;
   int uncaught_at_construction_ = 0;  ///< std::uncaught_exceptions() then
   RawlogWriterOptions options_;

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <ostream>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -36,8 +37,11 @@ class VoxelPointMap {
   std::size_t pointsOutside() const { return outside_; }
   /// One point per occupied voxel, the mean of the points in it [m], in insertion order of the voxels.
   std::vector<Eigen::Vector3f> points() const;
-  /// Writes the points as an ASCII PLY (x y z float vertices). Throws gasp::Error when it cannot.
+  /// Writes the points as an ASCII PLY (x y z float vertices), whole or not at all
+  /// (gasp/core/output_file.h). Throws gasp::Error when it cannot.
   void writePly(const std::string& path) const;
+  /// The same into a stream; the caller checks it.
+  void writePly(std::ostream& out) const;
 
  private:
   struct Cell {

@@ -38,6 +38,10 @@ struct RawlogRunResult {
   std::size_t scans = 0;          ///< the deciders' scans given to it
   std::size_t seen_scans = 0;     ///< the deciders' scans read (given or left out)
   std::vector<NodeRecord> nodes;  ///< one per graph node, in node order
+  /// The rawlog ended with an error (truncated or corrupt) after the entries given: the graph
+  /// holds those, `input_error` says why the rest is missing.
+  bool complete = true;
+  std::string input_error;
 };
 
 /// Feeds `entries` to `engine` until the rawlog ends or the selection is done. The deciders' scans
@@ -52,7 +56,9 @@ struct RawlogRunResult {
 /// registered (deskewed, if it was). With any other node decider, the root takes the first scan
 /// given and each newer node the scan of the step that added it; a node added on a step without
 /// such a scan gets the step's time, the mounting of the node before it, and no depth.
-/// Throws what the engine and the rawlog reader throw.
+/// A rawlog that cannot be read on (gasp::Error from `entries`) ends the run with what was given
+/// before (RawlogRunResult::complete false); it throws what the engine throws, and the reader's
+/// error when not even one entry could be read.
 RawlogRunResult runOverRawlog(GraphSlamEngine& engine, RawlogEntries& entries, const std::string& sensor_label,
                               const CGaspOdometryNRD* node_decider, const RawlogRunOptions& options);
 
