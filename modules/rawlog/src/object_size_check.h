@@ -7,11 +7,11 @@
 /// corrupted size field makes it allocate gigabytes or, the product overflowing Eigen's int
 /// sizes, crash (issue 44: a byte flipped at offset 171 of a rawlog segfaulted). A count or an
 /// image that needs more bytes than the rest of the stream holds cannot be right, so it is
-/// refused here. The check walks the object's header fields as MRPT 2.5 writes them (an object:
-/// 0x80 | name length, class name, version byte, fields, 0x88) and looks only at what MRPT will
-/// allocate from:
-///  - CObservation3DRangeScan (versions 9 and 10, MRPT 2.x): the 3D points' count and the range
-///    image's rows x cols (and each side on its own, Eigen's sizes being int);
+/// refused here. The check walks the object's header fields as MRPT 2.5 reads them (an object:
+/// 0x80 | name length, class name, version byte, fields, 0x88; or MRPT's pre-0.5.5 header) and
+/// looks only at what MRPT will allocate from:
+///  - CObservation3DRangeScan: in every version the 3D points' count; in versions 9 and 10 (MRPT
+///    2.x) also the range image's rows x cols (and each side on its own, Eigen's sizes being int),
 ///    then the intensity and confidence images (CImage versions 6-9: raw sizes, JPEG byte count,
 ///    external file name), the two cameras (TCamera versions 4-6: camera name), the relative pose,
 ///    the sensor label, the external file names and the extra range layers (version 10);
@@ -61,14 +61,33 @@ class ObjectSizeCheck {
     cursor_ += bytes;
     return true;
   }
-  /// An object header: false when it is not one (null objects included); else its class name.
-  bool header(std::string& name, std::uint8_t& version) {
+  /// An object header, as MRPT reads it: 0x80 | name length, the name, a version byte; or (before
+  /// MRPT 0.5.5, `old`) the name length, three zero bytes, the name, an int32 version and no end
+  /// flag after the fields. False when it is not one (null objects included).
+  bool header(std::string& name, std::uint8_t& version, bool& old) {
     std::uint8_t lead = 0;
-    if (!read(lead) || (lead & 0x80) == 0 || (lead & 0x7f) == 0) return false;
+    if (!read(lead) || (lead & 0x7f) == 0 || (lead & 0x7f) > 120) return false;
+    old = (lead & 0x80) == 0;
+    std::uint8_t zeros[3] = {1, 1, 1};
+    if (old && (s_.peek(cursor_, zeros, 3) != 3 || zeros[0] || zeros[1] || zeros[2])) return false;
+    if (old) cursor_ += 3;
     name.assign(lead & 0x7f, '\0');
     if (s_.peek(cursor_, name.data(), name.size()) != name.size()) return false;
     cursor_ += name.size();
-    return read(version);
+    if (!old) return read(version);
+    std::int32_t old_version = -1;
+    if (!read(old_version) || old_version < 0 || old_version >= 255) return false;
+    version = static_cast<std::uint8_t>(old_version);
+    return true;
+  }
+  bool header(std::string& name, std::uint8_t& version) {
+    bool old = false;
+    return header(name, version, old);
+  }
+  /// The end flag 0x88 after an object's fields (none in the old format).
+  bool endFlag(bool old) {
+    std::uint8_t end = 0;
+    return old || (read(end) && end == 0x88);
   }
   static std::string bytes(std::uint64_t n) { return std::to_string(n) + " bytes"; }
 
@@ -96,22 +115,25 @@ class ObjectSizeCheck {
   }
 
   std::string rangeScan(std::uint8_t version) {
-    if (version < 9 || version > 10) return "";  // older layouts: left to MRPT
+    if (version > 10) return "";  // MRPT refuses it
     float max_range = 0;
     if (!read(max_range)) return "";
     const std::string what = "CObservation3DRangeScan: ";
     std::string problem;
-    if (!pose(what + "sensorPose", problem)) return problem;
-    std::uint8_t has_points = 0;
-    if (!read(has_points)) return "";
+    if (!pose(what + "sensorPose", problem, version >= 9)) return problem;
+    std::uint8_t has_points = 1;  // version 0: always
+    if (version > 0 && !read(has_points)) return "";
     if (has_points) {
       std::uint32_t n = 0;
       if (!read(n)) return "";
-      const std::uint64_t need = std::uint64_t{n} * (3 * sizeof(float) + 2 * sizeof(std::uint16_t));
+      // x, y, z floats; version 0 a validity byte each, version 8 on two uint16 pixel indices.
+      const std::uint64_t each = 3 * sizeof(float) + (version == 0 ? 1 : 0) + (version >= 8 ? 4 : 0);
+      const std::uint64_t need = std::uint64_t{n} * each;
       if (need > left())
         return what + std::to_string(n) + " 3D points need " + bytes(need) + " but " + bytes(left()) + " remain";
       skip(need);
     }
+    if (version < 9) return "";  // then a CMatrixF range image and older fields: left to MRPT
     std::uint8_t has_range = 0;
     float range_units = 0;
     if (!read(has_range) || !read(range_units)) return "";
@@ -152,12 +174,13 @@ class ObjectSizeCheck {
 
   /// A mrpt::poses::CPose3D object (version 2: 7 doubles, 3: 12 doubles). False when it cannot be
   /// followed (problem set when it is not a layout MRPT 2 writes).
-  bool pose(const std::string& what, std::string& problem) {
+  bool pose(const std::string& what, std::string& problem, bool mrpt2 = true) {
     std::string name;
-    std::uint8_t version = 0, end = 0;
-    if (!header(name, version)) return false;
-    if (version != 2 && version != 3) return unknownVersion(what, "CPose3D", version, problem);
-    return skip((version == 2 ? 7 : 12) * sizeof(double)) && read(end) && end == 0x88;
+    std::uint8_t version = 0;
+    bool old = false;
+    if (!header(name, version, old)) return false;
+    if (version != 2 && version != 3) return mrpt2 ? unknownVersion(what, "CPose3D", version, problem) : false;
+    return skip((version == 2 ? 7 : 12) * sizeof(double)) && endFlag(old);
   }
 
   /// rows, cols (uint32) and rows x cols uint16 values; "" when they fit (skipped) or cannot be read.
@@ -189,11 +212,12 @@ class ObjectSizeCheck {
   bool image(const std::string& what, std::string& problem) {
     std::string name;
     std::uint8_t version = 0;
-    if (!header(name, version)) return false;
+    bool old = false;
+    if (!header(name, version, old)) return false;
     if (version < 6 || version > 9) return unknownVersion(what, "CImage", version, problem);
     std::uint8_t external = 0, colour = 0;
     if (!read(external)) return false;
-    if (external) return string(what + " file name", problem) && read(external) && external == 0x88;
+    if (external) return string(what + " file name", problem) && endFlag(old);
     if (!read(colour)) return false;
     std::int32_t width = 1, height = 1;
     if ((!colour || version >= 7) && (!read(width) || !read(height))) return false;  // colour before 7: JPEG
@@ -209,7 +233,7 @@ class ObjectSizeCheck {
         return false;
       }
       if (zip) return false;  // MRPT refuses it
-      return skip(std::uint64_t(count)) && read(external) && external == 0x88;
+      return skip(std::uint64_t(count)) && endFlag(old);
     }
     if (width >= 1 && height >= 1) {  // JPEG: byte count and bytes (the JPEG's own header: OpenCV's)
       std::uint32_t n = 0;
@@ -218,7 +242,7 @@ class ObjectSizeCheck {
         problem = what + " (JPEG) claims " + bytes(n) + " but " + bytes(left()) + " remain in the stream";
         return false;
       }
-      return skip(n) && read(external) && external == 0x88;
+      return skip(n) && endFlag(old);
     }
     if (width < 0 && height < 0) {  // raw BGR, the sizes negated
       const std::uint64_t need = width == std::numeric_limits<std::int32_t>::min() ||
@@ -231,7 +255,7 @@ class ObjectSizeCheck {
                   " but " + bytes(left()) + " remain in the stream";
         return false;
       }
-      return skip(need) && read(external) && external == 0x88;
+      return skip(need) && endFlag(old);
     }
     return false;  // an empty colour image of one negative side: MRPT's (OpenCV refuses it)
   }
@@ -239,12 +263,13 @@ class ObjectSizeCheck {
   /// A mrpt::img::TCamera object (versions 4 to 6). False when it cannot be followed.
   bool camera(const std::string& what, std::string& problem) {
     std::string name;
-    std::uint8_t version = 0, end = 0;
-    if (!header(name, version)) return false;
+    std::uint8_t version = 0;
+    bool old = false;
+    if (!header(name, version, old)) return false;
     if (version < 4 || version > 6) return unknownVersion(what, "TCamera", version, problem);
     if (!skip(13 * sizeof(double) + 2 * sizeof(std::uint32_t))) return false;  // focal length, 8 dist, fx fy cx cy, size
     if (version >= 5 && !string(what + " camera name", problem)) return false;
-    return skip(version >= 6 ? 1 : 0) && read(end) && end == 0x88;
+    return skip(version >= 6 ? 1 : 0) && endFlag(old);
   }
 };
 
