@@ -484,7 +484,8 @@ TEST(RawlogReader, ObservationClassesOfMrptMapsAreKnownToEveryReader) {
 // sensory frame whose namespace is garbled (MRPT finds the class by its last part) in a 2 GB deque,
 // likewise an action collection inside a sensory frame whose name has a zero byte after it, and a
 // sensory frame of serialisation version 0 (an ID and a timestamp before its count), and a scan
-// of serialisation version 0 (the points' count comes right after the pose).
+// of serialisation version 0 (the points' count comes right after the pose), and a sensory frame
+// as the second of a sensory frame's objects (every object inside is followed now, not the first).
 // Each is now a gasp::Error naming the file, the object and the field, gzip-compressed or not.
 TEST(RawlogErrors, CorruptSizeFieldsAreErrorsNamingTheObject) {
   const std::filesystem::path data = std::filesystem::path(__FILE__).parent_path() / "data";
@@ -514,6 +515,9 @@ TEST(RawlogErrors, CorruptSizeFieldsAreErrorsNamingTheObject) {
       {"scan_version0_point_count.rawlog",  // a zero byte made the scan version 0 (no hasPoints3D flag)
        "object #0 (at byte 0 of 222): corrupt or truncated: CObservation3DRangeScan: 3071738112 3D points need "
        "39932595456 bytes but 59 bytes remain"},
+      {"nested_sensory_frame_count.rawlog",  // the second object inside a sensory frame: a sensory frame
+       "object #1 (at byte 35 of 406): corrupt or truncated: CSensoryFrame claims 4278190081 objects but 276 bytes "
+       "remain"},
       {"camera_name_length_flipped.rawlog",
        "object #5 (at byte 4485 of 6675): corrupt or truncated: CObservation3DRangeScan: cameraParamsIntensity camera name claims "
        "4025563904 bytes but 165 bytes remain"},

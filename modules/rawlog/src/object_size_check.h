@@ -15,8 +15,8 @@
 ///    then the intensity and confidence images (CImage versions 6-9: raw sizes, JPEG byte count,
 ///    external file name), the two cameras (TCamera versions 4-6: camera name), the relative pose,
 ///    the sensor label, the external file names and the extra range layers (version 10);
-///  - CSensoryFrame (versions 0-2) and CActionCollection (version 0): the count of objects, and the
-///    first object of a sensory frame as above (GASP writes one scan per frame);
+///  - CSensoryFrame (versions 0-2) and CActionCollection (version 0): the count of objects, then
+///    each object inside as far as they can be followed (scans, sensory frames, collections);
 /// A class, a version or a nested layout it does not know (pixel labels, a JPEG's own header) is
 /// left to MRPT as before: it does not make a valid file an error. Inside a version 9/10 scan
 /// (MRPT 2), a pose, camera or image of a version MRPT 2 does not write is an error: MRPT would
@@ -40,7 +40,9 @@ class ObjectSizeCheck {
   /// size field, or the file cut inside the object).
   std::string run() {
     cursor_ = 0;
-    return object(0);
+    std::string problem;
+    object(0, problem);
+    return problem;
   }
 
  private:
@@ -91,76 +93,84 @@ class ObjectSizeCheck {
   }
   static std::string bytes(std::uint64_t n) { return std::to_string(n) + " bytes"; }
 
-  std::string object(int depth) {
+  /// One object from its header to its end flag. False when it cannot be followed to its end (a
+  /// class or layout it does not know, or bytes missing: MRPT reports those), with `problem` set
+  /// when a size does not fit.
+  bool object(int depth, std::string& problem) {
     std::string name;
     std::uint8_t version = 0;
-    if (!header(name, version)) return "";
+    bool old = false;
+    if (!header(name, version, old)) return false;
     // MRPT finds the class by the name as a C string (up to a zero byte) after the last "::" (the
     // namespace may be anything).
     name.resize(std::min(name.size(), name.find('\0')));
     const auto colon = name.rfind("::");
     if (colon != std::string::npos) name = name.substr(colon + 2);
-    if (name == "CObservation3DRangeScan") return rangeScan(version);
-    if ((name == "CSensoryFrame" && version <= 2) || (name == "CActionCollection" && version == 0)) {
+    if (name == "CObservation3DRangeScan") return rangeScan(version, old, problem);
+    if (depth < kMaxDepth &&
+        ((name == "CSensoryFrame" && version <= 2) || (name == "CActionCollection" && version == 0))) {
       // CSensoryFrame before version 2: an ID (uint32), in version 0 also a timestamp (uint64).
-      if (name == "CSensoryFrame" && !skip((version < 2 ? 4 : 0) + (version == 0 ? 8 : 0))) return "";
+      if (name == "CSensoryFrame" && !skip((version < 2 ? 4 : 0) + (version == 0 ? 8 : 0))) return false;
       std::uint32_t n = 0;
-      if (!read(n)) return "";
-      if (n > left())  // every object takes at least one byte
-        return name + " claims " + std::to_string(n) + " objects but " + bytes(left()) +
-               " remain in the stream";
-      if (n > 0 && depth == 0 && name == "CSensoryFrame") return object(depth + 1);
+      if (!read(n)) return false;
+      if (n > left()) {  // every object takes at least one byte
+        problem = name + " claims " + std::to_string(n) + " objects but " + bytes(left()) + " remain in the stream";
+        return false;
+      }
+      for (std::uint32_t i = 0; i < n; ++i)  // each inside, as far as they can be followed
+        if (!object(depth + 1, problem)) return false;
+      return endFlag(old);
     }
-    return "";
+    return false;
   }
+  static constexpr int kMaxDepth = 64;  ///< sensory frames inside sensory frames: followed this deep
 
-  std::string rangeScan(std::uint8_t version) {
-    if (version > 10) return "";  // MRPT refuses it
+  bool rangeScan(std::uint8_t version, bool old, std::string& problem) {
+    if (version > 10) return false;  // MRPT refuses it
     float max_range = 0;
-    if (!read(max_range)) return "";
+    if (!read(max_range)) return false;
     const std::string what = "CObservation3DRangeScan: ";
-    std::string problem;
-    if (!pose(what + "sensorPose", problem, version >= 9)) return problem;
+    if (!pose(what + "sensorPose", problem, version >= 9)) return false;
     std::uint8_t has_points = 1;  // version 0: always
-    if (version > 0 && !read(has_points)) return "";
+    if (version > 0 && !read(has_points)) return false;
     if (has_points) {
       std::uint32_t n = 0;
-      if (!read(n)) return "";
+      if (!read(n)) return false;
       // x, y, z floats; version 0 a validity byte each, version 8 on two uint16 pixel indices.
       const std::uint64_t each = 3 * sizeof(float) + (version == 0 ? 1 : 0) + (version >= 8 ? 4 : 0);
       const std::uint64_t need = std::uint64_t{n} * each;
-      if (need > left())
-        return what + std::to_string(n) + " 3D points need " + bytes(need) + " but " + bytes(left()) + " remain";
+      if (need > left()) {
+        problem = what + std::to_string(n) + " 3D points need " + bytes(need) + " but " + bytes(left()) + " remain";
+        return false;
+      }
       skip(need);
     }
-    if (version < 9) return "";  // then a CMatrixF range image and older fields: left to MRPT
+    if (version < 9) return false;  // then a CMatrixF range image and older fields: left to MRPT
     std::uint8_t has_range = 0;
     float range_units = 0;
-    if (!read(has_range) || !read(range_units)) return "";
-    if (has_range && !(problem = rangeImage(what + "range image")).empty()) return problem;
+    if (!read(has_range) || !read(range_units)) return false;
+    if (has_range && !rangeImage(what + "range image", problem)) return false;
     std::uint8_t has_image = 0;
-    if (!read(has_image)) return "";
-    if (has_image && (!image(what + "intensity image", problem) || !problem.empty())) return problem;
-    if (!read(has_image)) return "";
-    if (has_image && (!image(what + "confidence image", problem) || !problem.empty())) return problem;
+    if (!read(has_image) || (has_image && !image(what + "intensity image", problem))) return false;
+    if (!read(has_image) || (has_image && !image(what + "confidence image", problem))) return false;
     for (const char* camera : {"cameraParams", "cameraParamsIntensity"})
-      if (!this->camera(what + camera, problem) || !problem.empty()) return problem;
-    if (!pose(what + "relativePoseIntensityWRTDepth", problem)) return problem;
-    if (!skip(sizeof(float) + sizeof(std::uint64_t))) return "";  // stdError, timestamp
-    if (!string(what + "sensorLabel", problem) || !problem.empty()) return problem;
-    for (const char* file : {"points3D external file", "rangeImage external file"}) {
-      if (!skip(1) || !string(what + file, problem) || !problem.empty()) return problem;
-    }
+      if (!this->camera(what + camera, problem)) return false;
+    if (!pose(what + "relativePoseIntensityWRTDepth", problem)) return false;
+    if (!skip(sizeof(float) + sizeof(std::uint64_t))) return false;  // stdError, timestamp
+    if (!string(what + "sensorLabel", problem)) return false;
+    for (const char* file : {"points3D external file", "rangeImage external file"})
+      if (!skip(1) || !string(what + file, problem)) return false;
     std::uint8_t has_labels = 0;
-    if (!skip(2) || !read(has_labels) || has_labels) return "";  // range_is_depth, channel; labels: MRPT's
-    if (version < 10) return "";
-    std::uint8_t layers = 0;
-    if (!read(layers)) return "";
-    for (int i = 0; i < layers; ++i) {
-      if (!string(what + "range layer name", problem) || !problem.empty()) return problem;
-      if (!(problem = rangeImage(what + "range layer #" + std::to_string(i))).empty()) return problem;
+    if (!skip(2) || !read(has_labels) || has_labels) return false;  // range_is_depth, channel; labels: MRPT's
+    if (version >= 10) {
+      std::uint8_t layers = 0;
+      if (!read(layers)) return false;
+      for (int i = 0; i < layers; ++i)
+        if (!string(what + "range layer name", problem) ||
+            !rangeImage(what + "range layer #" + std::to_string(i), problem))
+          return false;
     }
-    return "";
+    return endFlag(old);
   }
 
   /// A nested object's version that no MRPT writing a version 9 or 10 scan (MRPT 2) writes: the
@@ -183,17 +193,19 @@ class ObjectSizeCheck {
     return skip((version == 2 ? 7 : 12) * sizeof(double)) && endFlag(old);
   }
 
-  /// rows, cols (uint32) and rows x cols uint16 values; "" when they fit (skipped) or cannot be read.
-  std::string rangeImage(const std::string& what) {
+  /// rows, cols (uint32) and rows x cols uint16 values. False when they do not fit (problem set)
+  /// or cannot be read.
+  bool rangeImage(const std::string& what, std::string& problem) {
     std::uint32_t rows = 0, cols = 0;
-    if (!read(rows) || !read(cols)) return "";
+    if (!read(rows) || !read(cols)) return false;
     const std::uint64_t need = std::uint64_t{rows} * cols * sizeof(std::uint16_t);
     const std::uint64_t max_side = std::numeric_limits<std::int32_t>::max();
-    if (need > left() || rows > max_side || cols > max_side)
-      return what + " of " + std::to_string(rows) + " x " + std::to_string(cols) + " pixels needs " + bytes(need) +
-             " but " + bytes(left()) + " remain in the stream";
-    skip(need);
-    return "";
+    if (need > left() || rows > max_side || cols > max_side) {
+      problem = what + " of " + std::to_string(rows) + " x " + std::to_string(cols) + " pixels needs " + bytes(need) +
+                " but " + bytes(left()) + " remain in the stream";
+      return false;
+    }
+    return skip(need);
   }
 
   /// A string (uint32 length, bytes). False when it cannot be followed (problem set when too long).
