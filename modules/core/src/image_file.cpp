@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gasp/core/error.h"
+#include "image_header.h"
 
 namespace gasp {
 
@@ -52,6 +53,11 @@ void writeImage(const std::string& path, const cv::Mat& image, const std::string
 
 cv::Mat readImage(const std::string& path, int flags, const std::string& what) {
   if (!std::ifstream(path).good()) throw Error(what + " '" + path + "' cannot be opened");
+  // OpenCV allocates the image its header declares before decoding: checked against the file first.
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (const std::string problem = ec ? "" : detail::imageHeaderProblem(path, size); !problem.empty())
+    throw Error(what + " '" + path + "' is not a readable image: " + problem);
   cv::Mat image;
   try {
     image = cv::imread(path, flags);
