@@ -485,7 +485,9 @@ TEST(RawlogReader, ObservationClassesOfMrptMapsAreKnownToEveryReader) {
 // likewise an action collection inside a sensory frame whose name has a zero byte after it, and a
 // sensory frame of serialisation version 0 (an ID and a timestamp before its count), and a scan
 // of serialisation version 0 (the points' count comes right after the pose), and a sensory frame
-// as the second of a sensory frame's objects (every object inside is followed now, not the first).
+// as the second of a sensory frame's objects (every object inside is followed now, not the first),
+// and a file cut inside an action collection's count (MRPT reads a partial field and goes on with
+// the garbage: CArchive::ReadBuffer throws only when it reads nothing at all).
 // Each is now a gasp::Error naming the file, the object and the field, gzip-compressed or not.
 TEST(RawlogErrors, CorruptSizeFieldsAreErrorsNamingTheObject) {
   const std::filesystem::path data = std::filesystem::path(__FILE__).parent_path() / "data";
@@ -518,6 +520,9 @@ TEST(RawlogErrors, CorruptSizeFieldsAreErrorsNamingTheObject) {
       {"nested_sensory_frame_count.rawlog",  // the second object inside a sensory frame: a sensory frame
        "object #1 (at byte 35 of 406): corrupt or truncated: CSensoryFrame claims 4278190081 objects but 276 bytes "
        "remain"},
+      {"action_collection_count_cut.rawlog",  // 33 bytes: the count's last byte missing
+       "object #0 (at byte 0 of 33): corrupt or truncated: the stream ends inside this object (30 bytes of it read, "
+       "33 bytes in the rest of the stream, a field needs more)"},
       {"camera_name_length_flipped.rawlog",
        "object #5 (at byte 4485 of 6675): corrupt or truncated: CObservation3DRangeScan: cameraParamsIntensity camera name claims "
        "4025563904 bytes but 165 bytes remain"},

@@ -40,8 +40,14 @@ class ObjectSizeCheck {
   /// size field, or the file cut inside the object).
   std::string run() {
     cursor_ = 0;
+    cut_ = false;
     std::string problem;
     object(0, problem);
+    // Cut inside a field: MRPT reads a partial field without noticing (CArchive::ReadBuffer throws
+    // only when nothing at all is read) and allocates from the garbage.
+    if (problem.empty() && cut_)
+      problem = "the stream ends inside this object (" + bytes(cursor_) + " of it read, " + bytes(remaining_) +
+                " in the rest of the stream, a field needs more)";
     return problem;
   }
 
@@ -52,14 +58,26 @@ class ObjectSizeCheck {
 
   std::uint64_t left() const { return remaining_ > cursor_ ? remaining_ - cursor_ : 0; }
 
-  template <class T>
-  bool read(T& value) {
-    if (s_.peek(cursor_, &value, sizeof(T)) != sizeof(T)) return false;  // cut short: MRPT reports it
-    cursor_ += sizeof(T);
+  bool cut_ = false;  ///< a field or block went past the end of the stream (after cursor_ > 0)
+
+  /// `count` bytes at the cursor into `out`, or false (and cut_ when the object had begun).
+  bool take(void* out, std::size_t count) {
+    if (count > left() || s_.peek(cursor_, out, count) != count) {
+      cut_ = cut_ || cursor_ > 0;  // nothing at all: the clean end of the file
+      return false;
+    }
+    cursor_ += count;
     return true;
   }
+  template <class T>
+  bool read(T& value) {
+    return take(&value, sizeof(T));
+  }
   bool skip(std::uint64_t bytes) {
-    if (bytes > left()) return false;
+    if (bytes > left()) {
+      cut_ = true;
+      return false;
+    }
     cursor_ += bytes;
     return true;
   }
@@ -71,11 +89,9 @@ class ObjectSizeCheck {
     if (!read(lead) || (lead & 0x7f) == 0 || (lead & 0x7f) > 120) return false;
     old = (lead & 0x80) == 0;
     std::uint8_t zeros[3] = {1, 1, 1};
-    if (old && (s_.peek(cursor_, zeros, 3) != 3 || zeros[0] || zeros[1] || zeros[2])) return false;
-    if (old) cursor_ += 3;
+    if (old && (!take(zeros, 3) || zeros[0] || zeros[1] || zeros[2])) return false;
     name.assign(lead & 0x7f, '\0');
-    if (s_.peek(cursor_, name.data(), name.size()) != name.size()) return false;
-    cursor_ += name.size();
+    if (!take(name.data(), name.size())) return false;
     if (!old) return read(version);
     std::int32_t old_version = -1;
     if (!read(old_version) || old_version < 0 || old_version >= 255) return false;
