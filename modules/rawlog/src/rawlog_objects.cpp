@@ -76,6 +76,8 @@ mrpt::serialization::CSerializable::Ptr RawlogObjects::next() {
     const std::string problem = detail::ObjectSizeCheck(impl_->stream, length > start ? length - start : 0).run();
     if (!problem.empty()) {
       impl_->at_end = true;
+      // In a damaged gzip stream the content ends early: the damage is the cause to report.
+      if (!impl_->content.error.empty()) throw Error("rawlog '" + path_ + "': " + impl_->content.error);
       throw Error("rawlog '" + path_ + "': object #" + std::to_string(objects_read_) + " (at byte " +
                   std::to_string(start) + " of " + std::to_string(length) + "): corrupt or truncated: " + problem);
     }
@@ -93,6 +95,8 @@ mrpt::serialization::CSerializable::Ptr RawlogObjects::next() {
                     ", ends early");
       break;
     } catch (const std::exception& e) {
+      impl_->at_end = true;
+      if (!impl_->content.error.empty()) throw Error("rawlog '" + path_ + "': " + impl_->content.error);
       const std::string message = exceptionMessage(e);
       const std::string unknown = unregisteredClass(message);
       if (!unknown.empty())
