@@ -14,13 +14,16 @@
 ///    2.x) also the range image's rows x cols (and each side on its own, Eigen's sizes being int),
 ///    then the intensity and confidence images (CImage versions 6-9: raw sizes, JPEG byte count,
 ///    external file name), the two cameras (TCamera versions 4-6: camera name), the relative pose,
-///    the sensor label, the external file names and the extra range layers (version 10);
+///    the sensor label, the external file names, the pixel labels (size, label names) and the
+///    extra range layers (version 10);
 ///  - CSensoryFrame (versions 0-2) and CActionCollection (version 0): the count of objects, then
-///    each object inside as far as they can be followed (scans, sensory frames, collections);
-/// A class, a version or a nested layout it does not know (pixel labels, a JPEG's own header) is
-/// left to MRPT as before: it does not make a valid file an error. Inside a version 9/10 scan
-/// (MRPT 2), a pose, camera or image of a version MRPT 2 does not write is an error: MRPT would
-/// read the sizes that follow from the wrong bytes. (The poses: CPose3D versions 2 and 3.)
+///    each object inside as far as they can be followed (scans, sensory frames, collections).
+/// An object cut inside a field is an error too (MRPT would go on with a partial value). A class,
+/// a version or a nested layout it does not know (a JPEG's own header, a scan before version 9
+/// after its points, other observation classes) is left to MRPT as before: it does not make a
+/// valid file an error. Inside a version 9/10 scan (MRPT 2), a pose, camera or image of a version
+/// MRPT 2 does not write is an error: MRPT would read the sizes that follow from the wrong bytes.
+/// (The poses: CPose3D versions 2 and 3.)
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -122,7 +125,16 @@ class ObjectSizeCheck {
     name.resize(std::min(name.size(), name.find('\0')));
     const auto colon = name.rfind("::");
     if (colon != std::string::npos) name = name.substr(colon + 2);
-    if (name == "CObservation3DRangeScan") return rangeScan(version, old, problem);
+    if (name == "CObservation3DRangeScan") {
+      const std::uint64_t begin = cursor_;
+      if (rangeScan(version, old, problem)) return true;
+      // A version 9 or 10 scan (MRPT 2) is followed field by field as MRPT 2 reads it: a field
+      // that does not fit that layout would send MRPT reading sizes from the wrong bytes.
+      if (problem.empty() && !cut_ && (version == 9 || version == 10))
+        problem = "CObservation3DRangeScan: the fields from byte " + std::to_string(cursor_ - begin) +
+                  " of this version " + std::to_string(version) + " scan are not laid out as MRPT 2 writes them";
+      return false;
+    }
     if (depth < kMaxDepth &&
         ((name == "CSensoryFrame" && version <= 2) || (name == "CActionCollection" && version == 0))) {
       // CSensoryFrame before version 2: an ID (uint32), in version 0 also a timestamp (uint64).
@@ -177,7 +189,8 @@ class ObjectSizeCheck {
     for (const char* file : {"points3D external file", "rangeImage external file"})
       if (!skip(1) || !string(what + file, problem)) return false;
     std::uint8_t has_labels = 0;
-    if (!skip(2) || !read(has_labels) || has_labels) return false;  // range_is_depth, channel; labels: MRPT's
+    if (!skip(2) || !read(has_labels) || (has_labels && !labels(what + "pixelLabels", problem)))
+      return false;  // range_is_depth, channel, labels
     if (version >= 10) {
       std::uint8_t layers = 0;
       if (!read(layers)) return false;
@@ -222,6 +235,37 @@ class ObjectSizeCheck {
       return false;
     }
     return skip(need);
+  }
+
+  /// TPixelLabelInfo as MRPT 2 writes it: version 1, bytes per pixel (1, 2, 4, 8), rows, cols
+  /// (uint32) and the pixels' bit fields, then the label names as a std::map<uint32_t,
+  /// std::string> (three type-name strings, a count, key and string pairs). False when it cannot
+  /// be followed (problem set when a size does not fit).
+  bool labels(const std::string& what, std::string& problem) {
+    std::uint8_t version = 0, bytes_per_pixel = 0;
+    if (!read(version) || version != 1 || !read(bytes_per_pixel)) return false;
+    if (bytes_per_pixel != 1 && bytes_per_pixel != 2 && bytes_per_pixel != 4 && bytes_per_pixel != 8) return false;
+    std::uint32_t rows = 0, cols = 0;
+    if (!read(rows) || !read(cols)) return false;
+    const std::uint64_t need = std::uint64_t{rows} * cols * bytes_per_pixel;
+    const std::uint64_t max_side = std::numeric_limits<std::int32_t>::max();
+    if (need > left() || rows > max_side || cols > max_side) {
+      problem = what + " of " + std::to_string(rows) + " x " + std::to_string(cols) + " pixels needs " + bytes(need) +
+                " but " + bytes(left()) + " remain in the stream";
+      return false;
+    }
+    if (!skip(need)) return false;
+    for (int i = 0; i < 3; ++i)
+      if (!string(what + " names' type", problem)) return false;
+    std::uint32_t n = 0;
+    if (!read(n)) return false;
+    if (std::uint64_t{n} * 8 > left()) {  // a key and a string length each
+      problem = what + " claims " + std::to_string(n) + " label names but " + bytes(left()) + " remain in the stream";
+      return false;
+    }
+    for (std::uint32_t i = 0; i < n; ++i)
+      if (!skip(4) || !string(what + " name", problem)) return false;
+    return true;
   }
 
   /// A string (uint32 length, bytes). False when it cannot be followed (problem set when too long).
