@@ -523,6 +523,9 @@ TEST(RawlogErrors, CorruptSizeFieldsAreErrorsNamingTheObject) {
       {"action_collection_count_cut.rawlog",  // 33 bytes: the count's last byte missing
        "object #0 (at byte 0 of 33): corrupt or truncated: the stream ends inside this object (30 bytes of it read, "
        "33 bytes in the rest of the stream, a field needs more)"},
+      {"intensity_flag_126.rawlog",  // a bool byte of 126: undefined behaviour where GASP reads the flag (UBSan)
+       "object #3 (at byte 4594 of 13036): corrupt or truncated: CObservation3DRangeScan: hasIntensityImage is 126, "
+       "not 0 or 1"},
       {"camera_name_length_flipped.rawlog",
        "object #5 (at byte 4485 of 6675): corrupt or truncated: CObservation3DRangeScan: cameraParamsIntensity camera name claims "
        "4025563904 bytes but 165 bytes remain"},

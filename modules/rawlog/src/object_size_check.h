@@ -160,7 +160,7 @@ class ObjectSizeCheck {
     const std::string what = "CObservation3DRangeScan: ";
     if (!pose(what + "sensorPose", problem, version >= 9)) return false;
     std::uint8_t has_points = 1;  // version 0: always
-    if (version > 0 && !read(has_points)) return false;
+    if (version > 0 && !flag(what + "hasPoints3D", has_points, problem)) return false;
     if (has_points) {
       std::uint32_t n = 0;
       if (!read(n)) return false;
@@ -176,21 +176,26 @@ class ObjectSizeCheck {
     if (version < 9) return false;  // then a CMatrixF range image and older fields: left to MRPT
     std::uint8_t has_range = 0;
     float range_units = 0;
-    if (!read(has_range) || !read(range_units)) return false;
+    if (!flag(what + "hasRangeImage", has_range, problem) || !read(range_units)) return false;
     if (has_range && !rangeImage(what + "range image", problem)) return false;
     std::uint8_t has_image = 0;
-    if (!read(has_image) || (has_image && !image(what + "intensity image", problem))) return false;
-    if (!read(has_image) || (has_image && !image(what + "confidence image", problem))) return false;
+    if (!flag(what + "hasIntensityImage", has_image, problem) || (has_image && !image(what + "intensity image", problem)))
+      return false;
+    if (!flag(what + "hasConfidenceImage", has_image, problem) || (has_image && !image(what + "confidence image", problem)))
+      return false;
     for (const char* camera : {"cameraParams", "cameraParamsIntensity"})
       if (!this->camera(what + camera, problem)) return false;
     if (!pose(what + "relativePoseIntensityWRTDepth", problem)) return false;
     if (!skip(sizeof(float) + sizeof(std::uint64_t))) return false;  // stdError, timestamp
     if (!string(what + "sensorLabel", problem)) return false;
     for (const char* file : {"points3D external file", "rangeImage external file"})
-      if (!skip(1) || !string(what + file, problem)) return false;
+      if (std::uint8_t stored = 0; !flag(what + file + " flag", stored, problem) || !string(what + file, problem))
+        return false;
     std::uint8_t has_labels = 0;
-    if (!skip(2) || !read(has_labels) || (has_labels && !labels(what + "pixelLabels", problem)))
-      return false;  // range_is_depth, channel, labels
+    std::uint8_t range_is_depth = 0;
+    if (!flag(what + "range_is_depth", range_is_depth, problem) || !skip(1) ||  // then the intensity channel
+        !flag(what + "pixelLabels flag", has_labels, problem) || (has_labels && !labels(what + "pixelLabels", problem)))
+      return false;
     if (version >= 10) {
       std::uint8_t layers = 0;
       if (!read(layers)) return false;
@@ -268,6 +273,18 @@ class ObjectSizeCheck {
     return true;
   }
 
+  /// A bool as MRPT writes it: one byte, 0 or 1. MRPT reads the byte into a bool as it is, and
+  /// any other value there is undefined behaviour where the bool is used (UBSan in fuzz_rawlog:
+  /// hasIntensityImage of 126). False when it cannot be read or is not 0 or 1 (problem set).
+  bool flag(const std::string& what, std::uint8_t& value, std::string& problem) {
+    if (!read(value)) return false;
+    if (value > 1) {
+      problem = what + " is " + std::to_string(value) + ", not 0 or 1 (a corrupt byte)";
+      return false;
+    }
+    return true;
+  }
+
   /// A string (uint32 length, bytes). False when it cannot be followed (problem set when too long).
   bool string(const std::string& what, std::string& problem) {
     std::uint32_t n = 0;
@@ -288,7 +305,7 @@ class ObjectSizeCheck {
     if (!header(name, version, old)) return false;
     if (version < 6 || version > 9) return unknownVersion(what, "CImage", version, problem);
     std::uint8_t external = 0, colour = 0;
-    if (!read(external)) return false;
+    if (!flag(what + " external-storage flag", external, problem)) return false;
     if (external) return string(what + " file name", problem) && endFlag(old);
     if (!read(colour)) return false;
     std::int32_t width = 1, height = 1;
