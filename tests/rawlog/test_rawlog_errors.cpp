@@ -487,7 +487,9 @@ TEST(RawlogReader, ObservationClassesOfMrptMapsAreKnownToEveryReader) {
 // of serialisation version 0 (the points' count comes right after the pose), and a sensory frame
 // as the second of a sensory frame's objects (every object inside is followed now, not the first),
 // and a file cut inside an action collection's count (MRPT reads a partial field and goes on with
-// the garbage: CArchive::ReadBuffer throws only when it reads nothing at all).
+// the garbage: CArchive::ReadBuffer throws only when it reads nothing at all), and a CRawlog
+// where an entry should be (MRPT deserialises any registered class; its object count asked for
+// 27 GB): each object's class must be one a rawlog holds there.
 // Each is now a gasp::Error naming the file, the object and the field, gzip-compressed or not.
 TEST(RawlogErrors, CorruptSizeFieldsAreErrorsNamingTheObject) {
   const std::filesystem::path data = std::filesystem::path(__FILE__).parent_path() / "data";
@@ -509,8 +511,8 @@ TEST(RawlogErrors, CorruptSizeFieldsAreErrorsNamingTheObject) {
        "object #1 (at byte 35 of 188): corrupt or truncated: CSensoryFrame claims 2399141889 objects but 123 bytes "
        "remain"},
       {"action_collection_name_with_zero.rawlog",  // a zero byte ends the name MRPT looks up
-       "object #1 (at byte 35 of 278): corrupt or truncated: CActionCollection claims 2281701452 objects but 173 "
-       "bytes remain"},
+       "object #1 (at byte 35 of 278): corrupt or truncated: a 'mrpt::obs::CActionCollection' where a rawlog holds an "
+       "observation (inside a sensory frame)"},
       {"sensory_frame_version0_count.rawlog",  // version 0: an ID and a timestamp before the count
        "object #1 (at byte 35 of 118): corrupt or truncated: CSensoryFrame claims 976909154 objects but 41 bytes "
        "remain"},
@@ -518,14 +520,17 @@ TEST(RawlogErrors, CorruptSizeFieldsAreErrorsNamingTheObject) {
        "object #0 (at byte 0 of 222): corrupt or truncated: CObservation3DRangeScan: 3071738112 3D points need "
        "39932595456 bytes but 59 bytes remain"},
       {"nested_sensory_frame_count.rawlog",  // the second object inside a sensory frame: a sensory frame
-       "object #1 (at byte 35 of 406): corrupt or truncated: CSensoryFrame claims 4278190081 objects but 276 bytes "
-       "remain"},
+       "object #1 (at byte 35 of 406): corrupt or truncated: a 'mrpt::obs::CActionCollection' where a rawlog holds an "
+       "observation (inside a sensory frame)"},
       {"action_collection_count_cut.rawlog",  // 33 bytes: the count's last byte missing
        "object #0 (at byte 0 of 33): corrupt or truncated: the stream ends inside this object (30 bytes of it read, "
        "33 bytes in the rest of the stream, a field needs more)"},
       {"intensity_flag_126.rawlog",  // a bool byte of 126: undefined behaviour where GASP reads the flag (UBSan)
        "object #3 (at byte 4594 of 13036): corrupt or truncated: CObservation3DRangeScan: hasIntensityImage is 126, "
        "not 0 or 1"},
+      {"rawlog_class_as_entry.rawlog",  // 'mrpt::obsmrpt::obs::CRawlog': MRPT would read a CRawlog (27 GB)
+       "object #0 (at byte 0 of 103): corrupt or truncated: a 'mrpt::obs::CRawlog' where a rawlog holds an "
+       "observation, a sensory frame or an action collection"},
       {"camera_name_length_flipped.rawlog",
        "object #5 (at byte 4485 of 6675): corrupt or truncated: CObservation3DRangeScan: cameraParamsIntensity camera name claims "
        "4025563904 bytes but 165 bytes remain"},

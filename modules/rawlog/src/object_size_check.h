@@ -17,7 +17,11 @@
 ///    the sensor label, the external file names, the pixel labels (size, label names) and the
 ///    extra range layers (version 10);
 ///  - CSensoryFrame (versions 0-2) and CActionCollection (version 0): the count of objects, then
-///    each object inside as far as they can be followed (scans, sensory frames, collections).
+///    each object inside as far as they can be followed.
+/// Every object's class must be one a rawlog holds there (an observation, a sensory frame or an
+/// action collection; observations inside a sensory frame, actions inside a collection): MRPT
+/// would deserialise any registered class the name says, with its own size fields, before the
+/// reader could look at its type.
 /// An object cut inside a field is an error too (MRPT would go on with a partial value). A class,
 /// a version or a nested layout it does not know (a JPEG's own header, a scan before version 9
 /// after its points, other observation classes) is left to MRPT as before: it does not make a
@@ -29,6 +33,12 @@
 #include <cstring>
 #include <limits>
 #include <string>
+
+#include <mrpt/obs/CAction.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CObservation.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/rtti/CObject.h>
 
 #include "lookahead_stream.h"
 
@@ -115,14 +125,38 @@ class ObjectSizeCheck {
   /// One object from its header to its end flag. False when it cannot be followed to its end (a
   /// class or layout it does not know, or bytes missing: MRPT reports those), with `problem` set
   /// when a size does not fit.
-  bool object(int depth, std::string& problem) {
+  /// What an object may be where it is: a rawlog entry at the top, an observation inside a
+  /// sensory frame, an action inside an action collection. MRPT deserialises whatever class the
+  /// name says (any registered class, with its own size fields: fuzz_rawlog named a CRawlog,
+  /// whose object count asked for 27 GB) before the reader can look at its type.
+  enum class Place { kEntry, kInSensoryFrame, kInActionCollection };
+
+  static std::string placeProblem(Place place, const std::string& name) {
+    const char* wanted = place == Place::kEntry                ? "an observation, a sensory frame or an action collection"
+                         : place == Place::kInSensoryFrame     ? "an observation (inside a sensory frame)"
+                                                               : "an action (inside an action collection)";
+    return "a '" + name + "' where a rawlog holds " + wanted;
+  }
+
+  bool object(int depth, std::string& problem, Place place = Place::kEntry) {
     std::string name;
     std::uint8_t version = 0;
     bool old = false;
     if (!header(name, version, old)) return false;
-    // MRPT finds the class by the name as a C string (up to a zero byte) after the last "::" (the
-    // namespace may be anything).
+    // MRPT finds the class by the name as a C string (up to a zero byte), ignoring the namespace.
     name.resize(std::min(name.size(), name.find('\0')));
+    if (const mrpt::rtti::TRuntimeClassId* cls = mrpt::rtti::findRegisteredClass(name)) {
+      using namespace mrpt::obs;
+      const bool observation = cls->derivedFrom(CLASS_ID(CObservation));
+      const bool fits = place == Place::kInSensoryFrame       ? observation
+                        : place == Place::kInActionCollection ? cls->derivedFrom(CLASS_ID(CAction))
+                                                              : observation || cls == CLASS_ID(CSensoryFrame) ||
+                                                                    cls == CLASS_ID(CActionCollection);
+      if (!fits) {
+        problem = placeProblem(place, cls->className);
+        return false;
+      }
+    }  // a class MRPT does not know: MRPT says so
     const auto colon = name.rfind("::");
     if (colon != std::string::npos) name = name.substr(colon + 2);
     if (name == "CObservation3DRangeScan") {
@@ -145,8 +179,9 @@ class ObjectSizeCheck {
         problem = name + " claims " + std::to_string(n) + " objects but " + bytes(left()) + " remain in the stream";
         return false;
       }
+      const Place inside = name == "CSensoryFrame" ? Place::kInSensoryFrame : Place::kInActionCollection;
       for (std::uint32_t i = 0; i < n; ++i)  // each inside, as far as they can be followed
-        if (!object(depth + 1, problem)) return false;
+        if (!object(depth + 1, problem, inside)) return false;
       return endFlag(old);
     }
     return false;
