@@ -34,7 +34,15 @@ else()
       ${WORK_DIR}/desk9.simplemap 2)
   file(WRITE ${WORK_DIR}/superpixels.ini "[MappingApplication]\nsuperpixelMap_count=1\n")
   file(MAKE_DIRECTORY ${WORK_DIR}/o2m)
-  run(${CMAKE_COMMAND} -E env LD_PRELOAD=${plugin} ${OBSERVATIONS2MAP} ${WORK_DIR}/superpixels.ini
+  # A plugin built with ASan (GASP_SANITIZE, scripts/sanitize.sh) needs the ASan runtime loaded
+  # before anything else; MRPT's program does not link it, so it is preloaded first.
+  set(preload ${plugin})
+  if(SANITIZE MATCHES "address")
+    execute_process(COMMAND ${CXX_COMPILER} -print-file-name=libasan.so
+      OUTPUT_VARIABLE asan_runtime OUTPUT_STRIP_TRAILING_WHITESPACE)
+    set(preload "${asan_runtime}:${plugin}")
+  endif()
+  run(${CMAKE_COMMAND} -E env LD_PRELOAD=${preload} ${OBSERVATIONS2MAP} ${WORK_DIR}/superpixels.ini
       ${WORK_DIR}/desk9.simplemap ${WORK_DIR}/o2m/desk9)
   set(ply ${WORK_DIR}/o2m/desk9_gasp__CSuperpixelMap_00_patches.ply)
   if(NOT EXISTS ${ply})
