@@ -7,6 +7,7 @@
 # (crash-*, leak-*, timeout-*, oom-* files in build/fuzz/artifacts/TARGET/) and exits 1 when any
 # target found something in this run.
 #   GASP_FUZZ_BUILD  build folder (default build/fuzz); GASP_JOBS: build jobs (default 2)
+#   GASP_FUZZ_SKIP_BUILD=1  run the targets of the build folder as they are (no configure/build)
 #   GASP_DATA_DIR    real data for the seeds (default ../shared/data)
 # The corpus each run grows is kept in BUILD/corpus/TARGET (not committed); the seeds in
 # BUILD/seeds/TARGET are remade when that folder is missing.
@@ -23,11 +24,13 @@ fi
 build=${GASP_FUZZ_BUILD:-build/fuzz}
 jobs=${GASP_JOBS:-2}
 
-if ! grep -qs '^GASP_FUZZ:BOOL=ON' "$build/CMakeCache.txt"; then
-  cmake -S . -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DGASP_FUZZ=ON -DGASP_BUILD_TESTS=OFF \
-    -DGASP_BUILD_BENCHMARKS=OFF -DGASP_BUILD_BASELINES=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
+if [[ ${GASP_FUZZ_SKIP_BUILD:-0} != 1 ]]; then
+  if ! grep -qs '^GASP_FUZZ:BOOL=ON' "$build/CMakeCache.txt"; then
+    cmake -S . -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DGASP_FUZZ=ON -DGASP_BUILD_TESTS=OFF \
+      -DGASP_BUILD_BENCHMARKS=OFF -DGASP_BUILD_BASELINES=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  fi
+  cmake --build "$build" -j"$jobs" --target fuzz_all
 fi
-cmake --build "$build" -j"$jobs" --target fuzz_all
 build=$(cd "$build" && pwd)
 
 if [[ ! -d $build/seeds/fuzz_params ]]; then
