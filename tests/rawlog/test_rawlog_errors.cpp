@@ -3,6 +3,7 @@
 #include <mrpt/core/Clock.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/io/CFileOutputStream.h>
+#include <mrpt/io/CMemoryStream.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
@@ -555,4 +556,30 @@ TEST(RawlogErrors, CorruptSizeFieldsAreErrorsNamingTheObject) {
   // error.
   const std::string damaged = (data / "gzip_damaged_camera_name.rawlog").string();
   EXPECT_PRED2(contains, readError(damaged), "rawlog '" + damaged + "': corrupt or truncated gzip stream: incorrect data check");
+}
+
+// fuzz_rawlog (a std::exception other than gasp::Error, which the harness logs): an externally
+// stored range image whose file name has two characters made MRPT's lazy_load_absolute_path()
+// assert; that MRPT exception left RawlogReader as it was. Now a gasp::Error naming the scan.
+TEST(RawlogErrors, MrptErrorsOfAScanAreErrorsNamingTheScan) {
+  const std::string dir = gasp::test::scratchDir();
+  auto scan = tinyScan();
+  scan.rangeImage_convertToExternalStorage("abc", dir + "/");
+  std::string bytes;
+  {
+    mrpt::io::CMemoryStream mem;
+    auto ar = mrpt::serialization::archiveFrom(mem);
+    ar << scan;
+    bytes.assign(static_cast<const char*>(mem.getRawBufferData()), mem.getTotalBytesCount());
+  }
+  // The stored name (MRPT may add an extension): uint32 length, then "abc...".
+  const auto at = bytes.find("abc");
+  ASSERT_TRUE(at != std::string::npos && at >= 4);
+  const auto length = static_cast<std::size_t>(static_cast<unsigned char>(bytes[at - 4]));
+  bytes.replace(at - 4, 4 + length, std::string("\x02\x00\x00\x00" "ab", 6));  // the file name "ab"
+  const std::string path = dir + "/short_name.rawlog";
+  std::ofstream(path, std::ios::binary) << bytes;
+  const std::string msg = readError(path);
+  EXPECT_TRUE(contains(msg, "rawlog '" + path + "', 3D scan #0: ")) << msg;
+  EXPECT_TRUE(contains(msg, "fil.size() > 2")) << msg;  // MRPT's assertion, kept in the message
 }

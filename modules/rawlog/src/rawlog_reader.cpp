@@ -5,6 +5,7 @@
 #include <mrpt/obs/CSensoryFrame.h>
 
 #include <deque>
+#include <exception>
 
 #include "gasp/core/error.h"
 #include "gasp/rawlog/observation_conversion.h"
@@ -59,7 +60,14 @@ std::optional<RgbdFrame> RawlogReader::next() {
       }
       const std::string what = "rawlog '" + path_ + "', 3D scan #" + std::to_string(scans_read_);
       detail::LazyLoadBaseGuard base(images_dir_);
-      RgbdFrame frame = frameFromObservation(*scan, what);
+      RgbdFrame frame;
+      try {
+        frame = frameFromObservation(*scan, what);
+      } catch (const Error&) {
+        throw;
+      } catch (const std::exception& e) {  // MRPT's, e.g. loading an external file of a bad name
+        throw Error(what + ": " + exceptionMessage(e));
+      }
       scan->unload();
       ++scans_read_;
       return frame;
