@@ -54,9 +54,10 @@ inline bool finiteValue(const std::string& text, double& v, std::string& error) 
     error = "must be a finite number (got " + text + ")";
     return false;
   }
-  // Beyond what a 64-bit integer option holds, CLI11 would clamp or wrap it; no GASP option needs
-  // such a value.
-  if (std::fabs(v) >= 9.2e18) {
+  // An integer beyond what a 64-bit option holds: CLI11 would clamp or wrap it. (Not for numbers
+  // written with a point or an exponent: such a text is no integer, and CLI11 refuses it for an
+  // integer option.)
+  if (text.find_first_not_of("+-0123456789") == std::string::npos && std::fabs(v) >= 9.2e18) {
     error = "is too large (got " + text + ")";
     return false;
   }

@@ -24,25 +24,29 @@ const std::string* InputFiles::find(const FileIdentity& id) const {
 
 RunOutputs::RunOutputs(const std::vector<std::pair<std::string, std::string>>& option_paths, const InputFiles& inputs) {
 
-  std::vector<std::pair<std::string, const OutputFile*>> opened;  // in the order given
   for (const auto& [option, path] : option_paths) {
     if (path.empty()) continue;
-    if (files_.count(option)) throw std::logic_error("RunOutputs: option " + option + " given twice");
     auto file = std::make_unique<OutputFile>(path, option);
     const FileIdentity id = fileIdentity(file->target());
     if (const std::string* input = inputs.find(id))
       throw Error(option + " '" + path + "': is an input of this run ('" + *input + "'); write it elsewhere");
-    for (const auto& [other_option, other] : opened)
+    for (const auto& [other_option, other] : files_)
       if (other->target() == file->target() || (id.exists() && fileIdentity(other->target()) == id))
         throw Error(option + " '" + path + "': the same file as " + other_option + " '" + other->path() + "'");
-    opened.emplace_back(option, file.get());
-    files_.emplace(option, std::move(file));
+    files_.emplace_back(option, std::move(file));
   }
 }
 
 OutputFile* RunOutputs::find(const std::string& option) {
-  const auto it = files_.find(option);
-  return it == files_.end() ? nullptr : it->second.get();
+  for (auto& [name, file] : files_)
+    if (name == option) return file.get();
+  return nullptr;
+}
+
+OutputFile& RunOutputs::at(const std::string& option, const std::string& path) {
+  for (auto& [name, file] : files_)
+    if (name == option && file->path() == path) return *file;
+  throw std::logic_error("RunOutputs: no output " + option + " '" + path + "'");
 }
 
 OutputFile& RunOutputs::at(const std::string& option) {

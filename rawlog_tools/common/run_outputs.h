@@ -36,14 +36,16 @@ class RunOutputs {
   RunOutputs(const std::vector<std::pair<std::string, std::string>>& option_paths, const std::vector<std::string>& inputs)
       : RunOutputs(option_paths, InputFiles(inputs)) {}
 
-  /// The output of `option`, or nullptr when it was not given.
+  /// The (first) output of `option`, or nullptr when it was not given.
   OutputFile* find(const std::string& option);
   /// The output of `option`; throws std::logic_error when it was not given.
   OutputFile& at(const std::string& option);
-  bool has(const std::string& option) const { return files_.count(option) != 0; }
+  /// The output of an option that names several files (gasp-pairs' --picture-prefix, one picture
+  /// per method), by its path; throws std::logic_error when there is none.
+  OutputFile& at(const std::string& option, const std::string& path);
 
  private:
-  std::map<std::string, std::unique_ptr<OutputFile>> files_;
+  std::vector<std::pair<std::string, std::unique_ptr<OutputFile>>> files_;  ///< in the order given
 };
 
 /// The files a TUM folder's reader takes as input: its lists (depth.txt, rgb.txt,

@@ -238,11 +238,10 @@ int main(int argc, char** argv) {
     methods = unique;
   }
   // Every output, the pictures included, is checked before the work.
-  const auto pictureOption = [](const std::string& method) { return "--picture-prefix (" + method + ")"; };
   std::vector<std::pair<std::string, std::string>> output_paths{{"--csv", csv_path}, {"--pairs-csv", pairs_csv_path}};
   if (!picture_pair.empty())
     for (const auto& method : methods)
-      if (method != "gicp") output_paths.emplace_back(pictureOption(method), picture_prefix + method + "." + picture_format);
+      if (method != "gicp") output_paths.emplace_back("--picture-prefix", picture_prefix + method + "." + picture_format);
   std::optional<gasp::tools::RunOutputs> outputs;
   try {
     outputs.emplace(output_paths, gasp::tools::tumFolderInputs(tum_dir));  // before the benchmark, not after it
@@ -305,7 +304,7 @@ int main(int argc, char** argv) {
         gasp::pairs::Picture pic;
         const auto run = gasp::pairs::runMethod(method, i, j, cache, setup, &pic, T_gt);
         const std::string path = picture_prefix + method + "." + picture_format;
-        gasp::writeImage(outputs->at(pictureOption(method)), pic.image, "picture");
+        gasp::writeImage(outputs->at("--picture-prefix", path), pic.image, "picture");
         std::printf("picture %s: %s, %zu associations/matches, %zu correct by ground truth", method.c_str(),
                     path.c_str(), pic.shown, pic.correct);
         if (run.estimated && T_gt) {

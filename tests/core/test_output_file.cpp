@@ -23,17 +23,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string fileText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-std::vector<std::string> namesIn(const std::string& dir) {
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
+using gasp::test::fileText;
+using gasp::test::namesIn;
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 

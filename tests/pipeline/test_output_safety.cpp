@@ -4,6 +4,7 @@
 // results of the frames before the damage, marked partial. On a simulated sequence (no real data).
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -23,21 +24,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using gasp::test::fileText;
+using gasp::test::namesIn;
+
 using gasp::test::contains;
 using gasp::test::ProgramRun;
 using gasp::test::runProgram;
-
-std::string fileText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-std::vector<std::string> namesIn(const std::string& dir) {
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
 
 /// A simulated TUM folder of 12 frames at 5 Hz (far enough apart for keyframes) with ground truth, made once for the whole file, and a
 /// rawlog of it.
@@ -51,7 +43,11 @@ struct Sequence {
 const Sequence& sequence() {
   static const Sequence s = [] {
     Sequence q;
-    q.dir = gasp::test::scratchDir();
+    // A folder of this process's own (ctest runs each test in a process of its own, in parallel),
+    // apart from the tests' scratch folders.
+    q.dir = std::string(GASP_TEST_TMP_DIR) + "/OutputSafety.sequence." + std::to_string(::getpid());
+    fs::remove_all(q.dir);
+    fs::create_directories(q.dir);
     q.tum = q.dir + "/sim";
     const ProgramRun sim = runProgram("gasp-simulate", "--out " + q.tum + " --frames 12 --rate 5 --seed 3");
     if (sim.exit_code != 0) throw std::runtime_error("gasp-simulate failed: " + sim.output);
@@ -67,15 +63,8 @@ const Sequence& sequence() {
 /// The command run by /bin/sh with SIGXFSZ ignored and a file-size limit of `blocks` (ulimit -f):
 /// a write past it fails as on a full disk.
 ProgramRun runLimited(int blocks, const std::string& program, const std::string& args) {
-  const std::string cmd = "trap '' XFSZ; ulimit -f " + std::to_string(blocks) + "; exec " + std::string(GASP_BIN_DIR) + "/" +
-                          program + " " + args + " 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-  if (!pipe) return {-1, "cannot start " + cmd};
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), static_cast<int>(buf.size()), pipe.get())) out += buf.data();
-  const int status = pclose(pipe.release());
-  return {WEXITSTATUS(status), out};
+  return gasp::test::runCommand("trap '' XFSZ; ulimit -f " + std::to_string(blocks) + "; exec " +
+                                 std::string(GASP_BIN_DIR) + "/" + program + " " + args + " 2>&1");
 }
 
 }  // namespace
@@ -119,10 +108,12 @@ TEST(OutputSafety, AWriteThatFailsMidwayIsAnErrorAndLeavesNoCutFile) {
   EXPECT_TRUE(contains(r.output, "cannot write --cloud '" + dir + "/c.ply': File too large")) << r.output;
   EXPECT_EQ(namesIn(dir), std::vector<std::string>{"t.txt"}) << "a cut or temporary file was left";
   EXPECT_GT(gasp::test::countLinesStartingWith(dir + "/t.txt", "1"), 0u);
-  const ProgramRun odo = runLimited(1, "gasp-odometry", "--tum " + s.tum + " --max-frames 3 --out " + dir + "/o.txt");
+  // Three poses fit in one block of 512 bytes, their graph (an information matrix per edge) does not.
+  const ProgramRun odo =
+      runLimited(1, "gasp-odometry", "--tum " + s.tum + " --max-frames 3 --out " + dir + "/o.txt --graph " + dir + "/o.graph");
   EXPECT_EQ(odo.exit_code, 1) << odo.output;
-  EXPECT_TRUE(contains(odo.output, "File too large")) << odo.output;
-  EXPECT_FALSE(fs::exists(dir + "/o.txt"));
+  EXPECT_TRUE(contains(odo.output, "cannot write --graph '" + dir + "/o.graph': File too large")) << odo.output;
+  EXPECT_EQ(namesIn(dir), (std::vector<std::string>{"o.txt", "t.txt"}));
 }
 
 TEST(OutputSafety, NoOutputReplacesAnInputImage) {

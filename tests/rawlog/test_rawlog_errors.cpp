@@ -370,14 +370,7 @@ TEST(RawlogEntries, AnUnknownClassIsNamed) {
   }
 }
 
-namespace {
-
-std::string fileText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-}  // namespace
+using gasp::test::fileText;
 
 TEST(RawlogWriter, AFailedRunLeavesTheEarlierRawlogAsItWas) {
   const std::string dir = gasp::test::scratchDir();

@@ -17,12 +17,8 @@ struct ProgramRun {
   std::string output;  ///< stdout and stderr
 };
 
-/// Runs the program; `stderr_to` is where its stderr goes ("&1": into `output` with stdout);
-/// `cwd`, when given, is its working folder (for outputs whose default path is relative).
-inline ProgramRun runProgram(const std::string& program, const std::string& args, const std::string& stderr_to = "&1",
-                             const std::string& cwd = "") {
-  const std::string cmd = (cwd.empty() ? std::string() : "cd '" + cwd + "' && ") + std::string(GASP_BIN_DIR) + "/" +
-                          program + " " + args + " 2>" + stderr_to;
+/// Runs a shell command line and captures its stdout.
+inline ProgramRun runCommand(const std::string& cmd) {
   std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
   if (!pipe) return {-1, "cannot start " + cmd};
   std::string out;
@@ -30,6 +26,14 @@ inline ProgramRun runProgram(const std::string& program, const std::string& args
   while (std::fgets(buf.data(), static_cast<int>(buf.size()), pipe.get())) out += buf.data();
   const int status = pclose(pipe.release());
   return {WEXITSTATUS(status), out};
+}
+
+/// Runs the program; `stderr_to` is where its stderr goes ("&1": into `output` with stdout);
+/// `cwd`, when given, is its working folder (for outputs whose default path is relative).
+inline ProgramRun runProgram(const std::string& program, const std::string& args, const std::string& stderr_to = "&1",
+                             const std::string& cwd = "") {
+  return runCommand((cwd.empty() ? std::string() : "cd '" + cwd + "' && ") + std::string(GASP_BIN_DIR) + "/" + program +
+                    " " + args + " 2>" + stderr_to);
 }
 
 /// `part` occurs in `s` (a program's output).
