@@ -49,8 +49,8 @@ MatchConstraint ObservationMatcher_GASP::match(const mrpt::obs::CObservation& a,
   } catch (const Error& e) {
     THROW_EXCEPTION_FMT("ObservationMatcher_GASP: %s", e.what());
   }
-  const DepthView va = makeDepthView(fa.depth_m, fa.depth_intrinsics, params.superpixels);
-  const DepthView vb = makeDepthView(fb.depth_m, fb.depth_intrinsics, params.superpixels);
+  const DepthView va = makeDepthView(fa.depth_m, fa.depth_intrinsics, params.segment);
+  const DepthView vb = makeDepthView(fb.depth_m, fb.depth_intrinsics, params.segment);
   // b is the source, a the target: T_target_source = T_ca_cb (camera frames).
   const PairResult r = registerViews(vb, va, params);
   // The finer-scale retry's patch indices refer to its own views, not to these views' patches.

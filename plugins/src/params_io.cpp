@@ -61,13 +61,12 @@ void superpixelFields(P& p, F&& f) {
 }
 
 /// The pair pipeline: its segmentation (the matcher's observations, the finer-scale retry) under
-/// the segmentation's keys, then every other field of PairParams.
+/// the segmentation's keys, then every stage's parameters (pair_registration.h).
 template <class P, class F>
 void pairFields(P& p, F&& f) {
-  superpixelFields(p.superpixels, f);
-  f("view_degeneracy_min_eigenvalue_ratio", p.view_degeneracy.min_eigenvalue_ratio);
-  // Association (view_association.h)
-  auto& a = p.association;
+  superpixelFields(p.segment, f);
+  // Associate (associate_stage.h, view_association.h)
+  auto& a = p.associate;
   f("neighbourhood_k", a.feature_sets.neighbourhood.k);
   f("feature_e_theta_rad", a.feature_sets.feature.e_theta_rad);
   f("feature_min_separation_m", a.feature_sets.feature.min_separation_m);
@@ -84,8 +83,8 @@ void pairFields(P& p, F&& f) {
   f("mutual_check", a.mutual_check);
   f("candidate_key", a.candidate_key);
   f("distinctiveness_ratio", a.distinctiveness_ratio);
-  // RANSAC (ransac.h)
-  auto& r = p.pose.ransac;
+  // Hypothesise: RANSAC (ransac.h), the patch refinement (refinement.h), guided verification
+  auto& r = p.hypothesise.pose.ransac;
   f("inlier_distance_m", r.inlier.distance_m);
   f("inlier_normal_angle_deg", r.inlier.normal_angle_deg);
   f("ransac_edge_tolerance_m", r.edge_tolerance_m);
@@ -98,8 +97,8 @@ void pairFields(P& p, F&& f) {
   f("ransac_guided_sampling", r.guided_sampling);
   f("ransac_min_iterations", r.min_iterations);
   f("ransac_max_guided_correspondences", r.max_guided_correspondences);
-  // Patch refinement (refinement.h)
-  auto& q = p.pose.refinement;
+  auto& q = p.hypothesise.pose.refinement;
+  f("refine", p.hypothesise.pose.refine);
   f("refinement_loss", q.loss);
   f("refinement_loss_scale_m", q.loss_scale_m);
   f("refinement_bidirectional", q.bidirectional);
@@ -107,55 +106,64 @@ void pairFields(P& p, F&& f) {
   f("refinement_noise_sigma_m", q.noise_sigma_m);
   f("refinement_degeneracy_min_eigenvalue_ratio", q.degeneracy.min_eigenvalue_ratio);
   f("refinement_degeneracy_max_std_m", q.degeneracy.max_std_m);
-  // Fallbacks and guided verification (pair_registration.h, guided_association.h)
-  f("one_way_fallback", p.one_way_fallback);
-  f("one_way_max_violation_ratio", p.one_way_max_violation_ratio);
-  f("guided_verification", p.guided_verification);
-  f("guided_densify", p.guided_densify);
-  f("guided_max_distance_m", p.guided.max_distance_m);
-  f("guided_max_normal_angle_deg", p.guided.max_normal_angle_deg);
-  f("guided_lambda", p.guided.lambda);
-  f("min_guided_support", p.min_guided_support);
-  f("refine", p.refine);
-  // Dense rounds (dense_rounds.h, projective_terms.h, edge_terms.h)
-  f("dense_rounds", p.dense_rounds);
-  f("dense_gates_m", p.dense_gates_m);
-  f("dense_max_rounds", p.dense_max_rounds);
-  f("dense_converged_m", p.dense_converged_m);
-  f("dense_extrapolation_max", p.dense_extrapolation_max);
-  f("dense_line_search", p.dense_line_search);
-  f("dense_line_search_halvings", p.dense_line_search_halvings);
-  f("projective_pixel_step", p.projective.pixel_step);
-  f("projective_max_distance_m", p.projective.max_distance_m);
-  f("projective_max_normal_angle_deg", p.projective.max_normal_angle_deg);
-  f("edge_terms", p.edge_terms);
-  f("edge_min_jump_m", p.edges.min_jump_m);
-  f("edge_jump_per_m2", p.edges.jump_per_m2);
-  f("edge_pixel_step", p.edges.pixel_step);
-  f("edge_line_neighbours", p.edges.line_neighbours);
-  f("edge_max_distance_m", p.edges.max_distance_m);
-  f("edge_weight", p.edges.weight);
-  f("wide_edge_gate_factor", p.wide_edge_gate_factor);
-  f("wide_edge_min_paired_share", p.wide_edge_min_paired_share);
-  f("dense_degeneracy_min_eigenvalue_ratio", p.dense_degeneracy.min_eigenvalue_ratio);
-  f("dense_degeneracy_max_std_m", p.dense_degeneracy.max_std_m);
-  f("min_dense_terms", p.min_dense_terms);
-  // Slide scan, visibility check, retry, model error
-  f("slide_scan", p.slide_scan.enabled);
-  f("slide_scan_range_m", p.slide_scan.range_m);
-  f("slide_scan_step_m", p.slide_scan.step_m);
-  f("slide_scan_min_gain", p.slide_scan.min_gain);
-  f("slide_scan_pixel_step", p.slide_scan.pixel_step);
-  f("visibility_pixel_step", p.visibility.pixel_step);
-  f("visibility_gate_m", p.visibility.gate_m);
-  f("visibility_gate_per_m2", p.visibility.gate_per_m2);
-  f("visibility_max_violation_ratio", p.visibility.max_violation_ratio);
-  f("visibility_max_occluded_ratio", p.visibility.max_occluded_ratio);
-  f("visibility_max_two_way_violation_ratio", p.visibility.max_two_way_violation_ratio);
-  f("visibility_min_consistent", p.visibility.min_consistent);
-  f("retry_area_factor", p.retry_area_factor);
-  f("model_error_t_m", p.model_error.sigma_t_m);
-  f("model_error_r_deg", p.model_error.sigma_r_deg);
+  f("refinement_reselection_rounds", p.hypothesise.pose.reselection_rounds);
+  auto& g = p.hypothesise.guided;
+  f("guided_verification", g.enabled);
+  f("guided_densify", g.densify);
+  f("guided_max_distance_m", g.gates.max_distance_m);
+  f("guided_max_normal_angle_deg", g.gates.max_normal_angle_deg);
+  f("guided_lambda", g.gates.lambda);
+  f("min_guided_support", g.min_support);
+  // Refine: dense rounds (dense_rounds.h), pixel and edge terms, the solver, the slide scan
+  auto& d = p.refine;
+  f("dense_rounds", d.dense.rounds);
+  f("dense_gates_m", d.dense.gates_m);
+  f("dense_max_rounds", d.dense.max_rounds);
+  f("dense_converged_m", d.dense.converged_m);
+  f("dense_extrapolation_max", d.dense.extrapolation_max);
+  f("dense_line_search", d.dense.line_search);
+  f("dense_line_search_halvings", d.dense.line_search_halvings);
+  f("projective_pixel_step", d.pixels.pixel_step);
+  f("projective_max_distance_m", d.pixels.max_distance_m);
+  f("projective_max_normal_angle_deg", d.pixels.max_normal_angle_deg);
+  f("edge_terms", d.edges.enabled);
+  f("edge_min_jump_m", d.edges.terms.min_jump_m);
+  f("edge_jump_per_m2", d.edges.terms.jump_per_m2);
+  f("edge_pixel_step", d.edges.terms.pixel_step);
+  f("edge_line_neighbours", d.edges.terms.line_neighbours);
+  f("edge_max_distance_m", d.edges.terms.max_distance_m);
+  f("edge_weight", d.edges.terms.weight);
+  f("wide_edge_gate_factor", d.edges.wide_gate_factor);
+  f("wide_edge_min_paired_share", d.edges.wide_min_paired_share);
+  f("dense_loss", d.solver.loss);
+  f("dense_loss_scale_m", d.solver.loss_scale_m);
+  f("dense_bidirectional", d.solver.bidirectional);
+  f("dense_max_iterations", d.solver.max_iterations);
+  f("dense_noise_sigma_m", d.solver.noise_sigma_m);
+  f("dense_degeneracy_min_eigenvalue_ratio", d.solver.degeneracy.min_eigenvalue_ratio);
+  f("dense_degeneracy_max_std_m", d.solver.degeneracy.max_std_m);
+  f("slide_scan", d.slide_scan.enabled);
+  f("slide_scan_range_m", d.slide_scan.range_m);
+  f("slide_scan_step_m", d.slide_scan.step_m);
+  f("slide_scan_min_gain", d.slide_scan.min_gain);
+  f("slide_scan_pixel_step", d.slide_scan.pixel_step);
+  // Certify: the views' degeneracy, dense support, free space (visibility_check.h), model error
+  auto& c = p.certify;
+  f("view_degeneracy_min_eigenvalue_ratio", c.view_degeneracy.min_eigenvalue_ratio);
+  f("min_dense_terms", c.min_dense_terms);
+  f("visibility_pixel_step", c.visibility.pixel_step);
+  f("visibility_gate_m", c.visibility.gate_m);
+  f("visibility_gate_per_m2", c.visibility.gate_per_m2);
+  f("visibility_max_violation_ratio", c.visibility.max_violation_ratio);
+  f("visibility_max_occluded_ratio", c.visibility.max_occluded_ratio);
+  f("visibility_max_two_way_violation_ratio", c.visibility.max_two_way_violation_ratio);
+  f("visibility_min_consistent", c.visibility.min_consistent);
+  f("one_way_max_violation_ratio", c.fallback_max_violation_ratio);
+  f("model_error_t_m", c.model_error.sigma_t_m);
+  f("model_error_r_deg", c.model_error.sigma_r_deg);
+  // Retry (retry_stage.h)
+  f("one_way_fallback", p.retry.one_way_fallback);
+  f("retry_area_factor", p.retry.finer_area_factor);
 }
 
 // ---- Strict text parsing (MRPT's read_double() would turn "abc" into 0 silently).

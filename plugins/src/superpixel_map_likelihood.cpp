@@ -162,7 +162,7 @@ std::shared_ptr<const CSuperpixelMap::LikelihoodCache::Entry> CSuperpixelMap::li
     const auto geom_seen = toPatchGeometry(seen_patches);
     for (const auto& view : views_) {
       const AssociationResult r =
-          associateViews(geom_seen, toPatchGeometry(view.view.segmentation.patches), likelihoodOptions.matching.association);
+          associateViews(geom_seen, toPatchGeometry(view.view.segmentation.patches), likelihoodOptions.matching.associate);
       for (const PatchAssociation& s : r.associations) {
         const SurfacePatch& m = view.view.segmentation.patches[static_cast<std::size_t>(s.b)];
         LikelihoodCache::Entry::Pair p;

@@ -58,7 +58,7 @@ float CSuperpixelMap::compute3DMatchingRatio(const mrpt::maps::CMetricMap* other
     const auto geom_i = geometry(views_[i]);
     for (std::size_t j = 0; j < other->views_.size(); ++j) {
       const auto& vj = other->views_[j];
-      const AssociationResult r = associateViews(geom_i, geometry(vj), likelihoodOptions.matching.association);
+      const AssociationResult r = associateViews(geom_i, geometry(vj), likelihoodOptions.matching.associate);
       const Isometry3 T_this_cj = T_this_other * vj.T_map_camera;
       for (const PatchAssociation& s : r.associations) {
         const Eigen::Vector3d p = views_[i].T_map_camera * patchOf(views_[i], s.a).centroid;

@@ -72,26 +72,27 @@ int main(int argc, char** argv) {
   app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored")->excludes(rawlog);
   app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: the folder's; ros for PNGs)")->excludes(rawlog);
   app.add_option("--out", out_path, "association picture (default: associations_I_J.png, or associations.png for PNGs)");
-  double area_cm2 = params.superpixels.target_patch_area_m2 * 1e4;
+  double area_cm2 = params.segment.target_patch_area_m2 * 1e4;
   app.add_option("--area-cm2", area_cm2, "target patch area [cm^2]")->capture_default_str()->check(gasp::tools::above(0));
-  app.add_option("--k", params.association.feature_sets.neighbourhood.k, "neighbourhood size (0 = full view)")->capture_default_str()->check(gasp::tools::atLeast(0));
-  app.add_option("--candidates", params.association.candidates, "KD-tree candidates per patch (C)")->capture_default_str()->check(gasp::tools::atLeast(1));
-  app.add_option("--lambda", params.association.lambda, "gating on the normalised edit distance")->capture_default_str()->check(gasp::tools::within(0, 1));
-  app.add_option("--distinctiveness", params.association.distinctiveness_ratio,
+  app.add_option("--k", params.associate.feature_sets.neighbourhood.k, "neighbourhood size (0 = full view)")->capture_default_str()->check(gasp::tools::atLeast(0));
+  app.add_option("--candidates", params.associate.candidates, "KD-tree candidates per patch (C)")->capture_default_str()->check(gasp::tools::atLeast(1));
+  app.add_option("--lambda", params.associate.lambda, "gating on the normalised edit distance")->capture_default_str()->check(gasp::tools::within(0, 1));
+  app.add_option("--distinctiveness", params.associate.distinctiveness_ratio,
                  "ratio test: keep a best partner only when its D_hat < R x the second best (1 = off)")
       ->capture_default_str()
       ->check(gasp::tools::above(0))
       ->check(gasp::tools::within(0, 1));
-  double theta_dev_deg = params.association.match.theta_dev_rad * 180.0 / M_PI;
-  app.add_option("--r-dev", params.association.match.r_dev_m, "match tolerance of the distance components [m]")->capture_default_str()->check(gasp::tools::above(0));
+  double theta_dev_deg = params.associate.match.theta_dev_rad * 180.0 / M_PI;
+  app.add_option("--r-dev", params.associate.match.r_dev_m, "match tolerance of the distance components [m]")->capture_default_str()->check(gasp::tools::above(0));
   app.add_option("--theta-dev", theta_dev_deg, "match tolerance of the angle components [deg]")->capture_default_str()->check(gasp::tools::above(0));
-  app.add_flag("!--no-mutual", params.association.mutual_check, "keep one-way best partners too (no mutual check)");
-  app.add_flag("!--no-refine", params.refine, "RANSAC pose only (no point-to-plane refinement)");
-  app.add_flag("!--no-dense-line-search", params.dense_line_search,
+  app.add_flag("!--no-mutual", params.associate.mutual_check, "keep one-way best partners too (no mutual check)");
+  bool refine = true;
+  app.add_flag("!--no-refine", refine, "RANSAC pose only (no point-to-plane refinement)");
+  app.add_flag("!--no-dense-line-search", params.refine.dense.line_search,
                "no line search at the dense rounds' last gate (docs/pipeline.md, \"Line search at the last gate\")");
-  app.add_flag("!--no-slide-scan", params.slide_scan.enabled,
+  app.add_flag("!--no-slide-scan", params.refine.slide_scan.enabled,
                "no slide scan of a pose whose patch problem was degenerate (docs/pipeline.md, \"Slide scan\")");
-  app.add_option("--retry-area-factor", params.retry_area_factor,
+  app.add_option("--retry-area-factor", params.retry.finer_area_factor,
                  "when no estimate is found, segment again with this times the patch area and retry, mutual associations only (0 = never, else in [0.01, 1))")
       ->capture_default_str()
       ->check(gasp::tools::zeroOrWithinHalfOpen(0.01, 1));
@@ -117,9 +118,9 @@ int main(int argc, char** argv) {
       throw CLI::ValidationError("--rolling-shutter must be a finite time of at most 1 s (either sign)");
     if (!out_path.empty()) gasp::requireImageWriter(out_path, "--out picture");
     if (!model_error.empty()) {
-      params.model_error = {model_error[0], model_error[1]};
+      params.certify.model_error = {model_error[0], model_error[1]};
       try {
-        gasp::validate(params.model_error);
+        gasp::validate(params.certify.model_error);
       } catch (const gasp::Error& e) {
         throw CLI::ValidationError(std::string("--model-error: ") + e.what());
       }
@@ -134,8 +135,12 @@ int main(int argc, char** argv) {
     std::cerr << "error: give --tum DIR --from I --to J, --rawlog FILE --from I --to J, or --depth-a A.png --depth-b B.png\n";
     return 2;
   }
-  params.association.match.theta_dev_rad = theta_dev_deg * M_PI / 180.0;
-  params.superpixels.target_patch_area_m2 = area_cm2 * 1e-4;
+  params.associate.match.theta_dev_rad = theta_dev_deg * M_PI / 180.0;
+  if (!refine) {
+    params.hypothesise.pose.refine = false;
+    params.refine.dense.rounds = 0;
+  }
+  params.segment.target_patch_area_m2 = area_cm2 * 1e-4;
   // The default picture path is known before the work, so it is checked with --out's rules.
   if (out_path.empty())
     out_path = depth_a_path.empty() ? "associations_" + std::to_string(from) + "_" + std::to_string(to) + ".png"
@@ -218,9 +223,9 @@ int main(int argc, char** argv) {
       K = undistortion.pinhole();
     }
     // Each view resampled to its pinhole camera where its intrinsics carry lens distortion.
-    const auto [va, vb] = K_b && *K_b != K ? std::make_pair(gasp::makeDepthView(depth_a, K, params.superpixels),
-                                                            gasp::makeDepthView(depth_b, *K_b, params.superpixels))
-                                           : gasp::makeDepthViews(depth_a, depth_b, K, params.superpixels);
+    const auto [va, vb] = K_b && *K_b != K ? std::make_pair(gasp::makeDepthView(depth_a, K, params.segment),
+                                                            gasp::makeDepthView(depth_b, *K_b, params.segment))
+                                           : gasp::makeDepthViews(depth_a, depth_b, K, params.segment);
     const auto r = gasp::registerViews(va, vb, params);
     // The views r's patch indices refer to: the finer-scale retry's when it found the estimate.
     const auto [pva, pvb] = gasp::viewsOf(r, va, vb);
@@ -237,10 +242,10 @@ int main(int argc, char** argv) {
     if (r.retry_views)
       std::printf("finer_scale_retry: yes (the default scale found no estimate; segmented again at %g x the patch "
                   "area in %.1f ms; the patches, associations, picture and scores here are of those views)\n",
-                  params.retry_area_factor, r.timings.retry_segmentation_ms);
+                  params.retry.finer_area_factor, r.timings.retry_segmentation_ms);
     else if (r.retried)
       std::printf("finer_scale_retry: no estimate either (segmented again at %g x the patch area in %.1f ms)\n",
-                  params.retry_area_factor, r.timings.retry_segmentation_ms);
+                  params.retry.finer_area_factor, r.timings.retry_segmentation_ms);
     std::printf("comparisons: %zu of %zu without KD-tree, %zu cut early, %zu gated out, %zu not mutual\n",
                 s.comparisons, s.comparisons_full, s.cut_early, s.gated_out, s.not_mutual);
     std::vector<unsigned char> correct;
@@ -291,8 +296,8 @@ int main(int argc, char** argv) {
       const Eigen::Matrix<double, 6, 6> C = r.edge_information.inverse();
       std::printf("edge_sigma: %.4f %.4f %.4f m, %.3f %.3f %.3f deg (tx ty tz rx ry rz; model error %g m, %g deg)\n",
                   std::sqrt(C(0, 0)), std::sqrt(C(1, 1)), std::sqrt(C(2, 2)), std::sqrt(C(3, 3)) * 180.0 / M_PI,
-                  std::sqrt(C(4, 4)) * 180.0 / M_PI, std::sqrt(C(5, 5)) * 180.0 / M_PI, params.model_error.sigma_t_m,
-                  params.model_error.sigma_r_deg);
+                  std::sqrt(C(4, 4)) * 180.0 / M_PI, std::sqrt(C(5, 5)) * 180.0 / M_PI, params.certify.model_error.sigma_t_m,
+                  params.certify.model_error.sigma_r_deg);
     }
     std::printf("visibility_violations: %.3f (other direction %.3f)\nvisibility_occluded: %.3f\n",
                 r.visibility.violation_ratio, r.visibility.violation_ratio_lesser, r.visibility.occluded_ratio);

@@ -90,48 +90,48 @@ int main(int argc, char** argv) {
   bool pictures_only = false;
   app.add_flag("--pictures-only", pictures_only, "draw the --picture pair and stop (no benchmark)");
   gasp::PairParams base;
-  app.add_option("--k", base.association.feature_sets.neighbourhood.k, "association neighbourhood size (0 = full view)")->capture_default_str()->check(gasp::tools::atLeast(0));
-  double area_cm2 = base.superpixels.target_patch_area_m2 * 1e4;
+  app.add_option("--k", base.associate.feature_sets.neighbourhood.k, "association neighbourhood size (0 = full view)")->capture_default_str()->check(gasp::tools::atLeast(0));
+  double area_cm2 = base.segment.target_patch_area_m2 * 1e4;
   app.add_option("--area-cm2", area_cm2, "GASP: target patch area [cm^2]")->capture_default_str()->check(gasp::tools::above(0));
-  app.add_flag("--step-borders", base.superpixels.step_borders, "GASP: segment with the step borders (SuperpixelParams::step_borders; off by default)");
-  app.add_option("--candidates", base.association.candidates, "KD-tree candidates per patch (C)")->capture_default_str()->check(gasp::tools::atLeast(1));
-  app.add_option("--lambda", base.association.lambda, "gating on the normalised edit distance")->capture_default_str()->check(gasp::tools::within(0, 1));
-  app.add_option("--distinctiveness", base.association.distinctiveness_ratio,
+  app.add_flag("--step-borders", base.segment.step_borders, "GASP: segment with the step borders (SuperpixelParams::step_borders; off by default)");
+  app.add_option("--candidates", base.associate.candidates, "KD-tree candidates per patch (C)")->capture_default_str()->check(gasp::tools::atLeast(1));
+  app.add_option("--lambda", base.associate.lambda, "gating on the normalised edit distance")->capture_default_str()->check(gasp::tools::within(0, 1));
+  app.add_option("--distinctiveness", base.associate.distinctiveness_ratio,
                  "ratio test: keep a best partner only when its D_hat < R x the second best (1 = off)")
       ->capture_default_str()
       ->check(gasp::tools::above(0))
       ->check(gasp::tools::within(0, 1));
-  app.add_flag("!--no-mutual", base.association.mutual_check, "keep one-way best partners too (no mutual check)");
-  app.add_option("--min-inliers", base.pose.ransac.min_inliers, "RANSAC: fewer inliers give no estimate (all methods)")->capture_default_str()->check(gasp::tools::atLeast(3));
-  app.add_option("--one-way-max-violation", base.one_way_max_violation_ratio,
+  app.add_flag("!--no-mutual", base.associate.mutual_check, "keep one-way best partners too (no mutual check)");
+  app.add_option("--min-inliers", base.hypothesise.pose.ransac.min_inliers, "RANSAC: fewer inliers give no estimate (all methods)")->capture_default_str()->check(gasp::tools::atLeast(3));
+  app.add_option("--one-way-max-violation", base.certify.fallback_max_violation_ratio,
                  "GASP: visibility check violation limit for poses from the one-way fallback")->capture_default_str()->check(gasp::tools::within(0, 1));
-  app.add_option("--max-occluded", base.visibility.max_occluded_ratio,
+  app.add_option("--max-occluded", base.certify.visibility.max_occluded_ratio,
                  "visibility check: limit on the share of samples behind the other view's surfaces (all methods)")->capture_default_str()->check(gasp::tools::within(0, 1));
-  app.add_option("--max-two-way-violation", base.visibility.max_two_way_violation_ratio,
+  app.add_option("--max-two-way-violation", base.certify.visibility.max_two_way_violation_ratio,
                  "visibility check: limit on the violation share seen from both views (all methods; 1 = no limit)")->capture_default_str()->check(gasp::tools::within(0, 1));
-  app.add_option("--retry-area-factor", base.retry_area_factor,
+  app.add_option("--retry-area-factor", base.retry.finer_area_factor,
                  "GASP: when no estimate is found, segment again with this times the patch area and retry, mutual associations only (0 = never, else in [0.01, 1))")
       ->capture_default_str()
       ->check(gasp::tools::zeroOrWithinHalfOpen(0.01, 1));
-  app.add_flag("!--no-slide-scan", base.slide_scan.enabled,
+  app.add_flag("!--no-slide-scan", base.refine.slide_scan.enabled,
                "GASP: no slide scan of poses whose patch problem was degenerate (docs/pipeline.md, \"Slide scan\")");
-  app.add_flag("!--no-edge-terms", base.edge_terms, "GASP: no point-to-line terms along occluding edges in the dense rounds");
-  app.add_option("--edge-weight", base.edges.weight, "GASP: weight of an edge term (0 = edge terms weightless)")->capture_default_str()->check(gasp::tools::atLeast(0));
-  app.add_option("--wide-edge-gates", base.wide_edge_gate_factor,
+  app.add_flag("!--no-edge-terms", base.refine.edges.enabled, "GASP: no point-to-line terms along occluding edges in the dense rounds");
+  app.add_option("--edge-weight", base.refine.edges.terms.weight, "GASP: weight of an edge term (0 = edge terms weightless)")->capture_default_str()->check(gasp::tools::atLeast(0));
+  app.add_option("--wide-edge-gates", base.refine.edges.wide_gate_factor,
                  "GASP: second refinement, when few edge points are paired, with edge gates this many times wider (0 = none, else >= 1)")->capture_default_str()->check(gasp::tools::zeroOrAtLeast(1));
-  app.add_option("--edge-step", base.edges.pixel_step, "GASP: one source edge pixel per (N/2)^2 image block")->capture_default_str()->check(gasp::tools::above(0));
-  app.add_option("--dense-rounds", base.dense_rounds, "dense projective refinement rounds (0 = none)")->capture_default_str()->check(gasp::tools::atLeast(0));
-  app.add_option("--dense-max-rounds", base.dense_max_rounds,
+  app.add_option("--edge-step", base.refine.edges.terms.pixel_step, "GASP: one source edge pixel per (N/2)^2 image block")->capture_default_str()->check(gasp::tools::above(0));
+  app.add_option("--dense-rounds", base.refine.dense.rounds, "dense projective refinement rounds (0 = none)")->capture_default_str()->check(gasp::tools::atLeast(0));
+  app.add_option("--dense-max-rounds", base.refine.dense.max_rounds,
                  "at most this many dense rounds in all: after --dense-rounds, more at the last gate until the pose stops moving (<= --dense-rounds: exactly --dense-rounds)")
       ->capture_default_str()
       ->check(gasp::tools::atLeast(0));
-  app.add_option("--dense-extrapolation", base.dense_extrapolation_max,
+  app.add_option("--dense-extrapolation", base.refine.dense.extrapolation_max,
                  "after two dense rounds at the last gate that move the pose the same way, start the next at most this many steps ahead (0 = never)")
       ->capture_default_str()
       ->check(gasp::tools::atLeast(0));
-  app.add_flag("!--no-dense-line-search", base.dense_line_search,
+  app.add_flag("!--no-dense-line-search", base.refine.dense.line_search,
                "GASP: no line search at the last dense gate (a longer step than the round before is kept even when it scores worse; docs/pipeline.md, \"Line search at the last gate\")");
-  app.add_option("--pixel-step", base.projective.pixel_step, "dense terms: every N-th pixel")->capture_default_str()->check(gasp::tools::atLeast(1));
+  app.add_option("--pixel-step", base.refine.pixels.pixel_step, "dense terms: every N-th pixel")->capture_default_str()->check(gasp::tools::atLeast(1));
   bool polish_reference = false;  // --polish-reference (with the baselines only)
   bool rgb_rotation_check = false;  // --rgb-rotation-check (with the baselines only)
 #ifdef GASP_HAVE_BASELINES
@@ -205,9 +205,9 @@ int main(int argc, char** argv) {
       if (!(std::abs(v) <= 360.0))
         throw CLI::ValidationError("--gt-frame-rotation must be three angles in degrees, each within +-360");
     if (!model_error.empty()) {
-      base.model_error = {model_error[0], model_error[1]};
+      base.certify.model_error = {model_error[0], model_error[1]};
       try {
-        gasp::validate(base.model_error);
+        gasp::validate(base.certify.model_error);
       } catch (const gasp::Error& e) {
         throw CLI::ValidationError(std::string("--model-error: ") + e.what());
       }
@@ -251,11 +251,11 @@ int main(int argc, char** argv) {
   }
   bool progress_line_open = false;  // an error then starts on a line of its own
   try {
-    base.superpixels.target_patch_area_m2 = area_cm2 * 1e-4;
+    base.segment.target_patch_area_m2 = area_cm2 * 1e-4;
     gasp::pairs::MethodSetup setup;
 #ifdef GASP_HAVE_BASELINES
-    baseline.pose.ransac.min_inliers = base.pose.ransac.min_inliers;  // the same consensus rule for all
-    baseline.visibility = base.visibility;  // and the same free-space check
+    baseline.pose.ransac.min_inliers = base.hypothesise.pose.ransac.min_inliers;  // the same consensus rule for all
+    baseline.visibility = base.certify.visibility;  // and the same free-space check
     gasp::baselines::validate(baseline);
     gasp::baselines::validate(epipolar);
     setup.baseline = baseline;
@@ -358,7 +358,7 @@ int main(int argc, char** argv) {
       gasp::pairs::PairsCsvChecks checks;
       checks.T_gt = *reference.pair(a, b);
       // The reference polished by GICP (once per pair): how far the depth pulls it, and where to.
-      if (polish_reference) checks.T_ref_icp = gasp::pairs::polishWithGicp(cache, a, b, base.superpixels, checks.T_gt);
+      if (polish_reference) checks.T_ref_icp = gasp::pairs::polishWithGicp(cache, a, b, base.segment, checks.T_gt);
 #ifdef GASP_HAVE_BASELINES
       if (rgb_rotation_check)
         checks.rgb = gasp::pairs::checkRgbRotation(ds, cache, reference, i, j, rgb_camera, epipolar);
@@ -381,7 +381,7 @@ int main(int argc, char** argv) {
         tally.by_method[method].push_back(o);
         if (pairs_csv) {
           checks.T_est_icp = run.estimated && polish_reference
-                                 ? gasp::pairs::polishWithGicp(cache, a, b, base.superpixels, run.T_target_source)
+                                 ? gasp::pairs::polishWithGicp(cache, a, b, base.segment, run.T_target_source)
                                  : std::nullopt;
           pairs_csv->stream() << gasp::pairs::pairsCsvRow(o, method, run, checks) << '\n';
         }

@@ -32,9 +32,12 @@ MethodRun runGasp(const std::string& method, std::size_t i, std::size_t j, Frame
                   Picture* picture, const std::optional<Isometry3>& T_gt, const std::optional<Isometry3>& T_ref_icp) {
   MethodRun run;
   PairParams params = setup.gasp;
-  params.refine = method != "gasp-norefine";
-  const auto& va = cache.gaspView(i, params.superpixels);
-  const auto& vb = cache.gaspView(j, params.superpixels, setup.roll_target_deg);
+  if (method == "gasp-norefine") {  // RANSAC's pose only: no patch or dense refinement
+    params.hypothesise.pose.refine = false;
+    params.refine.dense.rounds = 0;
+  }
+  const auto& va = cache.gaspView(i, params.segment);
+  const auto& vb = cache.gaspView(j, params.segment, setup.roll_target_deg);
   const auto t0 = Clock::now();
   const auto r = registerViews(va.view, vb.view, params);
   const double reg_ms = msSince(t0);
@@ -65,7 +68,7 @@ MethodRun runGasp(const std::string& method, std::size_t i, std::size_t j, Frame
     if (!g.success) {
       run.reason = "GICP: " + g.reason + "; GASP's pose kept";
     } else {
-      const auto check = checkVisibility(va.view, vb.view, g.T_target_source, setup.gasp.visibility);
+      const auto check = checkVisibility(va.view, vb.view, g.T_target_source, setup.gasp.certify.visibility);
       if (check.passed) {
         run.T_target_source = g.T_target_source;
         setVisibility(run, check);
@@ -134,7 +137,7 @@ MethodRun runGicp(std::size_t i, std::size_t j, FrameCache& cache, const MethodS
   if (!g.success) {
     run.reason = "GICP: " + g.reason;
   } else {
-    const auto check = checkVisibility(va, vb, g.T_target_source, setup.gasp.visibility);
+    const auto check = checkVisibility(va, vb, g.T_target_source, setup.gasp.certify.visibility);
     setVisibility(run, check);
     run.estimated = check.passed;
     if (!check.passed) run.reason = check.reason;

@@ -239,7 +239,7 @@ TEST(CGaspLoopClosureERD, TakesTheNodeDecidersKeyframeViewsInsteadOfSegmentingAg
   GaspEngine& other = *other_engine;
   other.erd.useKeyframeViewsOf(&other.nrd);
   gasp::PairParams pair = other.erd.pairParams();
-  pair.superpixels.target_patch_area_m2 *= 1.5;
+  pair.segment.target_patch_area_m2 *= 1.5;
   other.erd.setParams(pair, other.erd.loopParams());
   for (std::size_t i = 0; i < 8; ++i) other.step(scanOf(s, i));
   EXPECT_GE(other.erd.segmentations(), other.graph().nodeCount());
@@ -589,7 +589,7 @@ TEST(GraphSlamDeciders, ReadTheirIniSectionsStrictly) {
                std::exception);
   erd.loadParams(writeFile(dir + "/f.ini", "[CGaspLoopClosureERD]\nloop_min_inliers = 33\nmin_inliers = 9\n"));
   EXPECT_EQ(erd.loopParams().min_inliers, 33);           // the loop closer's
-  EXPECT_EQ(erd.pairParams().pose.ransac.min_inliers, 9);  // RANSAC's
+  EXPECT_EQ(erd.pairParams().hypothesise.pose.ransac.min_inliers, 9);  // RANSAC's
   EXPECT_THROW(gso.loadParams(writeFile(dir + "/d.ini", "[CGaspPoseGraphGSO]\nmax_iterations = many\n")),
                std::exception);
   EXPECT_THROW(gso.loadParams(dir + "/missing.ini"), std::exception);

@@ -181,19 +181,19 @@ TEST(GaspAligner, BadInputGivesClearErrors) {
   EXPECT_THROW(aligner.alignObservations(no_range, no_range), std::exception);
   // Options from an ini section: unknown keys and invalid values are named.
   EXPECT_NO_THROW(aligner.options.loadFromConfigFile(mrpt::config::CConfigFileMemory("[A]\ncandidates=30\n"), "A"));
-  EXPECT_EQ(aligner.options.params.association.candidates, 30);
+  EXPECT_EQ(aligner.options.params.associate.candidates, 30);
   // The converged dense rounds' limits are keys too; invalid values are refused by name.
   EXPECT_NO_THROW(aligner.options.loadFromConfigFile(
       mrpt::config::CConfigFileMemory("[A]\ndense_max_rounds=5\ndense_converged_m=0.004\ndense_extrapolation_max=2.5\n"), "A"));
-  EXPECT_EQ(aligner.options.params.dense_max_rounds, 5);
-  EXPECT_DOUBLE_EQ(aligner.options.params.dense_converged_m, 0.004);
-  EXPECT_DOUBLE_EQ(aligner.options.params.dense_extrapolation_max, 2.5);
+  EXPECT_EQ(aligner.options.params.refine.dense.max_rounds, 5);
+  EXPECT_DOUBLE_EQ(aligner.options.params.refine.dense.converged_m, 0.004);
+  EXPECT_DOUBLE_EQ(aligner.options.params.refine.dense.extrapolation_max, 2.5);
   EXPECT_THROW(aligner.options.loadFromConfigFile(mrpt::config::CConfigFileMemory("[A]\ndense_extrapolation_max=-1\n"), "A"),
                std::exception);
   EXPECT_NO_THROW(aligner.options.loadFromConfigFile(
       mrpt::config::CConfigFileMemory("[A]\ndense_line_search=false\ndense_line_search_halvings=1\n"), "A"));
-  EXPECT_FALSE(aligner.options.params.dense_line_search);
-  EXPECT_EQ(aligner.options.params.dense_line_search_halvings, 1);
+  EXPECT_FALSE(aligner.options.params.refine.dense.line_search);
+  EXPECT_EQ(aligner.options.params.refine.dense.line_search_halvings, 1);
   EXPECT_THROW(aligner.options.loadFromConfigFile(mrpt::config::CConfigFileMemory("[A]\ndense_line_search_halvings=-1\n"), "A"),
                std::exception);
   try {
@@ -233,10 +233,10 @@ TEST(GaspAligner, FinerScaleRetryWhenNoViewPairIsFound) {
     ASSERT_TRUE(m2.insertObservation(*c.scans[4]));
     CGaspAligner aligner;
     TGaspAlignmentResult info;
-    aligner.options.params.retry_area_factor = 0.0;
+    aligner.options.params.retry.finer_area_factor = 0.0;
     const auto none = aligner.Align3DPDF(&m1, &m2, mrpt::poses::CPose3DPDFGaussian(), info);
     EXPECT_EQ(none == nullptr, area == 0.2) << area << ": " << info.reason;
-    aligner.options.params.retry_area_factor = 0.3;
+    aligner.options.params.retry.finer_area_factor = 0.3;
     const auto pdf = aligner.Align3DPDF(&m1, &m2, mrpt::poses::CPose3DPDFGaussian(), info);
     ASSERT_TRUE(pdf) << area << ": " << info.reason;
     EXPECT_EQ(info.finer_scale, area == 0.2);

@@ -43,7 +43,7 @@ std::map<std::string, std::string> pairKeys(const PairParams& p) {
 /// Every field of PairParams away from its default (and still valid).
 PairParams everythingChanged() {
   PairParams p;
-  auto& s = p.superpixels;
+  auto& s = p.segment;
   s.discontinuity_abs_m = 0.0123456789, s.discontinuity_rel = 0.021, s.normal_window_px_per_m = 6.5;
   s.normal_min_radius_px = 3, s.normal_max_radius_px = 11, s.max_crease_angle_deg = 26;
   s.max_neighbour_normal_angle_deg = 11, s.min_component_pixels = 41, s.target_patch_area_m2 = 0.0051;
@@ -53,8 +53,8 @@ PairParams everythingChanged() {
   s.kmeans_coarse_iterations = 3, s.crease_borders = false, s.crease_min_angle_deg = 31, s.crease_band_px = 9;
   s.plane_noise_abs_m = 0.0051, s.plane_noise_rel = 0.0031, s.step_borders = true, s.step_min_sigmas = 6.5;
   s.step_smoothness = 1.5;
-  p.view_degeneracy.min_eigenvalue_ratio = 2e-3;
-  auto& a = p.association;
+  p.certify.view_degeneracy.min_eigenvalue_ratio = 2e-3;
+  auto& a = p.associate;
   a.feature_sets.neighbourhood.k = 25, a.feature_sets.feature.e_theta_rad = 0.09;
   a.feature_sets.feature.min_separation_m = 2e-6, a.feature_sets.ordering.e_r_m = 0.025;
   a.feature_sets.ordering.e_theta_rad = 0.1, a.match.r_dev_m = 0.045, a.match.theta_dev_rad = 0.2;
@@ -62,31 +62,35 @@ PairParams everythingChanged() {
   a.costs.transpose = std::numeric_limits<double>::infinity();
   a.candidates = 21, a.lambda = 0.65, a.mutual_check = false, a.candidate_key = CandidateKey::kMean;
   a.distinctiveness_ratio = 0.9;
-  auto& r = p.pose.ransac;
+  auto& r = p.hypothesise.pose.ransac;
   r.inlier.distance_m = 0.06, r.inlier.normal_angle_deg = 21, r.edge_tolerance_m = 0.031;
   r.normal_pair_tolerance_deg = 19, r.min_triangle_height_m = 0.051, r.min_inliers = 9, r.max_iterations = 9000;
   r.confidence = 0.99, r.seed = 7, r.guided_sampling = false, r.min_iterations = 150;
   r.max_guided_correspondences = 1400;
-  auto& q = p.pose.refinement;
+  auto& q = p.hypothesise.pose.refinement;
   q.loss = RobustLoss::kCauchy, q.loss_scale_m = 0.03, q.bidirectional = false, q.max_iterations = 40;
   q.noise_sigma_m = 0.012, q.degeneracy.min_eigenvalue_ratio = 2e-3, q.degeneracy.max_std_m = 0.06;
-  p.one_way_fallback = false, p.one_way_max_violation_ratio = 0.09, p.guided_verification = false;
-  p.guided_densify = true, p.guided.max_distance_m = 0.04, p.guided.max_normal_angle_deg = 21;
-  p.guided.lambda = 0.75, p.min_guided_support = 13, p.refine = false, p.dense_rounds = 2;
-  p.dense_gates_m = {0.2, 0.04};
-  p.dense_max_rounds = 12, p.dense_converged_m = 0.003, p.dense_extrapolation_max = 3;
-  p.dense_line_search = false, p.dense_line_search_halvings = 2;
-  p.projective.pixel_step = 6, p.projective.max_distance_m = 0.06, p.projective.max_normal_angle_deg = 22;
-  p.edge_terms = false, p.edges.min_jump_m = 0.06, p.edges.jump_per_m2 = 0.03, p.edges.pixel_step = 10;
-  p.edges.line_neighbours = 6, p.edges.max_distance_m = 0.07, p.edges.weight = 1.5;
-  p.wide_edge_gate_factor = 2.5, p.wide_edge_min_paired_share = 0.5;
-  p.dense_degeneracy.min_eigenvalue_ratio = 2e-3, p.dense_degeneracy.max_std_m = 0.06, p.min_dense_terms = 250;
-  p.slide_scan.enabled = false, p.slide_scan.range_m = 0.25, p.slide_scan.step_m = 0.02;
-  p.slide_scan.min_gain = 0.006, p.slide_scan.pixel_step = 6;
-  p.visibility.pixel_step = 6, p.visibility.gate_m = 0.035, p.visibility.gate_per_m2 = 0.025;
-  p.visibility.max_violation_ratio = 0.2, p.visibility.max_occluded_ratio = 0.6, p.visibility.min_consistent = 40;
-  p.visibility.max_two_way_violation_ratio = 0.07;
-  p.retry_area_factor = 0.4, p.model_error.sigma_t_m = 0.02, p.model_error.sigma_r_deg = 1.0;
+  p.retry.one_way_fallback = false, p.certify.fallback_max_violation_ratio = 0.09, p.hypothesise.guided.enabled = false;
+  p.hypothesise.guided.densify = true, p.hypothesise.guided.gates.max_distance_m = 0.04, p.hypothesise.guided.gates.max_normal_angle_deg = 21;
+  p.hypothesise.guided.gates.lambda = 0.75, p.hypothesise.guided.min_support = 13, p.hypothesise.pose.refine = false, p.refine.dense.rounds = 2;
+  p.refine.dense.gates_m = {0.2, 0.04};
+  p.refine.dense.max_rounds = 12, p.refine.dense.converged_m = 0.003, p.refine.dense.extrapolation_max = 3;
+  p.refine.dense.line_search = false, p.refine.dense.line_search_halvings = 2;
+  p.refine.pixels.pixel_step = 6, p.refine.pixels.max_distance_m = 0.06, p.refine.pixels.max_normal_angle_deg = 22;
+  p.refine.edges.enabled = false, p.refine.edges.terms.min_jump_m = 0.06, p.refine.edges.terms.jump_per_m2 = 0.03, p.refine.edges.terms.pixel_step = 10;
+  p.refine.edges.terms.line_neighbours = 6, p.refine.edges.terms.max_distance_m = 0.07, p.refine.edges.terms.weight = 1.5;
+  p.refine.edges.wide_gate_factor = 2.5, p.refine.edges.wide_min_paired_share = 0.5;
+  p.refine.solver.degeneracy.min_eigenvalue_ratio = 2e-3, p.refine.solver.degeneracy.max_std_m = 0.06, p.certify.min_dense_terms = 250;
+  p.refine.slide_scan.enabled = false, p.refine.slide_scan.range_m = 0.25, p.refine.slide_scan.step_m = 0.02;
+  p.refine.slide_scan.min_gain = 0.006, p.refine.slide_scan.pixel_step = 6;
+  p.certify.visibility.pixel_step = 6, p.certify.visibility.gate_m = 0.035, p.certify.visibility.gate_per_m2 = 0.025;
+  p.certify.visibility.max_violation_ratio = 0.2, p.certify.visibility.max_occluded_ratio = 0.6, p.certify.visibility.min_consistent = 40;
+  p.certify.visibility.max_two_way_violation_ratio = 0.07;
+  p.hypothesise.pose.reselection_rounds = 3;
+  auto& d = p.refine.solver;
+  d.loss = RobustLoss::kCauchy, d.loss_scale_m = 0.025, d.bidirectional = false, d.max_iterations = 45;
+  d.noise_sigma_m = 0.011;
+  p.retry.finer_area_factor = 0.4, p.certify.model_error.sigma_t_m = 0.02, p.certify.model_error.sigma_r_deg = 1.0;
   return p;
 }
 
@@ -106,18 +110,18 @@ TEST(ParamsIo, EveryPairParameterIsAKeyThatReadsBackExactly) {
   readPairParams(mem, "s", read);
   EXPECT_EQ(pairKeys(read), written);
   // The kinds of value with their own syntax, field by field.
-  EXPECT_EQ(read.superpixels.discontinuity_abs_m, 0.0123456789);  // exactly: %.17g
-  EXPECT_EQ(read.association.candidate_key, CandidateKey::kMean);
-  EXPECT_TRUE(std::isinf(read.association.costs.transpose));
-  EXPECT_EQ(read.association.costs.replace, 2.0);
-  EXPECT_EQ(read.pose.refinement.loss, RobustLoss::kCauchy);
-  EXPECT_EQ(read.dense_gates_m, (std::vector<double>{0.2, 0.04}));
-  EXPECT_EQ(read.pose.ransac.seed, 7u);
+  EXPECT_EQ(read.segment.discontinuity_abs_m, 0.0123456789);  // exactly: %.17g
+  EXPECT_EQ(read.associate.candidate_key, CandidateKey::kMean);
+  EXPECT_TRUE(std::isinf(read.associate.costs.transpose));
+  EXPECT_EQ(read.associate.costs.replace, 2.0);
+  EXPECT_EQ(read.hypothesise.pose.refinement.loss, RobustLoss::kCauchy);
+  EXPECT_EQ(read.refine.dense.gates_m, (std::vector<double>{0.2, 0.04}));
+  EXPECT_EQ(read.hypothesise.pose.ransac.seed, 7u);
   EXPECT_EQ(written.at("cost_replace"), "2");
   EXPECT_EQ(defaults.at("cost_replace"), "inf");
   EXPECT_EQ(defaults.at("dense_gates_m"), "0.10000000000000001,0.050000000000000003,0.029999999999999999");
   // Every segmentation key is a pair key too (the matcher segments its observations with them).
-  const auto seg = keysOf([&](auto& m) { writeSuperpixelParams(changed.superpixels, m, "s"); });
+  const auto seg = keysOf([&](auto& m) { writeSuperpixelParams(changed.segment, m, "s"); });
   EXPECT_EQ(seg.size(), 28u);
   for (const auto& [key, text] : seg) EXPECT_EQ(written.at(key), text) << key;
 }
@@ -128,9 +132,9 @@ TEST(ParamsIo, SpecialValuesParseStrictlyInIniAndYaml) {
     readPairParams(mrpt::config::CConfigFileMemory("[s]\n" + body), "s", p);
     return p;
   };
-  EXPECT_EQ(readIni("dense_gates_m = 0.2, 0.1 ,0.05\n").dense_gates_m, (std::vector<double>{0.2, 0.1, 0.05}));
-  EXPECT_TRUE(std::isinf(readIni("cost_transpose=Infinity\n").association.costs.transpose));
-  EXPECT_EQ(readIni("refinement_loss=none\n").pose.refinement.loss, RobustLoss::kNone);
+  EXPECT_EQ(readIni("dense_gates_m = 0.2, 0.1 ,0.05\n").refine.dense.gates_m, (std::vector<double>{0.2, 0.1, 0.05}));
+  EXPECT_TRUE(std::isinf(readIni("cost_transpose=Infinity\n").associate.costs.transpose));
+  EXPECT_EQ(readIni("refinement_loss=none\n").hypothesise.pose.refinement.loss, RobustLoss::kNone);
   for (const char* bad : {"dense_gates_m=0.1,,0.05\n", "dense_gates_m=\n", "candidate_key=median\n",
                           "refinement_loss=Huber\n", "cost_insert=inf\n", "cost_replace=-inf\n", "cost_replace=nan\n",
                           "ransac_seed=-1\n", "ransac_seed=99999999999\n"}) {
@@ -146,11 +150,11 @@ TEST(ParamsIo, SpecialValuesParseStrictlyInIniAndYaml) {
   readPairParams(mrpt::containers::yaml::FromText("candidate_key: mean\ndense_gates_m: [0.2, 0.1]\n"
                                                   "cost_replace: inf\nrefinement_loss: cauchy\nransac_seed: 5\n"),
                  "matcher", y);
-  EXPECT_EQ(y.association.candidate_key, CandidateKey::kMean);
-  EXPECT_EQ(y.dense_gates_m, (std::vector<double>{0.2, 0.1}));
-  EXPECT_TRUE(std::isinf(y.association.costs.replace));
-  EXPECT_EQ(y.pose.refinement.loss, RobustLoss::kCauchy);
-  EXPECT_EQ(y.pose.ransac.seed, 5u);
+  EXPECT_EQ(y.associate.candidate_key, CandidateKey::kMean);
+  EXPECT_EQ(y.refine.dense.gates_m, (std::vector<double>{0.2, 0.1}));
+  EXPECT_TRUE(std::isinf(y.associate.costs.replace));
+  EXPECT_EQ(y.hypothesise.pose.refinement.loss, RobustLoss::kCauchy);
+  EXPECT_EQ(y.hypothesise.pose.ransac.seed, 5u);
   PairParams z;
   EXPECT_THROW(readPairParams(mrpt::containers::yaml::FromText("dense_gates_m: [0.2, abc]\n"), "matcher", z),
                std::exception);
@@ -200,7 +204,7 @@ TEST(ParamsIo, AMapKeepsItsOptionsAndEachViewItsOwnSegmentationThroughSerializat
   f.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(2.0f));
   f.depth_m(cv::Rect(200, 150, 200, 150)).setTo(1.5f);
   CSuperpixelMap map;
-  map.creationOptions.superpixels = everythingChanged().superpixels;
+  map.creationOptions.superpixels = everythingChanged().segment;
   map.creationOptions.superpixels.processing_step_px = 2;  // keep the test quick
   map.insertFrame(f);
   const SuperpixelParams first = map.creationOptions.superpixels;

@@ -220,7 +220,7 @@ TEST(SuperpixelMap, CreatedFromIniByCMultiMetricMap) {
   EXPECT_EQ(map->creationOptions.superpixels.target_patch_area_m2, 0.006);
   EXPECT_EQ(map->creationOptions.superpixels.min_patch_pixels, 30);
   EXPECT_EQ(map->likelihoodOptions.sigma_m, 0.05);
-  EXPECT_EQ(map->likelihoodOptions.matching.association.candidates, 30);
+  EXPECT_EQ(map->likelihoodOptions.matching.associate.candidates, 30);
   EXPECT_EQ(map->renderOptions.style, CSuperpixelMap::TRenderOptions::Style::points);
   EXPECT_FALSE(map->genericMapParams.enableObservationLikelihood);
 
@@ -467,7 +467,7 @@ TEST(SuperpixelMap, LikelihoodReusesTheObservationAcrossPosesAndEqualsAFreshMap)
   EXPECT_EQ(map.likelihoodCacheStats().misses, ++misses);
 
   // Association options: a miss.
-  map.likelihoodOptions.matching.association.lambda = 0.3;
+  map.likelihoodOptions.matching.associate.lambda = 0.3;
   EXPECT_DOUBLE_EQ(map.computeObservationLikelihood(*obs, poses[0]), CSuperpixelMap(map).computeObservationLikelihood(*obs, poses[0]));
   EXPECT_EQ(map.likelihoodCacheStats().misses, ++misses);
 

@@ -86,20 +86,20 @@ TEST(SceneChange, ANaNPoseIsNotWithinTheGate) {
 
 TEST(SceneChange, ThePairParametersLoosenOnlyTheVisibilityLimits) {
   gasp::PairParams pair;
-  pair.association.candidates = 7;
+  pair.associate.candidates = 7;
   SceneChangeParams p;
   p.max_violation_ratio = 0.4;
   p.max_two_way_violation_ratio = 0.2;
   p.max_occluded_ratio = 0.7;
   const gasp::PairParams loose = gasp::sceneChangePairParams(pair, p);
-  EXPECT_EQ(loose.visibility.max_violation_ratio, 0.4);
-  EXPECT_EQ(loose.visibility.max_two_way_violation_ratio, 0.2);
-  EXPECT_EQ(loose.visibility.max_occluded_ratio, 0.7);
-  EXPECT_EQ(loose.one_way_max_violation_ratio, 0.4);  // the fallback's and the retry's limit
-  EXPECT_EQ(loose.association.candidates, 7);
-  EXPECT_EQ(loose.visibility.gate_m, pair.visibility.gate_m);
-  EXPECT_EQ(loose.visibility.min_consistent, pair.visibility.min_consistent);
-  EXPECT_EQ(loose.retry_area_factor, pair.retry_area_factor);
+  EXPECT_EQ(loose.certify.visibility.max_violation_ratio, 0.4);
+  EXPECT_EQ(loose.certify.visibility.max_two_way_violation_ratio, 0.2);
+  EXPECT_EQ(loose.certify.visibility.max_occluded_ratio, 0.7);
+  EXPECT_EQ(loose.certify.fallback_max_violation_ratio, 0.4);  // the fallback's and the retry's limit
+  EXPECT_EQ(loose.associate.candidates, 7);
+  EXPECT_EQ(loose.certify.visibility.gate_m, pair.certify.visibility.gate_m);
+  EXPECT_EQ(loose.certify.visibility.min_consistent, pair.certify.visibility.min_consistent);
+  EXPECT_EQ(loose.retry.finer_area_factor, pair.retry.finer_area_factor);
   EXPECT_NO_THROW(gasp::validate(loose));
 }
 

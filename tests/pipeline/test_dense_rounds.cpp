@@ -35,10 +35,10 @@ TEST(DenseRounds, RoundsUntilConvergedBringSlowlySlidingPosesToTheTruth) {
     const std::string name = std::string(scene) + " seed " + std::to_string(seed) + " " + std::to_string(from) +
                              " -> " + std::to_string(to);
     PairParams three;
-    three.dense_max_rounds = three.dense_rounds;
+    three.refine.dense.max_rounds = three.refine.dense.rounds;
     // The visibility limit as it was when these poses were measured (30 %). With today's 15 %,
     // sparse 0 -> 15 takes another path through the checks and three rounds end 2 mm off.
-    three.visibility.max_violation_ratio = 0.3;
+    three.certify.visibility.max_violation_ratio = 0.3;
     const PairResult before = registerViews(p.a, p.b, three);
     ASSERT_TRUE(before.pose.success) << name << ": " << before.pose.reason;
     EXPECT_GT(translationError(p, before), 0.02) << name << ": three rounds stop short";
@@ -50,7 +50,7 @@ TEST(DenseRounds, RoundsUntilConvergedBringSlowlySlidingPosesToTheTruth) {
     EXPECT_LT(rotationErrorDeg(p, r), 1.0) << name;
     EXPECT_TRUE(r.visibility.passed) << name;
     EXPECT_GE(r.dense_rounds_run, 1) << name;
-    EXPECT_LE(r.dense_rounds_run, PairParams{}.dense_max_rounds) << name;
+    EXPECT_LE(r.dense_rounds_run, PairParams{}.refine.dense.max_rounds) << name;
   }
 }
 
@@ -61,33 +61,33 @@ TEST(DenseRounds, StopWhenThePoseStopsMoving) {
   ASSERT_TRUE(r.pose.success) << r.pose.reason;
   EXPECT_LT(translationError(p, r), 0.02);
   // Converged before the limit: the last round moved the patches less than the threshold.
-  EXPECT_GE(r.dense_rounds_run, defaults.dense_rounds);
-  EXPECT_LT(r.dense_rounds_run, defaults.dense_max_rounds);
+  EXPECT_GE(r.dense_rounds_run, defaults.refine.dense.rounds);
+  EXPECT_LT(r.dense_rounds_run, defaults.refine.dense.max_rounds);
   EXPECT_GE(r.dense_last_step_m, 0.0);
-  EXPECT_LT(r.dense_last_step_m, defaults.dense_converged_m);
+  EXPECT_LT(r.dense_last_step_m, defaults.refine.dense.converged_m);
 
   // A threshold of 0 never converges: every allowed round runs.
   PairParams never = defaults;
-  never.dense_converged_m = 0.0;
-  never.slide_scan.enabled = false;  // the rounds reported are then the first refinement's
-  never.dense_line_search = false;   // which could end the rounds before a worse step
+  never.refine.dense.converged_m = 0.0;
+  never.refine.slide_scan.enabled = false;  // the rounds reported are then the first refinement's
+  never.refine.dense.line_search = false;   // which could end the rounds before a worse step
   const PairResult all = registerViews(p.a, p.b, never);
   ASSERT_TRUE(all.pose.success) << all.pose.reason;
-  EXPECT_EQ(all.dense_rounds_run, defaults.dense_max_rounds);
+  EXPECT_EQ(all.dense_rounds_run, defaults.refine.dense.max_rounds);
   EXPECT_LT(translationError(p, all), 0.02);
 
   // dense_max_rounds at or below dense_rounds: exactly dense_rounds rounds, whatever the step.
   PairParams fixed = defaults;
-  fixed.dense_max_rounds = 0;
-  fixed.dense_converged_m = 1.0;  // would stop after the first round if the gates' rounds could stop
+  fixed.refine.dense.max_rounds = 0;
+  fixed.refine.dense.converged_m = 1.0;  // would stop after the first round if the gates' rounds could stop
   const PairResult three = registerViews(p.a, p.b, fixed);
   ASSERT_TRUE(three.pose.success) << three.pose.reason;
-  EXPECT_EQ(three.dense_rounds_run, defaults.dense_rounds);
+  EXPECT_EQ(three.dense_rounds_run, defaults.refine.dense.rounds);
 
   // No dense rounds: nothing reported.
   PairParams none = defaults;
-  none.dense_rounds = 0;
-  none.dense_max_rounds = 0;
+  none.refine.dense.rounds = 0;
+  none.refine.dense.max_rounds = 0;
   const PairResult patch_only = registerViews(p.a, p.b, none);
   EXPECT_EQ(patch_only.dense_rounds_run, 0);
   EXPECT_EQ(patch_only.dense_last_step_m, -1.0);
@@ -100,11 +100,11 @@ TEST(DenseRounds, InvalidParametersThrow) {
     change(params);
     EXPECT_THROW(registerViews(p.a, p.b, params), Error);
   };
-  throwsFor([](PairParams& q) { q.dense_max_rounds = -1; });
-  throwsFor([](PairParams& q) { q.dense_converged_m = -0.001; });
-  throwsFor([](PairParams& q) { q.dense_converged_m = std::numeric_limits<double>::quiet_NaN(); });
-  throwsFor([](PairParams& q) { q.dense_converged_m = std::numeric_limits<double>::infinity(); });
-  throwsFor([](PairParams& q) { q.dense_line_search_halvings = -1; });
+  throwsFor([](PairParams& q) { q.refine.dense.max_rounds = -1; });
+  throwsFor([](PairParams& q) { q.refine.dense.converged_m = -0.001; });
+  throwsFor([](PairParams& q) { q.refine.dense.converged_m = std::numeric_limits<double>::quiet_NaN(); });
+  throwsFor([](PairParams& q) { q.refine.dense.converged_m = std::numeric_limits<double>::infinity(); });
+  throwsFor([](PairParams& q) { q.refine.dense.line_search_halvings = -1; });
 }
 
 TEST(DenseRounds, ExtrapolationCatchesACreepingPose) {
@@ -115,17 +115,17 @@ TEST(DenseRounds, ExtrapolationCatchesACreepingPose) {
   // 1.5 cm / 0.5 deg in as many rounds (step_extrapolation.h).
   const Pair p = makePair("sparse", 0, 10, 2);
   PairParams plain;
-  plain.slide_scan.enabled = false;
-  plain.dense_extrapolation_max = 0.0;
-  plain.dense_max_rounds = 8;
+  plain.refine.slide_scan.enabled = false;
+  plain.refine.dense.extrapolation_max = 0.0;
+  plain.refine.dense.max_rounds = 8;
   const PairResult creeping = registerViews(p.a, p.b, plain);
   ASSERT_TRUE(creeping.pose.success) << creeping.pose.reason;
   EXPECT_GT(translationError(p, creeping), 0.05);
-  EXPECT_EQ(creeping.dense_rounds_run, plain.dense_max_rounds);
-  EXPECT_GT(creeping.dense_last_step_m, plain.dense_converged_m);
+  EXPECT_EQ(creeping.dense_rounds_run, plain.refine.dense.max_rounds);
+  EXPECT_GT(creeping.dense_last_step_m, plain.refine.dense.converged_m);
 
   PairParams extrapolated = plain;
-  extrapolated.dense_extrapolation_max = PairParams{}.dense_extrapolation_max;
+  extrapolated.refine.dense.extrapolation_max = PairParams{}.refine.dense.extrapolation_max;
   const PairResult r = registerViews(p.a, p.b, extrapolated);
   ASSERT_TRUE(r.pose.success) << r.pose.reason;
   EXPECT_LT(translationError(p, r), 0.015);
@@ -137,7 +137,7 @@ TEST(DenseRounds, InvalidExtrapolationThrows) {
   const Pair p = makePair("room", 42, 48);
   for (const double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     PairParams params;
-    params.dense_extrapolation_max = bad;
+    params.refine.dense.extrapolation_max = bad;
     EXPECT_THROW(registerViews(p.a, p.b, params), Error) << bad;
   }
 }
@@ -153,7 +153,7 @@ TEST(DenseRounds, LineSearchKeepsTheRoundsFromOvershooting) {
     const std::string name = std::string(scene) + " seed " + std::to_string(seed) + " " + std::to_string(from) +
                              " -> " + std::to_string(to);
     PairParams plain;
-    plain.dense_line_search = false;
+    plain.refine.dense.line_search = false;
     const PairResult overshot = registerViews(p.a, p.b, plain);
     ASSERT_TRUE(overshot.pose.success) << name << ": " << overshot.pose.reason;
     EXPECT_GT(translationError(p, overshot), 0.01) << name;

@@ -12,10 +12,11 @@
 #include <limits>
 #include <vector>
 
-#include "../../modules/pipeline/src/dense_refinement.h"
 #include "gasp/core/error.h"
+#include "gasp/pipeline/certify_stage.h"
 #include "gasp/pipeline/edge_terms.h"
 #include "gasp/pipeline/projective_terms.h"
+#include "gasp/pipeline/refine_stage.h"
 #include "gasp/registration/refinement.h"
 #include "gasp/superpixels/depth_superpixels.h"
 
@@ -204,15 +205,15 @@ TEST(EdgeTerms, WideEdgeGatesRescueASlideBeyondThePixelGates) {
   RegistrationResult start;
   start.success = true;
   start.T_target_source = Isometry3::Identity();
-  PairParams params;
-  const auto visibility = params.visibility;
-  const detail::DenseOutcome wide = detail::refineDense(source, target, start, {}, params, visibility);
+  RefineParams params;
+  const FreeSpaceTest free_space = freeSpaceTest(source, target, CertifyParams{}, false);
+  const Refinement wide = refine(source, target, start, {}, params, free_space);
   ASSERT_TRUE(wide.pose.success) << wide.pose.reason;
   EXPECT_TRUE(wide.wide_edge_pose);
   std::printf("wide edge gates: %.4f m off\n", (wide.pose.T_target_source.translation() - slide).norm());
   EXPECT_LT((wide.pose.T_target_source.translation() - slide).norm(), 0.01);
-  params.wide_edge_gate_factor = 0.0;  // without the second refinement: no pose, or a slid one
-  const detail::DenseOutcome narrow = detail::refineDense(source, target, start, {}, params, visibility);
+  params.edges.wide_gate_factor = 0.0;  // without the second refinement: no pose, or a slid one
+  const Refinement narrow = refine(source, target, start, {}, params, free_space);
   EXPECT_FALSE(narrow.wide_edge_pose);
   std::printf("without: %s\n", narrow.pose.success ? "a pose" : narrow.pose.reason.c_str());
   if (narrow.pose.success) {

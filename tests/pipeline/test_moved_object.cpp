@@ -45,7 +45,7 @@ TEST(MovedObject, GivesTheRightPoseOrNoEstimateNeverAWrongOne) {
     const Pair p = pairWithMovedObject(3, 9, m.prefix, Eigen::Vector3d(m.dx, m.dy, 0.0));
     const PairResult r = registerViews(p.a, p.b);
     PairParams lifted;
-    lifted.visibility.max_two_way_violation_ratio = 1.0;
+    lifted.certify.visibility.max_two_way_violation_ratio = 1.0;
     const PairResult l = registerViews(p.a, p.b, lifted);
     std::printf("%s moved: %s (%s); with the limit lifted: %s, violations %.3f / %.3f (worse / lesser)\n", m.prefix,
                 r.pose.success ? "registered" : "no estimate", r.pose.reason.c_str(),

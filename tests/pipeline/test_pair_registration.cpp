@@ -125,53 +125,53 @@ TEST(BadInput, ViewsOfDifferentScenesGiveNoEstimate) {
 TEST(GuidedVerification, TooLittleSupportGivesNoEstimate) {
   const Pair p = makePair("room", 3, 9);
   PairParams params;
-  params.min_guided_support = 100000;
+  params.hypothesise.guided.min_support = 100000;
   const PairResult r = registerViews(p.a, p.b, params);
   EXPECT_FALSE(r.pose.success);
   EXPECT_NE(r.pose.reason.find("guided verification"), std::string::npos) << r.pose.reason;
   EXPECT_GT(r.guided_support, 20);
-  params.guided_verification = false;
+  params.hypothesise.guided.enabled = false;
   EXPECT_TRUE(registerViews(p.a, p.b, params).pose.success);
 }
 
 TEST(BadInput, InvalidParametersThrow) {
   const Pair p = makePair("room", 0, 1);
   PairParams params;
-  params.dense_rounds = -1;
+  params.refine.dense.rounds = -1;
   EXPECT_THROW(registerViews(p.a, p.b, params), Error);
   params = PairParams{};
-  params.dense_gates_m = {0.05, -1.0};
+  params.refine.dense.gates_m = {0.05, -1.0};
   EXPECT_THROW(registerViews(p.a, p.b, params), Error);
   params = PairParams{};
-  params.visibility.max_violation_ratio = 2.0;
+  params.certify.visibility.max_violation_ratio = 2.0;
   EXPECT_THROW(registerViews(p.a, p.b, params), Error);
   params = PairParams{};
-  params.min_guided_support = 2;
+  params.hypothesise.guided.min_support = 2;
   EXPECT_THROW(registerViews(p.a, p.b, params), Error);
   params = PairParams{};
-  params.one_way_max_violation_ratio = -0.1;
+  params.certify.fallback_max_violation_ratio = -0.1;
   EXPECT_THROW(registerViews(p.a, p.b, params), Error);
   params = PairParams{};
-  params.guided.max_distance_m = 0.0;
+  params.hypothesise.guided.gates.max_distance_m = 0.0;
   EXPECT_THROW(registerViews(p.a, p.b, params), Error);
   params = PairParams{};
-  params.guided.lambda = 1.5;
+  params.hypothesise.guided.gates.lambda = 1.5;
   EXPECT_THROW(registerViews(p.a, p.b, params), Error);
   params = PairParams{};
-  params.wide_edge_gate_factor = 0.5;  // "wider" gates narrower than the pixel gates
+  params.refine.edges.wide_gate_factor = 0.5;  // "wider" gates narrower than the pixel gates
   EXPECT_THROW(registerViews(p.a, p.b, params), Error);
   params = PairParams{};
-  params.wide_edge_min_paired_share = 1.5;
+  params.refine.edges.wide_min_paired_share = 1.5;
   EXPECT_THROW(registerViews(p.a, p.b, params), Error);
   params = PairParams{};
-  params.edges.line_neighbours = 2;
+  params.refine.edges.terms.line_neighbours = 2;
   EXPECT_THROW(registerViews(p.a, p.b, params), Error);
   params = PairParams{};
-  params.model_error.sigma_r_deg = -0.5;
+  params.certify.model_error.sigma_r_deg = -0.5;
   EXPECT_THROW(registerViews(p.a, p.b, params), Error);
   for (double f : {-0.5, 0.001, 1.0, 2.0, std::numeric_limits<double>::quiet_NaN()}) {
     params = PairParams{};
-    params.retry_area_factor = f;
+    params.retry.finer_area_factor = f;
     EXPECT_THROW(registerViews(p.a, p.b, params), Error) << f;
   }
 }
@@ -181,7 +181,7 @@ TEST(GuidedVerification, DensifyRefinesOnTheGuidedAssociations) {
   // are then what `used` holds; the pose stays within the synthetic tolerance.
   const Pair p = makePair("room", 3, 9);
   PairParams params;
-  params.guided_densify = true;
+  params.hypothesise.guided.densify = true;
   const PairResult r = registerViews(p.a, p.b, params);
   ASSERT_TRUE(r.pose.success) << r.pose.reason;
   EXPECT_EQ(static_cast<int>(r.used.size()), r.guided_support);
@@ -237,23 +237,8 @@ TEST(FinerScaleRetry, RunsOnlyWhenTheDefaultScaleGivesNoEstimate) {
   EXPECT_TRUE(on_plane.pose.degenerate);
   EXPECT_FALSE(on_plane.dense_unobservable);  // the view check, not the dense rounds
   PairParams off;
-  off.retry_area_factor = 0.0;
+  off.retry.finer_area_factor = 0.0;
   EXPECT_FALSE(registerViews(a, b, off).retried);
-}
-
-TEST(FinerScaleRetry, AppliesAfterAnUnobservableDenseProblemNotAfterADegeneratePatchProblem) {
-  const Pair p = makePair("room", 3, 9);
-  PairResult r;
-  r.pose.success = false;
-  EXPECT_TRUE(finerScaleRetryApplies(r, p.a, p.b));
-  r.pose.degenerate = true;  // a degenerate view or patch problem: no scale adds constraints
-  EXPECT_FALSE(finerScaleRetryApplies(r, p.a, p.b));
-  r.dense_unobservable = true;  // the dense problem at RANSAC's pose: may be a wrong pose's
-  EXPECT_TRUE(finerScaleRetryApplies(r, p.a, p.b));
-  r.pose.success = true;
-  EXPECT_FALSE(finerScaleRetryApplies(r, p.a, p.b));
-  r.pose.success = false;
-  EXPECT_FALSE(finerScaleRetryApplies(r, p.a, DepthView{}));  // no depth to segment again
 }
 
 TEST(FinerScaleRetry, FindsThePoseWhenThePatchesAreTooLargeForTheOverlap) {
@@ -269,7 +254,7 @@ TEST(FinerScaleRetry, FindsThePoseWhenThePatchesAreTooLargeForTheOverlap) {
   const DepthView a = makeDepthView(fa.depth, K, coarse), b = makeDepthView(fb.depth, K, coarse);
   const Isometry3 T_b_a = relativePose(fb.T_world_camera, fa.T_world_camera);
   PairParams off;
-  off.retry_area_factor = 0.0;
+  off.retry.finer_area_factor = 0.0;
   const PairResult none = registerViews(a, b, off);
   ASSERT_FALSE(none.pose.success) << "the coarse views alone found the pose: the test needs coarser patches";
 
@@ -282,7 +267,7 @@ TEST(FinerScaleRetry, FindsThePoseWhenThePatchesAreTooLargeForTheOverlap) {
   const auto [va, vb] = viewsOf(r, a, b);
   EXPECT_EQ(va, &r.retry_views->first);
   EXPECT_EQ(vb, &r.retry_views->second);
-  EXPECT_DOUBLE_EQ(va->superpixels.target_patch_area_m2, 0.2 * defaults.retry_area_factor);
+  EXPECT_DOUBLE_EQ(va->superpixels.target_patch_area_m2, 0.2 * defaults.retry.finer_area_factor);
   EXPECT_GT(va->segmentation.patches.size(), 2 * a.segmentation.patches.size());
   EXPECT_GT(r.timings.retry_segmentation_ms, 0.0);
   const Isometry3 E = T_b_a.inverse() * r.pose.T_target_source;
@@ -291,10 +276,10 @@ TEST(FinerScaleRetry, FindsThePoseWhenThePatchesAreTooLargeForTheOverlap) {
 
   // The same as registering the finer views directly, mutual associations only.
   SuperpixelParams finer = coarse;
-  finer.target_patch_area_m2 *= defaults.retry_area_factor;
+  finer.target_patch_area_m2 *= defaults.retry.finer_area_factor;
   const DepthView fa2 = makeDepthView(fa.depth, K, finer), fb2 = makeDepthView(fb.depth, K, finer);
   PairParams mutual_only = off;
-  mutual_only.one_way_fallback = false;
+  mutual_only.retry.one_way_fallback = false;
   const PairResult direct = registerViews(fa2, fb2, mutual_only);
   ASSERT_TRUE(direct.pose.success);
   EXPECT_TRUE(direct.pose.T_target_source.matrix() == r.pose.T_target_source.matrix());
@@ -316,6 +301,45 @@ TEST(FinerScaleRetry, FindsThePoseWhenThePatchesAreTooLargeForTheOverlap) {
   EXPECT_GE(q.precision(), 0.9);
 }
 
+TEST(ViewSets, TheBestRegistrationIsTheOwnScalePoseAndTheRetryRunsOnlyWithoutOne) {
+  // Sources {room 3}, targets {room 9, plane 0}: the room pair registers at the views' own scale,
+  // as registerViews() does; the plane pair is a degenerate view. No finer-scale retry runs.
+  const Pair room = makePair("room", 3, 9);
+  const Pair plane = makePair("plane", 0, 2);
+  const ViewSetResult set = registerViewSets({&room.a}, {&room.b, &plane.a}, PairParams{});
+  ASSERT_EQ(set.registrations.size(), 2u);
+  ASSERT_EQ(set.best, 0);
+  const ViewSetRegistration& best = set.registrations[0];
+  EXPECT_EQ(best.source, 0u);
+  EXPECT_EQ(best.target, 0u);
+  EXPECT_FALSE(best.finer_scale);
+  const PairResult direct = registerViews(room.a, room.b);
+  ASSERT_TRUE(best.result.pose.success) << best.result.pose.reason;
+  EXPECT_TRUE(direct.pose.T_target_source.matrix() == best.result.pose.T_target_source.matrix());
+  EXPECT_FALSE(set.registrations[1].result.pose.success);
+  EXPECT_TRUE(set.registrations[1].result.pose.degenerate);
+
+  // Views segmented with 2000 cm^2 patches: no pair registers at their own scale, so the pairs the
+  // retry applies to run again at the finer scale; the room pair's estimate is then the best, the
+  // same pose registerViews() gives with its own retry.
+  const auto& s = simulation("room");
+  const auto K = sim::SimulationOptions{}.intrinsics;
+  SuperpixelParams coarse;
+  coarse.target_patch_area_m2 = 0.2;
+  const DepthView a = makeDepthView(s.frame(3).depth, K, coarse), b = makeDepthView(s.frame(9).depth, K, coarse);
+  const ViewSetResult fine = registerViewSets({&a}, {&b, &plane.a}, PairParams{});
+  ASSERT_GE(fine.best, 0);
+  const ViewSetRegistration& f = fine.registrations[static_cast<std::size_t>(fine.best)];
+  ASSERT_TRUE(f.result.pose.success) << f.result.pose.reason;
+  EXPECT_TRUE(f.finer_scale);
+  EXPECT_EQ(f.target, 0u);
+  EXPECT_EQ(fine.registrations.size(), 3u);  // two at the own scale, the room pair once more (the plane's view is degenerate)
+  const PairResult retried = registerViews(a, b);
+  ASSERT_TRUE(retried.retried && retried.pose.success);
+  EXPECT_TRUE(retried.pose.T_target_source.matrix() == f.result.pose.T_target_source.matrix());
+  EXPECT_TRUE(fine.notes.empty());
+}
+
 TEST(FinerScaleRetry, ClaimsNoLookAlikePoseOnRepeatedObjects) {
   // Repeated boxes 33 -> 43 and 3 -> 13: the default scale gives no estimate; at 0.3 x the area the
   // mutual associations align look-alike boxes (90 deg and 8 deg off, 12-18 % violations), which
@@ -335,10 +359,10 @@ TEST(FinerScaleRetry, ClaimsNoLookAlikePoseOnRepeatedObjects) {
       EXPECT_NE(r.pose.reason.find("x the patch area: visibility check"), std::string::npos) << r.pose.reason;
     }
     PairParams loose;
-    loose.one_way_max_violation_ratio = 0.3;
-    loose.visibility.max_violation_ratio = 0.3;
-    loose.visibility.max_two_way_violation_ratio = 1.0;  // which declines a look-alike too
-    loose.slide_scan.enabled = false;  // 3 -> 13's loosened pose slid along a box: the scan moves it right
+    loose.certify.fallback_max_violation_ratio = 0.3;
+    loose.certify.visibility.max_violation_ratio = 0.3;
+    loose.certify.visibility.max_two_way_violation_ratio = 1.0;  // which declines a look-alike too
+    loose.refine.slide_scan.enabled = false;  // 3 -> 13's loosened pose slid along a box: the scan moves it right
     if (from == 3) {
       // The 16 rounds with the extrapolation: the default scale's pose, right; nothing to retry.
       const PairResult right = registerViews(p.a, p.b, loose);
@@ -347,8 +371,8 @@ TEST(FinerScaleRetry, ClaimsNoLookAlikePoseOnRepeatedObjects) {
       EXPECT_LT(translationNorm(p.T_b_a.inverse() * right.pose.T_target_source), 0.02);
       // The former rounds (8, plain) leave the default scale without a pose; the retry's
       // look-alike is claimed under the loosened limits.
-      loose.dense_max_rounds = 8;
-      loose.dense_extrapolation_max = 0.0;
+      loose.refine.dense.max_rounds = 8;
+      loose.refine.dense.extrapolation_max = 0.0;
     }
     const PairResult w = registerViews(p.a, p.b, loose);
     ASSERT_TRUE(w.pose.success) << from << " -> " << to << ": " << w.pose.reason;
@@ -359,12 +383,12 @@ TEST(FinerScaleRetry, ClaimsNoLookAlikePoseOnRepeatedObjects) {
     // views see; not 3 -> 13's 9 cm slide along a box, which the one-direction limits decline.
     if (from == 33) {
       PairParams two_way = loose;
-      two_way.visibility.max_two_way_violation_ratio = PairParams{}.visibility.max_two_way_violation_ratio;
+      two_way.certify.visibility.max_two_way_violation_ratio = PairParams{}.certify.visibility.max_two_way_violation_ratio;
       const PairResult d = registerViews(p.a, p.b, two_way);
       EXPECT_FALSE(d.pose.success);
       EXPECT_NE(d.pose.reason.find("seen from both views"), std::string::npos) << d.pose.reason;
     }
-    loose.slide_scan.enabled = true;
+    loose.refine.slide_scan.enabled = true;
     const PairResult s = registerViews(p.a, p.b, loose);
     std::printf("%d -> %d loosened, with the slide scan: %s, %s, %.3f m / %.2f deg off\n", from, to,
                 s.pose.success ? "claimed" : "declined", s.slide.summary().c_str(),
@@ -380,7 +404,7 @@ TEST(DenseSupport, ALookAlikePoseThatExplainsLittleSurfaceIsDeclined) {
   // right poses of the benchmarks have at least 556 (min_dense_terms 300, docs/pipeline.md).
   const auto [a, b, T_b_a] = makePair("room", 39, 54, 3);
   PairParams params;
-  params.retry_area_factor = 0.0;
+  params.retry.finer_area_factor = 0.0;
   const PairResult r = registerViews(a, b, params);
   if (r.pose.success) {  // right, or declined
     EXPECT_LT(translationNorm(T_b_a.inverse() * r.pose.T_target_source), 0.02);
@@ -393,12 +417,12 @@ TEST(DenseSupport, ALookAlikePoseThatExplainsLittleSurfaceIsDeclined) {
     EXPECT_LT(translationNorm(T_b_a.inverse() * retried.pose.T_target_source), 0.02);
   }
   // Without the limit the wrong pose is claimed: the limit is what declines it.
-  params.min_dense_terms = 0;
+  params.certify.min_dense_terms = 0;
   const PairResult w = registerViews(a, b, params);
   ASSERT_TRUE(w.pose.success) << w.pose.reason;
   EXPECT_TRUE(w.used_one_way);
   EXPECT_GT(translationNorm(T_b_a.inverse() * w.pose.T_target_source), 1.0);
   EXPECT_LT(w.dense_terms, 300);
-  params.min_dense_terms = -1;
+  params.certify.min_dense_terms = -1;
   EXPECT_THROW(registerViews(a, b, params), Error);
 }

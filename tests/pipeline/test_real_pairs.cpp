@@ -40,7 +40,7 @@ double rotationErrorDeg(const RealPair& p, const PairResult& r) {
 /// The defaults without the finer-scale retry: what the default scale alone does.
 PairParams defaultScaleOnly() {
   PairParams params;
-  params.retry_area_factor = 0.0;
+  params.retry.finer_area_factor = 0.0;
   return params;
 }
 
@@ -61,13 +61,13 @@ TEST(RealPairs, OneWayFallbackFindsTheWideBaselinePose) {
   const PairResult r = registerViews(p.a, p.b);
   ASSERT_TRUE(r.pose.success) << r.pose.reason;
   EXPECT_TRUE(r.used_one_way);
-  EXPECT_GE(r.guided_support, PairParams{}.min_guided_support);
+  EXPECT_GE(r.guided_support, PairParams{}.hypothesise.guided.min_support);
   EXPECT_LT(translationError(p, r), 0.05);
   EXPECT_LT(rotationErrorDeg(p, r), 3.0);
   // Without the fallback (and the finer-scale retry) the mutual associations alone give no
   // estimate here.
   PairParams no_fallback = defaultScaleOnly();
-  no_fallback.one_way_fallback = false;
+  no_fallback.retry.one_way_fallback = false;
   EXPECT_FALSE(registerViews(p.a, p.b, no_fallback).pose.success);
 }
 
@@ -125,7 +125,7 @@ TEST(RealPairs, AWrongFallbackPoseIsDeclined) {
   }
   // Without the limit on occluded samples the wrong pose is claimed: that limit declines it.
   PairParams loose = no_retry;
-  loose.visibility.max_occluded_ratio = 1.0;
+  loose.certify.visibility.max_occluded_ratio = 1.0;
   const PairResult w = registerViews(p.a, p.b, loose);
   ASSERT_TRUE(w.pose.success);
   EXPECT_GT(translationError(p, w), 0.5);
@@ -146,10 +146,10 @@ TEST(RealPairs, TheFallbackViolationLimitDeclinesAWrongPose) {
   EXPECT_TRUE(retried.retried);
   expectRightOrDeclined(p, retried, "x the patch area");
   PairParams loose = no_retry;
-  loose.one_way_max_violation_ratio = 0.15;  // the limit before
+  loose.certify.fallback_max_violation_ratio = 0.15;  // the limit before
   // Its violations are seen from both views as well: the two-way limit declines it by itself.
   EXPECT_TRUE(expectRightOrDeclined(p, registerViews(p.a, p.b, loose), "seen from both views"));
-  loose.visibility.max_two_way_violation_ratio = 1.0;  // the check before that too
+  loose.certify.visibility.max_two_way_violation_ratio = 1.0;  // the check before that too
   // The fallback pose's patch problem is degenerate: the slide scan moves the loosened claim to
   // where the views agree more (2 cm / 1.2 deg from the reference).
   const PairResult moved = registerViews(p.a, p.b, loose);
@@ -158,7 +158,7 @@ TEST(RealPairs, TheFallbackViolationLimitDeclinesAWrongPose) {
   EXPECT_LT(translationError(p, moved), 0.05);
   EXPECT_LT(rotationErrorDeg(p, moved), 3.0);
   // Without the scan the limit alone stands between the wrong pose and the caller.
-  loose.slide_scan.enabled = false;
+  loose.refine.slide_scan.enabled = false;
   const PairResult w = registerViews(p.a, p.b, loose);
   ASSERT_TRUE(w.pose.success) << w.pose.reason;
   EXPECT_TRUE(w.used_one_way);
@@ -181,19 +181,19 @@ TEST(RealPairs, WideEdgeGatesStopTheCabinetSlide) {
   ASSERT_TRUE(r.pose.success) << r.pose.reason;
   EXPECT_TRUE(r.wide_edge_pose);
   EXPECT_GE(r.edge_paired_share, 0.0);
-  EXPECT_LT(r.edge_paired_share, PairParams{}.wide_edge_min_paired_share);
+  EXPECT_LT(r.edge_paired_share, PairParams{}.refine.edges.wide_min_paired_share);
   EXPECT_LT(translationError(p, r), 0.05);
   PairParams narrow;
-  narrow.wide_edge_gate_factor = 0.0;
+  narrow.refine.edges.wide_gate_factor = 0.0;
   // With the former dense rounds (8, plain); the extrapolated rounds take the narrow pose to
   // 3.2 cm (docs/pipeline.md, "Extrapolated rounds").
-  narrow.dense_max_rounds = 8;
-  narrow.dense_extrapolation_max = 0.0;
-  narrow.retry_area_factor = 0.0;
+  narrow.refine.dense.max_rounds = 8;
+  narrow.refine.dense.extrapolation_max = 0.0;
+  narrow.retry.finer_area_factor = 0.0;
   // The slid pose violates the other view's free space from both views (10 % and 7 %): the
   // two-way limit declines it as well. Without that limit it is claimed.
   EXPECT_TRUE(expectRightOrDeclined(p, registerViews(p.a, p.b, narrow), "seen from both views"));
-  narrow.visibility.max_two_way_violation_ratio = 1.0;
+  narrow.certify.visibility.max_two_way_violation_ratio = 1.0;
   const PairResult n = registerViews(p.a, p.b, narrow);
   ASSERT_TRUE(n.pose.success) << n.pose.reason;
   EXPECT_FALSE(n.wide_edge_pose);
@@ -223,12 +223,12 @@ TEST(RealPairs, ViolationsSeenFromBothViewsDeclineALookAlikeAlignment) {
   EXPECT_LT(translationError(p, retried), 0.05);
   EXPECT_LT(rotationErrorDeg(p, retried), 2.0);
   PairParams loose = defaultScaleOnly();
-  loose.visibility.max_two_way_violation_ratio = 1.0;  // the check before
+  loose.certify.visibility.max_two_way_violation_ratio = 1.0;  // the check before
   const PairResult w = registerViews(p.a, p.b, loose);
   ASSERT_TRUE(w.pose.success) << w.pose.reason;
   EXPECT_GT(translationError(p, w), 0.5);
-  EXPECT_GT(w.visibility.violation_ratio_lesser, PairParams{}.visibility.max_two_way_violation_ratio);
-  EXPECT_LT(w.visibility.violation_ratio, PairParams{}.visibility.max_violation_ratio);
+  EXPECT_GT(w.visibility.violation_ratio_lesser, PairParams{}.certify.visibility.max_two_way_violation_ratio);
+  EXPECT_LT(w.visibility.violation_ratio, PairParams{}.certify.visibility.max_violation_ratio);
 }
 
 TEST(RealPairs, ARolledCabinetPairNeedsMoreThanEightRounds) {
@@ -251,22 +251,22 @@ TEST(RealPairs, ARolledCabinetPairNeedsMoreThanEightRounds) {
   ASSERT_TRUE(r.pose.success) << r.pose.reason;
   EXPECT_LT(translationError(p, r), 0.015);
   EXPECT_LT(rotationErrorDeg(p, r), 1.2);
-  EXPECT_LT(r.dense_rounds_run, defaults.dense_max_rounds);
-  EXPECT_TRUE(r.dense_line_search_stopped || r.dense_last_step_m < defaults.dense_converged_m)
+  EXPECT_LT(r.dense_rounds_run, defaults.refine.dense.max_rounds);
+  EXPECT_TRUE(r.dense_line_search_stopped || r.dense_last_step_m < defaults.refine.dense.converged_m)
       << "last step " << r.dense_last_step_m;
 
   PairParams no_search;
-  no_search.dense_line_search = false;
+  no_search.refine.dense.line_search = false;
   const PairResult swinging = registerViews(p.a, p.b, no_search);
   ASSERT_TRUE(swinging.pose.success) << swinging.pose.reason;
-  EXPECT_EQ(swinging.dense_rounds_run, defaults.dense_max_rounds);
-  EXPECT_GT(swinging.dense_last_step_m, defaults.dense_converged_m);
+  EXPECT_EQ(swinging.dense_rounds_run, defaults.refine.dense.max_rounds);
+  EXPECT_GT(swinging.dense_last_step_m, defaults.refine.dense.converged_m);
   EXPECT_EQ(swinging.dense_steps_shortened, 0);
   EXPECT_FALSE(swinging.dense_line_search_stopped);
 
   PairParams eight = no_search;
-  eight.dense_extrapolation_max = 0.0;
-  eight.dense_max_rounds = 8;
+  eight.refine.dense.extrapolation_max = 0.0;
+  eight.refine.dense.max_rounds = 8;
   const PairResult short_of = registerViews(p.a, p.b, eight);
   ASSERT_TRUE(short_of.pose.success) << short_of.pose.reason;
   EXPECT_GT(translationError(p, short_of), 0.04);

@@ -34,13 +34,13 @@ TEST(SlideScan, BringsSlidPosesOnTheSparseSceneToTheTruth) {
   // off on the other three, which the scan moves to the truth. Since the extrapolated rounds
   // (docs/pipeline.md, "Extrapolated rounds") the rounds alone bring all five within 1 cm.
   PairParams former;
-  former.dense_max_rounds = 8;
-  former.dense_extrapolation_max = 0.0;
+  former.refine.dense.max_rounds = 8;
+  former.refine.dense.extrapolation_max = 0.0;
   for (const auto& [from, to, slid_by] :
        {std::tuple{3, 13, 0.04}, std::tuple{6, 12, 0.02}, std::tuple{6, 16, 0.04}}) {
     const Pair p = makePair("sparse", from, to);
     PairParams off = former;
-    off.slide_scan.enabled = false;
+    off.refine.slide_scan.enabled = false;
     const PairResult slid = registerViews(p.a, p.b, off);
     ASSERT_TRUE(slid.pose.success) << from << " -> " << to << ": " << slid.pose.reason;
     EXPECT_GT(translationError(p, slid), slid_by) << from << " -> " << to << ": without the scan the pose slides";
@@ -51,7 +51,7 @@ TEST(SlideScan, BringsSlidPosesOnTheSparseSceneToTheTruth) {
     EXPECT_TRUE(r.slide.ran && r.slide.moved) << from << " -> " << to << ": " << r.slide.summary();
     EXPECT_LT(translationError(p, r), 0.02) << from << " -> " << to;
     EXPECT_LT(rotationErrorDeg(p, r), 1.0) << from << " -> " << to;
-    EXPECT_GT(r.slide.agreement_after, r.slide.agreement_before + off.slide_scan.min_gain);
+    EXPECT_GT(r.slide.agreement_after, r.slide.agreement_before + off.refine.slide_scan.min_gain);
     EXPECT_TRUE(r.visibility.passed);
     EXPECT_FALSE(r.wide_edge_pose);
   }
@@ -73,9 +73,9 @@ TEST(SlideScan, LeavesARightPoseWhereItIs) {
   ASSERT_TRUE(r.pose.success) << r.pose.reason;
   EXPECT_TRUE(r.slide.ran);
   EXPECT_FALSE(r.slide.moved) << r.slide.summary();
-  EXPECT_LT(r.slide.agreement_best, r.slide.agreement_before + PairParams{}.slide_scan.min_gain);
+  EXPECT_LT(r.slide.agreement_best, r.slide.agreement_before + PairParams{}.refine.slide_scan.min_gain);
   PairParams off;
-  off.slide_scan.enabled = false;
+  off.refine.slide_scan.enabled = false;
   const PairResult same = registerViews(p.a, p.b, off);
   ASSERT_TRUE(same.pose.success);
   EXPECT_TRUE(same.pose.T_target_source.isApprox(r.pose.T_target_source, 1e-12));
@@ -89,9 +89,9 @@ TEST(SlideScan, ScansOnlyClaimedPoses) {
   // right (docs/pipeline.md, "Extrapolated rounds").
   const Pair p = makePair("repeated", 3, 13);
   PairParams params;
-  params.retry_area_factor = 0.0;
-  params.dense_max_rounds = 8;
-  params.dense_extrapolation_max = 0.0;
+  params.retry.finer_area_factor = 0.0;
+  params.refine.dense.max_rounds = 8;
+  params.refine.dense.extrapolation_max = 0.0;
   const PairResult r = registerViews(p.a, p.b, params);
   EXPECT_FALSE(r.pose.success);
   EXPECT_FALSE(r.slide.ran);
@@ -107,7 +107,7 @@ TEST(SlideScan, DeterministicAndInvalidParametersThrow) {
 
   const auto throwsFor = [&](auto change) {
     PairParams params;
-    change(params.slide_scan);
+    change(params.refine.slide_scan);
     EXPECT_THROW(registerViews(p.a, p.b, params), Error);
   };
   throwsFor([](SlideScanParams& s) { s.range_m = 0.0; });

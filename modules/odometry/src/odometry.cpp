@@ -107,14 +107,14 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
   if (params_.rolling_shutter_readout_s != 0.0 && velocity_) {
     auto [pinhole, k] = pinholeDepth(depth_m, intrinsics);
     view = makeDepthView(deskewDepth(pinhole, k, *velocity_, params_.rolling_shutter_readout_s), k,
-                         params_.pair.superpixels);
+                         params_.pair.segment);
     f.deskewed = true;
     f.segmentation_ms = msSince(t_seg);
   } else if (segmented) {  // made ahead (view_ahead.h): the same view, already there
     view = std::move(segmented->view);
     f.segmentation_ms = segmented->ms;
   } else {
-    view = makeDepthView(depth_m, intrinsics, params_.pair.superpixels);
+    view = makeDepthView(depth_m, intrinsics, params_.pair.segment);
     f.segmentation_ms = msSince(t_seg);
   }
   f.patches = static_cast<int>(view.segmentation.patches.size());

@@ -42,10 +42,10 @@ void validate(const SceneChangeParams& p) {
 
 PairParams sceneChangePairParams(const PairParams& pair, const SceneChangeParams& p) {
   PairParams out = pair;
-  out.visibility.max_violation_ratio = p.max_violation_ratio;
-  out.visibility.max_two_way_violation_ratio = p.max_two_way_violation_ratio;
-  out.visibility.max_occluded_ratio = p.max_occluded_ratio;
-  out.one_way_max_violation_ratio = p.max_violation_ratio;  // also the finer-scale retry's limit
+  out.certify.visibility.max_violation_ratio = p.max_violation_ratio;
+  out.certify.visibility.max_two_way_violation_ratio = p.max_two_way_violation_ratio;
+  out.certify.visibility.max_occluded_ratio = p.max_occluded_ratio;
+  out.certify.fallback_max_violation_ratio = p.max_violation_ratio;  // also the finer-scale retry's limit
   return out;
 }
 

@@ -8,7 +8,7 @@
 namespace gasp {
 
 ViewAhead::ViewAhead(const OdometryParams& params, bool enabled)
-    : superpixels_(params.pair.superpixels), enabled_(enabled && params.rolling_shutter_readout_s == 0.0) {}
+    : superpixels_(params.pair.segment), enabled_(enabled && params.rolling_shutter_readout_s == 0.0) {}
 
 ViewAhead::~ViewAhead() {
   if (pending_.valid()) pending_.wait();

@@ -64,7 +64,7 @@ DeskewOutcome deskewTumFrame(const TumDataset& ds, std::size_t i, const cv::Mat&
   if (params.readout_s == 0.0) return notDeskewed(depth_m, ds.intrinsics(), "no readout time");
   const auto [a, b] = neighbourFrames(i, ds.size());
   if (a == b) return notDeskewed(depth_m, ds.intrinsics(), "no neighbouring frame");
-  const auto [before, after] = makeDepthViews(ds.loadDepth(a), ds.loadDepth(b), ds.intrinsics(), pair.superpixels);
+  const auto [before, after] = makeDepthViews(ds.loadDepth(a), ds.loadDepth(b), ds.intrinsics(), pair.segment);
   return deskewWithNeighbours(depth_m, ds.intrinsics(), before, after, ds.frame(b).timestamp - ds.frame(a).timestamp,
                               params, pair);
 }

@@ -53,7 +53,7 @@ struct SlideDirection {
 
 SlideScanOutcome scanSlide(const DepthView& source, const DepthView& target, const RegistrationResult& patch_pose,
                            const Isometry3& claimed, const std::function<RegistrationResult(const Isometry3&)>& refine_from,
-                           const SlideScanParams& params, const VisibilityCheckParams& visibility) {
+                           const SlideScanParams& params, const FreeSpaceTest& free_space) {
   SlideScanOutcome out;
   const auto& basis = patch_pose.unobservable_directions;
   if (basis.cols() == 0 || source.segmentation.patches.empty()) return out;
@@ -100,7 +100,7 @@ SlideScanOutcome scanSlide(const DepthView& source, const DepthView& target, con
   if (!refined.success) return out;
   out.report.agreement_after = agree(refined.T_target_source);
   if (!(out.report.agreement_after > out.report.agreement_before + params.min_gain)) return out;
-  VisibilityCheck check = checkVisibility(source, target, refined.T_target_source, visibility);
+  VisibilityCheck check = free_space(refined.T_target_source);
   if (!check.passed) return out;
   out.report.moved = true;
   out.pose = std::move(refined);

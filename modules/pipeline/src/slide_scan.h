@@ -1,6 +1,6 @@
 #pragma once
 // The slide scan's search (gasp/pipeline/slide_scan.h, docs/pipeline.md "Slide scan"): used by
-// the dense refinement on a claimed pose whose patch problem was degenerate.
+// the refine stage (refine_stage.h) on a claimed pose whose patch problem was degenerate.
 #include <functional>
 
 #include "gasp/pipeline/depth_view.h"
@@ -18,10 +18,10 @@ struct SlideScanOutcome {
 
 /// `claimed`: the pose the dense rounds gave (it passed the visibility check); `patch_pose`: the
 /// patch problem's result, whose unobservable directions, scene centre and radius define the
-/// scan. `refine_from(T)` runs the dense refinement from start T. `visibility`: the parameters of
-/// the caller's final check.
+/// scan. `refine_from(T)` runs the dense refinement from start T. `free_space`: the test the
+/// claimed pose faces (certify_stage.h); a moved pose must pass it too.
 SlideScanOutcome scanSlide(const DepthView& source, const DepthView& target, const RegistrationResult& patch_pose,
                            const Isometry3& claimed, const std::function<RegistrationResult(const Isometry3&)>& refine_from,
-                           const SlideScanParams& params, const VisibilityCheckParams& visibility);
+                           const SlideScanParams& params, const FreeSpaceTest& free_space);
 
 }  // namespace gasp::detail

@@ -47,8 +47,8 @@ std::optional<CGaspLoopClosureERD::Node> CGaspLoopClosureERD::keyframeNode(std::
   if (!newest.keyframe || newest.index != node_frames[id]) return std::nullopt;
   // The same segmentation parameters, compared as their ini text.
   mrpt::config::CConfigFileMemory mine, theirs;
-  writeSuperpixelParams(pair_.superpixels, mine, "s");
-  writeSuperpixelParams(odometry->params().pair.superpixels, theirs, "s");
+  writeSuperpixelParams(pair_.segment, mine, "s");
+  writeSuperpixelParams(odometry->params().pair.segment, theirs, "s");
   std::string a, b;
   mine.getContent(a);
   theirs.getContent(b);
@@ -67,7 +67,7 @@ CGaspLoopClosureERD::Node CGaspLoopClosureERD::nodeOf(const mrpt::obs::CObservat
   try {
     const RgbdFrame frame = frameFromObservation(*scan, "scan '" + scan->sensorLabel + "'", ColourImage::Skip);
     node.T_robot_camera = frame.T_robot_camera;
-    node.view = makeDepthView(frame.depth_m, frame.depth_intrinsics, pair_.superpixels);
+    node.view = makeDepthView(frame.depth_m, frame.depth_intrinsics, pair_.segment);
   } catch (const Error& e) {
     if (error) *error = e.what();
   }

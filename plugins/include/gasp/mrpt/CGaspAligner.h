@@ -7,7 +7,7 @@
 /// Maps of several views: every view pair (i of m1, j of m2) is registered and the claimed
 /// estimate with the most inliers is kept. The returned CPose3DPDFGaussian has the covariance
 /// J I^-1 J^T of that pair's edge information I (PairResult::edge_information, pose_covariance.h):
-/// the refinement's first-order uncertainty plus the model error (options.params.model_error,
+/// the refinement's first-order uncertainty plus the model error (options.params.certify.model_error,
 /// keys model_error_t_m / model_error_r_deg; model_error.h), since the refinement's alone is
 /// 100-1000 times too certain on real data (docs/pipeline.md).
 /// When no pose is claimed (no associations, no consensus, degenerate geometry, failed
@@ -78,7 +78,7 @@ class CGaspAligner : public mrpt::slam::CMetricMapsAlignmentAlgorithm, public mr
       mrpt::optional_ref<mrpt::slam::TMetricMapAlignmentResult> outInfo = std::nullopt) override;
 
   /// Pose of observation b's robot frame in observation a's robot frame (sensorPose honoured);
-  /// both must be CObservation3DRangeScan (others throw). Segmented with options.params.superpixels.
+  /// both must be CObservation3DRangeScan (others throw). Segmented with options.params.segment.
   /// nullptr = no estimate.
   mrpt::poses::CPose3DPDFGaussian::Ptr alignObservations(
       const mrpt::obs::CObservation& a, const mrpt::obs::CObservation& b,

@@ -37,7 +37,7 @@ struct BaselineParams {
   VisibilityCheckParams visibility;  ///< GASP's
 
   static PoseEstimationParams defaultPoseParams() {
-    PoseEstimationParams p = PairParams::defaultPoseParams();
+    PoseEstimationParams p = HypothesiseParams::defaultPose();
     p.refine = false;
     return p;
   }

@@ -7,7 +7,7 @@
 namespace gasp {
 
 struct OdometryParams {
-  /// How each frame is segmented (pair.superpixels) and registered (everything else).
+  /// How each frame is segmented (pair.segment) and registered (everything else).
   PairParams pair;
   /// A tracked frame becomes the next keyframe when its pose is this far from its keyframe's
   /// [m] or turned by this much [deg]. Registering to a keyframe rather than to the previous

@@ -27,7 +27,7 @@ struct SegmentedDepth {
 /// One segmentation at a time on a background thread (std::async).
 class ViewAhead {
  public:
-  /// Segments with `params.pair.superpixels`; does nothing when `params` deskew or `enabled` is
+  /// Segments with `params.pair.segment`; does nothing when `params` deskew or `enabled` is
   /// false (then every take() is empty and addFrame() segments as without it).
   explicit ViewAhead(const OdometryParams& params, bool enabled = true);
   ~ViewAhead();

@@ -1,7 +1,7 @@
 #pragma once
 /// \file dense_rounds.h The control of the dense rounds (docs/pipeline.md, step 4): which pose each
 /// round starts from, when the rounds stop, when a step is shortened or refused. The terms and
-/// the solve are the caller's (dense_refinement.cpp gathers projective pixel terms and edge terms
+/// the solve are the caller's (the refine stage, refine_stage.cpp, gathers projective pixel terms and edge terms
 /// and solves with refinePose); here they are two functions, so that the control can be tested
 /// on scripted steps.
 ///
@@ -35,10 +35,10 @@
 
 namespace gasp {
 
-/// The rounds' settings; PairParams::dense_* (pair_registration.h documents each).
+/// The rounds' settings (RefineParams::dense, refine_stage.h; docs/pipeline.md step 4).
 struct DenseRoundsSettings {
   std::vector<double> gates_m = {0.10, 0.05, 0.03};  ///< gate of round r: gates_m[min(r, size - 1)] [m]; not empty
-  int rounds = 3;                   ///< rounds always run (>= 0; PairParams::dense_rounds 0 skips the refinement before this)
+  int rounds = 3;                   ///< rounds always run (>= 0; 0: the refine stage runs no dense refinement)
   int max_rounds = 16;              ///< at most max(rounds, max_rounds) rounds
   double converged_m = 0.002;       ///< a step below this ends the rounds [m]
   double extrapolation_max = 4.0;   ///< largest extrapolation factor (<= 0: off)

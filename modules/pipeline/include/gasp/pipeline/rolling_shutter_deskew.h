@@ -60,7 +60,7 @@ DeskewOutcome deskewWithNeighbours(const cv::Mat& depth_m, const CameraIntrinsic
 std::pair<std::size_t, std::size_t> neighbourFrames(std::size_t i, std::size_t n);
 
 /// Frame i of a TUM folder (`depth_m`, as ds.loadDepth(i) gives it) deskewed with the velocity
-/// between its neighbourFrames(): both segmented with pair.superpixels, then
+/// between its neighbourFrames(): both segmented with pair.segment, then
 /// deskewWithNeighbours(). No readout time or no neighbouring frame: not deskewed, with the
 /// reason, and the neighbours are not loaded.
 DeskewOutcome deskewTumFrame(const TumDataset& ds, std::size_t i, const cv::Mat& depth_m,

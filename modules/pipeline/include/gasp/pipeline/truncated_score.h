@@ -1,6 +1,6 @@
 #pragma once
 /// \file truncated_score.h The score of a pose against the dense terms gathered at it: the
-/// objective of the dense rounds' line search (dense_rounds.h, PairParams::dense_line_search).
+/// objective of the dense rounds' line search (dense_rounds.h, DenseRoundsSettings::line_search).
 ///
 /// The terms of a round are gathered at one pose (projective pixel terms whose target point lies
 /// within the gate g of the mapped source point, edge terms whose nearest target edge point lies

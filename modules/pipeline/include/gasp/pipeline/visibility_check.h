@@ -37,6 +37,7 @@
 /// objects, 14 of 485 pairs across a move (docs/pipeline.md, "Objects that moved"). How compact
 /// the violations are (violation_blob_share_lesser) is measured but decides nothing: moved objects
 /// and wrong poses are both compact (same section).
+#include <functional>
 #include <string>
 
 #include "gasp/core/pose.h"
@@ -78,6 +79,11 @@ struct VisibilityCheck {
     return n > 0 ? static_cast<double>(consistent) / n : 0.0;
   }
 };
+
+/// A free-space test of a pose between two fixed views: checkVisibility() with fixed parameters.
+/// What the certificate applies to a pose (certify_stage.h), handed to the stages that choose
+/// between candidate poses (refine_stage.h).
+using FreeSpaceTest = std::function<VisibilityCheck(const Isometry3& T_target_source)>;
 
 /// Both directions (source into target, target into source).
 VisibilityCheck checkVisibility(const DepthView& source, const DepthView& target, const Isometry3& T_target_source,

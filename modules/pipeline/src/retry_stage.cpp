@@ -1,0 +1,75 @@
+#include "gasp/pipeline/retry_stage.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <utility>
+
+#include "gasp/core/error.h"
+#include "retry_policy.h"
+
+namespace gasp {
+
+void validate(const RetryParams& p) {
+  if (!(p.finer_area_factor == 0.0 || (p.finer_area_factor >= 0.01 && p.finer_area_factor < 1.0)))
+    throw Error("retry: finer_area_factor must be 0 (off) or in [0.01, 1)");
+}
+
+namespace detail {
+
+namespace {
+
+void take(Hypothesis& h, PairResult& r) {
+  r.used = h.used;
+  r.correspondences = h.correspondences;
+  r.pose = h.pose;
+  if (h.guided_support >= 0) r.guided_support = h.guided_support;
+  r.timings.ransac_ms += h.ransac_ms;
+  r.timings.refine_ms += h.refine_ms;
+  r.timings.guided_ms += h.guided_ms;
+}
+
+}  // namespace
+
+Hypothesis hypothesiseWithFallback(const AssociatedViews& a, const HypothesiseParams& params, bool one_way,
+                                   PairResult& r) {
+  const auto& mutual = a.result.associations;
+  Hypothesis h;
+  if (!mutual.empty()) {
+    h = hypothesise(a, mutual, params);
+    take(h, r);
+    if (h.verified) return h;
+  } else {
+    r.pose.reason = "no mutual associations";
+  }
+  if (!one_way || a.result.one_way.empty()) return h;
+  const std::string mutual_reason = r.pose.reason;
+  std::vector<PatchAssociation> wider = mutual;
+  wider.insert(wider.end(), a.result.one_way.begin(), a.result.one_way.end());
+  std::sort(wider.begin(), wider.end(), [](const PatchAssociation& x, const PatchAssociation& y) { return x.a < y.a; });
+  h = hypothesise(a, std::move(wider), params);
+  take(h, r);
+  r.used_one_way = true;
+  if (!h.verified) r.pose.reason = "mutual associations: " + mutual_reason + "; with one-way partners: " + r.pose.reason;
+  return h;
+}
+
+bool finerScaleRetryApplies(const PairResult& r, const DepthView& source, const DepthView& target) {
+  const bool degenerate = r.pose.degenerate && !r.dense_unobservable;
+  return !r.pose.success && !degenerate && !source.depth_m.empty() && !target.depth_m.empty();
+}
+
+DepthView finerScaleView(const DepthView& view, double area_factor) {
+  SuperpixelParams sp = view.superpixels;
+  sp.target_patch_area_m2 *= area_factor;
+  return makeDepthView(view.depth_m, view.intrinsics, sp);
+}
+
+std::string finerScaleReason(double area_factor, const std::string& reason) {
+  char factor[32];
+  std::snprintf(factor, sizeof factor, "%g", area_factor);
+  return std::string("at ") + factor + "x the patch area: " + reason;
+}
+
+}  // namespace detail
+}  // namespace gasp
