@@ -28,6 +28,61 @@ double rmsStep(const std::vector<Eigen::Vector3d>& points, const Isometry3& befo
   return std::sqrt(sum2 / static_cast<double>(points.size()));
 }
 
+/// The line search's verdict on the step from `pose` to `next` (the file's comment): stop (every
+/// length scores worse, or the evaluation of a shortened step failed), or go on -- with the
+/// shortened step's evaluation in `shortened` when the step was shortened. `there`: the terms
+/// gathered where the accepted step lands (the next round's).
+struct LineSearch {
+  bool stop = false;
+  std::optional<RegistrationResult> shortened;
+  GatedTerms there;
+};
+
+LineSearch searchLine(const RegistrationResult& pose, const RegistrationResult& next, const GatedTerms& gathered,
+                      const std::vector<Eigen::Vector3d>& points, int round, const DenseRoundsSettings& settings,
+                      const DenseRoundsOps& ops) {
+  LineSearch out;
+  const double score_before = ops.score(gathered, pose.T_target_source);
+  const Isometry3 full_step = next.T_target_source * pose.T_target_source.inverse();
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const auto& c : pointsAt(points, pose.T_target_source)) centre += c;
+  if (!points.empty()) centre /= static_cast<double>(points.size());
+  Isometry3 landing = next.T_target_source;
+  out.there = ops.gather(landing, round + 1);
+  double score_after = ops.score(out.there, landing);
+  double fraction = 1.0;
+  for (int halving = 0; score_after < score_before && halving < settings.line_search_halvings; ++halving) {
+    fraction *= 0.5;
+    landing = stepPower(full_step, centre, fraction) * pose.T_target_source;
+    out.there = ops.gather(landing, round + 1);
+    score_after = ops.score(out.there, landing);
+  }
+  const bool worse = score_after < score_before;
+  if (!worse && fraction < 1.0) out.shortened = ops.solve(landing, out.there.terms, true);
+  out.stop = worse || (out.shortened && !out.shortened->success);
+  return out;
+}
+
+/// Extrapolation (Besl & McKay 1992, IV-C; step_extrapolation.h): two plain steps at the last gate
+/// that move the pose the same way say it creeps; `pose` then jumps ahead along `step` (true).
+/// Otherwise `step` becomes the previous step for the next round.
+bool extrapolate(std::optional<Isometry3>& previous_step, const Isometry3& step, RegistrationResult& pose,
+                 const std::vector<Eigen::Vector3d>& points, const DenseRoundsSettings& settings) {
+  if (!previous_step) {
+    previous_step = step;
+    return false;
+  }
+  const StepExtrapolation jump =
+      extrapolateSteps(*previous_step, step, pointsAt(points, pose.T_target_source), settings.extrapolation_max);
+  if (jump.factor > 0.0) {
+    pose.T_target_source = jump.jump * pose.T_target_source;
+    previous_step.reset();
+    return true;
+  }
+  previous_step = step;
+  return false;
+}
+
 }  // namespace
 
 void validate(const DenseRoundsSettings& s) {
@@ -71,38 +126,21 @@ RegistrationResult runDenseRounds(const RegistrationResult& start, const std::ve
     bool shortened = false;
     if (settings.line_search && round >= first_last_gate_round && step_m >= settings.converged_m &&
         rounds.last_step_m >= 0.0 && step_m > rounds.last_step_m) {
-      const double score_before = ops.score(gathered, pose.T_target_source);
-      const Isometry3 full_step = next.T_target_source * pose.T_target_source.inverse();
-      Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-      for (const auto& c : pointsAt(points, pose.T_target_source)) centre += c;
-      if (!points.empty()) centre /= static_cast<double>(points.size());
-      Isometry3 landing = next.T_target_source;
-      GatedTerms there = ops.gather(landing, round + 1);
-      double score_after = ops.score(there, landing);
-      double fraction = 1.0;
-      for (int halving = 0; score_after < score_before && halving < settings.line_search_halvings; ++halving) {
-        fraction *= 0.5;
-        landing = stepPower(full_step, centre, fraction) * pose.T_target_source;
-        there = ops.gather(landing, round + 1);
-        score_after = ops.score(there, landing);
-      }
-      const bool worse = score_after < score_before;
-      std::optional<RegistrationResult> at;
-      if (!worse && fraction < 1.0) at = ops.solve(landing, there.terms, true);
-      if (worse || (at && !at->success)) {
+      LineSearch search = searchLine(pose, next, gathered, points, round, settings, ops);
+      if (search.stop) {
         // The rounds end at the last refined pose (not at an extrapolated jump from it).
         rounds.line_search_stopped = true;
         rounds.last_step_m = 0.0;
         pose = std::move(last_refined);
         break;
       }
-      if (at) {
-        next = std::move(*at);
+      if (search.shortened) {
+        next = std::move(*search.shortened);
         step_m = rmsStep(points, pose.T_target_source, next.T_target_source);
         ++rounds.shortened;
         shortened = true;
       }
-      gathered_ahead = std::move(there);
+      gathered_ahead = std::move(search.there);
     }
     const Isometry3 step = next.T_target_source * pose.T_target_source.inverse();
     rounds.last_step_m = step_m;
@@ -115,25 +153,11 @@ RegistrationResult runDenseRounds(const RegistrationResult& start, const std::ve
       continue;
     }
     if (round + 1 >= settings.rounds && rounds.last_step_m < settings.converged_m) break;
-    // Extrapolation (Besl & McKay 1992, IV-C; step_extrapolation.h): two rounds at the last
-    // gate that move the pose the same way say it creeps; the next round starts ahead along the
-    // last step. Never after the last round: the pose returned is always a refined one.
+    // Extrapolation: never after the last round (the pose returned is always a refined one).
     if (round + 1 < settings.rounds || round < first_last_gate_round || round + 1 >= max_rounds ||
         settings.extrapolation_max <= 0.0)
       continue;
-    if (!previous_step) {
-      previous_step = step;
-      continue;
-    }
-    const StepExtrapolation jump =
-        extrapolateSteps(*previous_step, step, pointsAt(points, pose.T_target_source), settings.extrapolation_max);
-    if (jump.factor > 0.0) {
-      pose.T_target_source = jump.jump * pose.T_target_source;
-      previous_step.reset();
-      gathered_ahead.reset();
-    } else {
-      previous_step = step;
-    }
+    if (extrapolate(previous_step, step, pose, points, settings)) gathered_ahead.reset();
   }
   return pose;
 }

@@ -118,14 +118,11 @@ void DepthSlam::optimise() {
       if (!linked[i])
         T_world_frame_[i] = T_world_frame_[i - 1] * (frames[i - 1].T_world_camera.inverse() * frames[i].T_world_camera);
     // Drop the closure the optimised graph contradicts most, if any does, and optimise again.
-    std::size_t worst = loop_closures_.size();
-    double worst_chi2 = params_.loop.gate_chi2;
-    for (std::size_t j = 0; j < loop_closures_.size(); ++j) {
-      const PoseConstraint& c = loop_closures_[j];
-      const double chi2 = edgeChi2(T_world_frame_[c.from], T_world_frame_[c.to], c);
-      if (chi2 > worst_chi2) worst = j, worst_chi2 = chi2;
-    }
-    if (worst == loop_closures_.size()) break;
+    const std::optional<Contradiction> contradiction =
+        mostContradictedClosure(T_world_frame_, loop_closures_, params_.loop.gate_chi2);
+    if (!contradiction) break;
+    const std::size_t worst = contradiction->edge;
+    const double worst_chi2 = contradiction->chi2;
     std::vector<std::size_t> drop{worst};
     // The votes that joined two pieces go together once fewer than relocalisation_agreeing are
     // left: one of them alone would be the unchecked join the votes exist to prevent.

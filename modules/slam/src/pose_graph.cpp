@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 
+#include <algorithm>
 #include <string>
 
 #include "gasp/core/error.h"
@@ -20,6 +21,22 @@ Matrix6d covarianceOf(const PoseConstraint& c) {
 double edgeChi2(const Isometry3& T_world_from, const Isometry3& T_world_to, const PoseConstraint& c) {
   const Vector6d xi = leftPerturbation(T_world_from.inverse() * T_world_to, c.T_from_to);
   return xi.dot(c.information * xi);
+}
+
+std::optional<Contradiction> mostContradictedClosure(const std::vector<Isometry3>& T_world_node,
+                                                     const std::vector<PoseConstraint>& edges, double gate_chi2) {
+  std::optional<Contradiction> worst;
+  double worst_chi2 = gate_chi2;
+  for (std::size_t j = 0; j < edges.size(); ++j) {
+    const PoseConstraint& c = edges[j];
+    if (!c.loop_closure) continue;
+    if (c.from >= T_world_node.size() || c.to >= T_world_node.size())
+      throw Error("pose graph: an edge names node " + std::to_string(std::max(c.from, c.to)) + " of " +
+                  std::to_string(T_world_node.size()));
+    const double chi2 = edgeChi2(T_world_node[c.from], T_world_node[c.to], c);
+    if (chi2 > worst_chi2) worst = Contradiction{j, chi2}, worst_chi2 = chi2;
+  }
+  return worst;
 }
 
 std::optional<RelativePoseEstimate> composeAlongTree(const std::vector<PoseConstraint>& tree, std::size_t frame_count,

@@ -96,14 +96,10 @@ void CGaspPoseGraphGSO::optimizeNow() {
     ++optimisations_;
     T_world_node = last_.T_world_node;
     if (drop_chi2_ <= 0.0) break;
-    std::size_t worst = edges.size();
-    double worst_chi2 = drop_chi2_;
-    for (std::size_t j = 0; j < edges.size(); ++j) {
-      if (!edges[j].loop_closure) continue;
-      const double chi2 = edgeChi2(T_world_node[edges[j].from], T_world_node[edges[j].to], edges[j]);
-      if (chi2 > worst_chi2) worst = j, worst_chi2 = chi2;
-    }
-    if (worst == edges.size()) break;
+    const std::optional<Contradiction> contradiction = mostContradictedClosure(T_world_node, edges, drop_chi2_);
+    if (!contradiction) break;
+    const std::size_t worst = contradiction->edge;
+    const double worst_chi2 = contradiction->chi2;
     MRPT_LOG_WARN_STREAM("edge " << edges[worst].from << " -> " << edges[worst].to
                                  << " removed: the optimised graph contradicts it (chi-square " << worst_chi2 << ")");
     m_graph->edges.erase(where[worst]);

@@ -21,6 +21,18 @@ Matrix6d covarianceOf(const PoseConstraint& c);
 /// T_from^-1 T_to = Exp(xi) c.T_from_to, Lambda = c.information.
 double edgeChi2(const Isometry3& T_world_from, const Isometry3& T_world_to, const PoseConstraint& c);
 
+/// The loop closure an optimised graph contradicts most: among the edges with
+/// PoseConstraint::loop_closure set, the one with the largest edgeChi2 at T_world_node above
+/// gate_chi2 (the first such when several tie), as its index into `edges` and its chi-square.
+/// Robust optimisation drops it and optimises again, until none is left (DepthSlam, the graph-SLAM
+/// optimiser CGaspPoseGraphGSO). Throws gasp::Error for an edge naming a node out of range.
+struct Contradiction {
+  std::size_t edge = 0;
+  double chi2 = 0.0;
+};
+std::optional<Contradiction> mostContradictedClosure(const std::vector<Isometry3>& T_world_node,
+                                                     const std::vector<PoseConstraint>& edges, double gate_chi2);
+
 /// A relative pose with its covariance (left perturbation in frame a) [m^2, m rad, rad^2].
 struct RelativePoseEstimate {
   Isometry3 T_a_b = Isometry3::Identity();
