@@ -8,7 +8,8 @@
 // inliers and information, and, where both frames have ground truth, `precision:`, `density:`
 // (definitions in gasp/association/association_quality.h) and the pose error. Writes a picture:
 // both views side by side, associated patches in the same colour, others grey, lines for a
-// sample of associations (green correct, red wrong, white when there is no ground truth).
+// sample of associations (green correct, red wrong, white when there is no ground truth): the
+// verified associations, or with --free the free ones.
 // Exit codes: 0 pose estimated, 1 bad input, 2 usage error, 3 no association, 4 associations but
 // no pose estimate (the reason is printed).
 #include <CLI/CLI.hpp>
@@ -72,6 +73,9 @@ int main(int argc, char** argv) {
   app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored")->excludes(rawlog);
   app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: the folder's; ros for PNGs)")->excludes(rawlog);
   app.add_option("--out", out_path, "association picture (default: associations_I_J.png, or associations.png for PNGs)");
+  bool picture_free = false;
+  app.add_flag("--free", picture_free,
+               "the picture shows the free associations (before any pose) instead of the verified ones");
   double area_cm2 = params.segment.target_patch_area_m2 * 1e4;
   app.add_option("--area-cm2", area_cm2, "target patch area [cm^2]")->capture_default_str()->check(gasp::tools::above(0));
   app.add_option("--k", params.associate.feature_sets.neighbourhood.k, "neighbourhood size (0 = full view)")->capture_default_str()->check(gasp::tools::atLeast(0));
@@ -248,23 +252,29 @@ int main(int argc, char** argv) {
                   params.retry.finer_area_factor, r.timings.retry_segmentation_ms);
     std::printf("comparisons: %zu of %zu without KD-tree, %zu cut early, %zu gated out, %zu not mutual\n",
                 s.comparisons, s.comparisons_full, s.cut_early, s.gated_out, s.not_mutual);
-    std::vector<unsigned char> correct;
     if (T_b_a_true) {
       const auto q = gasp::evaluateAssociations(r.association.associations, pva->segmentation, pvb->segmentation,
                                                 pvb->depth_m, pvb->intrinsics, *T_b_a_true);
-      for (const auto& a : r.association.associations)
-        correct.push_back(gasp::isSameSurface(pva->segmentation.patches[static_cast<std::size_t>(a.a)],
-                                              pvb->segmentation.patches[static_cast<std::size_t>(a.b)], *T_b_a_true));
       std::printf("correct: %d\nwith_true_partner: %d\nprecision: %.3f\ndensity: %.3f\n", q.correct,
                   q.with_true_partner, q.precision(), q.density());
     } else {
       std::printf("ground truth: not available for both frames\n");
     }
+    // The picture: the verified associations (what GASP hands its user), or with --free the free ones.
+    const auto& drawn = picture_free ? r.association.associations : r.verified;
+    std::vector<unsigned char> drawn_correct;
+    if (T_b_a_true)
+      for (const auto& a : drawn)
+        drawn_correct.push_back(gasp::isSameSurface(pva->segmentation.patches[static_cast<std::size_t>(a.a)],
+                                                    pvb->segmentation.patches[static_cast<std::size_t>(a.b)], *T_b_a_true));
+    gasp::AssociationPictureOptions picture_options;
+    picture_options.legend = gasp::associationLegend(picture_free ? "free" : "verified", drawn.size(), drawn_correct);
+    if (!picture_free && !r.pose.success) picture_options.legend += " (no pose: --free draws the free ones)";
     const cv::Mat picture = gasp::drawAssociations(pva->depth_m, pva->segmentation, pva->intrinsics, pvb->depth_m,
-                                                   pvb->segmentation, pvb->intrinsics,
-                                                   r.association.associations, correct);
+                                                   pvb->segmentation, pvb->intrinsics, drawn, drawn_correct,
+                                                   picture_options);
     gasp::writeImage(outputs->at("--out"), picture, "picture");
-    std::printf("picture: %s\n", out_path.c_str());
+    std::printf("picture: %s\npicture_legend: %s\n", out_path.c_str(), picture_options.legend.c_str());
     if (r.association.associations.empty()) {
       std::printf("no associations: %s\n",
                   r.association.reason.empty() ? r.pose.reason.c_str() : r.association.reason.c_str());

@@ -1,7 +1,7 @@
 // gasp-pairs: the paper's pair benchmark on a TUM folder, GASP beside the feature baselines.
 //   gasp-pairs --tum DIR [--skips 10,20,30,40] [--starts-every N]
 //              [--method gasp,gasp-norefine,fpfh,shot,cshot,sift,dsift,gicp,gasp-gicp] [--csv OUT.csv]
-//              [--pairs-csv OUT_pairs.csv] [--max-pairs N] [--picture I,J [--picture-prefix P] [--picture-format png|jpg] [--pictures-only]]
+//              [--pairs-csv OUT_pairs.csv] [--max-pairs N] [--picture I,J [--picture-prefix P] [--picture-format png|jpg] [--pictures-only] [--picture-free]]
 // Pairs (i, i + skip) from start frames 0, N, 2N, ... (indices in depth.txt order); for each pair
 // and method a relative pose is estimated and compared with ground truth. Prints one table row per
 // skip and method (definitions in gasp/eval/pair_protocol.h and docs/evaluation.md); progress goes
@@ -87,8 +87,10 @@ int main(int argc, char** argv) {
   std::string picture_format = "png";
   app.add_option("--picture-format", picture_format, "png or jpg (smaller files)")
       ->check(CLI::IsMember({"png", "jpg"}))->capture_default_str();
-  bool pictures_only = false;
+  bool pictures_only = false, setup_picture_free = false;
   app.add_flag("--pictures-only", pictures_only, "draw the --picture pair and stop (no benchmark)");
+  app.add_flag("--picture-free", setup_picture_free,
+               "GASP's pictures show the free associations (before any pose) instead of the verified ones");
   gasp::PairParams base;
   app.add_option("--k", base.associate.feature_sets.neighbourhood.k, "association neighbourhood size (0 = full view)")->capture_default_str()->check(gasp::tools::atLeast(0));
   double area_cm2 = base.segment.target_patch_area_m2 * 1e4;
@@ -262,6 +264,7 @@ int main(int argc, char** argv) {
 #endif
     setup.gasp = base;
     setup.roll_target_deg = roll_target;
+    setup.picture_free = setup_picture_free;
     gasp::TumDataset::Options opt;
     if (!intrinsics_arg.empty()) opt.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg);
     opt.undistort = !no_undistort;

@@ -106,15 +106,18 @@ MethodRun runGasp(const std::string& method, std::size_t i, std::size_t j, Frame
                   {"refinement+check",
                    reg_ms - r.timings.retry_segmentation_ms - r.timings.association_ms - r.timings.ransac_ms}};
   if (method == "gasp-gicp" && r.pose.success) run.stage_ms["gicp+check"] = gicp_ms;
-  if (picture) {
+  if (picture) {  // the verified associations (what GASP hands its user), or the free ones
+    const auto& drawn = setup.picture_free ? r.association.associations : r.verified;
     std::vector<unsigned char> correct;
     if (T_gt)
-      for (const auto& a : r.association.associations)
+      for (const auto& a : drawn)
         correct.push_back(isSameSurface(pva->segmentation.patches[static_cast<std::size_t>(a.a)],
                                         pvb->segmentation.patches[static_cast<std::size_t>(a.b)], *T_gt));
+    AssociationPictureOptions options;
+    options.legend = associationLegend(setup.picture_free ? "free" : "verified", drawn.size(), correct);
     picture->image = drawAssociations(pva->depth_m, pva->segmentation, pva->intrinsics, pvb->depth_m,
-                                      pvb->segmentation, pvb->intrinsics, r.association.associations, correct);
-    picture->shown = r.association.associations.size();
+                                      pvb->segmentation, pvb->intrinsics, drawn, correct, options);
+    picture->shown = drawn.size();
     picture->correct = static_cast<std::size_t>(std::count(correct.begin(), correct.end(), 1));
   }
   return run;

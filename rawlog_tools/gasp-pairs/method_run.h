@@ -79,6 +79,8 @@ struct Picture {
 struct MethodSetup {
   PairParams gasp;        ///< GASP's parameters (gasp-norefine: with refine off)
   int roll_target_deg = 0;  ///< GASP's methods: the target view turned clockwise (camera_roll.h)
+  /// GASP's pictures: the free associations (before any pose) instead of the verified ones.
+  bool picture_free = false;
 #ifdef GASP_HAVE_BASELINES
   baselines::BaselineParams baseline;
 #endif

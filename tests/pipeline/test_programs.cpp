@@ -59,6 +59,15 @@ TEST(GaspAssociateProgram, PoseAndPictureOnARealPair) {
   EXPECT_LT(std::stod(m[1]), 0.05) << r.output;
   EXPECT_LT(std::stod(m[2]), 3.0) << r.output;
   EXPECT_TRUE(std::filesystem::exists(out));
+  // The picture shows the verified associations, with their count and precision in its legend;
+  // --free shows the free ones.
+  ASSERT_TRUE(std::regex_search(r.output, m, std::regex("picture_legend: verified associations: ([0-9]+) -- [0-9]+ right, [0-9]+ wrong \\(precision [0-9.]+\\)")))
+      << r.output;
+  EXPECT_EQ(std::stod(m[1]), number(r.output, "verified_associations")) << r.output;
+  const ProgramRun free = run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --free --out " + out);
+  ASSERT_EQ(free.exit_code, 0) << free.output;
+  ASSERT_TRUE(std::regex_search(free.output, m, std::regex("picture_legend: free associations: ([0-9]+) -- "))) << free.output;
+  EXPECT_EQ(std::stod(m[1]), number(free.output, "associations")) << free.output;
   // The edge information's standard deviations: no axis below the model error (1 cm, 0.75 deg).
   ASSERT_TRUE(std::regex_search(r.output, m, std::regex("edge_sigma: ([0-9.]+) ([0-9.]+) ([0-9.]+) m, ([0-9.]+) ([0-9.]+) ([0-9.]+) deg")))
       << r.output;

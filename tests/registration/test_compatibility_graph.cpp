@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "../../modules/registration/src/compatibility_graph.h"
+#include "compatibility_graph.h"  // private: this target has modules/registration/src on its path
 #include "gasp/registration/inlier_criterion.h"
 #include "synthetic_scene.h"
 

@@ -5,7 +5,7 @@
 
 #include <random>
 
-#include "../../modules/registration/src/plane_residuals.h"
+#include "plane_residuals.h"  // private: this target has modules/registration/src on its path
 
 namespace {
 

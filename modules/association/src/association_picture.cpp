@@ -3,6 +3,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <cstdio>
+#include <string>
 
 #include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
@@ -36,7 +38,34 @@ cv::Point pixelOf(const Eigen::Vector3d& p, const CameraIntrinsics& k) {
   return {static_cast<int>(std::lround(k.fx * p.x() / p.z() + k.cx)), static_cast<int>(std::lround(k.fy * p.y() / p.z() + k.cy))};
 }
 
+/// The legend over a dark band at the top, sized to the picture's width.
+void drawLegend(cv::Mat& out, const std::string& legend) {
+  if (legend.empty()) return;
+  const int font = cv::FONT_HERSHEY_SIMPLEX;
+  double scale = 0.5;
+  int baseline = 0;
+  cv::Size size = cv::getTextSize(legend, font, scale, 1, &baseline);
+  if (size.width > out.cols - 8) {
+    scale *= static_cast<double>(out.cols - 8) / size.width;
+    size = cv::getTextSize(legend, font, scale, 1, &baseline);
+  }
+  const int band = std::min(out.rows, size.height + baseline + 8);
+  cv::Mat top = out(cv::Rect(0, 0, out.cols, band));
+  top *= 0.35;
+  cv::putText(out, legend, cv::Point(4, size.height + 4), font, scale, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+}
+
 }  // namespace
+
+std::string associationLegend(const std::string& what, std::size_t n, const std::vector<unsigned char>& correct) {
+  std::string s = what + " associations: " + std::to_string(n);
+  if (correct.empty() || correct.size() != n) return s + (n > 0 ? " (no ground truth)" : "");
+  const std::size_t right = static_cast<std::size_t>(std::count(correct.begin(), correct.end(), 1));
+  char precision[32];
+  std::snprintf(precision, sizeof precision, "%.3f", static_cast<double>(right) / static_cast<double>(n));
+  return s + " -- " + std::to_string(right) + " right, " + std::to_string(n - right) + " wrong (precision " + precision +
+         "); green right, red wrong";
+}
 
 cv::Mat drawAssociations(const cv::Mat& depth_a, const SuperpixelSegmentation& a, const CameraIntrinsics& intrinsics_a,
                          const cv::Mat& depth_b, const SuperpixelSegmentation& b, const CameraIntrinsics& intrinsics_b,
@@ -56,6 +85,7 @@ cv::Mat drawAssociations(const cv::Mat& depth_a, const SuperpixelSegmentation& a
   cv::Mat out(h, w + depth_b.cols, CV_8UC3, cv::Scalar(0, 0, 0));
   paintView(depth_a, a, ca, out(cv::Rect(0, 0, depth_a.cols, depth_a.rows)));
   paintView(depth_b, b, cb, out(cv::Rect(w, 0, depth_b.cols, depth_b.rows)));
+  drawLegend(out, options.legend);
   if (associations.empty() || options.max_lines <= 0) return out;
   const std::size_t step = std::max<std::size_t>(1, associations.size() / static_cast<std::size_t>(options.max_lines));
   for (std::size_t k = 0; k < associations.size(); k += step) {
