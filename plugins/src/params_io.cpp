@@ -1,5 +1,6 @@
 #include "gasp/mrpt/params_io.h"
 
+#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/core/exceptions.h>
 
 #include <algorithm>
@@ -341,6 +342,23 @@ void readIni(const mrpt::config::CConfigFileBase& source, const std::string& sec
   checkKeys(source, section, known);
 }
 
+/// " (key K1, K2)": the keys of `keys` that make `base` invalid when set alone (`apply` sets one
+/// on a copy), or "" when none does (only their combination is invalid).
+template <class Apply>
+std::string keysInvalidAlone(const std::vector<std::string>& keys, const PairParams& base, Apply&& apply) {
+  std::string out;
+  for (const std::string& key : keys) {
+    PairParams trial = base;
+    try {
+      apply(key, trial);
+      validate(trial);
+    } catch (const std::exception&) {
+      out += (out.empty() ? " (key " : ", ") + key;
+    }
+  }
+  return out.empty() ? out : out + ")";
+}
+
 }  // namespace
 
 void readValue(const mrpt::config::CConfigFileBase& source, const std::string& section, const std::string& key,
@@ -400,7 +418,18 @@ void readPairParams(const mrpt::config::CConfigFileBase& source, const std::stri
   try {
     validate(p);
   } catch (const Error& e) {
-    THROW_EXCEPTION_FMT("[%s]: invalid parameters: %s", section.c_str(), e.what());
+    // Name the keys that are invalid on their own: the stages' messages name their fields.
+    std::vector<std::string> keys;
+    source.getAllKeys(section, keys);
+    const std::string culprits = keysInvalidAlone(keys, params, [&](const std::string& key, PairParams& trial) {
+      if (other_allowed_keys.count(key)) return;
+      mrpt::config::CConfigFileMemory one;
+      one.write(section, key, source.read_string(section, key, ""));
+      pairFields(trial, [&](const char* k, auto&& field) {
+        if (key == k) readOne(one, section, k, std::forward<decltype(field)>(field));
+      });
+    });
+    THROW_EXCEPTION_FMT("[%s]: invalid parameters%s: %s", section.c_str(), culprits.c_str(), e.what());
   }
   params = p;
 }
@@ -424,7 +453,14 @@ void readPairParams(const mrpt::containers::yaml& y, const std::string& who, Pai
   try {
     validate(p);
   } catch (const Error& e) {
-    THROW_EXCEPTION_FMT("%s: invalid parameters: %s", who.c_str(), e.what());
+    std::vector<std::string> keys;
+    for (const auto& [key, value] : y.asMap()) keys.push_back(key.as<std::string>());
+    const std::string culprits = keysInvalidAlone(keys, params, [&](const std::string& key, PairParams& trial) {
+      pairFields(trial, [&](const char* k, auto&& field) {
+        if (key == k) fromYaml(y[k], std::forward<decltype(field)>(field));
+      });
+    });
+    THROW_EXCEPTION_FMT("%s: invalid parameters%s: %s", who.c_str(), culprits.c_str(), e.what());
   }
   params = p;
 }
