@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <string>
 #include <utility>
 
 #include "gasp/core/error.h"
@@ -40,67 +41,32 @@ const OdometryFrame& DepthSlam::addFrame(double timestamp, const cv::Mat& depth_
   return f;
 }
 
-LoopClosureAttempt DepthSlam::tryPair(std::size_t from, std::size_t to, bool relocalisation, PoseConstraint& c) const {
-  return registerLoopClosure(keyframe_views_.at(from), keyframe_views_.at(to), from, to, relocalisation,
-                             params_.odometry.pair, params_.loop, c);
-}
-
 void DepthSlam::closeLoops(std::size_t k) {
-  bool taken = false;
-  const std::size_t n = T_world_frame_.size();
-  {
-    const std::vector<std::size_t> roots = pieceRoots(n, constraints());
-    for (const std::size_t cand : loopCandidates(keyframes_, T_world_frame_, roots, params_.loop)) {
-      PoseConstraint c;
-      LoopClosureAttempt a = tryPair(cand, k, false, c);
-      // Agreement with the odometry between the two keyframes, within both uncertainties.
-      if (a.reason.empty()) gateLoopClosure(c, composeAlongTree(odometry_.constraints(), n, cand, k), params_.loop, a);
-      a.accepted = a.reason.empty();
-      attempts_.push_back(std::move(a));
-      if (attempts_.back().accepted) {
-        loop_closures_.push_back(c);
-        loop_attempt_.push_back(attempts_.size() - 1);
-        loop_group_.push_back(0);
-        taken = true;
-      }
-    }
-  }
-  if (params_.loop.relocalisation_candidates > 0) {
-    std::vector<std::size_t> roots = pieceRoots(n, constraints());
-    for (const std::size_t cand : relocalisationCandidates(keyframes_, roots, params_.loop)) {
-      if (roots[cand] == roots[k]) continue;  // joined by an earlier candidate
-      PoseConstraint c;
-      attempts_.push_back(tryPair(cand, k, true, c));
-      if (!attempts_.back().reason.empty()) continue;
-      // A vote: the pieces are joined when enough votes agree (relocalisation.h).
-      const RelocalisationVotes::Decision d = votes_.offer(c, attempts_.size() - 1, odometry_.constraints(), n, roots);
-      attempts_.back().gate_chi2 = d.chi2;
-      if (!d.join) {
-        attempts_.back().reason = d.reason;
-        continue;
-      }
-      // Move the later piece (the larger root) rigidly onto the newest vote, so the optimiser
-      // starts near the answer and the piece holding frame 0 keeps its place (the gauge).
-      const Isometry3 T_fix = T_world_frame_[cand] * c.T_from_to * T_world_frame_[k].inverse();
-      const std::size_t moved = std::max(roots[cand], roots[k]);
-      const Isometry3 T_move = roots[k] == moved ? T_fix : T_fix.inverse();
-      for (std::size_t i = 0; i < n; ++i)
-        if (roots[i] == moved) T_world_frame_[i] = T_move * T_world_frame_[i];
-      ++vote_groups_;
-      for (const RelocalisationVotes::Vote& v : d.votes) {
-        attempts_[v.attempt].accepted = true;
-        attempts_[v.attempt].reason.clear();
-        loop_closures_.push_back(v.constraint);
-        loop_attempt_.push_back(v.attempt);
-        loop_group_.push_back(vote_groups_);
-      }
-      taken = true;
-      roots = pieceRoots(n, constraints());
-      for (const RelocalisationVotes::Vote& v : votes_.removeJoined(roots))
-        attempts_[v.attempt].reason = "not used: its pieces were joined by other votes";
-    }
-  }
-  if (taken) optimise();
+  LoopSearchGraph g;
+  g.node_count = T_world_frame_.size();
+  g.keyframes = keyframes_;
+  g.T_world_camera = T_world_frame_;
+  g.tree = odometry_.constraints();
+  g.view = [this](std::size_t i) -> const DepthView& { return keyframe_views_.at(i); };
+  g.links = [this] { return constraints(); };
+  g.insert = [this](const PoseConstraint& c, std::size_t attempt, std::size_t group) {
+    loop_closures_.push_back(c);
+    loop_attempt_.push_back(attempt);
+    loop_group_.push_back(group);
+  };
+  // Before a join, the later piece (the larger root) moves rigidly onto the newest vote, so the
+  // optimiser starts near the answer and the piece holding frame 0 keeps its place (the gauge).
+  g.before_join = [this](const PoseConstraint& newest, const RelocalisationVotes::Decision&,
+                         const std::vector<std::size_t>& roots) {
+    const std::size_t from = newest.from, to = newest.to;
+    const Isometry3 T_fix = T_world_frame_[from] * newest.T_from_to * T_world_frame_[to].inverse();
+    const std::size_t moved = std::max(roots[from], roots[to]);
+    const Isometry3 T_move = roots[to] == moved ? T_fix : T_fix.inverse();
+    for (std::size_t i = 0; i < T_world_frame_.size(); ++i)
+      if (roots[i] == moved) T_world_frame_[i] = T_move * T_world_frame_[i];
+    return std::string();
+  };
+  if (searchLoops(k, g, params_.odometry.pair, params_.loop, attempts_, votes_, vote_groups_)) optimise();
 }
 
 void DepthSlam::optimise() {

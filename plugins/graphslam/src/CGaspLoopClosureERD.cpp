@@ -8,11 +8,13 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <string>
 
 #include "gasp/core/error.h"
 #include "gasp/mrpt/params_io.h"
 #include "gasp/mrpt/pose_graph.h"
 #include "gasp/rawlog/observation_conversion.h"
+#include "gasp/slam/loop_search.h"
 #include "gasp/slam/pose_graph.h"
 
 namespace gasp::graphslam {
@@ -183,63 +185,32 @@ void CGaspLoopClosureERD::insert(const PoseConstraint& c, std::size_t attempt, s
 }
 
 void CGaspLoopClosureERD::closeLoops(std::size_t k) {
-  const std::size_t n = nodes_.size();
-  std::vector<std::size_t> with_view;  // the nodes that can be registered, ascending (k last)
-  std::vector<Isometry3> T_world_camera(n, Isometry3::Identity());
-  for (std::size_t i = 0; i < n; ++i) {
-    if (nodes_[i].view) with_view.push_back(i);
-    T_world_camera[i] = fromCPose3D(m_graph->nodes.at(i)) * nodes_[i].T_robot_camera;
+  LoopSearchGraph g;
+  g.node_count = nodes_.size();
+  g.T_world_camera.assign(g.node_count, Isometry3::Identity());
+  for (std::size_t i = 0; i < g.node_count; ++i) {
+    if (nodes_[i].view) g.keyframes.push_back(i);  // the nodes that can be registered (k last)
+    g.T_world_camera[i] = fromCPose3D(m_graph->nodes.at(i)) * nodes_[i].T_robot_camera;
   }
-  const std::vector<PoseConstraint> tree = treeConstraints();
-  const auto links = [&] {
-    std::vector<PoseConstraint> all = tree;
+  g.tree = treeConstraints();
+  g.view = [this](std::size_t i) -> const DepthView& { return *nodes_[i].view; };
+  g.links = [this, &g] {
+    std::vector<PoseConstraint> all = g.tree;
     const std::vector<PoseConstraint> closures = closureConstraints();
     all.insert(all.end(), closures.begin(), closures.end());
     return all;
   };
-  std::vector<std::size_t> roots = pieceRoots(n, links());
-  for (const std::size_t cand : loopCandidates(with_view, T_world_camera, roots, loop_)) {
-    PoseConstraint c;
-    LoopClosureAttempt a = registerLoopClosure(*nodes_[cand].view, *nodes_[k].view, cand, k, false, pair_, loop_, c);
-    if (a.reason.empty()) gateLoopClosure(c, composeAlongTree(tree, n, cand, k), loop_, a);
-    a.accepted = a.reason.empty();
-    attempts_.push_back(std::move(a));
-    if (attempts_.back().accepted) insert(c, attempts_.size() - 1, 0);
-  }
-  if (loop_.relocalisation_candidates == 0) return;
-  roots = pieceRoots(n, links());
-  for (const std::size_t cand : relocalisationCandidates(with_view, roots, loop_)) {
-    if (roots[cand] == roots[k]) continue;  // joined by an earlier candidate
-    PoseConstraint c;
-    attempts_.push_back(registerLoopClosure(*nodes_[cand].view, *nodes_[k].view, cand, k, true, pair_, loop_, c));
-    if (!attempts_.back().reason.empty()) continue;
-    // A vote: the pieces are joined when enough votes agree (relocalisation.h).
-    const RelocalisationVotes::Decision d = votes_.offer(c, attempts_.size() - 1, tree, n, roots);
-    attempts_.back().gate_chi2 = d.chi2;
-    if (!d.join) {
-      attempts_.back().reason = d.reason;
-      continue;
-    }
-    // The votes enter the graph together or not at all: fewer would be an unchecked join.
-    bool insertable = true;
+  g.insert = [this](const PoseConstraint& c, std::size_t attempt, std::size_t group) { insert(c, attempt, group); };
+  // The votes enter MRPT's graph together or not at all: each needs an edge (positive definite
+  // information). offer() has let them go: they do not wait again.
+  g.before_join = [this](const PoseConstraint&, const RelocalisationVotes::Decision& d, const std::vector<std::size_t>&) {
     for (const RelocalisationVotes::Vote& v : d.votes)
-      insertable = insertable && edgeFromConstraint(v.constraint, nodes_[v.constraint.from].T_robot_camera,
-                                                    nodes_[v.constraint.to].T_robot_camera);
-    if (!insertable) {  // offer() has let the votes go: they do not wait again
-      for (const RelocalisationVotes::Vote& v : d.votes)
-        attempts_[v.attempt].reason = "not used: a vote of its group has no positive definite information";
-      continue;
-    }
-    ++vote_groups_;
-    for (const RelocalisationVotes::Vote& v : d.votes) {
-      attempts_[v.attempt].accepted = true;
-      attempts_[v.attempt].reason.clear();
-      insert(v.constraint, v.attempt, vote_groups_);
-    }
-    roots = pieceRoots(n, links());
-    for (const RelocalisationVotes::Vote& v : votes_.removeJoined(roots))
-      attempts_[v.attempt].reason = "not used: its pieces were joined by other votes";
-  }
+      if (!edgeFromConstraint(v.constraint, nodes_[v.constraint.from].T_robot_camera,
+                              nodes_[v.constraint.to].T_robot_camera))
+        return std::string("not used: a vote of its group has no positive definite information");
+    return std::string();
+  };
+  searchLoops(k, g, pair_, loop_, attempts_, votes_, vote_groups_);
 }
 
 void CGaspLoopClosureERD::getEdgesStats(std::map<std::string, int>* edge_type_to_num) const {

@@ -25,6 +25,7 @@
 #include "gasp/odometry/pose_constraint.h"
 #include "gasp/pipeline/depth_view.h"
 #include "gasp/slam/loop_closure.h"
+#include "gasp/slam/loop_search.h"
 #include "gasp/slam/pose_graph_marginals.h"
 #include "gasp/slam/relocalisation.h"
 #include "gasp/slam/slam_params.h"
@@ -65,10 +66,8 @@ class DepthSlam {
   const SlamParams& params() const { return params_; }
 
  private:
+  /// The loop search of a new keyframe (loop_search.h), then the optimisation when it took any.
   void closeLoops(std::size_t keyframe);
-  /// Registers keyframe `to` to keyframe `from`; returns the attempt (with the constraint when
-  /// the registration gave a plausible estimate).
-  LoopClosureAttempt tryPair(std::size_t from, std::size_t to, bool relocalisation, PoseConstraint& c) const;
   void optimise();
 
   SlamParams params_;

@@ -1,0 +1,44 @@
+#pragma once
+/// \file loop_search.h One new keyframe's loop search, the one both DepthSlam and the graph-SLAM
+/// edge decider (CGaspLoopClosureERD) run: every loop candidate near the current estimate
+/// (loopCandidates) registered to the keyframe, gated against the odometry's prediction and
+/// taken when it agrees; then, when the graph has several pieces, relocalisation candidates of
+/// the other pieces (relocalisationCandidates) registered and offered as votes, the pieces joined
+/// when enough votes agree (relocalisation.h). The owner keeps the graph; it says how to reach
+/// the views and where taken constraints go.
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "gasp/slam/loop_closure.h"
+#include "gasp/slam/relocalisation.h"
+
+namespace gasp {
+
+/// The owner's graph, as the search sees it.
+struct LoopSearchGraph {
+  std::size_t node_count = 0;
+  std::vector<std::size_t> keyframes;     ///< nodes with a view, ascending (the new keyframe last)
+  std::vector<Isometry3> T_world_camera;  ///< the current estimate of every node's camera
+  std::vector<PoseConstraint> tree;       ///< the odometry's constraints (its prediction)
+  std::function<const DepthView&(std::size_t node)> view;
+  std::function<std::vector<PoseConstraint>()> links;  ///< every constraint now: the tree and the closures taken
+  /// A constraint taken: its attempt's index and its group (0: a loop closure; else the vote
+  /// group of a relocalisation, whose votes entered together).
+  std::function<void(const PoseConstraint& c, std::size_t attempt, std::size_t group)> insert;
+  /// Called before agreeing votes join two pieces (`newest`: the vote that completed them,
+  /// `roots`: the pieces before the join); returns "" to join, or the reason none of the votes is
+  /// used (the votes are then let go).
+  std::function<std::string(const PoseConstraint& newest, const RelocalisationVotes::Decision& d,
+                            const std::vector<std::size_t>& roots)>
+      before_join;
+};
+
+/// The search for keyframe `k` (a node of `graph`). Appends every registration to `attempts`;
+/// `votes` and `vote_groups` carry the relocalisations waiting for agreement and the groups taken
+/// so far across keyframes. Returns whether any constraint was taken.
+bool searchLoops(std::size_t k, const LoopSearchGraph& graph, const PairParams& pair, const LoopClosureParams& loop,
+                 std::vector<LoopClosureAttempt>& attempts, RelocalisationVotes& votes, std::size_t& vote_groups);
+
+}  // namespace gasp
