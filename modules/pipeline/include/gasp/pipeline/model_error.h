@@ -4,8 +4,8 @@
 /// The refinement's information (refinement.h: J^T W J / sigma^2 over thousands of point-to-plane
 /// terms) is the right shape but far too certain for real data: it treats every term as an
 /// independent measurement, while what limits a real pose is shared by all terms -- the depth
-/// camera's calibration and rolling shutter, the segmentation, the timing. On the real benchmark
-/// pairs the error's NEES (pose_consistency.h) was 100-1000 times what that information allows
+/// camera's calibration and rolling shutter, the segmentation, the timing, so on real pairs the
+/// error's NEES (pose_consistency.h) is far beyond what that information allows
 /// (docs/pipeline.md, "How far the information can be trusted"). The model error adds that part
 /// as an isotropic covariance in the information's coordinates (the left perturbation
 /// xi = [rho; omega] in the target frame, registration_result.h):

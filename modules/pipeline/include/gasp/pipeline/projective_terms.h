@@ -13,9 +13,8 @@
 namespace gasp {
 
 struct ProjectiveTermParams {
-  /// Sample every pixel_step-th pixel in u and v (>= 1). 8: on fr1_xyz and fr3_cabinet_kf the
-  /// pair errors equal those of step 4 within 2 mm / 0.1 deg at a sixth of the time
-  /// (docs/pipeline.md).
+  /// Sample every pixel_step-th pixel in u and v (>= 1). 8: about as accurate as denser sampling
+  /// at a fraction of the time (docs/pipeline.md).
   int pixel_step = 8;
   double max_distance_m = 0.05;    ///< gate on |T p_source - q_target| [m] (> 0)
   double max_normal_angle_deg = 20.0;  ///< gate on the angle between the two patch normals [deg]

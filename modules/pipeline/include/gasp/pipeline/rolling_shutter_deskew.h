@@ -4,12 +4,10 @@
 /// neighbours: a sequence gives it for free (odometry registers consecutive frames anyway), a
 /// lone pair of frames does not have it.
 ///
-/// Why: on TUM fr1_xyz (Kinect) the depth images carry a rolling shutter of about 30 ms. Deskewed
-/// with the velocity from frames i-1 and i+1, the pair benchmark's rotation RMSE at skips
-/// 30 / 50 falls from 1.47 / 1.56 to 1.13 / 1.14 deg against TUM's reference as written, and
-/// from 1.02 / 1.06 to 0.82 / 0.80 deg with the reference's 30 ms lag removed, where translation
-/// falls by 24-27 % too (docs/pipeline.md, "Rolling shutter"). The motion capture's velocity
-/// instead gives the same within 0.04 deg.
+/// Why: a Kinect's depth images carry a rolling shutter of about 30 ms, which a moving camera
+/// turns into a distorted view; deskewing with the velocity from frames i-1 and i+1 lowers the
+/// pair errors about as much as the motion capture's velocity would (docs/pipeline.md,
+/// "Rolling shutter").
 #include <opencv2/core.hpp>
 
 #include <cstddef>

@@ -11,7 +11,7 @@
 /// When the steps point the same way (cosine >= min_cosine) and shrink geometrically, the rest of
 /// the iteration sums to B^s with s = r / (1 - r) (the geometric series r + r^2 + ...); s is capped
 /// at max_factor. Steps that do not shrink (r >= 1) are not extrapolated: the iteration is then
-/// running into its basin, not converging (jumping there made a real pair swing). B^s is B taken s
+/// running into its basin, not converging, and a jump there can overshoot. B^s is B taken s
 /// times about the points' centre c: rotation by s times B's angle about B's axis through c, and
 /// s times the displacement of c.
 #include <vector>

@@ -12,8 +12,8 @@
 /// Zisserman, 2000) of the point-to-plane residual the refinement minimises. A point with no
 /// partner within its gate, or on no depth, contributes 0. The gate is on the points' distance,
 /// which is at least |r|, so a term can score up to g^2 until its point crosses the gate: the
-/// score is not continuous there. Scoring the gated distance itself instead (continuous) was
-/// measured slightly worse (docs/pipeline.md, "Line search at the last gate"). An edge point
+/// score is not continuous there; the continuous alternative, scoring the gated distance itself,
+/// is compared in docs/pipeline.md, "Line search at the last gate". An edge point
 /// gives two terms, one per plane through the edge line. Larger is better. Terms with a
 /// non-finite contribution (point, normal or weight) score 0.
 #include <cstddef>

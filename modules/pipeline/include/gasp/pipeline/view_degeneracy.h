@@ -5,8 +5,8 @@
 /// J = [n^T, (c x n)^T] (the residual's derivative for the left perturbation of
 /// registration_result.h), weighted by its area: I = sum_i area_i J_i^T J_i. The verdict is
 /// analyseDegeneracy() on I (conditioned about the area-weighted centre) with the eigenvalue
-/// ratio alone. Measured (docs/pipeline.md): noisy synthetic single plane 3e-4 - 6e-4, corridor
-/// 7e-5 - 2e-4; fr3_cabinet views (floor and one cabinet) 2e-3 - 5e-3, desk and room views more.
+/// ratio alone: a single plane or a corridor falls below the default ratio, a floor with one
+/// object on it lies above it (the measured ratios are in docs/pipeline.md).
 #include "gasp/registration/degeneracy.h"
 #include "gasp/superpixels/surface_patch.h"
 
