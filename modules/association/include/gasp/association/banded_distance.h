@@ -15,8 +15,8 @@
 ///    component-0 keys the set is sorted by the component-1 key, and Match needs
 ///    |q1 - q1'| <= r_dev too: long runs (coplanar neighbours all have q0 = 0) are cut down to the
 ///    sub-run of matching component-1 keys by binary search. The match test (a float SIMD test
-///    with a margin, the doubles decide near the tolerance) runs only there: about 15 % of the
-///    cells on fr1_xyz.
+///    with a margin, the doubles decide near the tolerance) runs only there, on a small share of
+///    the cells.
 ///  * Bounds before the DP: every matched pair satisfies |q_c - q'_c| <= tol_c for each component
 ///    c alone, so #pairs <= the maximum matching of the two value lists of component c under that
 ///    tolerance, which a greedy two-pointer walk over the sorted values gives exactly (O(n + m)).

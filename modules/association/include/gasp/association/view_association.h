@@ -34,15 +34,15 @@ struct AssociationParams {
   FeatureSetParams feature_sets = defaultFeatureSets();
   MatchParams match;   ///< r_dev = 0.04 m, theta_dev = 10 deg (paper)
   EditCosts costs;     ///< insert = delete = 1, replace disabled, transposition 0 (paper)
-  /// C, candidates per patch, >= 1 (paper: 75, with the mean key). 20 with the quantile key finds
-  /// the exact best partner about as often as 30-40 with the mean, and gives the same precision
-  /// and density as 75 with the mean on 20 TUM and synthetic pairs (docs/association.md) in
-  /// about half the time.
+  /// C, candidates per patch, >= 1 (paper: 75, with the mean key). The quantile key ranks the
+  /// best partner higher, so fewer candidates give the same precision and density in less time
+  /// (docs/association.md).
   int candidates = 20;
   double lambda = 0.5;   ///< gating on D_hat, in [0, 1] (paper: 0.65 - 0.8 before RANSAC)
   /// Keep (a, b) only when a is also b's best partner in A (B -> A search over b's own C
-  /// candidates, only for the patches of B chosen by some patch of A). Not in the paper; on
-  /// fr1_xyz 0 -> 10 it lifts precision from 0.26 to 0.63.
+  /// candidates, only for the patches of B chosen by some patch of A). Not in the paper; a
+  /// one-way best partner is often a look-alike, so the check raises precision
+  /// (docs/association.md).
   bool mutual_check = true;
   /// How the C candidates are chosen (paper: kMean). Last member: aggregate initialisation of the
   /// members before it is unchanged.

@@ -10,8 +10,8 @@
 /// Sampling (`guided_sampling`, default): the consistent pairs are computed once as a
 /// compatibility graph, and samples are drawn from its triangles (i uniform, j uniform among the
 /// partners of i, k uniform among the common partners of i and j), so every sample is
-/// consistent. With few correct associations among many (5 % of 500 on wide fr1_xyz baselines)
-/// uniform triples almost never pass the checks (5 % cubed); guided ones are all-inlier with a
+/// consistent. With few correct associations among many (as on wide baselines) uniform triples
+/// almost never pass the checks (the inlier ratio cubed); guided ones are all-inlier with a
 /// probability of the order of the inlier ratio. The number of samples adapts to the best model:
 /// N = log(1 - confidence) / log(1 - P), P the probability that one draw returns three of its
 /// inliers under this sampler (exact for the sampler; thin triangles included), at least
@@ -46,8 +46,8 @@ struct RansacParams {
   bool guided_sampling = true;             ///< samples from the compatibility graph (see above)
   int min_iterations = 200;                ///< guided sampling: samples drawn at least (if max_iterations allows)
   /// Above: uniform sampling. The graph costs n^2 / 8 bytes and n^2 / 2 tests, and with thousands
-  /// of matches (dense SIFT: 3848) its triangles are dense with wrong ones, so its stopping
-  /// probability stays small and the cap of max_iterations is reached (33 s measured at 3848).
+  /// of matches (dense SIFT) its triangles are dense with wrong ones, so its stopping
+  /// probability stays small and every search runs to max_iterations, which takes seconds.
   int max_guided_correspondences = 1500;
 };
 
