@@ -11,8 +11,9 @@ struct OdometryParams {
   PairParams pair;
   /// A tracked frame becomes the next keyframe when its pose is this far from its keyframe's
   /// [m] or turned by this much [deg]. Registering to a keyframe rather than to the previous
-  /// frame keeps the small per-pair errors from adding up while the camera lingers (fr1_xyz
-  /// moves about 1 cm per frame); GASP registers views far apart, so keyframes may be sparse.
+  /// frame keeps the small per-pair errors from adding up while the camera lingers (a hand-held
+  /// camera moves about 1 cm per frame at 30 Hz); GASP registers views far apart, so keyframes
+  /// may be sparse.
   double keyframe_distance_m = 0.10;
   double keyframe_angle_deg = 10.0;
   /// A registration implying a faster motion than this (over the time between the two frames)

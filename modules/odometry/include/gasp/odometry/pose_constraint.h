@@ -22,8 +22,8 @@ struct PoseConstraint {
   bool loop_closure = false;  ///< false: odometry (a frame against its keyframe or predecessor)
   /// Odometry taken through a scene change (scene_change.h): the views contradict each other's
   /// free space beyond the pair's limits, and the constant-velocity prediction vouched for the
-  /// pose. The information is GASP's as for any edge (the steps measured so: within 1.1 cm /
-  /// 0.36 deg, docs/odometry.md); a back-end may weigh such edges down.
+  /// pose. The information is GASP's as for any edge (docs/odometry.md, "Scenes that change");
+  /// a back-end may weigh such edges down.
   bool scene_change = false;
 };
 

@@ -22,29 +22,25 @@ namespace gasp {
 
 struct SceneChangeParams {
   bool enabled = true;  ///< false: a refused frame is predicted, as before
-  /// Visibility limits of the scene-change attempt (the pair's defaults: 0.15, 0.05, 0.5). The
-  /// frames taken on the simulator's moved objects had 7.8-15.1 % in one direction and up to
-  /// 14.9 % in the other (the chair pushed 0.6 m: 15.1 % / 14.9 %), the occluder popping in 42 %
-  /// in one direction and the person stepping aside 56.7 %, near the 60 % (docs/odometry.md
-  /// "Scenes that change"): a larger change is refused.
+  /// Visibility limits of the scene-change attempt (the pair's defaults: 0.15, 0.05, 0.5): loose
+  /// enough for a moved object, an occluder popping in or a person stepping aside, and a larger
+  /// change is refused (docs/odometry.md "Scenes that change").
   double max_violation_ratio = 0.6;          ///< in [0, 1]; also the one-way fallback's and the retry's limit
   double max_two_way_violation_ratio = 0.3;  ///< in [0, 1]
   double max_occluded_ratio = 0.8;           ///< in [0, 1]
   /// The prediction gate: GASP's pose must lie within gate_m + max_accel_mps2 dt^2 / 2 of the
   /// constant-velocity prediction, and its rotation within gate_deg + max_angular_accel_radps2
-  /// dt^2 / 2 (dt: time since the previous frame). The floors cover GASP's own error (1-2 cm,
-  /// 0.5-1.5 deg on fr1_xyz pairs) and the prediction's at 30 Hz (fr1_xyz against its
-  /// reference: 95 % within 2 mm and 0.84 deg, at most 5 mm and 1.6 deg); the accelerations
-  /// bound a hand-held camera's change of velocity between frames (at 5 Hz the gate is 6 cm
-  /// and 7.7 deg).
+  /// dt^2 / 2 (dt: time since the previous frame). The floors cover GASP's own error and the
+  /// prediction's at 30 Hz; the accelerations bound a hand-held camera's change of velocity
+  /// between frames (at 5 Hz the gate is 6 cm and 7.7 deg).
   double gate_m = 0.02;                     ///< [m], > 0
   double gate_deg = 2.0;                    ///< [deg], > 0
   double max_accel_mps2 = 2.0;              ///< [m/s^2], >= 0
   double max_angular_accel_radps2 = 5.0;    ///< [rad/s^2], >= 0
   /// The attempt is made only while the gate is at most this wide: a prediction over a long time
-  /// vouches for nothing (at dt = 2.7 s, fr3_cabinet_kf's keyframes four apart, the gate above
-  /// is 7.3 m wide). With the defaults: frames at most 0.236 s apart (about 4.2 Hz and faster).
-  /// The wrong poses the visibility check declines are 0.3-1.6 m or 5-180 deg from the truth.
+  /// vouches for nothing (over seconds the gate above grows to metres). With the defaults:
+  /// frames at most 0.236 s apart (about 4.2 Hz and faster). The limit stays well below how far
+  /// the wrong poses the visibility check declines lie from the truth.
   double max_gate_m = 0.10;    ///< [m], > 0
   double max_gate_deg = 10.0;  ///< [deg], > 0
 };

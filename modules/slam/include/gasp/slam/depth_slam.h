@@ -54,7 +54,7 @@ class DepthSlam {
   /// The marginal covariance of every frame's pose in the graph (pose_graph_marginals.h): the
   /// uncertainty [t r] of poses()[i] relative to the first frame of its piece (zero there), as the
   /// constraints' informations give it; nullopt for frames no constraint reaches. Computed on
-  /// request (sparse QR over the whole graph: 0.3-0.43 s for fr1_xyz's 798 frames).
+  /// request (a sparse QR over the whole graph).
   PoseGraphMarginals marginals() const;
   /// Every registration tried for a loop closure or relocalisation, in order.
   const std::vector<LoopClosureAttempt>& attempts() const { return attempts_; }
