@@ -199,6 +199,9 @@ class FinerViews {
 ViewSetResult registerViewSets(const std::vector<const DepthView*>& sources,
                                const std::vector<const DepthView*>& targets, const PairParams& params) {
   validate(params);
+  for (const auto* views : {&sources, &targets})
+    for (const DepthView* v : *views)
+      if (!v) throw Error("registerViewSets: a null view pointer");
   ViewSetResult out;
   std::vector<std::size_t> retry;  // registrations the finer scale may turn into an estimate
   bool any_pose = false;

@@ -147,6 +147,7 @@ struct ViewSetResult {
   /// Views whose finer-scale segmentation failed ("source view 2: ..."); their pairs are not retried.
   std::vector<std::string> notes;
 };
+/// Throws gasp::Error for invalid parameters or a null view pointer; never for data.
 ViewSetResult registerViewSets(const std::vector<const DepthView*>& sources,
                                const std::vector<const DepthView*>& targets, const PairParams& params = {});
 
