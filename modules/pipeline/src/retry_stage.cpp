@@ -19,9 +19,11 @@ namespace detail {
 
 namespace {
 
+/// The hypothesis's associations move into the result (the caller needs only its verdict and
+/// guided associations afterwards).
 void take(Hypothesis& h, PairResult& r) {
-  r.used = h.used;
-  r.correspondences = h.correspondences;
+  r.used = std::move(h.used);
+  r.correspondences = std::move(h.correspondences);
   r.pose = h.pose;
   if (h.guided_support >= 0) r.guided_support = h.guided_support;
   r.timings.ransac_ms += h.ransac_ms;
