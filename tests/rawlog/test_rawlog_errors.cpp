@@ -528,6 +528,9 @@ TEST(RawlogErrors, CorruptSizeFieldsAreErrorsNamingTheObject) {
       {"camera_name_length_flipped.rawlog",
        "object #5 (at byte 4485 of 6675): corrupt or truncated: CObservation3DRangeScan: cameraParamsIntensity camera name claims "
        "4025563904 bytes but 165 bytes remain"},
+      {"scan_version0_label_length.rawlog",  // fuzz_rawlog: a version 0 scan (MRPT 1) cut inside its label's length
+       "object #1 (at byte 35 of 243): corrupt or truncated: the stream ends inside this object (205 bytes of it read, "
+       "208 bytes in the rest of the stream, a field needs more)"},
   };
   const std::string dir = gasp::test::scratchDir();
   for (const auto& c : cases) {
@@ -575,4 +578,188 @@ TEST(RawlogErrors, MrptErrorsOfAScanAreErrorsNamingTheScan) {
   const std::string msg = readError(path);
   EXPECT_TRUE(contains(msg, "rawlog '" + path + "', 3D scan #0: ")) << msg;
   EXPECT_TRUE(contains(msg, "fil.size() > 2")) << msg;  // MRPT's assertion, kept in the message
+}
+
+namespace {
+
+/// A CObservation3DRangeScan of an older serialisation version (MRPT 1 wrote versions up to 8),
+/// written field by field as MRPT 2.5's serializeFrom() reads that version: a 3 x 4 range image
+/// at 1.5 m, a 4 x 3 grey intensity image, cameras, poses and matrices in the versions given.
+struct OldScan {
+  int version = 8;
+  int pose_version = 2;
+  int camera_version = 4;
+  int image_version = 8;
+};
+
+class Bytes {
+ public:
+  template <class T>
+  Bytes& operator<<(T value) {
+    bytes_.append(reinterpret_cast<const char*>(&value), sizeof(T));
+    return *this;
+  }
+  Bytes& header(const std::string& name, int version) {
+    *this << static_cast<std::uint8_t>(0x80 | name.size());
+    bytes_ += name;
+    return *this << static_cast<std::uint8_t>(version);
+  }
+  Bytes& end() { return *this << std::uint8_t{0x88}; }
+  Bytes& string(const std::string& s) {
+    *this << static_cast<std::uint32_t>(s.size());
+    bytes_ += s;
+    return *this;
+  }
+  template <class T>
+  Bytes& matrix(const char* name, std::uint32_t rows, std::uint32_t cols, T value) {
+    header(name, 0) << rows << cols;
+    for (std::uint32_t i = 0; i < rows * cols; ++i) *this << value;
+    return end();
+  }
+  const std::string& str() const { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+void writePose(Bytes& b, int version) {
+  b.header("CPose3D", version);
+  if (version == 0) b.matrix<float>("CMatrixF", 4, 4, 0.f);
+  if (version == 1) b.matrix<double>("CMatrixD", 4, 4, 0.0);
+  if (version == 2) b << 0.0 << 0.0 << 0.0 << 1.0 << 0.0 << 0.0 << 0.0;  // x y z qr qx qy qz
+  if (version == 3)
+    for (double v : {0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 1.}) b << v;
+  b.end();
+}
+
+void writeCamera(Bytes& b, int version) {
+  b.header("TCamera", version) << 0.01;                             // focal length (m)
+  for (int i = 0; i < (version >= 3 ? 8 : 5); ++i) b << 0.0;        // distortion
+  if (version < 4) {
+    b.header("CMatrixD", 0) << std::uint32_t{3} << std::uint32_t{3};
+    for (double v : {5., 0., 1.5, 0., 5., 1., 0., 0., 1.}) b << v;  // fx 0 cx; 0 fy cy; 0 0 1
+    b.end();
+  } else {
+    b << 5.0 << 5.0 << 1.5 << 1.0;  // fx fy cx cy
+  }
+  if (version == 0) b.matrix<double>("CMatrixD", 1, 5, 0.0);
+  if (version >= 2) b << std::uint32_t{3} << std::uint32_t{4};  // nrows, ncols
+  if (version >= 5) b.string("cam");
+  if (version >= 6) b << std::uint8_t{0};
+  b.end();
+}
+
+void writeGreyImage(Bytes& b, int version) {
+  b.header("CImage", version);
+  if (version == 0) {
+    b << std::uint32_t{4} << std::uint32_t{3} << std::uint32_t{1} << std::uint8_t{0} << std::uint32_t{12};
+  } else {
+    if (version >= 6) b << std::uint8_t{0};  // not stored externally
+    b << std::uint8_t{0};                    // grey
+    b << std::int32_t{4} << std::int32_t{3} << std::int32_t{0} << std::int32_t{12};  // width height origin bytes
+    if (version >= 9) b << std::int32_t{0};  // 8-bit depth
+    if (version >= 5) b << std::uint8_t{0};  // not zipped
+  }
+  for (int i = 0; i < 12; ++i) b << std::uint8_t(i);
+  b.end();
+}
+
+std::string oldScanBytes(const OldScan& s) {
+  Bytes b;
+  b.header("CObservation3DRangeScan", s.version) << 5.0f;  // maxRange
+  writePose(b, s.pose_version);
+  if (s.version > 0) b << std::uint8_t{1};  // hasPoints3D
+  b << std::uint32_t{2};                    // two points
+  for (float v : {0.f, 1.f, 0.f, 1.f, 1.5f, 1.5f}) b << v;  // x0 x1 y0 y1 z0 z1
+  if (s.version == 0) b << std::uint8_t{1} << std::uint8_t{1};  // valid
+  if (s.version >= 8) b << std::uint16_t{0} << std::uint16_t{1} << std::uint16_t{0} << std::uint16_t{0};
+  if (s.version >= 1) {
+    b << std::uint8_t{1};  // hasRangeImage
+    if (s.version >= 9) b << 0.001f;
+    if (s.version < 9) {
+      b.matrix<float>("CMatrixF", 3, 4, 1.5f);
+    } else {
+      b << std::uint32_t{3} << std::uint32_t{4};
+      for (int i = 0; i < 12; ++i) b << std::uint16_t{1500};
+    }
+    // The intensity image (TCamera before version 2 holds no size: MRPT takes 640 x 480).
+    const bool intensity = s.camera_version >= 2;
+    b << std::uint8_t{intensity};  // hasIntensityImage
+    if (intensity) writeGreyImage(b, s.image_version);
+    b << std::uint8_t{0};  // hasConfidenceImage
+    if (s.version >= 2) writeCamera(b, s.camera_version);
+    if (s.version >= 4) {
+      writeCamera(b, s.camera_version);
+      writePose(b, s.pose_version);
+    }
+  }
+  b << 0.01f << std::uint64_t{0};  // stdError, timestamp
+  b.string("old_scan");
+  if (s.version >= 3) {  // the points and the range image not stored externally
+    b << std::uint8_t{0};
+    b.string("");
+    b << std::uint8_t{0};
+    b.string("");
+  }
+  if (s.version >= 5) b << std::uint8_t{1};  // range_is_depth
+  if (s.version >= 6) b << std::int8_t{0};   // intensity channel
+  if (s.version >= 7) b << std::uint8_t{0};  // no pixel labels
+  if (s.version >= 10) b << std::uint8_t{0};
+  b.end();
+  return b.str();
+}
+
+}  // namespace
+
+// fuzz_rawlog: a version 0 scan (MRPT 1) whose sensor label claimed 1.8 GB, which the size check
+// did not follow past the 3D points. Every version MRPT reads is now followed to its end: scans of
+// versions 0 to 10 with the poses, cameras, images and matrices of the versions MRPT reads are
+// read by MRPT and pass the check, and a size in any of their fields that does not fit is an error.
+TEST(RawlogErrors, ScansOfEveryVersionMrptReadsAreFollowedToTheirEnd) {
+  const std::string dir = gasp::test::scratchDir();
+  std::vector<OldScan> scans;
+  for (int v = 0; v <= 10; ++v) scans.push_back({v, 2, 4, 8});
+  for (int p = 0; p <= 3; ++p) scans.push_back({8, p, 4, 8});
+  for (int c = 0; c <= 6; ++c) scans.push_back({8, 2, c, 8});
+  for (int i : {0, 2, 4, 5, 6, 7, 9}) scans.push_back({8, 2, 4, i});  // 3: always zipped, which MRPT refuses
+  for (const OldScan& s : scans) {
+    const std::string label = "scan version " + std::to_string(s.version) + ", CPose3D " +
+                              std::to_string(s.pose_version) + ", TCamera " + std::to_string(s.camera_version) +
+                              ", CImage " + std::to_string(s.image_version);
+    const std::string bytes = oldScanBytes(s);
+    {  // MRPT reads it to its end (the layout written above is the one MRPT reads)
+      mrpt::io::CMemoryStream mem;
+      mem.assignMemoryNotOwn(bytes.data(), bytes.size());
+      auto ar = mrpt::serialization::archiveFrom(mem);
+      mrpt::serialization::CSerializable::Ptr obj;
+      ASSERT_NO_THROW(obj = ar.ReadObject()) << label;
+      EXPECT_EQ(mem.getPosition(), bytes.size()) << label;
+      auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obj);
+      ASSERT_TRUE(scan) << label;
+      EXPECT_EQ(scan->sensorLabel, "old_scan") << label;
+      if (s.version >= 1 && s.camera_version >= 2) {
+        EXPECT_EQ(scan->intensityImage.getWidth(), 4u) << label;
+      }
+    }
+    const std::string path = dir + "/old_scan.rawlog";
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+    // The check lets it through and GASP reads the frame (version 0 has no range image, version 1
+    // no camera).
+    if (s.version == 0) {
+      EXPECT_PRED2(contains, readError(path), "'old_scan' has no range image") << label;
+    } else if (s.version == 1) {
+      EXPECT_PRED2(contains, readError(path), "cameraParams: camera intrinsics: focal lengths must be positive") << label;
+    } else {
+      std::vector<gasp::RgbdFrame> frames;
+      ASSERT_NO_THROW(frames = gasp::readRawlogFrames(path)) << label << ": " << readError(path);
+      ASSERT_EQ(frames.size(), 1u) << label;
+      EXPECT_FLOAT_EQ(frames[0].depth_m.at<float>(2, 3), 1.5f) << label;
+    }
+    // The sensor label's length (its 4 bytes before "old_scan") made 1.8 GB: an error naming it.
+    std::string flipped = bytes;
+    const auto at = flipped.find("old_scan");
+    flipped[at - 1] = '\x6e';
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << flipped;
+    EXPECT_PRED2(contains, readError(path), "CObservation3DRangeScan: sensorLabel claims 1845493768 bytes") << label;
+  }
 }

@@ -10,24 +10,25 @@
 /// refused here. The check walks the object's header fields as MRPT 2.5 reads them (an object:
 /// 0x80 | name length, class name, version byte, fields, 0x88; or MRPT's pre-0.5.5 header) and
 /// looks only at what MRPT will allocate from:
-///  - CObservation3DRangeScan: in every version the 3D points' count; in versions 9 and 10 (MRPT
-///    2.x) also the range image's rows x cols (and each side on its own, Eigen's sizes being int),
-///    then the intensity and confidence images (CImage versions 6-9: raw sizes, JPEG byte count,
-///    external file name), the two cameras (TCamera versions 4-6: camera name), the relative pose,
-///    the sensor label, the external file names, the pixel labels (size, label names) and the
-///    extra range layers (version 10);
+///  - CObservation3DRangeScan, every version MRPT 2.5 reads (0 to 10, MRPT 1 and 2): the 3D
+///    points' count, the range image (a CMatrixF object before version 9, rows x cols uint16s
+///    from 9, each side within Eigen's int sizes), the intensity and confidence images (CImage
+///    versions 0-9 and 100: raw sizes, byte counts, JPEG byte count, external file name), the
+///    cameras (TCamera versions 0-6: intrinsics matrices, camera name), the poses (CPose3D
+///    versions 0-3, the first two a matrix object), the sensor label, the external file names,
+///    the pixel labels (size, label names) and the extra range layers (version 10);
 ///  - CSensoryFrame (versions 0-2) and CActionCollection (version 0): the count of objects, then
 ///    each object inside as far as they can be followed.
 /// Every object's class must be one a rawlog holds there (an observation, a sensory frame or an
 /// action collection; observations inside a sensory frame, actions inside a collection): MRPT
 /// would deserialise any registered class the name says, with its own size fields, before the
 /// reader could look at its type.
-/// An object cut inside a field is an error too (MRPT would go on with a partial value). A class,
-/// a version or a nested layout it does not know (a JPEG's own header, a scan before version 9
-/// after its points, other observation classes) is left to MRPT as before: it does not make a
-/// valid file an error. Inside a version 9/10 scan (MRPT 2), a pose, camera or image of a version
-/// MRPT 2 does not write is an error: MRPT would read the sizes that follow from the wrong bytes.
-/// (The poses: CPose3D versions 2 and 3.)
+/// An object cut inside a field is an error too (MRPT would go on with a partial value). A class
+/// it does not know (other observation classes), a sensory frame version it does not know or a
+/// JPEG's own header is left to MRPT: it does not make a valid file an error. Inside a scan, a
+/// field that does not follow the layout of its version (a pose, camera, image or matrix of a
+/// version MRPT does not read, a zipped image MRPT refuses) is an error: MRPT would read the
+/// sizes that follow from the wrong bytes, or refuse the object.
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -162,11 +163,11 @@ class ObjectSizeCheck {
     if (name == "CObservation3DRangeScan") {
       const std::uint64_t begin = cursor_;
       if (rangeScan(version, old, problem)) return true;
-      // A version 9 or 10 scan (MRPT 2) is followed field by field as MRPT 2 reads it: a field
-      // that does not fit that layout would send MRPT reading sizes from the wrong bytes.
-      if (problem.empty() && !cut_ && (version == 9 || version == 10))
+      // A scan is followed field by field as MRPT reads its version: a field that does not fit
+      // that layout would send MRPT reading sizes from the wrong bytes.
+      if (problem.empty() && !cut_ && version <= 10)
         problem = "CObservation3DRangeScan: the fields from byte " + std::to_string(cursor_ - begin) +
-                  " of this version " + std::to_string(version) + " scan are not laid out as MRPT 2 writes them";
+                  " of this version " + std::to_string(version) + " scan are not laid out as MRPT reads them";
       return false;
     }
     if (depth < kMaxDepth &&
@@ -188,12 +189,14 @@ class ObjectSizeCheck {
   }
   static constexpr int kMaxDepth = 64;  ///< sensory frames inside sensory frames: followed this deep
 
+  /// A CObservation3DRangeScan of any version MRPT 2.5 reads (0 to 10), field by field as its
+  /// serializeFrom() reads them. True when followed to its end flag.
   bool rangeScan(std::uint8_t version, bool old, std::string& problem) {
     if (version > 10) return false;  // MRPT refuses it
     float max_range = 0;
     if (!read(max_range)) return false;
     const std::string what = "CObservation3DRangeScan: ";
-    if (!pose(what + "sensorPose", problem, version >= 9)) return false;
+    if (!pose(what + "sensorPose", problem)) return false;
     std::uint8_t has_points = 1;  // version 0: always
     if (version > 0 && !flag(what + "hasPoints3D", has_points, problem)) return false;
     if (has_points) {
@@ -208,28 +211,41 @@ class ObjectSizeCheck {
       }
       skip(need);
     }
-    if (version < 9) return false;  // then a CMatrixF range image and older fields: left to MRPT
-    std::uint8_t has_range = 0;
-    float range_units = 0;
-    if (!flag(what + "hasRangeImage", has_range, problem) || !read(range_units)) return false;
-    if (has_range && !rangeImage(what + "range image", problem)) return false;
-    std::uint8_t has_image = 0;
-    if (!flag(what + "hasIntensityImage", has_image, problem) || (has_image && !image(what + "intensity image", problem)))
-      return false;
-    if (!flag(what + "hasConfidenceImage", has_image, problem) || (has_image && !image(what + "confidence image", problem)))
-      return false;
-    for (const char* camera : {"cameraParams", "cameraParamsIntensity"})
-      if (!this->camera(what + camera, problem)) return false;
-    if (!pose(what + "relativePoseIntensityWRTDepth", problem)) return false;
+    if (version >= 1) {
+      std::uint8_t has_range = 0;
+      if (!flag(what + "hasRangeImage", has_range, problem)) return false;
+      float range_units = 0;
+      if (version >= 9 && !read(range_units)) return false;
+      if (has_range) {
+        // Before version 9 a CMatrixF object of float ranges, from version 9 rows, cols, uint16s.
+        if (version < 9 ? !matrix(what + "range image", sizeof(float), problem)
+                        : !rangeImage(what + "range image", problem))
+          return false;
+      }
+      std::uint8_t has_image = 0;
+      if (!flag(what + "hasIntensityImage", has_image, problem) ||
+          (has_image && !image(what + "intensity image", problem)))
+        return false;
+      if (!flag(what + "hasConfidenceImage", has_image, problem) ||
+          (has_image && !image(what + "confidence image", problem)))
+        return false;
+      if (version >= 2 && !camera(what + "cameraParams", problem)) return false;
+      if (version >= 4 && (!camera(what + "cameraParamsIntensity", problem) ||
+                           !pose(what + "relativePoseIntensityWRTDepth", problem)))
+        return false;
+    }
     if (!skip(sizeof(float) + sizeof(std::uint64_t))) return false;  // stdError, timestamp
     if (!string(what + "sensorLabel", problem)) return false;
-    for (const char* file : {"points3D external file", "rangeImage external file"})
-      if (std::uint8_t stored = 0; !flag(what + file + " flag", stored, problem) || !string(what + file, problem))
-        return false;
-    std::uint8_t has_labels = 0;
+    if (version >= 3)
+      for (const char* file : {"points3D external file", "rangeImage external file"})
+        if (std::uint8_t stored = 0; !flag(what + file + " flag", stored, problem) || !string(what + file, problem))
+          return false;
     std::uint8_t range_is_depth = 0;
-    if (!flag(what + "range_is_depth", range_is_depth, problem) || !skip(1) ||  // then the intensity channel
-        !flag(what + "pixelLabels flag", has_labels, problem) || (has_labels && !labels(what + "pixelLabels", problem)))
+    if (version >= 5 && !flag(what + "range_is_depth", range_is_depth, problem)) return false;
+    if (version >= 6 && !skip(1)) return false;  // the intensity channel
+    std::uint8_t has_labels = 0;
+    if (version >= 7 && (!flag(what + "pixelLabels flag", has_labels, problem) ||
+                         (has_labels && !labels(what + "pixelLabels", problem))))
       return false;
     if (version >= 10) {
       std::uint8_t layers = 0;
@@ -242,24 +258,49 @@ class ObjectSizeCheck {
     return endFlag(old);
   }
 
-  /// A nested object's version that no MRPT writing a version 9 or 10 scan (MRPT 2) writes: the
-  /// layout of what follows is unknown, and MRPT would read sizes from the wrong bytes. (MRPT
-  /// reads a nested object of a known type without checking its class name, so neither does this.)
+  /// A nested object's version that MRPT 2.5 does not read: the layout of what follows is
+  /// unknown, and MRPT would refuse it. (MRPT reads a nested object of a known type without
+  /// checking its class name, so neither does this.)
   bool unknownVersion(const std::string& what, const char* type, std::uint8_t version, std::string& problem) {
     problem = what + ": a " + type + " of serialisation version " + std::to_string(version) +
-              ", which MRPT 2 does not write in a version 9 or 10 scan (a corrupt byte)";
+              ", which MRPT does not read (a corrupt byte)";
     return false;
   }
 
-  /// A mrpt::poses::CPose3D object (version 2: 7 doubles, 3: 12 doubles). False when it cannot be
-  /// followed (problem set when it is not a layout MRPT 2 writes).
-  bool pose(const std::string& what, std::string& problem, bool mrpt2 = true) {
+  /// A mrpt::poses::CPose3D object: version 0 a 4 x 4 CMatrixF object, 1 a 4 x 4 CMatrixD object,
+  /// 2 seven doubles, 3 twelve doubles. False when it cannot be followed (problem set when a size
+  /// does not fit or the version is not one MRPT reads).
+  bool pose(const std::string& what, std::string& problem) {
     std::string name;
     std::uint8_t version = 0;
     bool old = false;
     if (!header(name, version, old)) return false;
-    if (version != 2 && version != 3) return mrpt2 ? unknownVersion(what, "CPose3D", version, problem) : false;
-    return skip((version == 2 ? 7 : 12) * sizeof(double)) && endFlag(old);
+    if (version > 3) return unknownVersion(what, "CPose3D", version, problem);
+    const bool fields = version == 0   ? matrix(what + " matrix", sizeof(float), problem)
+                        : version == 1 ? matrix(what + " matrix", sizeof(double), problem)
+                                       : skip((version == 2 ? 7 : 12) * sizeof(double));
+    return fields && endFlag(old);
+  }
+
+  /// A mrpt::math::CMatrixF or CMatrixD object (version 0: rows, cols (uint32), rows x cols
+  /// values of `value_bytes`). False when it cannot be followed (problem set when the values
+  /// need more bytes than remain or the version is not 0).
+  bool matrix(const std::string& what, std::uint64_t value_bytes, std::string& problem) {
+    std::string name;
+    std::uint8_t version = 0;
+    bool old = false;
+    if (!header(name, version, old)) return false;
+    if (version != 0) return unknownVersion(what, "matrix", version, problem);
+    std::uint32_t rows = 0, cols = 0;
+    if (!read(rows) || !read(cols)) return false;
+    const std::uint64_t need = std::uint64_t{rows} * cols * value_bytes;
+    const std::uint64_t max_side = std::numeric_limits<std::int32_t>::max();
+    if (need > left() || rows > max_side || cols > max_side) {
+      problem = what + " of " + std::to_string(rows) + " x " + std::to_string(cols) + " values needs " + bytes(need) +
+                " but " + bytes(left()) + " remain in the stream";
+      return false;
+    }
+    return skip(need) && endFlag(old);
   }
 
   /// rows, cols (uint32) and rows x cols uint16 values. False when they do not fit (problem set)
@@ -277,14 +318,16 @@ class ObjectSizeCheck {
     return skip(need);
   }
 
-  /// TPixelLabelInfo as MRPT 2 writes it: version 1, bytes per pixel (1, 2, 4, 8), rows, cols
+  /// TPixelLabelInfo as MRPT reads it: version 1, bytes per pixel (1 to 8), rows, cols
   /// (uint32) and the pixels' bit fields, then the label names as a std::map<uint32_t,
   /// std::string> (three type-name strings, a count, key and string pairs). False when it cannot
   /// be followed (problem set when a size does not fit).
   bool labels(const std::string& what, std::string& problem) {
     std::uint8_t version = 0, bytes_per_pixel = 0;
     if (!read(version) || version != 1 || !read(bytes_per_pixel)) return false;
-    if (bytes_per_pixel != 1 && bytes_per_pixel != 2 && bytes_per_pixel != 4 && bytes_per_pixel != 8) return false;
+    // MRPT stores the bit fields in the next integer size up: 3 in 4 bytes, 5 to 7 in 8.
+    if (bytes_per_pixel == 0 || bytes_per_pixel > 8) return false;  // MRPT refuses it
+    bytes_per_pixel = bytes_per_pixel <= 2 ? bytes_per_pixel : bytes_per_pixel <= 4 ? 4 : 8;
     std::uint32_t rows = 0, cols = 0;
     if (!read(rows) || !read(cols)) return false;
     const std::uint64_t need = std::uint64_t{rows} * cols * bytes_per_pixel;
@@ -331,43 +374,29 @@ class ObjectSizeCheck {
     return skip(n);
   }
 
-  /// A mrpt::img::CImage object (versions 6 to 9). False when it cannot be followed (problem set
-  /// when a size does not fit or the version is not one MRPT 2 writes).
+  /// A mrpt::img::CImage object of any version MRPT 2.5 reads: 0 (raw pixels), 1 (JPEG), 2 to 9
+  /// (an external-storage flag from 6; grey: sizes, byte count, a pixel depth from 9, a zip flag
+  /// from 5; colour: JPEG, or from 7 sizes and a JPEG or, the sizes negated, raw BGR) and 100 (an
+  /// image that only names its file). False when it cannot be followed (problem set when a size
+  /// does not fit or the version is not one MRPT reads).
   bool image(const std::string& what, std::string& problem) {
     std::string name;
     std::uint8_t version = 0;
     bool old = false;
     if (!header(name, version, old)) return false;
-    if (version < 6 || version > 9) return unknownVersion(what, "CImage", version, problem);
+    if (version > 9 && version != 100) return unknownVersion(what, "CImage", version, problem);
+    if (version == 0) return rawImage(what, problem) && endFlag(old);
+    if (version == 1) return jpeg(what, problem) && endFlag(old);
     std::uint8_t external = 0, colour = 0;
-    if (!flag(what + " external-storage flag", external, problem)) return false;
+    if ((version >= 6 && !flag(what + " external-storage flag", external, problem))) return false;
+    if (version == 100) return (!external || string(what + " file name", problem)) && endFlag(old);
     if (external) return string(what + " file name", problem) && endFlag(old);
     if (!read(colour)) return false;
+    if (!colour) return greyImage(what, version, problem) && endFlag(old);
+    if (version < 7) return jpeg(what, problem) && endFlag(old);
     std::int32_t width = 1, height = 1;
-    if ((!colour || version >= 7) && (!read(width) || !read(height))) return false;  // colour before 7: JPEG
-    const std::string size = " of " + std::to_string(width) + " x " + std::to_string(height) + " pixels";
-    if (!colour) {  // grey: width, height, origin, byte count, depth (version 9), zip flag, bytes
-      std::int32_t origin = 0, count = 0, depth = 0;
-      std::uint8_t zip = 0;
-      if (!read(origin) || !read(count) || (version >= 9 && !read(depth)) || !read(zip)) return false;
-      const std::uint64_t pixels = width < 0 || height < 0 ? 0 : std::uint64_t(width) * std::uint64_t(height);
-      if (width < 0 || height < 0 || count < 0 || pixels > left() || std::uint64_t(count) > left()) {
-        problem = what + size + " (" + bytes(std::uint64_t(std::max(count, 0))) + ") needs more than the " +
-                  bytes(left()) + " that remain in the stream";
-        return false;
-      }
-      if (zip) return false;  // MRPT refuses it
-      return skip(std::uint64_t(count)) && endFlag(old);
-    }
-    if (width >= 1 && height >= 1) {  // JPEG: byte count and bytes (the JPEG's own header: OpenCV's)
-      std::uint32_t n = 0;
-      if (!read(n)) return false;
-      if (n > left()) {
-        problem = what + " (JPEG) claims " + bytes(n) + " but " + bytes(left()) + " remain in the stream";
-        return false;
-      }
-      return skip(n) && endFlag(old);
-    }
+    if (!read(width) || !read(height)) return false;
+    if (width >= 1 && height >= 1) return jpeg(what, problem) && endFlag(old);
     if (width < 0 && height < 0) {  // raw BGR, the sizes negated
       const std::uint64_t need = width == std::numeric_limits<std::int32_t>::min() ||
                                          height == std::numeric_limits<std::int32_t>::min()
@@ -384,14 +413,72 @@ class ObjectSizeCheck {
     return false;  // an empty colour image of one negative side: MRPT's (OpenCV refuses it)
   }
 
-  /// A mrpt::img::TCamera object (versions 4 to 6). False when it cannot be followed.
+  /// A version 0 image: width, height, channels (uint32), origin (uint8), byte count (uint32) and
+  /// the bytes. MRPT allocates width x height x channels and reads the byte count into it, so a
+  /// count above that size would overrun the image: refused with the sizes that do not fit.
+  bool rawImage(const std::string& what, std::string& problem) {
+    std::uint32_t width = 0, height = 0, channels = 0, count = 0;
+    std::uint8_t origin = 0;
+    if (!read(width) || !read(height) || !read(channels) || !read(origin) || !read(count)) return false;
+    const std::uint64_t size = std::uint64_t{width} * height * std::max<std::uint32_t>(channels, 1);
+    if (size > left() || count > size) {
+      problem = what + " of " + std::to_string(width) + " x " + std::to_string(height) + " x " +
+                std::to_string(channels) + " bytes (" + bytes(count) + " stored) does not fit the " + bytes(left()) +
+                " that remain in the stream";
+      return false;
+    }
+    return skip(count);
+  }
+
+  /// A JPEG: byte count (uint32) and bytes (the JPEG's own header: OpenCV's).
+  bool jpeg(const std::string& what, std::string& problem) {
+    std::uint32_t n = 0;
+    if (!read(n)) return false;
+    if (n > left()) {
+      problem = what + " (JPEG) claims " + bytes(n) + " but " + bytes(left()) + " remain in the stream";
+      return false;
+    }
+    return skip(n);
+  }
+
+  /// A grey image of versions 2 to 9: width, height, origin, byte count (int32), a pixel depth
+  /// (int32, version 9), whether it is zipped (version 5 on; version 3 always, version 4 above
+  /// 16 KiB: MRPT refuses zipped images) and the bytes. MRPT allocates the pixels from the sizes
+  /// and the depth before it checks the byte count.
+  bool greyImage(const std::string& what, std::uint8_t version, std::string& problem) {
+    std::int32_t width = 0, height = 0, origin = 0, count = 0, depth = 0;
+    if (!read(width) || !read(height) || !read(origin) || !read(count) || (version >= 9 && !read(depth))) return false;
+    // OpenCV depths 8U, 8S, 16U, 16S, 32S, 32F, 64F, 16F.
+    constexpr std::uint64_t kDepthBytes[] = {1, 1, 2, 2, 4, 4, 8, 2};
+    const std::uint64_t pixels = width < 0 || height < 0 ? 0 : std::uint64_t(width) * std::uint64_t(height);
+    const std::uint64_t depth_bytes = depth >= 0 && depth < 8 ? kDepthBytes[depth] : 8;
+    if (width < 0 || height < 0 || count < 0 || pixels * depth_bytes > left() || std::uint64_t(count) > left()) {
+      problem = what + " of " + std::to_string(width) + " x " + std::to_string(height) + " pixels (" +
+                bytes(std::uint64_t(std::max(count, 0))) + ") needs more than the " + bytes(left()) +
+                " that remain in the stream";
+      return false;
+    }
+    std::uint8_t zip = version == 3 || (version == 4 && count > 16 * 1024);
+    if (version >= 5 && !read(zip)) return false;
+    if (zip) return false;  // MRPT refuses it
+    return skip(std::uint64_t(count));
+  }
+
+  /// A mrpt::img::TCamera object of any version MRPT 2.5 reads (0 to 6): focal length and five
+  /// distortion doubles, three more from version 3; before version 4 the intrinsics as a 3 x 3
+  /// CMatrixD object, from 4 four doubles; in version 0 a 1 x 5 CMatrixD object; image size
+  /// (2 x uint32) from 2; camera name from 5; distortion model (uint8) from 6. False when it
+  /// cannot be followed.
   bool camera(const std::string& what, std::string& problem) {
     std::string name;
     std::uint8_t version = 0;
     bool old = false;
     if (!header(name, version, old)) return false;
-    if (version < 4 || version > 6) return unknownVersion(what, "TCamera", version, problem);
-    if (!skip(13 * sizeof(double) + 2 * sizeof(std::uint32_t))) return false;  // focal length, 8 dist, fx fy cx cy, size
+    if (version > 6) return unknownVersion(what, "TCamera", version, problem);
+    if (!skip((version >= 3 ? 9 : 6) * sizeof(double))) return false;
+    if (version < 4 ? !matrix(what + " intrinsics", sizeof(double), problem) : !skip(4 * sizeof(double))) return false;
+    if (version == 0 && !matrix(what + " distortion", sizeof(double), problem)) return false;
+    if (version >= 2 && !skip(2 * sizeof(std::uint32_t))) return false;
     if (version >= 5 && !string(what + " camera name", problem)) return false;
     return skip(version >= 6 ? 1 : 0) && endFlag(old);
   }
