@@ -12,7 +12,7 @@
 #include "gasp/core/error.h"
 #include "gasp/mrpt/CGaspAligner.h"
 #include "gasp/mrpt/CSuperpixelMap.h"
-#include "gasp/mrpt/params_io.h"
+#include "gasp/params/params_io.h"
 
 namespace fs = std::filesystem;
 

@@ -12,7 +12,7 @@
 
 #include "gasp/core/stopwatch.h"
 #include "gasp/mrpt/CSuperpixelMap.h"
-#include "gasp/mrpt/params_io.h"
+#include "gasp/params/params_io.h"
 #include "gasp/rawlog/observation_conversion.h"
 
 IMPLEMENTS_MRPT_OBJECT(CGaspAligner, mrpt::rtti::CObject, gasp)

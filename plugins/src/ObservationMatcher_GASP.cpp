@@ -8,7 +8,7 @@
 
 #include "gasp/core/error.h"
 #include "gasp/core/stopwatch.h"
-#include "gasp/mrpt/params_io.h"
+#include "gasp/params/params_io.h"
 #include "gasp/mrpt/pose_covariance.h"
 #include "gasp/rawlog/observation_conversion.h"
 

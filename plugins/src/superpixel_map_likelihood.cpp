@@ -22,7 +22,7 @@
 #include "gasp/association/view_association.h"
 #include "gasp/core/error.h"
 #include "gasp/mrpt/CSuperpixelMap.h"
-#include "gasp/mrpt/params_io.h"
+#include "gasp/params/params_io.h"
 #include "gasp/rawlog/observation_conversion.h"
 
 namespace gasp {

@@ -7,7 +7,7 @@
 #include <ostream>
 
 #include "gasp/mrpt/CSuperpixelMap.h"
-#include "gasp/mrpt/params_io.h"
+#include "gasp/params/params_io.h"
 
 namespace gasp {
 

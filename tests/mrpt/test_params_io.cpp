@@ -1,7 +1,7 @@
-// gasp/mrpt/params_io.h: every parameter of SuperpixelParams and PairParams is an ini / YAML key
+// gasp/params/params_io.h: every parameter of SuperpixelParams and PairParams is an ini / YAML key
 // that reads back exactly what was written (so maps serialised through their option text keep all
-// of them), the special kinds of value (names, inf, lists) parse strictly, and docs/mrpt.md lists
-// every key with its true default.
+// of them), and the special kinds of value (names, inf, lists) parse strictly. (docs/parameters.md
+// lists every key with its default: tests/params.)
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/containers/yaml.h>
@@ -18,7 +18,7 @@
 #include <string>
 
 #include "gasp/mrpt/CSuperpixelMap.h"
-#include "gasp/mrpt/params_io.h"
+#include "gasp/params/params_io.h"
 
 using namespace gasp;
 
@@ -159,42 +159,6 @@ TEST(ParamsIo, SpecialValuesParseStrictlyInIniAndYaml) {
   EXPECT_THROW(readPairParams(mrpt::containers::yaml::FromText("dense_gates_m: [0.2, abc]\n"), "matcher", z),
                std::exception);
   EXPECT_THROW(readPairParams(mrpt::containers::yaml::FromText("candidate_key: 3\n"), "matcher", z), std::exception);
-}
-
-TEST(ParamsIo, DocsListEveryKeyWithItsDefault) {
-  std::ifstream in(std::string(GASP_SOURCE_DIR) + "/docs/mrpt.md");
-  ASSERT_TRUE(in) << "docs/mrpt.md not found";
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string doc = text.str();
-  // Table cells "| `key` | default |" (two pairs per row in the segmentation table).
-  std::map<std::string, std::string> documented;
-  const std::regex cell("\\| `([a-z0-9_]+)` \\| ([^|]+?) (?=\\|)");
-  for (auto it = std::sregex_iterator(doc.begin(), doc.end(), cell); it != std::sregex_iterator(); ++it)
-    documented.emplace((*it)[1], (*it)[2]);
-  auto same = [](const std::string& doc_value, const std::string& actual) {
-    std::stringstream d(doc_value), a(actual);
-    std::string x, y;
-    while (true) {
-      const bool more_d = static_cast<bool>(std::getline(d, x, ',')), more_a = static_cast<bool>(std::getline(a, y, ','));
-      if (more_d != more_a) return false;
-      if (!more_d) return true;
-      try {
-        const double u = std::stod(x), v = std::stod(y);
-        if (!(u == v || std::abs(u - v) <= 1e-6 * std::abs(v))) return false;
-      } catch (const std::exception&) {
-        if (x != y) return false;
-      }
-    }
-  };
-  for (const auto& [key, value] : pairKeys(PairParams{})) {
-    const auto d = documented.find(key);
-    if (d == documented.end()) {
-      ADD_FAILURE() << "docs/mrpt.md has no row for key " << key;
-      continue;
-    }
-    EXPECT_TRUE(same(d->second, value)) << key << ": docs say " << d->second << ", the default is " << value;
-  }
 }
 
 TEST(ParamsIo, AMapKeepsItsOptionsAndEachViewItsOwnSegmentationThroughSerialization) {

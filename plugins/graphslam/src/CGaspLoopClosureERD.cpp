@@ -11,7 +11,7 @@
 #include <string>
 
 #include "gasp/core/error.h"
-#include "gasp/mrpt/params_io.h"
+#include "gasp/params/params_io.h"
 #include "gasp/mrpt/pose_graph.h"
 #include "gasp/rawlog/observation_conversion.h"
 #include "gasp/slam/loop_search.h"

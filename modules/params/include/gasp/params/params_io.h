@@ -2,7 +2,8 @@
 /// \file params_io.h GASP's parameters in MRPT's configuration formats: ini sections
 /// (mrpt::config::CConfigFileBase, as CMultiMetricMap and CGaspAligner read them) and YAML
 /// (mrpt::containers::yaml, as ObservationMatcher_GASP reads them). One key table per struct, so
-/// every format uses the same names (docs/mrpt.md lists them with their defaults).
+/// every format uses the same names, those of the params file (params_file.h; docs/parameters.md
+/// lists every key with its default).
 ///
 /// Reading: missing keys keep the value passed in; unknown keys and invalid values throw an MRPT
 /// exception (std::exception) naming the section and the key.
@@ -24,7 +25,7 @@ void writeSuperpixelParams(const SuperpixelParams& params, mrpt::config::CConfig
                            const std::string& section);
 
 /// The pair pipeline: every field of PairParams, its segmentation under the keys above and the
-/// rest under the names docs/mrpt.md lists ("Matching keys"). Enumerations by name
+/// rest under the keys of sections associate to retry of docs/parameters.md. Enumerations by name
 /// (candidate_key: quantiles | mean; refinement_loss: none | huber | cauchy), dense_gates_m as a
 /// comma-separated list (or a YAML sequence), cost_replace and cost_transpose may be inf.
 void readPairParams(const mrpt::config::CConfigFileBase& source, const std::string& section, PairParams& params,

@@ -1,22 +1,28 @@
-#include "gasp/mrpt/params_io.h"
-
-#include <mrpt/config/CConfigFileMemory.h>
+#pragma once
+/// \file param_keys.h (private) The key of every parameter, one table per section of the params
+/// file (params_file.h) and, concatenated, the flat key list of an ini section (params_io.h);
+/// strict text parsing of one value and its exact text. Each table calls f(key, field) for every
+/// field, so that reading and writing cover every parameter.
+#include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/containers/yaml.h>
 #include <mrpt/core/exceptions.h>
+#include <mrpt/core/format.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
-#include "gasp/core/error.h"
-#include "gasp/superpixels/depth_superpixels.h"
+#include "gasp/pipeline/pair_registration.h"
+#include "gasp/slam/slam_params.h"
+#include "gasp/superpixels/superpixel_params.h"
 
-namespace gasp {
-
-namespace {
+namespace gasp::detail {
 
 // ---- Key tables: each calls f(key, field) for every field of the struct, so that reading and
 // writing (and with them the maps' serialization) cover every parameter. A field that may be
@@ -61,12 +67,9 @@ void superpixelFields(P& p, F&& f) {
   f("step_smoothness", p.step_smoothness);
 }
 
-/// The pair pipeline: its segmentation (the matcher's observations, the finer-scale retry) under
-/// the segmentation's keys, then every stage's parameters (pair_registration.h).
+/// The pair pipeline by stage (pair_registration.h), one table per section of the params file.
 template <class P, class F>
-void pairFields(P& p, F&& f) {
-  superpixelFields(p.segment, f);
-  // Associate (associate_stage.h, view_association.h)
+void associateFields(P& p, F&& f) {  // associate_stage.h, view_association.h
   auto& a = p.associate;
   f("neighbourhood_k", a.feature_sets.neighbourhood.k);
   f("feature_e_theta_rad", a.feature_sets.feature.e_theta_rad);
@@ -84,7 +87,10 @@ void pairFields(P& p, F&& f) {
   f("mutual_check", a.mutual_check);
   f("candidate_key", a.candidate_key);
   f("distinctiveness_ratio", a.distinctiveness_ratio);
-  // Hypothesise: RANSAC (ransac.h), the patch refinement (refinement.h), guided verification
+}
+
+template <class P, class F>
+void hypothesiseFields(P& p, F&& f) {  // RANSAC (ransac.h), the patch refinement (refinement.h), guided verification
   auto& r = p.hypothesise.pose.ransac;
   f("inlier_distance_m", r.inlier.distance_m);
   f("inlier_normal_angle_deg", r.inlier.normal_angle_deg);
@@ -115,7 +121,10 @@ void pairFields(P& p, F&& f) {
   f("guided_max_normal_angle_deg", g.gates.max_normal_angle_deg);
   f("guided_lambda", g.gates.lambda);
   f("min_guided_support", g.min_support);
-  // Refine: dense rounds (dense_rounds.h), pixel and edge terms, the solver, the slide scan
+}
+
+template <class P, class F>
+void refineFields(P& p, F&& f) {  // dense rounds (dense_rounds.h), pixel and edge terms, the solver, the slide scan
   auto& d = p.refine;
   f("dense_rounds", d.dense.rounds);
   f("dense_gates_m", d.dense.gates_m);
@@ -148,7 +157,10 @@ void pairFields(P& p, F&& f) {
   f("slide_scan_step_m", d.slide_scan.step_m);
   f("slide_scan_min_gain", d.slide_scan.min_gain);
   f("slide_scan_pixel_step", d.slide_scan.pixel_step);
-  // Certify: the views' degeneracy, dense support, free space (visibility_check.h), model error
+}
+
+template <class P, class F>
+void certifyFields(P& p, F&& f) {  // the views' degeneracy, dense support, free space (visibility_check.h), model error
   auto& c = p.certify;
   f("view_degeneracy_min_eigenvalue_ratio", c.view_degeneracy.min_eigenvalue_ratio);
   f("min_dense_terms", c.min_dense_terms);
@@ -162,21 +174,80 @@ void pairFields(P& p, F&& f) {
   f("one_way_max_violation_ratio", c.fallback_max_violation_ratio);
   f("model_error_t_m", c.model_error.sigma_t_m);
   f("model_error_r_deg", c.model_error.sigma_r_deg);
-  // Retry (retry_stage.h)
+}
+
+template <class P, class F>
+void retryFields(P& p, F&& f) {  // retry_stage.h
   f("one_way_fallback", p.retry.one_way_fallback);
   f("retry_area_factor", p.retry.finer_area_factor);
 }
 
+/// The pair pipeline: its segmentation (the matcher's observations, the finer-scale retry) under
+/// the segmentation's keys, then every stage's parameters: the flat key list of an ini section.
+template <class P, class F>
+void pairFields(P& p, F&& f) {
+  superpixelFields(p.segment, f);
+  associateFields(p, f);
+  hypothesiseFields(p, f);
+  refineFields(p, f);
+  certifyFields(p, f);
+  retryFields(p, f);
+}
+
+/// The odometry's own keys (odometry_params.h; scene_change_X = SceneChangeParams::X).
+template <class P, class F>
+void odometryFields(P& p, F&& f) {
+  f("keyframe_distance_m", p.keyframe_distance_m);
+  f("keyframe_angle_deg", p.keyframe_angle_deg);
+  f("max_speed_mps", p.max_speed_mps);
+  f("max_rate_radps", p.max_rate_radps);
+  f("rolling_shutter_readout_s", p.rolling_shutter_readout_s);
+  auto& s = p.scene_change;
+  f("scene_change", s.enabled);
+  f("scene_change_max_violation_ratio", s.max_violation_ratio);
+  f("scene_change_max_two_way_violation_ratio", s.max_two_way_violation_ratio);
+  f("scene_change_max_occluded_ratio", s.max_occluded_ratio);
+  f("scene_change_gate_m", s.gate_m);
+  f("scene_change_gate_deg", s.gate_deg);
+  f("scene_change_max_accel_mps2", s.max_accel_mps2);
+  f("scene_change_max_angular_accel_radps2", s.max_angular_accel_radps2);
+  f("scene_change_max_gate_m", s.max_gate_m);
+  f("scene_change_max_gate_deg", s.max_gate_deg);
+}
+
+/// The loop closer (slam_params.h); its inlier count is loop_min_inliers beside RANSAC's min_inliers.
+template <class P, class F>
+void loopClosureFields(P& p, F&& f) {
+  f("enabled", p.enabled);
+  f("search_radius_m", p.search_radius_m);
+  f("max_axis_angle_deg", p.max_axis_angle_deg);
+  f("min_keyframe_gap", p.min_keyframe_gap);
+  f("max_candidates", p.max_candidates);
+  f("loop_min_inliers", p.min_inliers);
+  f("gate_chi2", p.gate_chi2);
+  f("relocalisation_candidates", p.relocalisation_candidates);
+  f("relocalisation_min_inliers", p.relocalisation_min_inliers);
+  f("relocalisation_agreeing", p.relocalisation_agreeing);
+}
+
+/// The pose-graph optimiser (pose_graph_optimizer.h).
+template <class P, class F>
+void poseGraphFields(P& p, F&& f) {
+  f("max_iterations", p.max_iterations);
+  f("function_tolerance", p.function_tolerance);
+  f("num_threads", p.num_threads);
+}
+
 // ---- Strict text parsing (MRPT's read_double() would turn "abc" into 0 silently).
 
-std::string trimmed(const std::string& s) {
+inline std::string trimmed(const std::string& s) {
   std::size_t b = 0, e = s.size();
   while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
   while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
   return s.substr(b, e - b);
 }
 
-bool parse(const std::string& text, double& v) {
+inline bool parse(const std::string& text, double& v) {
   try {
     std::size_t used = 0;
     const double x = std::stod(text, &used);
@@ -188,7 +259,7 @@ bool parse(const std::string& text, double& v) {
   }
 }
 
-bool parse(const std::string& text, int& v) {
+inline bool parse(const std::string& text, int& v) {
   try {
     std::size_t used = 0;
     const long x = std::stol(text, &used);
@@ -200,7 +271,7 @@ bool parse(const std::string& text, int& v) {
   }
 }
 
-bool parse(const std::string& text, std::uint64_t& v) {
+inline bool parse(const std::string& text, std::uint64_t& v) {
   if (text.empty() || text[0] == '-') return false;
   try {
     std::size_t used = 0;
@@ -213,39 +284,39 @@ bool parse(const std::string& text, std::uint64_t& v) {
   }
 }
 
-std::string lowercase(const std::string& text) {
+inline std::string lowercase(const std::string& text) {
   std::string t;
   for (char c : text) t += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return t;
 }
 
-bool parse(const std::string& text, bool& v) {
+inline bool parse(const std::string& text, bool& v) {
   const std::string t = lowercase(text);
   if (t == "true" || t == "1" || t == "yes" || t == "on") return v = true, true;
   if (t == "false" || t == "0" || t == "no" || t == "off") return v = false, true;
   return false;
 }
 
-bool parse(const std::string& text, unsigned& v) {
+inline bool parse(const std::string& text, unsigned& v) {
   std::uint64_t x = 0;
   if (!parse(text, x) || x > std::numeric_limits<unsigned>::max()) return false;
   v = static_cast<unsigned>(x);
   return true;
 }
 
-bool parse(const std::string& text, MayBeInfinite<double> w) {
+inline bool parse(const std::string& text, MayBeInfinite<double> w) {
   const std::string t = lowercase(text);
   if (t == "inf" || t == "+inf" || t == "infinity") return w.value = std::numeric_limits<double>::infinity(), true;
   return parse(text, w.value);
 }
 
-bool parse(const std::string& text, CandidateKey& v) {
+inline bool parse(const std::string& text, CandidateKey& v) {
   if (text == "quantiles") return v = CandidateKey::kQuantiles, true;
   if (text == "mean") return v = CandidateKey::kMean, true;
   return false;
 }
 
-bool parse(const std::string& text, RobustLoss& v) {
+inline bool parse(const std::string& text, RobustLoss& v) {
   if (text == "none") return v = RobustLoss::kNone, true;
   if (text == "huber") return v = RobustLoss::kHuber, true;
   if (text == "cauchy") return v = RobustLoss::kCauchy, true;
@@ -253,7 +324,7 @@ bool parse(const std::string& text, RobustLoss& v) {
 }
 
 /// A comma-separated list of finite numbers (at least one).
-bool parse(const std::string& text, std::vector<double>& v) {
+inline bool parse(const std::string& text, std::vector<double>& v) {
   std::vector<double> out;
   std::size_t b = 0;
   while (true) {
@@ -268,29 +339,29 @@ bool parse(const std::string& text, std::vector<double>& v) {
   return true;
 }
 
-const char* typeName(const double&) { return "a finite number"; }
-const char* typeName(const int&) { return "an integer"; }
-const char* typeName(const unsigned&) { return "a non-negative integer"; }
-const char* typeName(const std::uint64_t&) { return "a non-negative integer"; }
-const char* typeName(const bool&) { return "true or false"; }
+inline const char* typeName(const double&) { return "a finite number"; }
+inline const char* typeName(const int&) { return "an integer"; }
+inline const char* typeName(const unsigned&) { return "a non-negative integer"; }
+inline const char* typeName(const std::uint64_t&) { return "a non-negative integer"; }
+inline const char* typeName(const bool&) { return "true or false"; }
 template <class D>
-const char* typeName(const MayBeInfinite<D>&) { return "a number or inf"; }
-const char* typeName(const CandidateKey&) { return "quantiles or mean"; }
-const char* typeName(const RobustLoss&) { return "none, huber or cauchy"; }
-const char* typeName(const std::vector<double>&) { return "a comma-separated list of finite numbers"; }
+inline const char* typeName(const MayBeInfinite<D>&) { return "a number or inf"; }
+inline const char* typeName(const CandidateKey&) { return "quantiles or mean"; }
+inline const char* typeName(const RobustLoss&) { return "none, huber or cauchy"; }
+inline const char* typeName(const std::vector<double>&) { return "a comma-separated list of finite numbers"; }
 
-std::string toText(double v) { return mrpt::format("%.17g", v); }  // exact: reads back to the same double
-std::string toText(int v) { return std::to_string(v); }
-std::string toText(unsigned v) { return std::to_string(v); }
-std::string toText(std::uint64_t v) { return std::to_string(v); }
-std::string toText(bool v) { return v ? "true" : "false"; }
+inline std::string toText(double v) { return mrpt::format("%.17g", v); }  // exact: reads back to the same double
+inline std::string toText(int v) { return std::to_string(v); }
+inline std::string toText(unsigned v) { return std::to_string(v); }
+inline std::string toText(std::uint64_t v) { return std::to_string(v); }
+inline std::string toText(bool v) { return v ? "true" : "false"; }
 template <class D>
-std::string toText(const MayBeInfinite<D>& w) { return std::isinf(w.value) ? "inf" : toText(static_cast<double>(w.value)); }
-std::string toText(CandidateKey v) { return v == CandidateKey::kMean ? "mean" : "quantiles"; }
-std::string toText(RobustLoss v) {
+inline std::string toText(const MayBeInfinite<D>& w) { return std::isinf(w.value) ? "inf" : toText(static_cast<double>(w.value)); }
+inline std::string toText(CandidateKey v) { return v == CandidateKey::kMean ? "mean" : "quantiles"; }
+inline std::string toText(RobustLoss v) {
   return v == RobustLoss::kNone ? "none" : v == RobustLoss::kCauchy ? "cauchy" : "huber";
 }
-std::string toText(const std::vector<double>& v) {
+inline std::string toText(const std::vector<double>& v) {
   std::string s;
   for (const double x : v) s += (s.empty() ? "" : ",") + toText(x);
   return s;
@@ -330,143 +401,4 @@ bool fromYaml(const mrpt::containers::yaml& node, T&& field) {
   }
 }
 
-/// Reads the keys of `table` from an ini section; unknown keys (except `other_allowed`) throw.
-template <class Table>
-void readIni(const mrpt::config::CConfigFileBase& source, const std::string& section, Table&& table,
-             const std::set<std::string>& other_allowed) {
-  std::set<std::string> known = other_allowed;
-  table([&](const char* key, auto&& field) {
-    known.insert(key);
-    readOne(source, section, key, std::forward<decltype(field)>(field));
-  });
-  checkKeys(source, section, known);
-}
-
-/// " (key K1, K2)": the keys of `keys` that make `base` invalid when set alone (`apply` sets one
-/// on a copy), or "" when none does (only their combination is invalid).
-template <class Apply>
-std::string keysInvalidAlone(const std::vector<std::string>& keys, const PairParams& base, Apply&& apply) {
-  std::string out;
-  for (const std::string& key : keys) {
-    PairParams trial = base;
-    try {
-      apply(key, trial);
-      validate(trial);
-    } catch (const std::exception&) {
-      out += (out.empty() ? " (key " : ", ") + key;
-    }
-  }
-  return out.empty() ? out : out + ")";
-}
-
-}  // namespace
-
-void readValue(const mrpt::config::CConfigFileBase& source, const std::string& section, const std::string& key,
-               double& value) {
-  readOne(source, section, key, value);
-}
-
-void readValue(const mrpt::config::CConfigFileBase& source, const std::string& section, const std::string& key,
-               int& value) {
-  readOne(source, section, key, value);
-}
-
-void readValue(const mrpt::config::CConfigFileBase& source, const std::string& section, const std::string& key,
-               bool& value) {
-  readOne(source, section, key, value);
-}
-
-void writeValue(mrpt::config::CConfigFileBase& target, const std::string& section, const std::string& key,
-                double value) {
-  target.write(section, key, toText(value));
-}
-
-void checkKeys(const mrpt::config::CConfigFileBase& source, const std::string& section,
-               const std::set<std::string>& known) {
-  if (!source.sectionExists(section)) return;
-  std::vector<std::string> keys;
-  source.getAllKeys(section, keys);
-  for (const auto& k : keys) {
-    if (known.count(k)) continue;
-    std::string list;
-    for (const auto& n : known) list += (list.empty() ? "" : ", ") + n;
-    THROW_EXCEPTION_FMT("[%s]: unknown key '%s' (known keys: %s)", section.c_str(), k.c_str(), list.c_str());
-  }
-}
-
-void readSuperpixelParams(const mrpt::config::CConfigFileBase& source, const std::string& section,
-                          SuperpixelParams& params, const std::set<std::string>& other_allowed_keys) {
-  SuperpixelParams p = params;
-  readIni(source, section, [&](auto&& f) { superpixelFields(p, f); }, other_allowed_keys);
-  try {
-    validate(p);
-  } catch (const Error& e) {
-    THROW_EXCEPTION_FMT("[%s]: %s", section.c_str(), e.what());
-  }
-  params = p;
-}
-
-void writeSuperpixelParams(const SuperpixelParams& params, mrpt::config::CConfigFileBase& target,
-                           const std::string& section) {
-  superpixelFields(params, [&](const char* key, const auto& v) { target.write(section, key, toText(v)); });
-}
-
-void readPairParams(const mrpt::config::CConfigFileBase& source, const std::string& section, PairParams& params,
-                    const std::set<std::string>& other_allowed_keys) {
-  PairParams p = params;
-  readIni(source, section, [&](auto&& f) { pairFields(p, f); }, other_allowed_keys);
-  try {
-    validate(p);
-  } catch (const Error& e) {
-    // Name the keys that are invalid on their own: the stages' messages name their fields.
-    std::vector<std::string> keys;
-    source.getAllKeys(section, keys);
-    const std::string culprits = keysInvalidAlone(keys, params, [&](const std::string& key, PairParams& trial) {
-      if (other_allowed_keys.count(key)) return;
-      mrpt::config::CConfigFileMemory one;
-      one.write(section, key, source.read_string(section, key, ""));
-      pairFields(trial, [&](const char* k, auto&& field) {
-        if (key == k) readOne(one, section, k, std::forward<decltype(field)>(field));
-      });
-    });
-    THROW_EXCEPTION_FMT("[%s]: invalid parameters%s: %s", section.c_str(), culprits.c_str(), e.what());
-  }
-  params = p;
-}
-
-void readPairParams(const mrpt::containers::yaml& y, const std::string& who, PairParams& params) {
-  PairParams p = params;
-  if (!y.isNullNode() && !y.empty()) {
-    if (!y.isMap()) THROW_EXCEPTION_FMT("%s: parameters must be a YAML map", who.c_str());
-    std::set<std::string> known;
-    pairFields(p, [&](const char* key, auto&& field) {
-      known.insert(key);
-      if (!y.has(key)) return;
-      if (!fromYaml(y[key], std::forward<decltype(field)>(field)))
-        THROW_EXCEPTION_FMT("%s: parameter '%s' must be %s", who.c_str(), key, typeName(field));
-    });
-    for (const auto& [key, value] : y.asMap()) {
-      const auto name = key.as<std::string>();
-      if (!known.count(name)) THROW_EXCEPTION_FMT("%s: unknown parameter '%s'", who.c_str(), name.c_str());
-    }
-  }
-  try {
-    validate(p);
-  } catch (const Error& e) {
-    std::vector<std::string> keys;
-    for (const auto& [key, value] : y.asMap()) keys.push_back(key.as<std::string>());
-    const std::string culprits = keysInvalidAlone(keys, params, [&](const std::string& key, PairParams& trial) {
-      pairFields(trial, [&](const char* k, auto&& field) {
-        if (key == k) fromYaml(y[k], std::forward<decltype(field)>(field));
-      });
-    });
-    THROW_EXCEPTION_FMT("%s: invalid parameters%s: %s", who.c_str(), culprits.c_str(), e.what());
-  }
-  params = p;
-}
-
-void writePairParams(const PairParams& params, mrpt::config::CConfigFileBase& target, const std::string& section) {
-  pairFields(params, [&](const char* key, const auto& v) { target.write(section, key, toText(v)); });
-}
-
-}  // namespace gasp
+}  // namespace gasp::detail
