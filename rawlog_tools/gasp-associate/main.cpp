@@ -1,5 +1,5 @@
 // gasp-associate: patch associations and the relative pose between two depth views.
-//   gasp-associate --tum DIR --from I --to J [--out PICTURE.png] [options]
+//   gasp-associate --tum DIR --from I --to J [--out PICTURE.png] [--params FILE] [options]
 //   gasp-associate --depth-a A.png --depth-b B.png [--intrinsics fr1|fr2|fr3|ros|FILE] [--depth-scale 5000]
 //   gasp-associate --rawlog FILE.rawlog --from I --to J [--sensor LABEL] [--gt CAMERA_TRAJECTORY.txt] [options]
 // I and J are frame indices in depth.txt order, or (--rawlog) the I-th and J-th
@@ -32,13 +32,17 @@
 #include "gasp/pipeline/rolling_shutter_deskew.h"
 #include "gasp/rawlog/rawlog_reader.h"
 #include "cli.h"
+#include "params_options.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"gasp-associate: patch-to-patch associations and the relative pose between two depth views, from geometry alone"};
   std::string tum_dir, depth_a_path, depth_b_path, intrinsics_arg, out_path;
   std::size_t from = 0, to = 0;
   double depth_scale = gasp::kTumDepthUnitsPerMetre;
-  gasp::PairParams params;
+  gasp::tools::ParamsOptions params_options;
+  gasp::SlamParams all_params;
+  if (!params_options.preload(argc, argv, all_params)) return 1;
+  gasp::PairParams& params = all_params.odometry.pair;  // the params file's sections segment to retry
   auto* tum = app.add_option("--tum", tum_dir, "TUM RGB-D folder");
   std::string rawlog_path, gt_path;
   auto* rawlog = app.add_option("--rawlog", rawlog_path,
@@ -76,42 +80,17 @@ int main(int argc, char** argv) {
   bool picture_free = false;
   app.add_flag("--free", picture_free,
                "the picture shows the free associations (before any pose) instead of the verified ones");
-  double area_cm2 = params.segment.target_patch_area_m2 * 1e4;
-  app.add_option("--area-cm2", area_cm2, "target patch area [cm^2]")->capture_default_str()->check(gasp::tools::above(0));
-  app.add_option("--k", params.associate.feature_sets.neighbourhood.k, "neighbourhood size (0 = full view)")->capture_default_str()->check(gasp::tools::atLeast(0));
-  app.add_option("--candidates", params.associate.candidates, "KD-tree candidates per patch (C)")->capture_default_str()->check(gasp::tools::atLeast(1));
-  app.add_option("--lambda", params.associate.lambda, "gating on the normalised edit distance")->capture_default_str()->check(gasp::tools::within(0, 1));
-  app.add_option("--distinctiveness", params.associate.distinctiveness_ratio,
-                 "ratio test: keep a best partner only when its D_hat < R x the second best (1 = off)")
-      ->capture_default_str()
-      ->check(gasp::tools::above(0))
-      ->check(gasp::tools::within(0, 1));
-  double theta_dev_deg = params.associate.match.theta_dev_rad * 180.0 / M_PI;
-  app.add_option("--r-dev", params.associate.match.r_dev_m, "match tolerance of the distance components [m]")->capture_default_str()->check(gasp::tools::above(0));
-  app.add_option("--theta-dev", theta_dev_deg, "match tolerance of the angle components [deg]")->capture_default_str()->check(gasp::tools::above(0));
-  app.add_flag("!--no-mutual", params.associate.mutual_check, "keep one-way best partners too (no mutual check)");
   bool refine = true;
-  app.add_flag("!--no-refine", refine, "RANSAC pose only (no point-to-plane refinement)");
-  app.add_flag("!--no-dense-line-search", params.refine.dense.line_search,
-               "no line search at the dense rounds' last gate (docs/pipeline.md, \"Line search at the last gate\")");
-  app.add_flag("!--no-slide-scan", params.refine.slide_scan.enabled,
-               "no slide scan of a pose whose patch problem was degenerate (docs/pipeline.md, \"Slide scan\")");
-  app.add_option("--retry-area-factor", params.retry.finer_area_factor,
-                 "when no estimate is found, segment again with this times the patch area and retry, mutual associations only (0 = never, else in [0.01, 1))")
-      ->capture_default_str()
-      ->check(gasp::tools::zeroOrWithinHalfOpen(0.01, 1));
+  app.add_flag("!--no-refine", refine,
+               "RANSAC pose only: no patch refinement and no dense rounds (hypothesise.refine = false, "
+               "refine.dense_rounds = 0)");
   gasp::DeskewParams deskew;
   app.add_option("--rolling-shutter", deskew.readout_s,
                  "deskew both views for a rolling shutter with this readout time [s] (first row to last; negative: "
                  "bottom-up; TUM's Kinect: 0.03), with the velocity from GASP's pose between each frame's neighbours")
       ->needs(tum)
       ->capture_default_str();
-  std::vector<double> model_error;
-  app.add_option("--model-error", model_error,
-                 "T_M,R_DEG: model error per axis added to the pose's covariance for the edge information "
-                 "(edge_sigma line; default 0.01,0.75; docs/pipeline.md)")
-      ->expected(2)
-      ->delimiter(',');
+  params_options.add(app);
   try {
     app.parse(argc, argv);
     if ((from_opt->count() > 0 || to_opt->count() > 0) && tum_dir.empty() && rawlog_path.empty())
@@ -121,30 +100,21 @@ int main(int argc, char** argv) {
     if (!std::isfinite(deskew.readout_s) || std::abs(deskew.readout_s) > 1.0)
       throw CLI::ValidationError("--rolling-shutter must be a finite time of at most 1 s (either sign)");
     if (!out_path.empty()) gasp::requireImageWriter(out_path, "--out picture");
-    if (!model_error.empty()) {
-      params.certify.model_error = {model_error[0], model_error[1]};
-      try {
-        gasp::validate(params.certify.model_error);
-      } catch (const gasp::Error& e) {
-        throw CLI::ValidationError(std::string("--model-error: ") + e.what());
-      }
-    }
   } catch (const CLI::ParseError& e) {
     return gasp::tools::usageExit(app, e);  // --help: 0; any usage error: 2
   } catch (const gasp::Error& e) {
     std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';
     return 2;
   }
+  if (!refine) {  // both refinements off: RANSAC's pose
+    params.hypothesise.pose.refine = false;
+    params.refine.dense.rounds = 0;
+  }
+  if (const int code = params_options.printIfAsked(all_params); code >= 0) return code;
   if (tum_dir.empty() && rawlog_path.empty() && depth_a_path.empty()) {
     std::cerr << "error: give --tum DIR --from I --to J, --rawlog FILE --from I --to J, or --depth-a A.png --depth-b B.png\n";
     return 2;
   }
-  params.associate.match.theta_dev_rad = theta_dev_deg * M_PI / 180.0;
-  if (!refine) {
-    params.hypothesise.pose.refine = false;
-    params.refine.dense.rounds = 0;
-  }
-  params.segment.target_patch_area_m2 = area_cm2 * 1e-4;
   // The default picture path is known before the work, so it is checked with --out's rules.
   if (out_path.empty())
     out_path = depth_a_path.empty() ? "associations_" + std::to_string(from) + "_" + std::to_string(to) + ".png"

@@ -12,6 +12,7 @@
 #include "gasp/eval/ate.h"
 #include "gasp/eval/rpe.h"
 #include "cli.h"
+#include "params_options.h"
 
 namespace {
 
@@ -28,6 +29,12 @@ int main(int argc, char** argv) {
   CLI::App app{"gasp-eval: absolute trajectory error (ATE) and relative pose error (RPE) of an "
                "estimated TUM trajectory against ground truth, as TUM's evaluate_ate.py and "
                "evaluate_rpe.py define them"};
+  // The params file is not used here; it is checked, and --print-params prints it, as in every program.
+  gasp::tools::ParamsOptions params_options;
+  gasp::SlamParams params;
+  if (!params_options.preload(argc, argv, params)) return 1;
+  if (const int code = params_options.printBeforeParse(params); code >= 0) return code;
+  params_options.add(app);
   app.require_subcommand(1);
   std::string gt_path, est_path, aligned_path;
   double max_dt = 0.02, offset = 0.0, scale = 1.0, delta = 1.0;

@@ -4,7 +4,10 @@
 //   gasp-graphslam --rawlog FILE [--ini FILE] [--node-reg NAME] [--edge-reg NAME] [--optimizer NAME]
 //                  [--out TRAJ.txt] [--graph G.graph] [--report-dir DIR] [--gt TRAJ.txt]
 //                  [--simplemap MAP.simplemap] [--cloud MAP.ply] [--voxel 0.01] [--cloud-max-depth 4]
-//   gasp-graphslam --list-regs | --list-optimizers | --print-ini
+//                  [--params FILE]
+//   gasp-graphslam --list-regs | --list-optimizers | --print-ini | [--params FILE] [--ini FILE] --print-params
+// --params FILE: a params file (docs/parameters.md) whose values GASP's deciders and optimiser
+// take, --ini's keys over them; --print-params prints what they would read.
 // Runs without a window. After the last step the graph is optimised once more (CGaspPoseGraphGSO),
 // because the engine re-derives node poses along a spanning tree at every node it registers.
 // Exit codes: 0 done, 1 bad input, 2 usage error, 3 written, but GASP's odometry lost track
@@ -40,9 +43,11 @@
 #include "gasp/graphslam/options_checker.h"
 #include "gasp/graphslam/rawlog_run.h"
 #include "gasp/graphslam/scan_selection.h"
+#include "gasp/params/params_io.h"
 #include "gasp/rawlog/rawlog_entries.h"
 #include "gasp/rawlog/rawlog_format.h"
 #include "cli.h"
+#include "params_options.h"
 #include "map_output.h"
 #include "marginals_report.h"
 #include "sequence_report.h"
@@ -51,24 +56,50 @@ namespace {
 
 using gasp::graphslam::Graph3D;
 
-/// The configuration the engine reads, in a temporary file of its own (mkstemps) that lives only
-/// while the engine is made (the engine and the deciders read it in the engine's constructor):
-/// the built-in one with the user's --ini (if any) over it, key by key, so that a file with a few
-/// keys keeps the defaults of everything else (MRPT's engine asserts on missing sections such as
-/// [GeneralConfiguration]).
+/// The configuration the engine reads: the built-in one, the params file's values (--params)
+/// over it in the deciders' and optimiser's sections, and the user's --ini (if any) over both, key
+/// by key, so that a file with a few keys keeps the values of everything else (MRPT's engine
+/// asserts on missing sections such as [GeneralConfiguration]).
+mrpt::config::CConfigFileMemory mergedIni(const std::string& user_ini, const gasp::SlamParams* params) {
+  mrpt::config::CConfigFileMemory merged(std::string(gasp::tools::kDefaultGraphSlamIni));
+  if (params) {
+    gasp::writeOdometryParams(params->odometry, merged, "CGaspOdometryNRD");
+    gasp::writeLoopClosureParams(params->odometry.pair, params->loop, merged, "CGaspLoopClosureERD");
+    gasp::writePoseGraphSettings(params->graph, merged, "CGaspPoseGraphGSO");
+  }
+  if (!user_ini.empty()) {
+    const mrpt::config::CConfigFile user(user_ini);
+    std::vector<std::string> sections, keys;
+    user.getAllSections(sections);
+    for (const auto& section : sections) {
+      user.getAllKeys(section, keys);
+      for (const auto& key : keys) merged.write(section, key, user.read_string(section, key, ""));
+    }
+  }
+  return merged;
+}
+
+/// The parameters GASP's deciders and optimiser read from `ini` (what --print-params prints): the
+/// node decider's pair and odometry keys, the loop closer's own keys, the optimiser's.
+gasp::SlamParams paramsOfIni(const mrpt::config::CConfigFileBase& ini) {
+  gasp::SlamParams p;
+  gasp::readOdometryParams(ini, "CGaspOdometryNRD", p.odometry, {"sensor_label", "class_verbosity"});
+  gasp::PairParams loop_pair = p.odometry.pair;
+  gasp::readLoopClosureParams(ini, "CGaspLoopClosureERD", loop_pair, p.loop, {"sensor_label", "class_verbosity"});
+  gasp::readPoseGraphSettings(ini, "CGaspPoseGraphGSO", p.graph, {"drop_chi2", "class_verbosity"});
+  gasp::SlamParams with_loop_pair = p;
+  with_loop_pair.odometry.pair = loop_pair;
+  if (!gasp::sameParams(with_loop_pair, p))
+    std::fprintf(stderr, "warning: [CGaspLoopClosureERD] sets pair keys other than [CGaspOdometryNRD]'s; the params "
+                         "printed are the node decider's\n");
+  return p;
+}
+
+/// The merged configuration in a temporary file of its own (mkstemps) that lives only while the
+/// engine is made (the engine and the deciders read it in the engine's constructor).
 class TemporaryIni {
  public:
-  explicit TemporaryIni(const std::string& user_ini) {
-    mrpt::config::CConfigFileMemory merged(std::string(gasp::tools::kDefaultGraphSlamIni));
-    if (!user_ini.empty()) {
-      const mrpt::config::CConfigFile user(user_ini);
-      std::vector<std::string> sections, keys;
-      user.getAllSections(sections);
-      for (const auto& section : sections) {
-        user.getAllKeys(section, keys);
-        for (const auto& key : keys) merged.write(section, key, user.read_string(section, key, ""));
-      }
-    }
+  explicit TemporaryIni(const mrpt::config::CConfigFileMemory& merged) {
     std::string text;
     merged.getContent(text);
     const std::string dir = std::filesystem::temp_directory_path().string();
@@ -141,17 +172,34 @@ int main(int argc, char** argv) {
   app.add_flag("--list-regs", list_regs, "list the node and edge registration deciders for 3D graphs");
   app.add_flag("--list-optimizers", list_optimizers, "list the optimisers");
   app.add_flag("--print-ini", print_ini, "print the default configuration");
+  gasp::tools::ParamsOptions params_options;
+  gasp::SlamParams params;
+  if (!params_options.preload(argc, argv, params)) return 1;
+  params_options.add(app);  // the file's values go into the deciders' sections, --ini's keys over them
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return gasp::tools::usageExit(app, e);  // --help: 0; any usage error: 2
   }
+  const gasp::SlamParams* params_file = params_options.file().empty() ? nullptr : &params;
 
   gasp::graphslam::GaspOptionsChecker checker;
   if (print_ini) std::cout << gasp::tools::kDefaultGraphSlamIni;
   if (list_regs) checker.dumpRegistrarsToConsole("all");
   if (list_optimizers) checker.dumpOptimizersToConsole();
   if (print_ini || list_regs || list_optimizers) return 0;
+  if (params_options.printing()) {
+    try {
+      if (!ini_path.empty()) {
+        const auto check = gasp::graphslam::checkGraphSlamIni(ini_path);
+        if (!check.error.empty()) throw gasp::Error(check.error);
+      }
+      return params_options.printIfAsked(paramsOfIni(mergedIni(ini_path, params_file)));
+    } catch (const std::exception& e) {
+      std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';
+      return 1;
+    }
+  }
   if (rawlog_path.empty()) {
     std::cerr << "error: give --rawlog FILE\n";
     return 2;
@@ -199,7 +247,7 @@ int main(int argc, char** argv) {
     auto* gasp_erd = dynamic_cast<gasp::graphslam::CGaspLoopClosureERD*>(erd.get());
     auto* gasp_gso = dynamic_cast<gasp::graphslam::CGaspPoseGraphGSO*>(gso.get());
     auto engine = [&] {
-      const TemporaryIni engine_ini(ini_path);  // the built-in configuration, --ini's keys over it
+      const TemporaryIni engine_ini(mergedIni(ini_path, params_file));  // built-in < --params < --ini
       return gasp::graphslam::makeGraphSlamEngine(engine_ini.path(), rawlog_path, *nrd, *erd, *gso);
     }();
 

@@ -1,5 +1,5 @@
 // gasp-odometry: camera odometry over a depth sequence with GASP, and its pose graph.
-//   gasp-odometry --tum DIR --out TRAJ.txt [--graph G.graph] [--frames-csv F.csv] [options]
+//   gasp-odometry --tum DIR --out TRAJ.txt [--graph G.graph] [--frames-csv F.csv] [--params FILE] [options]
 //   gasp-odometry --rawlog FILE.rawlog [--sensor LABEL] [--gt TRAJ.txt] --out TRAJ.txt [...]
 // Each frame is registered to the current keyframe (gasp/odometry/odometry.h). Writes the
 // trajectory of the depth camera (TUM format, optical frame, the first frame at the origin), and
@@ -22,6 +22,7 @@
 #include "gasp/odometry/odometry.h"
 #include "gasp/rawlog/depth_sequence.h"
 #include "cli.h"
+#include "params_options.h"
 #include "frames_ahead.h"
 #include "sequence_options.h"
 #include "sequence_report.h"
@@ -31,15 +32,25 @@ int main(int argc, char** argv) {
                "its trajectory and pose graph"};
   gasp::DepthSequenceOptions input;
   std::string gt_path, out_path, graph_path, frames_csv;
-  gasp::OdometryParams params;
+  gasp::tools::ParamsOptions params_options;
+  gasp::SlamParams all_params;
+  if (!params_options.preload(argc, argv, all_params)) return 1;
+  gasp::OdometryParams& params = all_params.odometry;  // the params file's sections segment to odometry
   gasp::tools::addSequenceOptions(app, input, gt_path);
-  app.add_option("--out", out_path, "trajectory to write (TUM format: timestamp tx ty tz qx qy qz qw of the depth camera)")->required();
+  app.add_option("--out", out_path, "trajectory to write (TUM format: timestamp tx ty tz qx qy qz qw of the depth camera; required)");
   app.add_option("--graph", graph_path, "pose graph to write (MRPT VERTEX3/EDGE3 text; --rawlog: robot frames from the scans' sensorPose)");
   app.add_option("--frames-csv", frames_csv, "one line per frame: tracked, keyframe, reference, patches, inliers, times, reason");
   gasp::tools::addOdometryOptions(app, params);
   bool sequential = false;
   gasp::tools::addSequentialOption(app, sequential);
+  params_options.add(app);
   if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;
+  if (const int code = gasp::tools::validOptionValues(all_params); code >= 0) return code;
+  if (const int code = params_options.printIfAsked(all_params); code >= 0) return code;
+  if (out_path.empty()) {
+    std::cerr << "error: --out is required\nRun with --help for more information.\n";
+    return 2;
+  }
   if (input.tum_dir.empty() && input.rawlog_path.empty()) {
     std::cerr << "error: give --tum DIR or --rawlog FILE\n";
     return 2;

@@ -2,6 +2,7 @@
 //   gasp-pairs --tum DIR [--skips 10,20,30,40] [--starts-every N]
 //              [--method gasp,gasp-norefine,fpfh,shot,cshot,sift,dsift,gicp,gasp-gicp] [--csv OUT.csv]
 //              [--pairs-csv OUT_pairs.csv] [--max-pairs N] [--picture I,J [--picture-prefix P] [--picture-format png|jpg] [--pictures-only] [--picture-free]]
+//              [--params FILE] [--print-params]
 // Pairs (i, i + skip) from start frames 0, N, 2N, ... (indices in depth.txt order); for each pair
 // and method a relative pose is estimated and compared with ground truth. Prints one table row per
 // skip and method (definitions in gasp/eval/pair_protocol.h and docs/evaluation.md); progress goes
@@ -29,6 +30,7 @@
 #include <optional>
 
 #include "cli.h"
+#include "params_options.h"
 #include "deskew_filter.h"
 #include "frame_cache.h"
 #include "gasp/core/error.h"
@@ -56,12 +58,16 @@ using gasp::msSince;
 int main(int argc, char** argv) {
   CLI::App app{"gasp-pairs: relative-pose benchmark over frame pairs of a TUM RGB-D folder (the GASP paper's protocol), "
                "GASP beside the feature baselines"};
+  gasp::tools::ParamsOptions params_options;
+  gasp::SlamParams all_params;
+  if (!params_options.preload(argc, argv, all_params)) return 1;
+  gasp::PairParams& base = all_params.odometry.pair;  // GASP's pipeline: the params file's sections segment to retry
   std::string tum_dir, intrinsics_arg, csv_path, pairs_csv_path, picture_prefix = "pair_";
   std::vector<std::size_t> skips{10, 20, 30, 40};
   std::vector<std::string> methods{"gasp"};
   std::vector<std::size_t> picture_pair;
   std::size_t starts_every = 10, max_pairs = 0;
-  app.add_option("--tum", tum_dir, "TUM RGB-D folder")->required();
+  app.add_option("--tum", tum_dir, "TUM RGB-D folder (required)");
   app.add_option("--skips", skips, "frame skips (in depth.txt order)")
       ->delimiter(',')
       ->capture_default_str()
@@ -91,49 +97,6 @@ int main(int argc, char** argv) {
   app.add_flag("--pictures-only", pictures_only, "draw the --picture pair and stop (no benchmark)");
   app.add_flag("--picture-free", setup_picture_free,
                "GASP's pictures show the free associations (before any pose) instead of the verified ones");
-  gasp::PairParams base;
-  app.add_option("--k", base.associate.feature_sets.neighbourhood.k, "association neighbourhood size (0 = full view)")->capture_default_str()->check(gasp::tools::atLeast(0));
-  double area_cm2 = base.segment.target_patch_area_m2 * 1e4;
-  app.add_option("--area-cm2", area_cm2, "GASP: target patch area [cm^2]")->capture_default_str()->check(gasp::tools::above(0));
-  app.add_flag("--step-borders", base.segment.step_borders, "GASP: segment with the step borders (SuperpixelParams::step_borders; off by default)");
-  app.add_option("--candidates", base.associate.candidates, "KD-tree candidates per patch (C)")->capture_default_str()->check(gasp::tools::atLeast(1));
-  app.add_option("--lambda", base.associate.lambda, "gating on the normalised edit distance")->capture_default_str()->check(gasp::tools::within(0, 1));
-  app.add_option("--distinctiveness", base.associate.distinctiveness_ratio,
-                 "ratio test: keep a best partner only when its D_hat < R x the second best (1 = off)")
-      ->capture_default_str()
-      ->check(gasp::tools::above(0))
-      ->check(gasp::tools::within(0, 1));
-  app.add_flag("!--no-mutual", base.associate.mutual_check, "keep one-way best partners too (no mutual check)");
-  app.add_option("--min-inliers", base.hypothesise.pose.ransac.min_inliers, "RANSAC: fewer inliers give no estimate (all methods)")->capture_default_str()->check(gasp::tools::atLeast(3));
-  app.add_option("--one-way-max-violation", base.certify.fallback_max_violation_ratio,
-                 "GASP: visibility check violation limit for poses from the one-way fallback")->capture_default_str()->check(gasp::tools::within(0, 1));
-  app.add_option("--max-occluded", base.certify.visibility.max_occluded_ratio,
-                 "visibility check: limit on the share of samples behind the other view's surfaces (all methods)")->capture_default_str()->check(gasp::tools::within(0, 1));
-  app.add_option("--max-two-way-violation", base.certify.visibility.max_two_way_violation_ratio,
-                 "visibility check: limit on the violation share seen from both views (all methods; 1 = no limit)")->capture_default_str()->check(gasp::tools::within(0, 1));
-  app.add_option("--retry-area-factor", base.retry.finer_area_factor,
-                 "GASP: when no estimate is found, segment again with this times the patch area and retry, mutual associations only (0 = never, else in [0.01, 1))")
-      ->capture_default_str()
-      ->check(gasp::tools::zeroOrWithinHalfOpen(0.01, 1));
-  app.add_flag("!--no-slide-scan", base.refine.slide_scan.enabled,
-               "GASP: no slide scan of poses whose patch problem was degenerate (docs/pipeline.md, \"Slide scan\")");
-  app.add_flag("!--no-edge-terms", base.refine.edges.enabled, "GASP: no point-to-line terms along occluding edges in the dense rounds");
-  app.add_option("--edge-weight", base.refine.edges.terms.weight, "GASP: weight of an edge term (0 = edge terms weightless)")->capture_default_str()->check(gasp::tools::atLeast(0));
-  app.add_option("--wide-edge-gates", base.refine.edges.wide_gate_factor,
-                 "GASP: second refinement, when few edge points are paired, with edge gates this many times wider (0 = none, else >= 1)")->capture_default_str()->check(gasp::tools::zeroOrAtLeast(1));
-  app.add_option("--edge-step", base.refine.edges.terms.pixel_step, "GASP: one source edge pixel per (N/2)^2 image block")->capture_default_str()->check(gasp::tools::above(0));
-  app.add_option("--dense-rounds", base.refine.dense.rounds, "dense projective refinement rounds (0 = none)")->capture_default_str()->check(gasp::tools::atLeast(0));
-  app.add_option("--dense-max-rounds", base.refine.dense.max_rounds,
-                 "at most this many dense rounds in all: after --dense-rounds, more at the last gate until the pose stops moving (<= --dense-rounds: exactly --dense-rounds)")
-      ->capture_default_str()
-      ->check(gasp::tools::atLeast(0));
-  app.add_option("--dense-extrapolation", base.refine.dense.extrapolation_max,
-                 "after two dense rounds at the last gate that move the pose the same way, start the next at most this many steps ahead (0 = never)")
-      ->capture_default_str()
-      ->check(gasp::tools::atLeast(0));
-  app.add_flag("!--no-dense-line-search", base.refine.dense.line_search,
-               "GASP: no line search at the last dense gate (a longer step than the round before is kept even when it scores worse; docs/pipeline.md, \"Line search at the last gate\")");
-  app.add_option("--pixel-step", base.refine.pixels.pixel_step, "dense terms: every N-th pixel")->capture_default_str()->check(gasp::tools::atLeast(1));
   bool polish_reference = false;  // --polish-reference (with the baselines only)
   bool rgb_rotation_check = false;  // --rgb-rotation-check (with the baselines only)
 #ifdef GASP_HAVE_BASELINES
@@ -188,12 +151,6 @@ int main(int argc, char** argv) {
                  "the motion capture: -0.03 fits best, docs/pipeline.md)")
       ->capture_default_str()
       ->check(gasp::tools::within(-60, 60));
-  std::vector<double> model_error;
-  app.add_option("--model-error", model_error,
-                 "T_M,R_DEG: GASP's model error per axis, added to the claimed pose's covariance for the edge information "
-                 "(default 0.01,0.75; the nees columns of --pairs-csv are against it, docs/pipeline.md)")
-      ->expected(2)
-      ->delimiter(',');
   std::vector<double> gt_frame_rotation_deg;
   app.add_option("--gt-frame-rotation", gt_frame_rotation_deg,
                  "RX,RY,RZ [deg]: take the reference's camera frame as turned by exp(r) against the depth camera's "
@@ -201,19 +158,12 @@ int main(int argc, char** argv) {
                  "a diagnostic, docs/pipeline.md 'A constant frame rotation')")
       ->expected(3)
       ->delimiter(',');
+  params_options.add(app);
   try {
     app.parse(argc, argv);
     for (const double v : gt_frame_rotation_deg)
       if (!(std::abs(v) <= 360.0))
         throw CLI::ValidationError("--gt-frame-rotation must be three angles in degrees, each within +-360");
-    if (!model_error.empty()) {
-      base.certify.model_error = {model_error[0], model_error[1]};
-      try {
-        gasp::validate(base.certify.model_error);
-      } catch (const gasp::Error& e) {
-        throw CLI::ValidationError(std::string("--model-error: ") + e.what());
-      }
-    }
     if (pictures_only && picture_pair.empty()) throw CLI::ValidationError("--pictures-only needs --picture I,J");
     if (!std::isfinite(deskew.readout_s) || std::abs(deskew.readout_s) > 1.0)
       throw CLI::ValidationError("--rolling-shutter must be a finite time of at most 1 s (either sign)");
@@ -231,6 +181,11 @@ int main(int argc, char** argv) {
       throw CLI::ValidationError("--rgb-rotation-check writes its columns to the --pairs-csv file: give --pairs-csv");
   } catch (const CLI::ParseError& e) {
     return gasp::tools::usageExit(app, e);  // --help: 0; any usage error: 2
+  }
+  if (const int code = params_options.printIfAsked(all_params); code >= 0) return code;
+  if (tum_dir.empty()) {
+    std::cerr << "error: --tum is required\nRun with --help for more information.\n";
+    return 2;
   }
   // Each method once, in the order given.
   {
@@ -253,7 +208,6 @@ int main(int argc, char** argv) {
   }
   bool progress_line_open = false;  // an error then starts on a line of its own
   try {
-    base.segment.target_patch_area_m2 = area_cm2 * 1e-4;
     gasp::pairs::MethodSetup setup;
 #ifdef GASP_HAVE_BASELINES
     baseline.pose.ransac.min_inliers = base.hypothesise.pose.ransac.min_inliers;  // the same consensus rule for all

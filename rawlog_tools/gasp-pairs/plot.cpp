@@ -18,6 +18,7 @@
 #include "gasp/core/error.h"
 #include "gasp/core/image_file.h"
 #include "cli.h"
+#include "params_options.h"
 
 namespace {
 
@@ -135,6 +136,12 @@ void panel(cv::Mat& img, cv::Rect box, const std::string& title, const std::vect
 
 int main(int argc, char** argv) {
   CLI::App app{"gasp-pairs-plot: error against skip per method from gasp-pairs --csv tables"};
+  // The params file is not used here; it is checked, and --print-params prints it, as in every program.
+  gasp::tools::ParamsOptions params_options;
+  gasp::SlamParams params;
+  if (!params_options.preload(argc, argv, params)) return 1;
+  if (const int code = params_options.printBeforeParse(params); code >= 0) return code;
+  params_options.add(app);
   std::vector<std::string> csvs, titles;
   std::string out, caption;
   app.add_option("--csv", csvs, "gasp-pairs --csv tables, one row of panels each")->required()->delimiter(',');

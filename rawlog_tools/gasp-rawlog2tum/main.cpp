@@ -10,10 +10,17 @@
 #include "gasp/core/error.h"
 #include "gasp/rawlog/rawlog_to_tum.h"
 #include "cli.h"
+#include "params_options.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Convert the CObservation3DRangeScan of an MRPT rawlog into a TUM RGB-D folder (depth.txt, "
                "depth/*.png at 5000 units per metre, intrinsics.txt, registered rgb, groundtruth.txt from --gt)."};
+  // The params file is not used here; it is checked, and --print-params prints it, as in every program.
+  gasp::tools::ParamsOptions params_options;
+  gasp::SlamParams params;
+  if (!params_options.preload(argc, argv, params)) return 1;
+  if (const int code = params_options.printBeforeParse(params); code >= 0) return code;
+  params_options.add(app);
   std::string rawlog, out_dir;
   gasp::RawlogToTumOptions options;
   bool no_rgb = false;

@@ -19,6 +19,7 @@
 #include "gasp/superpixels/patch_repeatability.h"
 #include "gasp/superpixels/segmentation_picture.h"
 #include "cli.h"
+#include "params_options.h"
 
 namespace {
 
@@ -79,6 +80,10 @@ int measurePairs(const gasp::TumDataset& ds, const gasp::SuperpixelParams& param
 
 int main(int argc, char** argv) {
   CLI::App app{"gasp-segment: decompose depth images into regularised surface patches (depth superpixels)"};
+  gasp::tools::ParamsOptions params_options;
+  gasp::SlamParams all_params;
+  if (!params_options.preload(argc, argv, all_params)) return 1;
+  gasp::SuperpixelParams& params = all_params.odometry.pair.segment;
   std::string depth_path, tum_dir, intrinsics_arg, out;
   double depth_scale = gasp::kTumDepthUnitsPerMetre, area_cm2 = -1;
   int every = 1, pair_skip = 0;
@@ -89,17 +94,20 @@ int main(int argc, char** argv) {
   app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored");
   app.add_option("--intrinsics", intrinsics_arg, "fr1|fr2|fr3|ros or an intrinsics file (default: ros for --depth; the folder's for --tum)");
   app.add_option("--depth-scale", depth_scale, "raw depth units per metre")->capture_default_str()->check(gasp::tools::above(0));
-  app.add_option("--area-cm2", area_cm2, "target patch area [cm^2] (default from SuperpixelParams)")
+  app.add_option("--area-cm2", area_cm2, "target patch area [cm^2] (segment.target_patch_area_m2 in the params file)")
       ->check(gasp::tools::above(0));
-  bool step_borders = false;
-  app.add_flag("--step-borders", step_borders, "place borders at steps between parallel planes (SuperpixelParams::step_borders; off by default)");
+  app.add_flag("--step-borders", params.step_borders, "place borders at steps between parallel planes (segment.step_borders; off by default)");
   app.add_option("--every", every, "with --tum: segment every N-th frame")->check(gasp::tools::atLeast(1))->capture_default_str();
   app.add_option("--pairs", pair_skip, "with --tum: measure patch repeatability on pairs (i, i+SKIP) "
                  "of frames with ground truth, i every --every frames, instead of writing pictures")
       ->check(gasp::tools::atLeast(1))
       ->needs(tum_opt);
   app.add_option("--out", out, "picture (PNG) for --depth; output folder for --tum");
+  params_options.add(app);
   if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;
+  if (area_cm2 > 0) params.target_patch_area_m2 = area_cm2 * 1e-4;
+  if (const int code = gasp::tools::validOptionValues(all_params); code >= 0) return code;
+  if (const int code = params_options.printIfAsked(all_params); code >= 0) return code;
   if (depth_path.empty() && tum_dir.empty()) {
     std::cerr << "error: give --depth FILE.png or --tum DIR\n";
     return 2;
@@ -117,9 +125,6 @@ int main(int argc, char** argv) {
     }
   }
   try {
-    gasp::SuperpixelParams params;
-    if (area_cm2 > 0) params.target_patch_area_m2 = area_cm2 * 1e-4;
-    params.step_borders = step_borders;
     if (!depth_path.empty()) {
       gasp::tools::RunOutputs outputs({{"--out", out}}, {depth_path});  // before the work, not after it
       auto k = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics_arg.empty() ? "ros" : intrinsics_arg);

@@ -14,6 +14,7 @@
 #include "gasp/sim/scene.h"
 #include "gasp/sim/writer.h"
 #include "cli.h"
+#include "params_options.h"
 
 int main(int argc, char** argv) {
   gasp::sim::SimulationOptions options;
@@ -24,6 +25,12 @@ int main(int argc, char** argv) {
 
   CLI::App app{"Writes a synthetic depth sequence (ray-cast indoor scene, Kinect-like noise) with "
                "ground truth as a TUM RGB-D folder"};
+  // The params file is not used here; it is checked, and --print-params prints it, as in every program.
+  gasp::tools::ParamsOptions params_options;
+  gasp::SlamParams params;
+  if (!params_options.preload(argc, argv, params)) return 1;
+  if (const int code = params_options.printBeforeParse(params); code >= 0) return code;
+  params_options.add(app);
   app.add_option("--scene", options.scene, "Scene name (see --list-scenes)")->capture_default_str();
   app.add_option("--out", out_dir, "Output folder (created if needed)");
   app.add_option("--frames", options.frames, "Number of frames (8 to 20000)")

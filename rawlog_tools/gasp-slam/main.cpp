@@ -2,7 +2,7 @@
 // optimised pose graph (gasp/slam/depth_slam.h).
 //   gasp-slam --tum DIR | --rawlog FILE [--sensor LABEL] [--gt TRAJ.txt] --out TRAJ.txt
 //             [--graph G.graph] [--simplemap MAP.simplemap] [--cloud MAP.ply]
-//             [--marginals-csv M.csv] [options]
+//             [--marginals-csv M.csv] [--params FILE] [options]
 // Writes the optimised trajectory of the depth camera (TUM format) in the world of the first
 // frame's robot frame (MRPT's sensorPose; TUM folders: the camera looking along the robot's +X),
 // optionally the pose graph with its loop closures (MRPT VERTEX3 / EDGE3), the keyframes as an
@@ -29,6 +29,7 @@
 #include "gasp/slam/depth_slam.h"
 #include "gasp/slam/point_map.h"
 #include "cli.h"
+#include "params_options.h"
 #include "frames_ahead.h"
 #include "map_output.h"
 #include "marginals_report.h"
@@ -58,9 +59,11 @@ int main(int argc, char** argv) {
   std::string gt_path, out_path, odometry_out, graph_path, frames_csv, loops_csv, marginals_csv;
   gasp::tools::MapOutputOptions map_output;
   bool no_loops = false;
+  gasp::tools::ParamsOptions params_options;
   gasp::SlamParams params;
+  if (!params_options.preload(argc, argv, params)) return 1;
   gasp::tools::addSequenceOptions(app, input, gt_path);
-  app.add_option("--out", out_path, "optimised trajectory to write (TUM format: timestamp tx ty tz qx qy qz qw of the depth camera)")->required();
+  app.add_option("--out", out_path, "optimised trajectory to write (TUM format: timestamp tx ty tz qx qy qz qw of the depth camera; required)");
   app.add_option("--odometry-out", odometry_out, "the odometry's trajectory before loop closures (TUM format, same world)");
   app.add_option("--graph", graph_path, "pose graph to write: odometry and loop-closure edges at the optimised poses (MRPT VERTEX3/EDGE3, robot frames)");
   gasp::tools::addMapOutputOptions(app, map_output, "keyframes");
@@ -72,30 +75,21 @@ int main(int argc, char** argv) {
   gasp::tools::addOdometryOptions(app, params.odometry);
   bool sequential = false;
   gasp::tools::addSequentialOption(app, sequential);
-  app.add_flag("--no-loop-closures", no_loops, "odometry only (no loop closures, no optimisation)");
-  app.add_option("--search-radius", params.loop.search_radius_m, "loop-closure candidates within this distance [m]")
-      ->capture_default_str()
-      ->check(gasp::tools::above(0));
-  app.add_option("--loop-candidates", params.loop.max_candidates, "registrations per new keyframe")
-      ->capture_default_str()
-      ->check(gasp::tools::atLeast(0));
-  app.add_option("--keyframe-gap", params.loop.min_keyframe_gap, "candidates at least this many keyframes back")
-      ->capture_default_str()
-      ->check(gasp::tools::atLeast(1));
-  app.add_option("--relocalisation-candidates", params.loop.relocalisation_candidates,
-                 "registrations to other pieces of the graph per new keyframe (0 = off)")
-      ->capture_default_str()
-      ->check(gasp::tools::atLeast(0));
-  app.add_option("--relocalisation-agreeing", params.loop.relocalisation_agreeing,
-                 "relocalisations that must agree before two pieces of the graph are joined (1 = the first joins)")
-      ->capture_default_str()
-      ->check(gasp::tools::atLeast(1));
+  app.add_flag("--no-loop-closures", no_loops,
+               "odometry only (no loop closures, no optimisation; loop_closure.enabled = false)");
+  params_options.add(app);
   if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;
+  if (no_loops) params.loop.enabled = false;
+  if (const int code = gasp::tools::validOptionValues(params); code >= 0) return code;
+  if (const int code = params_options.printIfAsked(params); code >= 0) return code;
   if (input.tum_dir.empty() && input.rawlog_path.empty()) {
     std::cerr << "error: give --tum DIR or --rawlog FILE\n";
     return 2;
   }
-  params.loop.enabled = !no_loops;
+  if (out_path.empty()) {
+    std::cerr << "error: --out is required\nRun with --help for more information.\n";
+    return 2;
+  }
 
   try {
     gasp::validate(params);

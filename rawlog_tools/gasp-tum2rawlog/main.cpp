@@ -10,10 +10,17 @@
 #include "gasp/core/error.h"
 #include "gasp/rawlog/tum_to_rawlog.h"
 #include "cli.h"
+#include "params_options.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Convert a TUM RGB-D folder into an MRPT rawlog of CObservation3DRangeScan; the "
                "ground truth goes to OUT_groundtruth.txt beside the rawlog."};
+  // The params file is not used here; it is checked, and --print-params prints it, as in every program.
+  gasp::tools::ParamsOptions params_options;
+  gasp::SlamParams params;
+  if (!params_options.preload(argc, argv, params)) return 1;
+  if (const int code = params_options.printBeforeParse(params); code >= 0) return code;
+  params_options.add(app);
   std::string tum_dir;
   std::string out_rawlog;
   std::string intrinsics;

@@ -83,11 +83,16 @@ TEST(ImagePrograms, AnOutputNameWithoutImageFormatIsAUsageError) {
   EXPECT_EQ(run.exit_code, 0) << run.output;
   run = runProgram("gasp-segment", "--depth " + a + " --out " + dir + "/seg.png --area-cm2 0");
   EXPECT_EQ(run.exit_code, 2) << run.output;
-  // Association options out of their range are usage errors too (not a failure after the work).
-  for (const char* option : {"--lambda nan", "--lambda 2", "--candidates 0", "--k -1", "--r-dev 0", "--theta-dev -5",
-                             "--distinctiveness 0", "--distinctiveness 1.5"}) {
-    run = runProgram("gasp-associate", "--depth-a " + a + " --depth-b " + a + " --out " + dir + "/p.png " + option);
-    EXPECT_EQ(run.exit_code, 2) << option << '\n' << run.output;
+  // Association parameters out of their range are errors naming the key, before the work.
+  for (const char* key : {"lambda: nan", "lambda: 2", "candidates: 0", "neighbourhood_k: -1", "r_dev_m: -1",
+                          "theta_dev_rad: -5", "distinctiveness_ratio: 0", "distinctiveness_ratio: 1.5"}) {
+    const std::string params = dir + "/bad_params.yaml";
+    std::ofstream(params) << "associate:\n  " << key << "\n";
+    run = runProgram("gasp-associate", "--depth-a " + a + " --depth-b " + a + " --out " + dir + "/p.png --params " + params);
+    EXPECT_EQ(run.exit_code, 1) << key << '\n' << run.output;
+    const std::string name = std::string(key).substr(0, std::string(key).find(':'));
+    EXPECT_TRUE(contains(run.output, "associate." + name)) << key << '\n' << run.output;
+    EXPECT_FALSE(contains(run.output, "patches_a")) << key << '\n' << run.output;
   }
 }
 

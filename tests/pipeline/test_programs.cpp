@@ -15,6 +15,7 @@
 #include <cmath>
 
 #include <Eigen/Geometry>
+#include <unistd.h>
 
 #include "gasp/core/pose.h"
 #include "gasp/core/tum_dataset.h"
@@ -27,6 +28,17 @@ using gasp::test::ProgramRun;
 
 ProgramRun run(const std::string& program, const std::string& args) {
   return gasp::test::runProgram(program, args);
+}
+
+/// A params file (docs/parameters.md) with `yaml` in it, in a folder of its own (scratchDir()
+/// would empty the test's folder).
+std::string paramsFile(const std::string& yaml) {
+  static int n = 0;
+  const std::string dir = std::string(GASP_TEST_TMP_DIR) + "/test_programs_params";
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/" + std::to_string(::getpid()) + "_" + std::to_string(++n) + ".yaml";
+  std::ofstream(path) << yaml;
+  return path;
 }
 
 /// The cells of one CSV line (no quoting: the programs quote only the last column, `reason`).
@@ -73,14 +85,20 @@ TEST(GaspAssociateProgram, PoseAndPictureOnARealPair) {
       << r.output;
   for (int k = 1; k <= 3; ++k) EXPECT_GE(std::stod(m[k]), 0.0099) << r.output;
   for (int k = 4; k <= 6; ++k) EXPECT_GE(std::stod(m[k]), 0.74) << r.output;
-  // --model-error sets it; 0,0 gives the refinement's (sub-millimetre) deviations.
-  const ProgramRun none = run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --model-error 0,0");
+  // The params file's certify.model_error_* set it; 0, 0 gives the refinement's (sub-millimetre) deviations.
+  const ProgramRun none = run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --params " +
+                                                    paramsFile("certify:\n  model_error_t_m: 0\n  model_error_r_deg: 0\n"));
   ASSERT_EQ(none.exit_code, 0) << none.output;
   ASSERT_TRUE(std::regex_search(none.output, m, std::regex("edge_sigma: ([0-9.]+) ")));
   EXPECT_LT(std::stod(m[1]), 0.005) << none.output;
-  EXPECT_EQ(run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --model-error 0.01,-1").exit_code, 2);
-  // --no-dense-line-search: no step is shortened and the rounds are never stopped by it.
-  const ProgramRun plain = run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --no-dense-line-search");
+  const ProgramRun bad_error =
+      run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --params " + paramsFile("certify:\n  model_error_r_deg: -1\n"));
+  EXPECT_EQ(bad_error.exit_code, 1) << bad_error.output;
+  EXPECT_NE(bad_error.output.find("invalid parameters (certify.model_error_r_deg on line 2)"), std::string::npos)
+      << bad_error.output;
+  // refine.dense_line_search = false: no step is shortened and the rounds are never stopped by it.
+  const ProgramRun plain = run("gasp-associate", "--tum " + dir + " --from 0 --to 4 --params " +
+                                                     paramsFile("refine:\n  dense_line_search: false\n"));
   ASSERT_EQ(plain.exit_code, 0) << plain.output;
   EXPECT_TRUE(std::regex_search(plain.output, std::regex("dense_rounds: [0-9]+ \\(last step [0-9.]+ mm; line search: 0 steps shortened\\)\n")))
       << plain.output;
@@ -181,19 +199,24 @@ TEST(GaspAssociateProgram, TwoPngsAndExitCodes) {
   EXPECT_EQ(default_out.exit_code, 1) << default_out.output;
   EXPECT_NE(default_out.output.find("'associations.png': is a folder"), std::string::npos) << default_out.output;
   EXPECT_EQ(default_out.output.find("patches_a"), std::string::npos) << default_out.output;
-  // --area-cm2: larger patches, fewer of them; 0 is a usage error.
+  // segment.target_patch_area_m2: larger patches, fewer of them; 0 is an error naming the key.
   const auto patchesA = [](const std::string& output) {
     const auto pos = output.find("patches_a: ");
     return pos == std::string::npos ? -1 : std::stoi(output.substr(pos + 11));
   };
-  const ProgramRun large = run("gasp-associate", "--depth-a " + pngs[0] + " --depth-b " + pngs[1] + " --intrinsics fr1 --area-cm2 80 --out " + out);
+  const ProgramRun large = run("gasp-associate", "--depth-a " + pngs[0] + " --depth-b " + pngs[1] + " --intrinsics fr1 --params " +
+                                                     paramsFile("segment:\n  target_patch_area_m2: 0.008\n") + " --out " + out);
   EXPECT_EQ(large.exit_code, 0) << large.output;
   EXPECT_GT(patchesA(large.output), 0) << large.output;
   EXPECT_LT(patchesA(large.output), patchesA(ok.output)) << large.output << ok.output;
-  EXPECT_EQ(run("gasp-associate", "--depth-a " + pngs[0] + " --depth-b " + pngs[1] + " --area-cm2 0").exit_code, 2);
-  const ProgramRun bad_k = run("gasp-associate", "--depth-a " + pngs[0] + " --depth-b " + pngs[1] + " --k -1");
-  EXPECT_EQ(bad_k.exit_code, 2) << bad_k.output;
-  EXPECT_NE(bad_k.output.find("error: --k: must be at least 0"), std::string::npos) << bad_k.output;
+  const ProgramRun no_area = run("gasp-associate", "--depth-a " + pngs[0] + " --depth-b " + pngs[1] + " --params " +
+                                                       paramsFile("segment:\n  target_patch_area_m2: 0\n"));
+  EXPECT_EQ(no_area.exit_code, 1) << no_area.output;
+  EXPECT_NE(no_area.output.find("(segment.target_patch_area_m2 on line 2)"), std::string::npos) << no_area.output;
+  const ProgramRun bad_k = run("gasp-associate", "--depth-a " + pngs[0] + " --depth-b " + pngs[1] + " --params " +
+                                                     paramsFile("associate:\n  neighbourhood_k: -1\n"));
+  EXPECT_EQ(bad_k.exit_code, 1) << bad_k.output;
+  EXPECT_NE(bad_k.output.find("(associate.neighbourhood_k on line 2)"), std::string::npos) << bad_k.output;
   // The same view twice at an all-zero depth: no patches, no associations.
   const std::string zero = gasp::test::scratchDir() + "/zero.png";
   {
@@ -222,20 +245,28 @@ TEST(GaspPairsProgram, TableAndCsvOnARealFolder) {
   EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 100").exit_code, 4);  // no pair
   EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 1 --depth-scale 0").exit_code, 2);  // usage error
   EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 1 --depth-scale -5000").exit_code, 2);
-  // The dense rounds' options: a plain usage error before any pair, NaN and negatives alike.
-  for (const std::string option : {"--dense-extrapolation nan", "--dense-extrapolation -1", "--dense-max-rounds -2",
-                                   "--wide-edge-gates inf", "--wide-edge-gates 0.5", "--retry-area-factor 0.005",
-                                   "--retry-area-factor 1", "--pixel-step 0", "--edge-weight -1", "--edge-step 0"
+  // The dense rounds' parameters: an error naming the key before any pair, NaN and negatives alike.
+  for (const std::string key : {"refine.dense_extrapolation_max: nan", "refine.dense_extrapolation_max: -1",
+                                "refine.dense_max_rounds: -2", "refine.wide_edge_gate_factor: inf",
+                                "refine.wide_edge_gate_factor: 0.5", "retry.retry_area_factor: 0.005",
+                                "retry.retry_area_factor: 1", "refine.projective_pixel_step: 0",
+                                "refine.edge_weight: -1", "refine.edge_pixel_step: 0"}) {
+    const std::string section = key.substr(0, key.find('.')), value = key.substr(key.find('.') + 1);
+    const ProgramRun bad =
+        run("gasp-pairs", "--tum " + dir + " --skips 1 --params " + paramsFile(section + ":\n  " + value + "\n"));
+    EXPECT_EQ(bad.exit_code, 1) << key << ": " << bad.output;
+    EXPECT_NE(bad.output.find("error: params '"), std::string::npos) << key << ": " << bad.output;
+    EXPECT_NE(bad.output.find(key.substr(0, key.find(':'))), std::string::npos) << key << ": " << bad.output;
+    EXPECT_EQ(bad.output.find("pair 1/"), std::string::npos) << key << ": " << bad.output;
+  }
 #ifdef GASP_HAVE_BASELINES
-                                   ,
-                                   "--ratio 0", "--ratio 1.5", "--min-keypoints -5"
-#endif
-       }) {
+  for (const std::string option : {"--ratio 0", "--ratio 1.5", "--min-keypoints -5"}) {
     const ProgramRun bad = run("gasp-pairs", "--tum " + dir + " --skips 1 " + option);
     EXPECT_EQ(bad.exit_code, 2) << option << ": " << bad.output;
     EXPECT_NE(bad.output.find("error: --"), std::string::npos) << option << ": " << bad.output;
     EXPECT_NE(bad.output.find("must be"), std::string::npos) << option << ": " << bad.output;
   }
+#endif
   // A missing output folder is bad input, said before any pair runs.
   const ProgramRun no_folder = run("gasp-pairs", "--tum " + dir + " --skips 1 --csv /nonexistent-dir/t.csv");
   EXPECT_EQ(no_folder.exit_code, 1) << no_folder.output;
@@ -256,7 +287,7 @@ TEST(GaspPairsProgram, DenseLineSearchColumnsAndFlag) {
   GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
   const std::string scratch = gasp::test::scratchDir();
   const std::string args = "--tum " + dir + " --skips 2 --starts-every 3 --max-pairs 2 --method gasp --pairs-csv ";
-  for (const std::string flag : {"", " --no-dense-line-search"}) {
+  for (const std::string& flag : {std::string(), " --params " + paramsFile("refine:\n  dense_line_search: false\n")}) {
     const ProgramRun r = run("gasp-pairs", args + scratch + "/ls.csv" + flag);
     ASSERT_EQ(r.exit_code, 0) << flag << ": " << r.output;
     std::ifstream f(scratch + "/ls.csv");
@@ -474,9 +505,10 @@ TEST(GaspPairsProgram, GtFrameRotationTurnsTheReferenceBack) {
   EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 2 --gt-frame-rotation 3,0,nan").exit_code, 2);
 }
 
-// --model-error sets the model error of the edge information the nees columns are scored under:
-// with none, the edge information is the refinement's (nees = nees_refinement); with the default
-// it is less certain (nees < nees_refinement); a negative or malformed value is a usage error.
+// The params file's certify.model_error_* set the model error of the edge information the nees
+// columns are scored under: with none, the edge information is the refinement's (nees =
+// nees_refinement); with the default it is less certain (nees < nees_refinement); a negative or
+// malformed value is an error naming the key.
 TEST(GaspPairsProgram, ModelErrorSetsTheEdgeInformation) {
   GASP_REQUIRE_DATA(dir, "tum/fr1_desk9");
   const std::string scratch = gasp::test::scratchDir();
@@ -495,7 +527,10 @@ TEST(GaspPairsProgram, ModelErrorSetsTheEdgeInformation) {
     }
     return out;
   };
-  ASSERT_EQ(run("gasp-pairs", args + scratch + "/none.csv --model-error 0,0").exit_code, 0);
+  ASSERT_EQ(run("gasp-pairs", args + scratch + "/none.csv --params " +
+                                   paramsFile("certify:\n  model_error_t_m: 0\n  model_error_r_deg: 0\n"))
+                .exit_code,
+            0);
   ASSERT_EQ(run("gasp-pairs", args + scratch + "/default.csv").exit_code, 0);
   const auto none = columns(scratch + "/none.csv", "nees", "nees_refinement");
   const auto dflt = columns(scratch + "/default.csv", "nees", "nees_refinement");
@@ -506,8 +541,12 @@ TEST(GaspPairsProgram, ModelErrorSetsTheEdgeInformation) {
     EXPECT_NEAR(dflt[i].second, none[i].second, 1e-4 * none[i].second) << "pair " << i;  // same poses
     EXPECT_LT(dflt[i].first, 0.1 * dflt[i].second) << "pair " << i;
   }
-  EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 2 --model-error -0.01,0.75").exit_code, 2);
-  EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 2 --model-error 0.01").exit_code, 2);
+  EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 2 --params " + paramsFile("certify:\n  model_error_t_m: -0.01\n"))
+                .exit_code,
+            1);
+  EXPECT_EQ(run("gasp-pairs", "--tum " + dir + " --skips 2 --params " + paramsFile("certify:\n  model_error_t_m: 0.01,0.75\n"))
+                .exit_code,
+            1);
 }
 
 // The per-pair CSV: one row per pair with the estimated pose, whose error against the ground truth

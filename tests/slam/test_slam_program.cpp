@@ -223,9 +223,10 @@ TEST(GaspSlamProgram, BadInputExitsWith1OrAUsageCode) {
   run = runProgram("gasp-slam", "--tum " + sim + " --voxel 0 --cloud " + out + "/c.ply --out " + out + "/t.txt");
   EXPECT_EQ(run.exit_code, 2) << run.output;  // an option value out of its range: a usage error
   EXPECT_TRUE(contains(run.output, "--voxel: must be between 0.001 and 10")) << run.output;
-  run = runProgram("gasp-slam", "--tum " + sim + " --search-radius -1 --out " + out + "/t.txt");
-  EXPECT_EQ(run.exit_code, 2) << run.output;
-  EXPECT_TRUE(contains(run.output, "--search-radius: must be greater than 0")) << run.output;
+  std::ofstream(out + "/radius.yaml") << "loop_closure:\n  search_radius_m: -1\n";
+  run = runProgram("gasp-slam", "--tum " + sim + " --params " + out + "/radius.yaml --out " + out + "/t.txt");
+  EXPECT_EQ(run.exit_code, 1) << run.output;  // a bad params file: bad input, named before the run
+  EXPECT_TRUE(contains(run.output, "(loop_closure.search_radius_m on line 2)")) << run.output;
   run = runProgram("gasp-slam", "--tum " + sim + " --max-frames 3 --simplemap /nonexistent-dir/m.simplemap --out " + out +
                                     "/t.txt");
   EXPECT_EQ(run.exit_code, 1) << run.output;

@@ -35,11 +35,11 @@ void readIni(const mrpt::config::CConfigFileBase& source, const std::string& sec
 
 /// " (key K1, K2)": the keys of `keys` that make `base` invalid when set alone (`apply` sets one
 /// on a copy), or "" when none does (only their combination is invalid).
-template <class Apply>
-std::string keysInvalidAlone(const std::vector<std::string>& keys, const PairParams& base, Apply&& apply) {
+template <class P, class Apply>
+std::string keysInvalidAlone(const std::vector<std::string>& keys, const P& base, Apply&& apply) {
   std::string out;
   for (const std::string& key : keys) {
-    PairParams trial = base;
+    P trial = base;
     try {
       apply(key, trial);
       validate(trial);
@@ -48,6 +48,47 @@ std::string keysInvalidAlone(const std::vector<std::string>& keys, const PairPar
     }
   }
   return out.empty() ? out : out + ")";
+}
+
+/// Reads the keys `fields(p, f)` lists from an ini section over `params`, then validates them;
+/// unknown keys (except `other_allowed`) and invalid values throw naming the section and key.
+template <class P, class Fields>
+void readSection(const mrpt::config::CConfigFileBase& source, const std::string& section, P& params,
+                 const std::set<std::string>& other_allowed, Fields&& fields) {
+  P p = params;
+  readIni(source, section, [&](auto&& f) { fields(p, f); }, other_allowed);
+  try {
+    validate(p);
+  } catch (const Error& e) {
+    // Name the keys that are invalid on their own: the stages' messages name their fields.
+    std::vector<std::string> keys;
+    source.getAllKeys(section, keys);
+    const std::string culprits = keysInvalidAlone(keys, params, [&](const std::string& key, P& trial) {
+      if (other_allowed.count(key)) return;
+      mrpt::config::CConfigFileMemory one;
+      one.write(section, key, source.read_string(section, key, ""));
+      fields(trial, [&](const char* k, auto&& field) {
+        if (key == k) readOne(one, section, k, std::forward<decltype(field)>(field));
+      });
+    });
+    THROW_EXCEPTION_FMT("[%s]: invalid parameters%s: %s", section.c_str(), culprits.c_str(), e.what());
+  }
+  params = p;
+}
+
+template <class P, class Fields>
+void writeSection(const P& params, mrpt::config::CConfigFileBase& target, const std::string& section, Fields&& fields) {
+  fields(params, [&](const char* key, const auto& v) { target.write(section, key, toText(v)); });
+}
+
+/// The loop closer's section: the pair's keys and the loop closer's own.
+struct LoopClosureSection {
+  PairParams pair;
+  LoopClosureParams loop;
+};
+void validate(const LoopClosureSection& s) {
+  validate(s.pair);
+  validate(s.loop);
 }
 
 }  // namespace
@@ -104,25 +145,50 @@ void writeSuperpixelParams(const SuperpixelParams& params, mrpt::config::CConfig
 
 void readPairParams(const mrpt::config::CConfigFileBase& source, const std::string& section, PairParams& params,
                     const std::set<std::string>& other_allowed_keys) {
-  PairParams p = params;
-  readIni(source, section, [&](auto&& f) { pairFields(p, f); }, other_allowed_keys);
-  try {
-    validate(p);
-  } catch (const Error& e) {
-    // Name the keys that are invalid on their own: the stages' messages name their fields.
-    std::vector<std::string> keys;
-    source.getAllKeys(section, keys);
-    const std::string culprits = keysInvalidAlone(keys, params, [&](const std::string& key, PairParams& trial) {
-      if (other_allowed_keys.count(key)) return;
-      mrpt::config::CConfigFileMemory one;
-      one.write(section, key, source.read_string(section, key, ""));
-      pairFields(trial, [&](const char* k, auto&& field) {
-        if (key == k) readOne(one, section, k, std::forward<decltype(field)>(field));
-      });
-    });
-    THROW_EXCEPTION_FMT("[%s]: invalid parameters%s: %s", section.c_str(), culprits.c_str(), e.what());
-  }
-  params = p;
+  readSection(source, section, params, other_allowed_keys, [](auto& p, auto&& f) { pairFields(p, f); });
+}
+
+void readOdometryParams(const mrpt::config::CConfigFileBase& source, const std::string& section,
+                        OdometryParams& params, const std::set<std::string>& other_allowed_keys) {
+  readSection(source, section, params, other_allowed_keys, [](auto& p, auto&& f) {
+    pairFields(p.pair, f);
+    odometryFields(p, f);
+  });
+}
+
+void writeOdometryParams(const OdometryParams& params, mrpt::config::CConfigFileBase& target,
+                         const std::string& section) {
+  writeSection(params, target, section, [](auto& p, auto&& f) {
+    pairFields(p.pair, f);
+    odometryFields(p, f);
+  });
+}
+
+void readLoopClosureParams(const mrpt::config::CConfigFileBase& source, const std::string& section, PairParams& pair,
+                           LoopClosureParams& loop, const std::set<std::string>& other_allowed_keys) {
+  LoopClosureSection s{pair, loop};
+  readSection(source, section, s, other_allowed_keys, [](auto& p, auto&& f) {
+    pairFields(p.pair, f);
+    loopClosureFields(p.loop, f);
+  });
+  pair = s.pair;
+  loop = s.loop;
+}
+
+void writeLoopClosureParams(const PairParams& pair, const LoopClosureParams& loop, mrpt::config::CConfigFileBase& target,
+                            const std::string& section) {
+  writeSection(pair, target, section, [](auto& p, auto&& f) { pairFields(p, f); });
+  writeSection(loop, target, section, [](auto& p, auto&& f) { loopClosureFields(p, f); });
+}
+
+void readPoseGraphSettings(const mrpt::config::CConfigFileBase& source, const std::string& section,
+                           PoseGraphSettings& settings, const std::set<std::string>& other_allowed_keys) {
+  readSection(source, section, settings, other_allowed_keys, [](auto& p, auto&& f) { poseGraphFields(p, f); });
+}
+
+void writePoseGraphSettings(const PoseGraphSettings& settings, mrpt::config::CConfigFileBase& target,
+                            const std::string& section) {
+  writeSection(settings, target, section, [](auto& p, auto&& f) { poseGraphFields(p, f); });
 }
 
 void readPairParams(const mrpt::containers::yaml& y, const std::string& who, PairParams& params) {
@@ -157,7 +223,7 @@ void readPairParams(const mrpt::containers::yaml& y, const std::string& who, Pai
 }
 
 void writePairParams(const PairParams& params, mrpt::config::CConfigFileBase& target, const std::string& section) {
-  pairFields(params, [&](const char* key, const auto& v) { target.write(section, key, toText(v)); });
+  writeSection(params, target, section, [](auto& p, auto&& f) { pairFields(p, f); });
 }
 
 }  // namespace gasp

@@ -22,11 +22,15 @@ double totalChi2(const std::vector<Isometry3>& T, const std::vector<PoseConstrai
 
 }  // namespace
 
+void validate(const PoseGraphSettings& settings) {
+  if (settings.max_iterations < 1 || settings.num_threads < 1 || !(settings.function_tolerance > 0.0))
+    throw Error("pose graph: max_iterations, num_threads and function_tolerance must be positive");
+}
+
 PoseGraphResult optimizePoseGraph(const std::vector<Isometry3>& T_world_node, const std::vector<PoseConstraint>& edges,
                                   const PoseGraphSettings& settings) {
   const std::size_t n = T_world_node.size();
-  if (settings.max_iterations < 1 || settings.num_threads < 1 || !(settings.function_tolerance > 0.0))
-    throw Error("pose graph: max_iterations, num_threads and function_tolerance must be positive");
+  validate(settings);
   PoseGraphProblem graph(T_world_node, edges);  // checks the graph before the chi-square reads it
 
   PoseGraphResult out;

@@ -22,8 +22,7 @@ void validate(const LoopClosureParams& p) {
 void validate(const SlamParams& p) {
   validate(p.odometry);
   validate(p.loop);
-  if (p.graph.max_iterations < 1 || p.graph.num_threads < 1 || !(p.graph.function_tolerance > 0.0))
-    throw Error("pose graph: max_iterations, num_threads and function_tolerance must be positive");
+  validate(p.graph);
 }
 
 }  // namespace gasp

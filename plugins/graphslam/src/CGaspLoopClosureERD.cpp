@@ -223,37 +223,9 @@ void CGaspLoopClosureERD::loadParams(const std::string& source_fname) {
   const mrpt::config::CConfigFile cfg(source_fname);
   PairParams pair = pair_;
   LoopClosureParams loop = loop_;
-  const std::set<std::string> own = {"enabled", "search_radius_m", "max_axis_angle_deg", "min_keyframe_gap",
-                                     "max_candidates", "loop_min_inliers", "gate_chi2", "relocalisation_candidates",
-                                     "relocalisation_min_inliers", "relocalisation_agreeing", "sensor_label",
-                                     "class_verbosity"};
-  readPairParams(cfg, kSection, pair, own);
-  int enabled = loop.enabled ? 1 : 0, gap = static_cast<int>(loop.min_keyframe_gap),
-      candidates = static_cast<int>(loop.max_candidates), reloc = static_cast<int>(loop.relocalisation_candidates),
-      agreeing = static_cast<int>(loop.relocalisation_agreeing);
-  readValue(cfg, kSection, "enabled", enabled);
-  readValue(cfg, kSection, "search_radius_m", loop.search_radius_m);
-  readValue(cfg, kSection, "max_axis_angle_deg", loop.max_axis_angle_deg);
-  readValue(cfg, kSection, "min_keyframe_gap", gap);
-  readValue(cfg, kSection, "max_candidates", candidates);
-  readValue(cfg, kSection, "loop_min_inliers", loop.min_inliers);
-  readValue(cfg, kSection, "gate_chi2", loop.gate_chi2);
-  readValue(cfg, kSection, "relocalisation_candidates", reloc);
-  readValue(cfg, kSection, "relocalisation_min_inliers", loop.relocalisation_min_inliers);
-  readValue(cfg, kSection, "relocalisation_agreeing", agreeing);
+  readLoopClosureParams(cfg, kSection, pair, loop, {"sensor_label", "class_verbosity"});
   int verbosity = static_cast<int>(getMinLoggingLevel());
   readValue(cfg, kSection, "class_verbosity", verbosity);
-  if (enabled != 0 && enabled != 1) THROW_EXCEPTION_FMT("[%s] enabled: must be 0 or 1", kSection);
-  if (gap < 0 || candidates < 0 || reloc < 0 || agreeing < 0)
-    THROW_EXCEPTION_FMT(
-        "[%s]: min_keyframe_gap, max_candidates, relocalisation_candidates and relocalisation_agreeing must not be "
-        "negative",
-        kSection);
-  loop.enabled = enabled == 1;
-  loop.min_keyframe_gap = static_cast<std::size_t>(gap);
-  loop.max_candidates = static_cast<std::size_t>(candidates);
-  loop.relocalisation_candidates = static_cast<std::size_t>(reloc);
-  loop.relocalisation_agreeing = static_cast<std::size_t>(agreeing);
   try {
     setParams(pair, loop);
   } catch (const Error& e) {

@@ -114,28 +114,7 @@ void CGaspOdometryNRD::loadParams(const std::string& source_fname) {
     THROW_EXCEPTION_FMT("CGaspOdometryNRD: configuration file not found: %s", source_fname.c_str());
   const mrpt::config::CConfigFile cfg(source_fname);
   OdometryParams p = params_;
-  // scene_change_X = SceneChangeParams::X
-  const std::pair<const char*, double*> scene_change_values[] = {
-      {"scene_change_max_violation_ratio", &p.scene_change.max_violation_ratio},
-      {"scene_change_max_two_way_violation_ratio", &p.scene_change.max_two_way_violation_ratio},
-      {"scene_change_max_occluded_ratio", &p.scene_change.max_occluded_ratio},
-      {"scene_change_gate_m", &p.scene_change.gate_m},
-      {"scene_change_gate_deg", &p.scene_change.gate_deg},
-      {"scene_change_max_accel_mps2", &p.scene_change.max_accel_mps2},
-      {"scene_change_max_angular_accel_radps2", &p.scene_change.max_angular_accel_radps2},
-      {"scene_change_max_gate_m", &p.scene_change.max_gate_m},
-      {"scene_change_max_gate_deg", &p.scene_change.max_gate_deg}};
-  std::set<std::string> own = {"keyframe_distance_m", "keyframe_angle_deg", "max_speed_mps", "max_rate_radps",
-                               "rolling_shutter_readout_s", "sensor_label", "class_verbosity", "scene_change"};
-  for (const auto& [key, value] : scene_change_values) own.insert(key);
-  readPairParams(cfg, kSection, p.pair, own);
-  readValue(cfg, kSection, "keyframe_distance_m", p.keyframe_distance_m);
-  readValue(cfg, kSection, "keyframe_angle_deg", p.keyframe_angle_deg);
-  readValue(cfg, kSection, "max_speed_mps", p.max_speed_mps);
-  readValue(cfg, kSection, "max_rate_radps", p.max_rate_radps);
-  readValue(cfg, kSection, "rolling_shutter_readout_s", p.rolling_shutter_readout_s);
-  readValue(cfg, kSection, "scene_change", p.scene_change.enabled);
-  for (const auto& [key, value] : scene_change_values) readValue(cfg, kSection, key, *value);
+  readOdometryParams(cfg, kSection, p, {"sensor_label", "class_verbosity"});
   int verbosity = static_cast<int>(getMinLoggingLevel());
   readValue(cfg, kSection, "class_verbosity", verbosity);
   try {

@@ -120,11 +120,9 @@ void CGaspPoseGraphGSO::loadParams(const std::string& source_fname) {
   if (!mrpt::system::fileExists(source_fname))
     THROW_EXCEPTION_FMT("CGaspPoseGraphGSO: configuration file not found: %s", source_fname.c_str());
   const mrpt::config::CConfigFile cfg(source_fname);
-  checkKeys(cfg, kSection, {"max_iterations", "function_tolerance", "drop_chi2", "class_verbosity"});
   PoseGraphSettings s = settings_;
+  readPoseGraphSettings(cfg, kSection, s, {"drop_chi2", "class_verbosity"});
   double drop = drop_chi2_;
-  readValue(cfg, kSection, "max_iterations", s.max_iterations);
-  readValue(cfg, kSection, "function_tolerance", s.function_tolerance);
   readValue(cfg, kSection, "drop_chi2", drop);
   int verbosity = static_cast<int>(getMinLoggingLevel());
   readValue(cfg, kSection, "class_verbosity", verbosity);

@@ -13,7 +13,9 @@
 #include <set>
 #include <string>
 
+#include "gasp/odometry/odometry_params.h"
 #include "gasp/pipeline/pair_registration.h"
+#include "gasp/slam/slam_params.h"
 #include "gasp/superpixels/superpixel_params.h"
 
 namespace gasp {
@@ -32,6 +34,25 @@ void readPairParams(const mrpt::config::CConfigFileBase& source, const std::stri
                     const std::set<std::string>& other_allowed_keys = {});
 void readPairParams(const mrpt::containers::yaml& source, const std::string& who, PairParams& params);
 void writePairParams(const PairParams& params, mrpt::config::CConfigFileBase& target, const std::string& section);
+
+/// The odometry (a decider's section): PairParams' keys and those of the params file's section
+/// odometry.
+void readOdometryParams(const mrpt::config::CConfigFileBase& source, const std::string& section,
+                        OdometryParams& params, const std::set<std::string>& other_allowed_keys = {});
+void writeOdometryParams(const OdometryParams& params, mrpt::config::CConfigFileBase& target,
+                         const std::string& section);
+
+/// The loop closer (a decider's section): PairParams' keys and those of section loop_closure.
+void readLoopClosureParams(const mrpt::config::CConfigFileBase& source, const std::string& section, PairParams& pair,
+                           LoopClosureParams& loop, const std::set<std::string>& other_allowed_keys = {});
+void writeLoopClosureParams(const PairParams& pair, const LoopClosureParams& loop, mrpt::config::CConfigFileBase& target,
+                            const std::string& section);
+
+/// The pose-graph optimiser: the keys of section pose_graph.
+void readPoseGraphSettings(const mrpt::config::CConfigFileBase& source, const std::string& section,
+                           PoseGraphSettings& settings, const std::set<std::string>& other_allowed_keys = {});
+void writePoseGraphSettings(const PoseGraphSettings& settings, mrpt::config::CConfigFileBase& target,
+                            const std::string& section);
 
 /// One value, strictly parsed; a missing key leaves it unchanged. Throws naming section and key.
 void readValue(const mrpt::config::CConfigFileBase& source, const std::string& section, const std::string& key,

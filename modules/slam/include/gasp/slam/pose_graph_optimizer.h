@@ -19,6 +19,9 @@ struct PoseGraphSettings {
   int num_threads = 1;                ///< Ceres threads (the graph is small beside registration)
 };
 
+/// Throws gasp::Error unless max_iterations, num_threads and function_tolerance are positive.
+void validate(const PoseGraphSettings& settings);
+
 struct PoseGraphResult {
   std::vector<Isometry3> T_world_node;  ///< optimised; nodes without an edge keep their input pose
   bool converged = false;  ///< Ceres converged (true with nothing to optimise)
