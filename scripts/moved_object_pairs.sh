@@ -7,7 +7,8 @@
 #
 # Usage: scripts/moved_object_pairs.sh [BUILD_DIR] [OUT_DIR] [GASP_PAIRS_ARGS...]
 #   defaults: build/ci, a temporary directory; extra arguments go to every gasp-pairs run
-#   (e.g. --max-two-way-violation 1)
+#   (e.g. --params lifted.yaml, a params file whose section certify sets
+#   visibility_max_two_way_violation_ratio: 1, the two-way limit lifted; docs/parameters.md)
 set -euo pipefail
 build=${1:-build/ci}
 [ -x "$build/bin/gasp-pairs" ] && [ -x "$build/bin/gasp-simulate" ] \
