@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
   auto* ate = app.add_subcommand("ate", "absolute trajectory error after rigid alignment (no scale)");
   auto* rpe = app.add_subcommand("rpe", "relative pose error over a fixed delta");
   for (auto* sub : {ate, rpe}) {
+    sub->fallthrough();  // --params after the subcommand too
     sub->add_option("--gt", gt_path, "ground-truth trajectory (TUM format)")->required();
     sub->add_option("--est", est_path, "estimated trajectory (TUM format)")->required();
     sub->add_option("--max-dt", max_dt, "timestamp association window [s]")->capture_default_str()->check(gasp::tools::above(0));

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <algorithm>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <regex>
@@ -18,6 +19,10 @@
 #include <string>
 
 #include "gasp/mrpt/CSuperpixelMap.h"
+#include "gasp/mrpt/ObservationMatcher_GASP.h"
+#include "gasp/mrpt/observation_matcher.h"
+#include "gasp/params/params_file.h"
+#include "gasp_test_data.h"
 #include "gasp/params/params_io.h"
 
 using namespace gasp;
@@ -221,4 +226,65 @@ TEST(ParamsIo, VersionZeroMapsStillLoadAndUnknownVersionsAreRefused) {
   };
   EXPECT_EQ(load(0).creationOptions.superpixels.target_patch_area_m2, 0.006);
   EXPECT_THROW(load(2), std::exception);
+}
+
+// The params file every program loads (gasp/params/params_file.h) is also what the MRPT classes
+// take: the matcher created by name in its YAML form (`params_file:` and sections), the aligner,
+// a map and the graphslam deciders through a `params_file` key in their ini section, each with
+// its own keys over the file's.
+TEST(ParamsIo, TheMrptClassesTakeTheParamsFile) {
+  const std::string dir = gasp::test::scratchDir();
+  const std::string file = dir + "/params.yaml";
+  std::ofstream(file) << "associate:\n  lambda: 0.6\n  candidate_key: mean\nrefine:\n  dense_gates_m: [0.12, 0.04]\n"
+                         "segment:\n  target_patch_area_m2: 0.005\nodometry:\n  keyframe_angle_deg: 7\n";
+  const gasp::SlamParams expected = gasp::readParamsFile(file);
+  // The matcher, by name: the file, then a section over it.
+  const auto matcher = gasp::createObservationMatcher(
+      "gasp::ObservationMatcher_GASP",
+      mrpt::containers::yaml::FromText("params_file: " + file + "\nassociate:\n  candidates: 9\n"));
+  const auto* gasp_matcher = dynamic_cast<const gasp::ObservationMatcher_GASP*>(matcher.get());
+  ASSERT_NE(gasp_matcher, nullptr);
+  gasp::SlamParams got = expected;
+  got.odometry.pair = gasp_matcher->params;
+  EXPECT_EQ(got.odometry.pair.associate.candidates, 9);
+  got.odometry.pair.associate.candidates = expected.odometry.pair.associate.candidates;
+  EXPECT_TRUE(gasp::sameParams(got, expected));
+  // The whole file's text as the matcher's YAML: the same values.
+  std::ifstream in(file);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  PairParams from_text;
+  readPairParams(mrpt::containers::yaml::FromText(text), "matcher", from_text);
+  got.odometry.pair = from_text;
+  EXPECT_TRUE(gasp::sameParams(got, expected));
+  // Flat keys and sections do not mix; a bad file is named.
+  PairParams z;
+  EXPECT_THROW(readPairParams(mrpt::containers::yaml::FromText("lambda: 0.5\nassociate:\n  candidates: 3\n"), "m", z),
+               std::exception);
+  try {
+    readPairParams(mrpt::containers::yaml::FromText("params_file: " + dir + "/none.yaml\n"), "matcher", z);
+    ADD_FAILURE() << "no error for a missing params file";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("matcher: params '" + dir + "/none.yaml': cannot open the file"), std::string::npos)
+        << e.what();
+  }
+  // An ini section (CGaspAligner's options, a decider's section): params_file, then its own keys.
+  mrpt::config::CConfigFileMemory ini;
+  ini.write("Aligner", "params_file", file);
+  ini.write("Aligner", "min_inliers", "11");
+  PairParams aligned;
+  readPairParams(ini, "Aligner", aligned);
+  EXPECT_EQ(aligned.hypothesise.pose.ransac.min_inliers, 11);
+  EXPECT_EQ(aligned.associate.lambda, 0.6);
+  EXPECT_EQ(aligned.refine.dense.gates_m, (std::vector<double>{0.12, 0.04}));
+  OdometryParams odometry;
+  readOdometryParams(ini, "Aligner", odometry);
+  EXPECT_EQ(odometry.keyframe_angle_deg, 7.0);
+  SuperpixelParams segment;
+  mrpt::config::CConfigFileMemory map_ini;
+  map_ini.write("Map", "params_file", file);
+  readSuperpixelParams(map_ini, "Map", segment);
+  EXPECT_EQ(segment.target_patch_area_m2, 0.005);
+  map_ini.write("Map", "params_file", dir + "/none.yaml");
+  EXPECT_THROW(readSuperpixelParams(map_ini, "Map", segment), std::exception);
+  EXPECT_EQ(segment.target_patch_area_m2, 0.005);  // unchanged by the failed read
 }

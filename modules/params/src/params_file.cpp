@@ -214,14 +214,19 @@ std::vector<std::string> paramsKeys(const std::string& section) {
   return keys;
 }
 
-SlamParams readParamsYaml(const std::string& yaml_text, const std::string& source, const SlamParams& base) {
-  const Sections sections = parseSections(yaml_text, source);
+namespace {
+
+/// " line N" for a value read from a file's text, "" for one from a YAML node (no lines).
+std::string lineOf(int line) { return line > 0 ? " line " + std::to_string(line) : ""; }
+
+/// `base` with the values of `sections` set, then validated.
+SlamParams applySections(const Sections& sections, const std::string& source, const SlamParams& base) {
   SlamParams p = base;
   for (const auto& [section, values] : sections)
     for (const auto& [key, value] : values) {
       std::string kind;
       if (!setValue(p, section, key, value, kind))
-        throw Error(source + " line " + std::to_string(value.line) + ": " + section + "." + key + " = '" +
+        throw Error(source + lineOf(value.line) + ": " + section + "." + key + " = '" +
                     (value.list ? "[" + value.text + "]" : value.text) + "': expected " + kind);
     }
   try {
@@ -237,12 +242,63 @@ SlamParams readParamsYaml(const std::string& yaml_text, const std::string& sourc
         try {
           validate(trial);
         } catch (const Error&) {
-          culprits += (culprits.empty() ? " (" : ", ") + section + "." + key + " on line " + std::to_string(value.line);
+          culprits += (culprits.empty() ? " (" : ", ") + section + "." + key +
+                      (value.line > 0 ? " on line " + std::to_string(value.line) : "");
         }
       }
     throw Error(source + ": invalid parameters" + (culprits.empty() ? "" : culprits + ")") + ": " + e.what());
   }
   return p;
+}
+
+/// A scalar of a YAML node as text; a double exactly (MRPT's own text may round it).
+std::string scalarText(const mrpt::containers::yaml& v) {
+  if (v.scalarType() == typeid(double)) return shortestText(v.as<double>());
+  if (v.scalarType() == typeid(float)) return shortestText(static_cast<double>(v.as<float>()));
+  return trimmed(v.as<std::string>());
+}
+
+}  // namespace
+
+SlamParams readParamsYaml(const std::string& yaml_text, const std::string& source, const SlamParams& base) {
+  return applySections(parseSections(yaml_text, source), source, base);
+}
+
+SlamParams readParamsNode(const mrpt::containers::yaml& node, const std::string& source, const SlamParams& base) {
+  Sections sections;
+  if (node.isNullNode() || node.empty()) return applySections(sections, source, base);
+  if (!node.isMap()) throw Error(source + ": parameters must be a map of sections (docs/parameters.md)");
+  for (const auto& [section_key, section_node] : node.asMap()) {
+    const std::string section = section_key.as<std::string>();
+    if (paramsKeys(section).empty())
+      throw Error(source + ": unknown section '" + section + "' (sections: " + joined(paramsSections()) + ")");
+    const mrpt::containers::yaml values(section_node);
+    auto& out = sections[section];
+    if (values.isNullNode() || values.empty()) continue;
+    if (!values.isMap()) throw Error(source + ": section '" + section + "' must hold 'key: value' pairs");
+    const std::vector<std::string> keys = paramsKeys(section);
+    for (const auto& [key_node, value_node] : values.asMap()) {
+      const std::string key = key_node.as<std::string>();
+      if (std::find(keys.begin(), keys.end(), key) == keys.end())
+        throw Error(source + ": unknown key '" + key + "' in section '" + section + "' (its keys: " + joined(keys) + ")");
+      const mrpt::containers::yaml v(value_node);
+      Value value;
+      if (v.isSequence()) {
+        value.list = true;
+        for (const auto& item : v.asSequence()) {
+          const mrpt::containers::yaml e(item);
+          if (!e.isScalar()) throw Error(source + ": " + section + "." + key + ": a list of plain values expected");
+          value.text += (value.text.empty() ? "" : ",") + scalarText(e);
+        }
+      } else if (v.isScalar()) {
+        value.text = scalarText(v);
+      } else {
+        throw Error(source + ": " + section + "." + key + ": a plain value or a list expected");
+      }
+      out[key] = value;
+    }
+  }
+  return applySections(sections, source, base);
 }
 
 SlamParams readParamsFile(const std::string& path, const SlamParams& base) {

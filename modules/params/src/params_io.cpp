@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "gasp/core/error.h"
+#include "gasp/params/params_file.h"
 #include "gasp/superpixels/depth_superpixels.h"
 #include "param_keys.h"
 
@@ -52,9 +53,36 @@ std::string keysInvalidAlone(const std::vector<std::string>& keys, const P& base
 
 /// Reads the keys `fields(p, f)` lists from an ini section over `params`, then validates them;
 /// unknown keys (except `other_allowed`) and invalid values throw naming the section and key.
+/// With a `params_file = PATH` key in the section, `params` read over by that params file first
+/// (`part` maps the file's SlamParams to the section's part of it, both ways), so that an MRPT ini
+/// and every program share one file; the section's own keys then override it.
+template <class Part>
+void loadParamsFileKey(const mrpt::config::CConfigFileBase& source, const std::string& section, Part&& part) {
+  if (!source.keyExists(section, "params_file")) return;
+  const std::string path = trimmed(source.read_string(section, "params_file", ""));
+  try {
+    SlamParams all;
+    part(all, false);  // the section's values into `all`
+    all = readParamsFile(path, all);
+    part(all, true);  // and back
+  } catch (const Error& e) {
+    THROW_EXCEPTION_FMT("[%s] params_file: %s", section.c_str(), e.what());
+  }
+}
+
+/// part(all, back) for loadParamsFileKey: `field` of the file's parameters is `params`.
+template <class P, class Field>
+auto partOf(P& params, Field&& field) {
+  return [&params, field](SlamParams& all, bool back) {
+    if (back) params = field(all);
+    else field(all) = params;
+  };
+}
+
 template <class P, class Fields>
 void readSection(const mrpt::config::CConfigFileBase& source, const std::string& section, P& params,
-                 const std::set<std::string>& other_allowed, Fields&& fields) {
+                 std::set<std::string> other_allowed, Fields&& fields) {
+  other_allowed.insert("params_file");  // read by the caller (loadParamsFileKey)
   P p = params;
   readIni(source, section, [&](auto&& f) { fields(p, f); }, other_allowed);
   try {
@@ -129,7 +157,11 @@ void checkKeys(const mrpt::config::CConfigFileBase& source, const std::string& s
 void readSuperpixelParams(const mrpt::config::CConfigFileBase& source, const std::string& section,
                           SuperpixelParams& params, const std::set<std::string>& other_allowed_keys) {
   SuperpixelParams p = params;
-  readIni(source, section, [&](auto&& f) { superpixelFields(p, f); }, other_allowed_keys);
+  loadParamsFileKey(source, section,
+                    partOf(p, [](SlamParams& all) -> SuperpixelParams& { return all.odometry.pair.segment; }));
+  std::set<std::string> allowed = other_allowed_keys;
+  allowed.insert("params_file");
+  readIni(source, section, [&](auto&& f) { superpixelFields(p, f); }, allowed);
   try {
     validate(p);
   } catch (const Error& e) {
@@ -145,15 +177,21 @@ void writeSuperpixelParams(const SuperpixelParams& params, mrpt::config::CConfig
 
 void readPairParams(const mrpt::config::CConfigFileBase& source, const std::string& section, PairParams& params,
                     const std::set<std::string>& other_allowed_keys) {
-  readSection(source, section, params, other_allowed_keys, [](auto& p, auto&& f) { pairFields(p, f); });
+  PairParams p = params;  // unchanged when reading fails
+  loadParamsFileKey(source, section, partOf(p, [](SlamParams& all) -> PairParams& { return all.odometry.pair; }));
+  readSection(source, section, p, other_allowed_keys, [](auto& q, auto&& f) { pairFields(q, f); });
+  params = p;
 }
 
 void readOdometryParams(const mrpt::config::CConfigFileBase& source, const std::string& section,
                         OdometryParams& params, const std::set<std::string>& other_allowed_keys) {
-  readSection(source, section, params, other_allowed_keys, [](auto& p, auto&& f) {
-    pairFields(p.pair, f);
-    odometryFields(p, f);
+  OdometryParams p = params;  // unchanged when reading fails
+  loadParamsFileKey(source, section, partOf(p, [](SlamParams& all) -> OdometryParams& { return all.odometry; }));
+  readSection(source, section, p, other_allowed_keys, [](auto& q, auto&& f) {
+    pairFields(q.pair, f);
+    odometryFields(q, f);
   });
+  params = p;
 }
 
 void writeOdometryParams(const OdometryParams& params, mrpt::config::CConfigFileBase& target,
@@ -167,6 +205,14 @@ void writeOdometryParams(const OdometryParams& params, mrpt::config::CConfigFile
 void readLoopClosureParams(const mrpt::config::CConfigFileBase& source, const std::string& section, PairParams& pair,
                            LoopClosureParams& loop, const std::set<std::string>& other_allowed_keys) {
   LoopClosureSection s{pair, loop};
+  loadParamsFileKey(source, section, [&s](SlamParams& all, bool back) {
+    if (back) {
+      s = {all.odometry.pair, all.loop};
+    } else {
+      all.odometry.pair = s.pair;
+      all.loop = s.loop;
+    }
+  });
   readSection(source, section, s, other_allowed_keys, [](auto& p, auto&& f) {
     pairFields(p.pair, f);
     loopClosureFields(p.loop, f);
@@ -183,7 +229,10 @@ void writeLoopClosureParams(const PairParams& pair, const LoopClosureParams& loo
 
 void readPoseGraphSettings(const mrpt::config::CConfigFileBase& source, const std::string& section,
                            PoseGraphSettings& settings, const std::set<std::string>& other_allowed_keys) {
-  readSection(source, section, settings, other_allowed_keys, [](auto& p, auto&& f) { poseGraphFields(p, f); });
+  PoseGraphSettings p = settings;  // unchanged when reading fails
+  loadParamsFileKey(source, section, partOf(p, [](SlamParams& all) -> PoseGraphSettings& { return all.graph; }));
+  readSection(source, section, p, other_allowed_keys, [](auto& q, auto&& f) { poseGraphFields(q, f); });
+  settings = p;
 }
 
 void writePoseGraphSettings(const PoseGraphSettings& settings, mrpt::config::CConfigFileBase& target,
@@ -191,7 +240,47 @@ void writePoseGraphSettings(const PoseGraphSettings& settings, mrpt::config::CCo
   writeSection(settings, target, section, [](auto& p, auto&& f) { poseGraphFields(p, f); });
 }
 
+namespace {
+
+/// A YAML node in the params file's form: a map with a section (segment, associate, ...) or a
+/// `params_file` key, rather than the flat keys.
+bool paramsFileForm(const mrpt::containers::yaml& y) {
+  if (!y.isMap()) return false;
+  const auto& sections = paramsSections();
+  for (const auto& [key, value] : y.asMap()) {
+    const auto name = key.as<std::string>();
+    if (name == "params_file" || std::find(sections.begin(), sections.end(), name) != sections.end()) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 void readPairParams(const mrpt::containers::yaml& y, const std::string& who, PairParams& params) {
+  if (paramsFileForm(y)) {
+    // The params file's form: `params_file: PATH` (loaded first) and sections over it; the
+    // sections a pair does not use (odometry, loop_closure, pose_graph) are read and checked too,
+    // so that one file serves every program and the matcher.
+    try {
+      SlamParams p;
+      p.odometry.pair = params;
+      mrpt::containers::yaml sections = mrpt::containers::yaml::Map();
+      for (const auto& [key, value] : y.asMap()) {
+        const auto name = key.as<std::string>();
+        if (name == "params_file") {
+          p = readParamsFile(mrpt::containers::yaml(value).as<std::string>(), p);
+        } else if (paramsKeys(name).empty()) {
+          throw Error("'" + name + "' is neither a section nor params_file (the flat keys cannot be mixed with sections)");
+        } else {
+          sections[name] = mrpt::containers::yaml(value);
+        }
+      }
+      params = readParamsNode(sections, "parameters", p).odometry.pair;
+    } catch (const Error& e) {
+      THROW_EXCEPTION_FMT("%s: %s", who.c_str(), e.what());
+    }
+    return;
+  }
   PairParams p = params;
   if (!y.isNullNode() && !y.empty()) {
     if (!y.isMap()) THROW_EXCEPTION_FMT("%s: parameters must be a YAML map", who.c_str());

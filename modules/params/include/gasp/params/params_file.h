@@ -9,6 +9,8 @@
 /// A missing section or key keeps the value it is read over. An unknown section or key, a value
 /// of the wrong kind, or values that together are invalid (validate(SlamParams)) are errors naming
 /// the file and the key.
+#include <mrpt/containers/yaml.h>
+
 #include <string>
 #include <vector>
 
@@ -25,6 +27,9 @@ std::vector<std::string> paramsKeys(const std::string& section);
 /// `base` with the values of the YAML text set; `source` names it in errors ("params 'FILE'").
 /// Throws gasp::Error.
 SlamParams readParamsYaml(const std::string& yaml_text, const std::string& source, const SlamParams& base = {});
+
+/// The same from a YAML node already parsed (the MRPT matcher's parameters): a map of sections.
+SlamParams readParamsNode(const mrpt::containers::yaml& node, const std::string& source, const SlamParams& base = {});
 
 /// readParamsYaml over a file's text; an unreadable file is an error naming it.
 SlamParams readParamsFile(const std::string& path, const SlamParams& base = {});

@@ -32,6 +32,8 @@ void writeSuperpixelParams(const SuperpixelParams& params, mrpt::config::CConfig
 /// comma-separated list (or a YAML sequence), cost_replace and cost_transpose may be inf.
 void readPairParams(const mrpt::config::CConfigFileBase& source, const std::string& section, PairParams& params,
                     const std::set<std::string>& other_allowed_keys = {});
+/// The YAML form takes either the flat keys or the params file's form: its sections (segment to
+/// retry used, the others checked) and `params_file: PATH`, a params file loaded first.
 void readPairParams(const mrpt::containers::yaml& source, const std::string& who, PairParams& params);
 void writePairParams(const PairParams& params, mrpt::config::CConfigFileBase& target, const std::string& section);
 
