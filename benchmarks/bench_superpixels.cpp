@@ -109,8 +109,8 @@ int main(int argc, char** argv) {
   int n_frames = 40;
   for (int a = 1; a < argc; ++a) {
     if (a + 1 < argc && std::strcmp(argv[a], "--frames") == 0) n_frames = std::atoi(argv[a + 1]);
-    if (std::strcmp(argv[a], "--no-crease-borders") == 0) params().crease_borders = false;
-    if (std::strcmp(argv[a], "--step-borders") == 0) params().step_borders = true;
+    if (std::strcmp(argv[a], "--no-crease-borders") == 0) params().borders.crease_borders = false;
+    if (std::strcmp(argv[a], "--step-borders") == 0) params().borders.step_borders = true;
   }
   const std::string dir = gasp::bench::dataDir() + "/tum/fr1_xyz";
   try {

@@ -96,7 +96,7 @@ int main(int argc, char** argv) {
   app.add_option("--depth-scale", depth_scale, "raw depth units per metre")->capture_default_str()->check(gasp::tools::above(0));
   app.add_option("--area-cm2", area_cm2, "target patch area [cm^2] (segment.target_patch_area_m2 in the params file)")
       ->check(gasp::tools::above(0));
-  app.add_flag("--step-borders", params.step_borders, "place borders at steps between parallel planes (segment.step_borders; off by default)");
+  app.add_flag("--step-borders", params.borders.step_borders, "place borders at steps between parallel planes (segment.step_borders; off by default)");
   app.add_option("--every", every, "with --tum: segment every N-th frame")->check(gasp::tools::atLeast(1))->capture_default_str();
   app.add_option("--pairs", pair_skip, "with --tum: measure patch repeatability on pairs (i, i+SKIP) "
                  "of frames with ground truth, i every --every frames, instead of writing pictures")

@@ -49,15 +49,15 @@ std::map<std::string, std::string> pairKeys(const PairParams& p) {
 PairParams everythingChanged() {
   PairParams p;
   auto& s = p.segment;
-  s.discontinuity_abs_m = 0.0123456789, s.discontinuity_rel = 0.021, s.normal_window_px_per_m = 6.5;
-  s.normal_min_radius_px = 3, s.normal_max_radius_px = 11, s.max_crease_angle_deg = 26;
-  s.max_neighbour_normal_angle_deg = 11, s.min_component_pixels = 41, s.target_patch_area_m2 = 0.0051;
-  s.kmeans_iterations = 7, s.kmeans_normal_weight = 0.55, s.seed_sampling_step_px = 3, s.seed = 99;
-  s.max_incidence_deg = 79, s.min_patch_pixels = 21, s.min_patch_area_ratio = 0.26;
-  s.regrow_normal_weight_m = 0.11, s.processing_step_px = 1, s.kmeans_iteration_step_px = 1;
-  s.kmeans_coarse_iterations = 3, s.crease_borders = false, s.crease_min_angle_deg = 31, s.crease_band_px = 9;
-  s.plane_noise_abs_m = 0.0051, s.plane_noise_rel = 0.0031, s.step_borders = true, s.step_min_sigmas = 6.5;
-  s.step_smoothness = 1.5;
+  s.surfaces.discontinuity_abs_m = 0.0123456789, s.surfaces.discontinuity_rel = 0.021, s.surfaces.normal_window_px_per_m = 6.5;
+  s.surfaces.normal_min_radius_px = 3, s.surfaces.normal_max_radius_px = 11, s.surfaces.max_crease_angle_deg = 26;
+  s.surfaces.max_neighbour_normal_angle_deg = 11, s.surfaces.min_component_pixels = 41, s.target_patch_area_m2 = 0.0051;
+  s.kmeans.kmeans_iterations = 7, s.kmeans.kmeans_normal_weight = 0.55, s.kmeans.seed_sampling_step_px = 3, s.kmeans.seed = 99;
+  s.max_incidence_deg = 79, s.cleanup.min_patch_pixels = 21, s.cleanup.min_patch_area_ratio = 0.26;
+  s.cleanup.regrow_normal_weight_m = 0.11, s.processing_step_px = 1, s.kmeans.kmeans_iteration_step_px = 1;
+  s.kmeans.kmeans_coarse_iterations = 3, s.borders.crease_borders = false, s.borders.crease_min_angle_deg = 31, s.borders.crease_band_px = 9;
+  s.borders.plane_noise_abs_m = 0.0051, s.borders.plane_noise_rel = 0.0031, s.borders.step_borders = true, s.borders.step_min_sigmas = 6.5;
+  s.borders.step_smoothness = 1.5;
   p.certify.view_degeneracy.min_eigenvalue_ratio = 2e-3;
   auto& a = p.associate;
   a.feature_sets.neighbourhood.k = 25, a.feature_sets.feature.e_theta_rad = 0.09;
@@ -115,7 +115,7 @@ TEST(ParamsIo, EveryPairParameterIsAKeyThatReadsBackExactly) {
   readPairParams(mem, "s", read);
   EXPECT_EQ(pairKeys(read), written);
   // The kinds of value with their own syntax, field by field.
-  EXPECT_EQ(read.segment.discontinuity_abs_m, 0.0123456789);  // exactly: %.17g
+  EXPECT_EQ(read.segment.surfaces.discontinuity_abs_m, 0.0123456789);  // exactly: %.17g
   EXPECT_EQ(read.associate.candidate_key, CandidateKey::kMean);
   EXPECT_TRUE(std::isinf(read.associate.costs.transpose));
   EXPECT_EQ(read.associate.costs.replace, 2.0);

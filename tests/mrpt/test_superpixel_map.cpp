@@ -218,7 +218,7 @@ TEST(SuperpixelMap, CreatedFromIniByCMultiMetricMap) {
   const auto map = multi.mapByClass<CSuperpixelMap>();
   ASSERT_TRUE(map);
   EXPECT_EQ(map->creationOptions.superpixels.target_patch_area_m2, 0.006);
-  EXPECT_EQ(map->creationOptions.superpixels.min_patch_pixels, 30);
+  EXPECT_EQ(map->creationOptions.superpixels.cleanup.min_patch_pixels, 30);
   EXPECT_EQ(map->likelihoodOptions.sigma_m, 0.05);
   EXPECT_EQ(map->likelihoodOptions.matching.associate.candidates, 30);
   EXPECT_EQ(map->renderOptions.style, CSuperpixelMap::TRenderOptions::Style::points);

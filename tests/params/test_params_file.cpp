@@ -65,7 +65,7 @@ TEST(ParamsFile, WhatIsWrittenReadsBackToTheSameValues) {
   gasp::SlamParams p;
   auto& pair = p.odometry.pair;
   pair.segment.target_patch_area_m2 = 0.0031;
-  pair.segment.step_borders = true;
+  pair.segment.borders.step_borders = true;
   pair.associate.lambda = 0.1 + 0.2;  // not a short decimal
   pair.associate.costs.transpose = std::numeric_limits<double>::infinity();
   pair.associate.candidate_key = gasp::CandidateKey::kMean;

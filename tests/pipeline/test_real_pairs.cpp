@@ -137,7 +137,7 @@ TEST(RealPairs, TheFallbackViolationLimitDeclinesAWrongPose) {
   // benchmark: at most 3.4 %).
   GASP_REQUIRE_DATA(dir, "tum/fr1_xyz");
   SuperpixelParams sp;
-  sp.step_borders = true;
+  sp.borders.step_borders = true;
   const RealPair p = load(dir, 280, 310, sp);
   // The default scale only (the finer-scale retry registers this pair, see below).
   const PairParams no_retry = defaultScaleOnly();
@@ -175,7 +175,7 @@ TEST(RealPairs, WideEdgeGatesStopTheCabinetSlide) {
   // not slide: checked last.)
   GASP_REQUIRE_DATA(dir, "tum/fr3_cabinet_kf");
   SuperpixelParams no_crease;
-  no_crease.crease_borders = false;
+  no_crease.borders.crease_borders = false;
   const RealPair p = load(dir, 8, 10, no_crease);
   const PairResult r = registerViews(p.a, p.b);
   ASSERT_TRUE(r.pose.success) << r.pose.reason;

@@ -53,7 +53,7 @@ TEST(SuperpixelsBadInput, InvalidParametersThrow) {
   p.target_patch_area_m2 = 0.0;
   EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
   p = {};
-  p.normal_min_radius_px = 0;
+  p.surfaces.normal_min_radius_px = 0;
   EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
   for (int step : {0, 5}) {
     p = {};
@@ -61,27 +61,27 @@ TEST(SuperpixelsBadInput, InvalidParametersThrow) {
     EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error) << step;
   }
   p = {};
-  p.kmeans_iteration_step_px = 0;
+  p.kmeans.kmeans_iteration_step_px = 0;
   EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
   p = {};
-  p.kmeans_coarse_iterations = -1;
+  p.kmeans.kmeans_coarse_iterations = -1;
   EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
   p = {};
-  p.crease_band_px = -1;
+  p.borders.crease_band_px = -1;
   EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
   p = {};
-  p.crease_min_angle_deg = 0.0;
+  p.borders.crease_min_angle_deg = 0.0;
   EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
   p = {};
-  p.plane_noise_abs_m = 0.0;
-  p.plane_noise_rel = 0.0;
+  p.borders.plane_noise_abs_m = 0.0;
+  p.borders.plane_noise_rel = 0.0;
   EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
   for (double bad : {-1.0, std::nan("")}) {
     p = {};
-    p.step_min_sigmas = bad;
+    p.borders.step_min_sigmas = bad;
     EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
     p = {};
-    p.step_smoothness = bad;
+    p.borders.step_smoothness = bad;
     EXPECT_THROW(gasp::segmentDepthSuperpixels(depth, kCamera, p), gasp::Error);
   }
 }
@@ -97,7 +97,7 @@ TEST(SuperpixelsBadInput, SparseSpecklesDoNotHang) {
 
 TEST(SuperpixelsBadInput, TheStepBordersTakeTheSameInput) {
   gasp::SuperpixelParams p;
-  p.step_borders = true;
+  p.borders.step_borders = true;
   for (float fill : {0.0f, std::numeric_limits<float>::quiet_NaN()}) {
     const auto seg = gasp::segmentDepthSuperpixels(cv::Mat(480, 640, CV_32FC1, cv::Scalar(fill)), kCamera, p);
     EXPECT_TRUE(seg.patches.empty());

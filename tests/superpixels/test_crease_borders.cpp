@@ -26,7 +26,7 @@ gasp::sim::Scene corner(bool concave) {
 
 gasp::test::ScoredSegmentation segmentAndScore(const gasp::sim::Scene& scene, bool crease_borders) {
   gasp::SuperpixelParams p;
-  p.crease_borders = crease_borders;
+  p.borders.crease_borders = crease_borders;
   return gasp::test::segmentNoisyView(scene, p);
 }
 
@@ -50,7 +50,7 @@ TEST(CreaseBorders, OffLeavesTheLabelsOfTheEarlierStages) {
   const auto K = gasp::CameraIntrinsics::rosDefault();
   cv::Mat depth(K.height, K.width, CV_32F, cv::Scalar(2.0f));
   gasp::SuperpixelParams on, off;
-  off.crease_borders = false;
+  off.borders.crease_borders = false;
   const auto a = gasp::segmentDepthSuperpixels(depth, K, on);
   const auto b = gasp::segmentDepthSuperpixels(depth, K, off);
   EXPECT_EQ(cv::countNonZero(a.labels != b.labels), 0);

@@ -56,7 +56,7 @@ TEST(Normals, CreaseAndDiscontinuityAreSetAside) {
   const gasp::SuperpixelParams p;
   const gasp::DepthLinks links(cloud, p);
   const auto normals = gasp::estimateNormals(cloud, links, p);
-  const float max_crease = static_cast<float>(p.max_crease_angle_deg * M_PI / 180.0);
+  const float max_crease = static_cast<float>(p.surfaces.max_crease_angle_deg * M_PI / 180.0);
   // At the crease: either no normal or a crease angle over the threshold.
   const bool set_aside = !normals.hasNormal(320, 300) || normals.crease.at<float>(300, 320) > max_crease;
   EXPECT_TRUE(set_aside);

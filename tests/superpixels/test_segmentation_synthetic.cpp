@@ -90,7 +90,7 @@ TEST(SuperpixelsSynthetic, StepBordersKeepFarWallsApart) {
   // wall 4 m away: measured 0.979 / 0.990 / 0.987 for frames 0 / 10 / 20 (defaults 0.970 / 0.977 /
   // 0.974), 0.9895 over the 60 frames.
   gasp::SuperpixelParams p;
-  p.step_borders = true;
+  p.borders.step_borders = true;
   const SceneEdges e = edgesOfScene("room", p);
   ASSERT_GT(e.per_frame.size(), 20u);
   EXPECT_GE(e.share, 0.985);
@@ -128,7 +128,7 @@ TEST(SuperpixelsSynthetic, SameInputGivesIdenticalLabels) {
   ASSERT_EQ(a.patches.size(), b.patches.size());
   EXPECT_EQ(cv::countNonZero(a.labels != b.labels), 0);
   gasp::SuperpixelParams other;
-  other.seed = 7;  // another seeding order gives another (equally valid) decomposition
+  other.kmeans.seed = 7;  // another seeding order gives another (equally valid) decomposition
   const auto c = gasp::segmentDepthSuperpixels(f.depth, gasp::CameraIntrinsics::rosDefault(), other);
   EXPECT_GT(cv::countNonZero(a.labels != c.labels), 0);
 }

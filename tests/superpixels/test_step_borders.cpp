@@ -32,7 +32,7 @@ gasp::sim::Scene wall(double relief) {
 
 gasp::test::ScoredSegmentation segmentAndScore(const gasp::sim::Scene& scene, bool step_borders) {
   gasp::SuperpixelParams p;
-  p.step_borders = step_borders;
+  p.borders.step_borders = step_borders;
   return gasp::test::segmentNoisyView(scene, p);
 }
 

@@ -37,34 +37,34 @@ MayBeInfinite(D&) -> MayBeInfinite<D>;
 
 template <class P, class F>
 void superpixelFields(P& p, F&& f) {
-  f("discontinuity_abs_m", p.discontinuity_abs_m);
-  f("discontinuity_rel", p.discontinuity_rel);
-  f("normal_window_px_per_m", p.normal_window_px_per_m);
-  f("normal_min_radius_px", p.normal_min_radius_px);
-  f("normal_max_radius_px", p.normal_max_radius_px);
-  f("max_crease_angle_deg", p.max_crease_angle_deg);
-  f("max_neighbour_normal_angle_deg", p.max_neighbour_normal_angle_deg);
-  f("min_component_pixels", p.min_component_pixels);
+  f("discontinuity_abs_m", p.surfaces.discontinuity_abs_m);
+  f("discontinuity_rel", p.surfaces.discontinuity_rel);
+  f("normal_window_px_per_m", p.surfaces.normal_window_px_per_m);
+  f("normal_min_radius_px", p.surfaces.normal_min_radius_px);
+  f("normal_max_radius_px", p.surfaces.normal_max_radius_px);
+  f("max_crease_angle_deg", p.surfaces.max_crease_angle_deg);
+  f("max_neighbour_normal_angle_deg", p.surfaces.max_neighbour_normal_angle_deg);
+  f("min_component_pixels", p.surfaces.min_component_pixels);
   f("target_patch_area_m2", p.target_patch_area_m2);
-  f("kmeans_iterations", p.kmeans_iterations);
-  f("kmeans_normal_weight", p.kmeans_normal_weight);
-  f("seed_sampling_step_px", p.seed_sampling_step_px);
-  f("seed", p.seed);
+  f("kmeans_iterations", p.kmeans.kmeans_iterations);
+  f("kmeans_normal_weight", p.kmeans.kmeans_normal_weight);
+  f("seed_sampling_step_px", p.kmeans.seed_sampling_step_px);
+  f("seed", p.kmeans.seed);
   f("max_incidence_deg", p.max_incidence_deg);
-  f("min_patch_pixels", p.min_patch_pixels);
-  f("min_patch_area_ratio", p.min_patch_area_ratio);
-  f("regrow_normal_weight_m", p.regrow_normal_weight_m);
+  f("min_patch_pixels", p.cleanup.min_patch_pixels);
+  f("min_patch_area_ratio", p.cleanup.min_patch_area_ratio);
+  f("regrow_normal_weight_m", p.cleanup.regrow_normal_weight_m);
   f("processing_step_px", p.processing_step_px);
-  f("kmeans_iteration_step_px", p.kmeans_iteration_step_px);
-  f("kmeans_coarse_iterations", p.kmeans_coarse_iterations);
-  f("crease_borders", p.crease_borders);
-  f("crease_min_angle_deg", p.crease_min_angle_deg);
-  f("crease_band_px", p.crease_band_px);
-  f("plane_noise_abs_m", p.plane_noise_abs_m);
-  f("plane_noise_rel", p.plane_noise_rel);
-  f("step_borders", p.step_borders);
-  f("step_min_sigmas", p.step_min_sigmas);
-  f("step_smoothness", p.step_smoothness);
+  f("kmeans_iteration_step_px", p.kmeans.kmeans_iteration_step_px);
+  f("kmeans_coarse_iterations", p.kmeans.kmeans_coarse_iterations);
+  f("crease_borders", p.borders.crease_borders);
+  f("crease_min_angle_deg", p.borders.crease_min_angle_deg);
+  f("crease_band_px", p.borders.crease_band_px);
+  f("plane_noise_abs_m", p.borders.plane_noise_abs_m);
+  f("plane_noise_rel", p.borders.plane_noise_rel);
+  f("step_borders", p.borders.step_borders);
+  f("step_min_sigmas", p.borders.step_min_sigmas);
+  f("step_smoothness", p.borders.step_smoothness);
 }
 
 /// The pair pipeline by stage (pair_registration.h), one table per section of the params file.

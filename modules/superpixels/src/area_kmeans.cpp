@@ -75,13 +75,13 @@ void seedRegion(int r, const int* first, int n, int K, const int* region, const 
                 const Eigen::Vector3f* normal, int w, int h, const CameraIntrinsics& k, const SuperpixelParams& p,
                 std::vector<Cluster>& clusters, std::vector<int>& covered) {
   std::vector<int> cand;
-  const int step = std::max(1, p.seed_sampling_step_px);
+  const int step = std::max(1, p.kmeans.seed_sampling_step_px);
   for (int j = 0; j < n && step > 1; ++j) {
     const int i = first[j];
     if ((i % w) % step == 0 && (i / w) % step == 0) cand.push_back(i);
   }
   if (static_cast<int>(cand.size()) < 4 * K) cand.assign(first, first + n);
-  std::mt19937_64 rng(p.seed * 0x9E3779B97F4A7C15ULL + static_cast<std::uint64_t>(r) + 1);
+  std::mt19937_64 rng(p.kmeans.seed * 0x9E3779B97F4A7C15ULL + static_cast<std::uint64_t>(r) + 1);
   for (std::size_t j = cand.size(); j > 1; --j)  // Fisher-Yates with a portable index draw
     std::swap(cand[j - 1], cand[static_cast<std::size_t>(uniform01(rng) * static_cast<double>(j))]);
   const float d_min = static_cast<float>(std::sqrt(0.547 * 4.0 / M_PI * p.target_patch_area_m2));
@@ -226,7 +226,7 @@ AreaPatches splitIntoAreaPatches(const cv::Mat& region_labels, int num_regions,
   const std::size_t n_px = static_cast<std::size_t>(w) * h;
   const float min_cos = static_cast<float>(std::cos(p.max_incidence_deg * M_PI / 180.0));
   const float radius = static_cast<float>(std::sqrt(p.target_patch_area_m2 / M_PI));
-  const float w_n = static_cast<float>(p.kmeans_normal_weight);
+  const float w_n = static_cast<float>(p.kmeans.kmeans_normal_weight);
 
   // Flat views of the per-pixel data (all matrices are continuous, row-major).
   const int* region = region_labels.ptr<int>(0);
@@ -265,9 +265,9 @@ AreaPatches splitIntoAreaPatches(const cv::Mat& region_labels, int num_regions,
   std::vector<float> best;
   std::vector<int> assign;
   if (!clusters.empty()) {
-    const int step = std::max(1, p.kmeans_iteration_step_px);
-    const int iterations = std::max(1, p.kmeans_iterations);
-    const int coarse_iterations = std::clamp(p.kmeans_coarse_iterations, 0, iterations);
+    const int step = std::max(1, p.kmeans.kmeans_iteration_step_px);
+    const int iterations = std::max(1, p.kmeans.kmeans_iterations);
+    const int coarse_iterations = std::clamp(p.kmeans.kmeans_coarse_iterations, 0, iterations);
     const Lattice all(1, w, h, region, point, normal, has_normal, area.data());
     std::optional<Lattice> fine, coarse;
     if (step > 1 && coarse_iterations < iterations) fine.emplace(step, w, h, region, point, normal, has_normal, area.data());

@@ -14,13 +14,13 @@ SuperpixelParams scaledParams(const SuperpixelParams& p, int s) {
   auto count = [s](int px) { return std::max(1, static_cast<int>(std::lround(static_cast<double>(px) / (s * s)))); };
   SuperpixelParams c = p;
   c.processing_step_px = 1;
-  c.normal_window_px_per_m = p.normal_window_px_per_m / s;
-  c.normal_min_radius_px = length(p.normal_min_radius_px);
-  c.normal_max_radius_px = std::max(c.normal_min_radius_px, length(p.normal_max_radius_px));
-  c.min_component_pixels = count(p.min_component_pixels);
-  c.seed_sampling_step_px = length(p.seed_sampling_step_px);
-  c.kmeans_iteration_step_px = length(p.kmeans_iteration_step_px);
-  c.min_patch_pixels = count(p.min_patch_pixels);
+  c.surfaces.normal_window_px_per_m = p.surfaces.normal_window_px_per_m / s;
+  c.surfaces.normal_min_radius_px = length(p.surfaces.normal_min_radius_px);
+  c.surfaces.normal_max_radius_px = std::max(c.surfaces.normal_min_radius_px, length(p.surfaces.normal_max_radius_px));
+  c.surfaces.min_component_pixels = count(p.surfaces.min_component_pixels);
+  c.kmeans.seed_sampling_step_px = length(p.kmeans.seed_sampling_step_px);
+  c.kmeans.kmeans_iteration_step_px = length(p.kmeans.kmeans_iteration_step_px);
+  c.cleanup.min_patch_pixels = count(p.cleanup.min_patch_pixels);
   return c;
 }
 
@@ -44,7 +44,7 @@ CoarseGrid makeCoarseGrid(const OrganizedPointCloud& full, const CameraIntrinsic
   g.cloud.height = ch;
   const float nan = std::numeric_limits<float>::quiet_NaN();
   g.cloud.points.assign(static_cast<std::size_t>(cw) * ch, Eigen::Vector3f(nan, nan, nan));
-  const float abs_m = static_cast<float>(p.discontinuity_abs_m), rel = static_cast<float>(p.discontinuity_rel);
+  const float abs_m = static_cast<float>(p.surfaces.discontinuity_abs_m), rel = static_cast<float>(p.surfaces.discontinuity_rel);
   const Eigen::Vector3f* P = full.points.data();
   for (int r = 0; r < ch; ++r) {
     const int v0 = s * r, v1 = std::min(h, v0 + s);

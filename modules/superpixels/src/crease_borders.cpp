@@ -17,7 +17,7 @@ int refineCreaseBorders(int* L, int count, const SurfacePlanes& sp, const std::v
   const auto& planes = sp.planes;
   const auto& plane_of = sp.plane_of;
   const auto centroid = [&](int l) { return models[static_cast<std::size_t>(l)].centroid.cast<double>(); };
-  const double cos_crease = std::cos(p.crease_min_angle_deg * M_PI / 180.0);
+  const double cos_crease = std::cos(p.borders.crease_min_angle_deg * M_PI / 180.0);
 
   // 3. Border pixels, in sweeps.
   const auto atCrease = [&](int a, int b) {
@@ -38,7 +38,7 @@ int refineCreaseBorders(int* L, int count, const SurfacePlanes& sp, const std::v
     const SurfacePlane& pb = planes[static_cast<std::size_t>(plane_of[static_cast<std::size_t>(b)])];
     const SurfacePlane& pc = planes[static_cast<std::size_t>(plane_of[static_cast<std::size_t>(c)])];
     const double side_b = pc.normal.dot(centroid(b)) - pc.offset, side_c = pb.normal.dot(centroid(c)) - pb.offset;
-    const double min_side = p.discontinuity_abs_m;  // a patch right at the other plane tells no side
+    const double min_side = p.surfaces.discontinuity_abs_m;  // a patch right at the other plane tells no side
     const double rb = pb.normal.dot(ray), rc = pc.normal.dot(ray);
     if (std::abs(side_b) < min_side || std::abs(side_c) < min_side || !(std::abs(rb) > 1e-9) || !(std::abs(rc) > 1e-9))
       return 0;
@@ -79,7 +79,7 @@ int refineCreaseBorders(int* L, int count, const SurfacePlanes& sp, const std::v
   std::vector<int> next;
   std::vector<std::uint8_t> queued(static_cast<std::size_t>(n_px), 0);
   int moved = 0;
-  for (int sweep = 0; sweep < p.crease_band_px && !candidates.empty(); ++sweep) {
+  for (int sweep = 0; sweep < p.borders.crease_band_px && !candidates.empty(); ++sweep) {
     batch.clear();
     for (int i : candidates) {  // decided on the labels of the sweep's start
       const int a = L[i];

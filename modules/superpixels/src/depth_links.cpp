@@ -36,7 +36,7 @@ DepthLinks::DepthLinks(const OrganizedPointCloud& cloud, const SuperpixelParams&
     count += ok ? 1 : 0;
   }
   valid_count_ = count;
-  const float abs_m = static_cast<float>(p.discontinuity_abs_m), rel = static_cast<float>(p.discontinuity_rel);
+  const float abs_m = static_cast<float>(p.surfaces.discontinuity_abs_m), rel = static_cast<float>(p.surfaces.discontinuity_rel);
   for (int v = 0; v < h; ++v) {
     const float* zr = z.data() + static_cast<std::size_t>(v) * w;
     std::uint8_t* b = bits_.data() + static_cast<std::size_t>(v) * w;

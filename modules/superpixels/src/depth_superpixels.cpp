@@ -39,25 +39,25 @@ void validate(const SuperpixelParams& p) {
   auto require = [](bool ok, const char* what) {
     if (!ok) throw Error(std::string("superpixel parameters: ") + what);
   };
-  require(p.discontinuity_abs_m >= 0 && p.discontinuity_rel >= 0, "discontinuity thresholds must be >= 0");
-  require(p.normal_window_px_per_m > 0, "normal_window_px_per_m must be > 0");
-  require(p.normal_min_radius_px >= 1 && p.normal_max_radius_px >= p.normal_min_radius_px,
+  require(p.surfaces.discontinuity_abs_m >= 0 && p.surfaces.discontinuity_rel >= 0, "discontinuity thresholds must be >= 0");
+  require(p.surfaces.normal_window_px_per_m > 0, "normal_window_px_per_m must be > 0");
+  require(p.surfaces.normal_min_radius_px >= 1 && p.surfaces.normal_max_radius_px >= p.surfaces.normal_min_radius_px,
           "need 1 <= normal_min_radius_px <= normal_max_radius_px");
-  require(p.max_crease_angle_deg > 0 && p.max_neighbour_normal_angle_deg > 0, "angles must be > 0");
+  require(p.surfaces.max_crease_angle_deg > 0 && p.surfaces.max_neighbour_normal_angle_deg > 0, "angles must be > 0");
   require(p.target_patch_area_m2 > 0 && std::isfinite(p.target_patch_area_m2), "target_patch_area_m2 must be > 0");
-  require(p.kmeans_iterations >= 1, "kmeans_iterations must be >= 1");
-  require(p.seed_sampling_step_px >= 1, "seed_sampling_step_px must be >= 1");
+  require(p.kmeans.kmeans_iterations >= 1, "kmeans_iterations must be >= 1");
+  require(p.kmeans.seed_sampling_step_px >= 1, "seed_sampling_step_px must be >= 1");
   require(p.max_incidence_deg > 0 && p.max_incidence_deg < 90, "max_incidence_deg must be in (0, 90)");
-  require(p.min_patch_pixels >= 1 && p.min_component_pixels >= 1, "minimum sizes must be >= 1");
+  require(p.cleanup.min_patch_pixels >= 1 && p.surfaces.min_component_pixels >= 1, "minimum sizes must be >= 1");
   require(p.processing_step_px >= 1 && p.processing_step_px <= 4, "processing_step_px must be in [1, 4]");
-  require(p.kmeans_iteration_step_px >= 1, "kmeans_iteration_step_px must be >= 1");
-  require(p.kmeans_coarse_iterations >= 0, "kmeans_coarse_iterations must be >= 0");
-  require(p.crease_min_angle_deg > 0 && p.crease_min_angle_deg < 180, "crease_min_angle_deg must be in (0, 180)");
-  require(p.crease_band_px >= 0, "crease_band_px must be >= 0");
-  require(p.plane_noise_abs_m >= 0 && p.plane_noise_rel >= 0 && p.plane_noise_abs_m + p.plane_noise_rel > 0,
+  require(p.kmeans.kmeans_iteration_step_px >= 1, "kmeans_iteration_step_px must be >= 1");
+  require(p.kmeans.kmeans_coarse_iterations >= 0, "kmeans_coarse_iterations must be >= 0");
+  require(p.borders.crease_min_angle_deg > 0 && p.borders.crease_min_angle_deg < 180, "crease_min_angle_deg must be in (0, 180)");
+  require(p.borders.crease_band_px >= 0, "crease_band_px must be >= 0");
+  require(p.borders.plane_noise_abs_m >= 0 && p.borders.plane_noise_rel >= 0 && p.borders.plane_noise_abs_m + p.borders.plane_noise_rel > 0,
           "plane noise must be >= 0 and not both 0");
-  require(p.step_min_sigmas >= 0 && std::isfinite(p.step_min_sigmas), "step_min_sigmas must be >= 0");
-  require(p.step_smoothness >= 0 && std::isfinite(p.step_smoothness), "step_smoothness must be >= 0");
+  require(p.borders.step_min_sigmas >= 0 && std::isfinite(p.borders.step_min_sigmas), "step_min_sigmas must be >= 0");
+  require(p.borders.step_smoothness >= 0 && std::isfinite(p.borders.step_smoothness), "step_smoothness must be >= 0");
 }
 
 SuperpixelSegmentation segmentDepthSuperpixels(const cv::Mat& depth_m, const CameraIntrinsics& k,

@@ -126,10 +126,10 @@ void upsample(const int* GL, const std::vector<PlaneModel>& models, const Coarse
   const auto* GN = reinterpret_cast<const Eigen::Vector3f*>(gn.normals.ptr<float>(0));
   const auto* GS = reinterpret_cast<const Eigen::Vector3f*>(gn.smoothed.ptr<float>(0));
   const PaddedCells cells(GL, core, GR, g.cloud.points.data(), cw, ch);
-  const Linked linked{static_cast<float>(p.discontinuity_abs_m), static_cast<float>(p.discontinuity_rel)};
+  const Linked linked{static_cast<float>(p.surfaces.discontinuity_abs_m), static_cast<float>(p.surfaces.discontinuity_rel)};
   const float radius = static_cast<float>(std::sqrt(p.target_patch_area_m2 / M_PI));
-  const float inv_r2 = 1.0f / (radius * radius), w_km = static_cast<float>(p.kmeans_normal_weight);
-  const float w_grow = static_cast<float>(p.regrow_normal_weight_m);
+  const float inv_r2 = 1.0f / (radius * radius), w_km = static_cast<float>(p.kmeans.kmeans_normal_weight);
+  const float w_grow = static_cast<float>(p.cleanup.regrow_normal_weight_m);
   const Eigen::Vector3f zero = Eigen::Vector3f::Zero();
   // Offset (-1, 0, +1) of the neighbouring cell on the side of a pixel's position within its cell
   // (0 at the middle of odd steps).
@@ -271,7 +271,7 @@ FullResolutionLabels refineToFullResolution(const cv::Mat& grid_labels, int grid
   const int* GL = grid_labels.ptr<int>(0);
   const int* GR = gn.radius.ptr<int>(0);
   const float* GC = gn.crease.ptr<float>(0);
-  const float max_crease = static_cast<float>(p.max_crease_angle_deg * M_PI / 180.0);
+  const float max_crease = static_cast<float>(p.surfaces.max_crease_angle_deg * M_PI / 180.0);
   std::vector<std::uint8_t> core(n_cells);
   for (std::size_t j = 0; j < n_cells; ++j) core[j] = GR[j] > 0 && GC[j] <= max_crease;
   std::vector<PlaneModel> models = gridModels(GL, core, grid_count, g.cloud.points.data(),
@@ -279,10 +279,10 @@ FullResolutionLabels refineToFullResolution(const cv::Mat& grid_labels, int grid
   std::vector<int> counts(static_cast<std::size_t>(grid_count), 0), unlabelled;
   upsample(GL, models, g, gn, core, cloud, links, p, L, N, counts.data(), unlabelled);
   // Borders along creases follow the planes' intersection (crease_borders.h).
-  if (p.crease_borders) {
+  if (p.borders.crease_borders) {
     SurfacePlanes planes = findSurfacePlanes(L, grid_count, models, counts.data(), links, p);
     refineCreaseBorders(L, grid_count, planes, models, counts.data(), N, cloud, links, k, p);
-    if (p.step_borders) refineStepBorders(L, grid_count, std::move(planes), models, counts.data(), N, cloud, links, p);
+    if (p.borders.step_borders) refineStepBorders(L, grid_count, std::move(planes), models, counts.data(), N, cloud, links, p);
   }
   // Each patch keeps its largest linked piece; pixels cut off (and those on no surface around)
   // join adjacent patches within two patch radii of their plane, as in the clean-up's second
@@ -291,7 +291,7 @@ FullResolutionLabels refineToFullResolution(const cv::Mat& grid_labels, int grid
   for (std::size_t c = 0; c < models.size(); ++c) models[c].pixels = counts[c];
   const float radius = static_cast<float>(std::sqrt(p.target_patch_area_m2 / M_PI));
   const GrowthLimits limits{2.0f * radius, std::numeric_limits<float>::infinity(),
-                            static_cast<float>(p.regrow_normal_weight_m)};
+                            static_cast<float>(p.cleanup.regrow_normal_weight_m)};
   growPatches(L, links, cloud.points.data(), normals, models, limits, k, min_cos, &unlabelled);
   settleLeftoverPixels(L, grid_count, models, cloud, links, normals, k, p, min_cos, unlabelled);
   out.count = static_cast<int>(models.size());

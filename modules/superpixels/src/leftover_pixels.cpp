@@ -18,7 +18,7 @@ void settleLeftoverPixels(int* L, int count, std::vector<PlaneModel>& models, co
   std::vector<char> small(static_cast<std::size_t>(count), 0);
   bool any_small = false;
   for (int c = 0; c < count; ++c)
-    if (models[c].pixels > 0 && models[c].pixels < p.min_patch_pixels) small[c] = 1, any_small = true;
+    if (models[c].pixels > 0 && models[c].pixels < p.cleanup.min_patch_pixels) small[c] = 1, any_small = true;
   std::vector<int> pixels_of_small;  // raster order
   for (int i = 0; i < n_px && any_small; ++i)
     if (L[i] >= 0 && small[L[i]]) pixels_of_small.push_back(i);
@@ -81,9 +81,9 @@ void settleLeftoverPixels(int* L, int count, std::vector<PlaneModel>& models, co
     while (c >= 0 && target[c] != c) c = target[c];
     return c;
   };
-  const float min_area = static_cast<float>(p.min_patch_area_ratio * p.target_patch_area_m2);
+  const float min_area = static_cast<float>(p.cleanup.min_patch_area_ratio * p.target_patch_area_m2);
   for (const int c : order) {
-    const bool too_small = models[c].pixels < p.min_patch_pixels || (c >= old_count && models[c].area < min_area);
+    const bool too_small = models[c].pixels < p.cleanup.min_patch_pixels || (c >= old_count && models[c].area < min_area);
     if (!too_small) continue;
     int best = -1;
     float best_score = -2.0f;
@@ -97,7 +97,7 @@ void settleLeftoverPixels(int* L, int count, std::vector<PlaneModel>& models, co
     if (best >= 0) {
       target[c] = best;
       models[best].pixels += models[c].pixels;
-    } else if (models[c].pixels < p.min_patch_pixels) {
+    } else if (models[c].pixels < p.cleanup.min_patch_pixels) {
       target[c] = -1;  // isolated speck: noise
     }
   }

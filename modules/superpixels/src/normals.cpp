@@ -71,7 +71,7 @@ SurfaceNormals estimateNormals(const OrganizedPointCloud& cloud, const DepthLink
   }
   auto* N = reinterpret_cast<Eigen::Vector3f*>(out.normals.ptr<float>(0));
   int* R = out.radius.ptr<int>(0);
-  const double px_per_m = p.normal_window_px_per_m;
+  const double px_per_m = p.surfaces.normal_window_px_per_m;
   for (int v = 0; v < h; ++v) {
     const float* d = dist.ptr<float>(v);
     for (int u = 0; u < w; ++u) {
@@ -79,9 +79,9 @@ SurfaceNormals estimateNormals(const OrganizedPointCloud& cloud, const DepthLink
       const std::size_t i = static_cast<std::size_t>(v) * w + u;
       const Eigen::Vector3f& q = cloud.points[i];
       int r = static_cast<int>(px_per_m * q.z() + 0.5);
-      r = std::clamp(r, p.normal_min_radius_px, p.normal_max_radius_px);
+      r = std::clamp(r, p.surfaces.normal_min_radius_px, p.surfaces.normal_max_radius_px);
       r = std::min({r, static_cast<int>(d[u]) - 1, u, v, w - 1 - u, h - 1 - v});  // stay inside
-      if (r < p.normal_min_radius_px) continue;
+      if (r < p.surfaces.normal_min_radius_px) continue;
       // Integral-image corners: rows v - r, v, v + 1, v + r + 1 and columns u - r, u, u + 1,
       // u + r + 1 (12 of the 16 are used). Right minus left half (dx), below minus above (dy), and
       // the whole window, each as sums over its rectangle.

@@ -41,9 +41,9 @@ void mergeSmallPatches(cv::Mat& labels, int count, std::vector<PlaneModel> model
     adjacent[a].insert(b);
     adjacent[b].insert(a);
   }
-  const float min_area = static_cast<float>(p.min_patch_area_ratio * p.target_patch_area_m2);
+  const float min_area = static_cast<float>(p.cleanup.min_patch_area_ratio * p.target_patch_area_m2);
   auto isSmall = [&](int c) {
-    return models[c].pixels > 0 && (models[c].pixels < p.min_patch_pixels || models[c].area < min_area);
+    return models[c].pixels > 0 && (models[c].pixels < p.cleanup.min_patch_pixels || models[c].area < min_area);
   };
   std::vector<int> target(static_cast<std::size_t>(count));
   for (int c = 0; c < count; ++c) target[c] = c;
@@ -64,7 +64,7 @@ void mergeSmallPatches(cv::Mat& labels, int count, std::vector<PlaneModel> model
       }
     }
     if (best < 0) {
-      if (models[c].pixels < p.min_patch_pixels) {
+      if (models[c].pixels < p.cleanup.min_patch_pixels) {
         target[c] = -1;  // isolated speck: dropped
         models[c].pixels = 0;
       }
@@ -169,7 +169,7 @@ int cleanUpPatches(cv::Mat& labels, const OrganizedPointCloud& cloud, const Dept
   const Eigen::Vector3f* points = cloud.points.data();
   const auto* pixel_normals = reinterpret_cast<const Eigen::Vector3f*>(normals.normals.ptr<float>(0));
   const float radius = static_cast<float>(std::sqrt(p.target_patch_area_m2 / M_PI));
-  const float w_n = static_cast<float>(p.regrow_normal_weight_m);
+  const float w_n = static_cast<float>(p.cleanup.regrow_normal_weight_m);
 
   // 1. Contiguity.
   detail::keepLargestPieces(labels, links);

@@ -27,8 +27,8 @@ int relabelInRasterOrder(cv::Mat& labels) {
 SmoothComponents segmentSmoothComponents(const DepthLinks& links, const SurfaceNormals& normals,
                                          const SuperpixelParams& p) {
   const int w = links.width(), h = links.height();
-  const float max_crease = static_cast<float>(p.max_crease_angle_deg * M_PI / 180.0);
-  const float min_dot = static_cast<float>(std::cos(p.max_neighbour_normal_angle_deg * M_PI / 180.0));
+  const float max_crease = static_cast<float>(p.surfaces.max_crease_angle_deg * M_PI / 180.0);
+  const float min_dot = static_cast<float>(std::cos(p.surfaces.max_neighbour_normal_angle_deg * M_PI / 180.0));
   const int* radius = normals.radius.ptr<int>(0);
   const float* crease = normals.crease.ptr<float>(0);
   const cv::Vec3f* n = normals.normals.ptr<cv::Vec3f>(0);
@@ -48,7 +48,7 @@ SmoothComponents segmentSmoothComponents(const DepthLinks& links, const SurfaceN
   for (int i = 0; i < w * h; ++i) {
     if (!core[i]) continue;
     const int root = sets.find(i);
-    if (size[static_cast<std::size_t>(root)] >= p.min_component_pixels) L[i] = root;
+    if (size[static_cast<std::size_t>(root)] >= p.surfaces.min_component_pixels) L[i] = root;
   }
   out.count = relabelInRasterOrder(out.labels);
   return out;

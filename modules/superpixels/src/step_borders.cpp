@@ -87,7 +87,7 @@ void splitLevels(int count, const std::vector<PlaneModel>& models, const Superpi
     }
     const Spread spread = robustSpread(std::move(d));
     const double m = spread.median;
-    const double limit = std::max(p.step_min_sigmas * spread.sigma, p.discontinuity_abs_m);
+    const double limit = std::max(p.borders.step_min_sigmas * spread.sigma, p.surfaces.discontinuity_abs_m);
     for (int l : list) {
       const double o = offset_of[static_cast<std::size_t>(l)] - m;
       side[static_cast<std::size_t>(l)] = o > limit ? 1 : (o < -limit ? -1 : 0);
@@ -125,7 +125,7 @@ void splitLevels(int count, const std::vector<PlaneModel>& models, const Superpi
 std::map<std::pair<int, int>, std::vector<int>> stepRegions(int count, const SurfacePlanes& sp,
                                                             const std::vector<PlaneModel>& models,
                                                             const int* pixel_counts, const SuperpixelParams& p) {
-  const double cos_same = std::cos(p.max_neighbour_normal_angle_deg * M_PI / 180.0);
+  const double cos_same = std::cos(p.surfaces.max_neighbour_normal_angle_deg * M_PI / 180.0);
   const auto parallel = [&](int a, int b) {
     return sp.planes[static_cast<std::size_t>(a)].normal.dot(sp.planes[static_cast<std::size_t>(b)].normal) >= cos_same;
   };
@@ -170,7 +170,7 @@ std::map<std::pair<int, int>, std::vector<int>> stepRegions(int count, const Sur
   const auto onPlane = [&](int l, int q) {
     const SurfacePlane& plane = sp.planes[static_cast<std::size_t>(q)];
     const Eigen::Vector3d c = models[static_cast<std::size_t>(l)].centroid.cast<double>();
-    return std::abs(plane.normal.dot(c) - plane.offset) <= p.plane_noise_abs_m + p.plane_noise_rel * c.z() * c.z();
+    return std::abs(plane.normal.dot(c) - plane.offset) <= p.borders.plane_noise_abs_m + p.borders.plane_noise_rel * c.z() * c.z();
   };
   // Hops from a plane's patches to the patches of component c, through the component (1:
   // adjacent to a patch of the plane), in `hops` (per label; reset by the caller).
@@ -252,10 +252,10 @@ int refineStepBorders(int* L, int count, SurfacePlanes sp, const std::vector<Pla
       depths.push_back(c.z());
     }
     const double step = std::abs(median(gaps)), z = median(depths);
-    const double min_step = std::max(p.discontinuity_abs_m,
-                                     p.step_min_sigmas * std::hypot(scatter[static_cast<std::size_t>(key.first)],
+    const double min_step = std::max(p.surfaces.discontinuity_abs_m,
+                                     p.borders.step_min_sigmas * std::hypot(scatter[static_cast<std::size_t>(key.first)],
                                                                     scatter[static_cast<std::size_t>(key.second)]));
-    if (!(step >= min_step && step <= p.discontinuity_abs_m + p.discontinuity_rel * z * z)) continue;
+    if (!(step >= min_step && step <= p.surfaces.discontinuity_abs_m + p.surfaces.discontinuity_rel * z * z)) continue;
     steps.push_back(&entry);
     for (int l : region) wanted[static_cast<std::size_t>(l)] = 1;
   }
@@ -347,13 +347,13 @@ int refineStepBorders(int* L, int count, SurfacePlanes sp, const std::vector<Pla
         links.forEachNeighbour(i, [&](int j) {
           const int vj = node[static_cast<std::size_t>(j)];
           if (vj >= 0) {
-            if (j > i) graph.addEdges(static_cast<int>(v), vj, p.step_smoothness, p.step_smoothness);
+            if (j > i) graph.addEdges(static_cast<int>(v), vj, p.borders.step_smoothness, p.borders.step_smoothness);
             return;
           }
           if (L[j] < 0) return;  // a neighbour outside the band pulls to its plane
           const int side = sideOfPlane(L[j]);
-          if (side == 0) cost_b += p.step_smoothness;
-          else if (side == 1) cost_a += p.step_smoothness;
+          if (side == 0) cost_b += p.borders.step_smoothness;
+          else if (side == 1) cost_a += p.borders.step_smoothness;
         });
         graph.addTermWeights(static_cast<int>(v), cost_b, cost_a);
       }
@@ -381,7 +381,7 @@ int refineStepBorders(int* L, int count, SurfacePlanes sp, const std::vector<Pla
         int label, via;
       };
       std::vector<Move> batch;
-      for (int sweep = 0; sweep < 4 * p.crease_band_px && !pending.empty(); ++sweep) {
+      for (int sweep = 0; sweep < 4 * p.borders.crease_band_px && !pending.empty(); ++sweep) {
         batch.clear();
         for (std::size_t v : pending) {
           const int i = pixels[v];

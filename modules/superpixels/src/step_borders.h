@@ -20,7 +20,7 @@
 //     patch's plane. So the step is placed where the depths of many pixels along it agree.
 //  3. Each patch with no plane takes the side most of its pixels are on; pixels on the other side
 //     than their patch join, through linked neighbours, a patch of their own side.
-// Off by default (SuperpixelParams::step_borders): +2-3 ms per fr1_xyz frame, and no gain on the
+// Off by default (SuperpixelParams::borders.step_borders): +2-3 ms per fr1_xyz frame, and no gain on the
 // real pair benchmarks (docs/superpixels.md).
 // Patches may be left in pieces; the caller keeps each patch's largest piece and regrows the rest.
 #include <vector>

@@ -64,8 +64,8 @@ SurfacePlanes findSurfacePlanes(const int* L, int count, const std::vector<Plane
   };
   const auto normal = [&](int l) { return models[static_cast<std::size_t>(l)].normal.cast<double>(); };
   const auto centroid = [&](int l) { return models[static_cast<std::size_t>(l)].centroid.cast<double>(); };
-  const auto tolerance = [&](double z) { return p.plane_noise_abs_m + p.plane_noise_rel * z * z; };
-  const double cos_same = std::cos(p.max_neighbour_normal_angle_deg * M_PI / 180.0);
+  const auto tolerance = [&](double z) { return p.borders.plane_noise_abs_m + p.borders.plane_noise_rel * z * z; };
+  const double cos_same = std::cos(p.surfaces.max_neighbour_normal_angle_deg * M_PI / 180.0);
 
   // 1. Interior patches, grouped into planar surfaces.
   auto& interior = out.interior;

@@ -15,7 +15,7 @@ namespace gasp {
 inline bool depthConnected(float z1, float z2, const SuperpixelParams& p) {
   const float z = z1 < z2 ? z1 : z2;
   const float d = z1 > z2 ? z1 - z2 : z2 - z1;
-  return d <= static_cast<float>(p.discontinuity_abs_m + p.discontinuity_rel * z * z);
+  return d <= static_cast<float>(p.surfaces.discontinuity_abs_m + p.surfaces.discontinuity_rel * z * z);
 }
 
 class DepthLinks {
