@@ -291,31 +291,29 @@ class ObjectSizeCheck {
     bool old = false;
     if (!header(name, version, old)) return false;
     if (version != 0) return unknownVersion(what, "matrix", version, problem);
+    return grid(what, value_bytes, "values", problem) && endFlag(old);
+  }
+
+  /// rows, cols (uint32) and rows x cols values of `value_bytes` each, as MRPT reads a matrix or
+  /// an image into memory it allocates from the two sizes. False when they do not fit (problem
+  /// set: more bytes than remain, or a side beyond Eigen's int) or cannot be read.
+  bool grid(const std::string& what, std::uint64_t value_bytes, const char* unit, std::string& problem) {
     std::uint32_t rows = 0, cols = 0;
     if (!read(rows) || !read(cols)) return false;
     const std::uint64_t need = std::uint64_t{rows} * cols * value_bytes;
     const std::uint64_t max_side = std::numeric_limits<std::int32_t>::max();
     if (need > left() || rows > max_side || cols > max_side) {
-      problem = what + " of " + std::to_string(rows) + " x " + std::to_string(cols) + " values needs " + bytes(need) +
-                " but " + bytes(left()) + " remain in the stream";
+      problem = what + " of " + std::to_string(rows) + " x " + std::to_string(cols) + " " + unit + " needs " +
+                bytes(need) + " but " + bytes(left()) + " remain in the stream";
       return false;
     }
-    return skip(need) && endFlag(old);
+    return skip(need);
   }
 
   /// rows, cols (uint32) and rows x cols uint16 values. False when they do not fit (problem set)
   /// or cannot be read.
   bool rangeImage(const std::string& what, std::string& problem) {
-    std::uint32_t rows = 0, cols = 0;
-    if (!read(rows) || !read(cols)) return false;
-    const std::uint64_t need = std::uint64_t{rows} * cols * sizeof(std::uint16_t);
-    const std::uint64_t max_side = std::numeric_limits<std::int32_t>::max();
-    if (need > left() || rows > max_side || cols > max_side) {
-      problem = what + " of " + std::to_string(rows) + " x " + std::to_string(cols) + " pixels needs " + bytes(need) +
-                " but " + bytes(left()) + " remain in the stream";
-      return false;
-    }
-    return skip(need);
+    return grid(what, sizeof(std::uint16_t), "pixels", problem);
   }
 
   /// TPixelLabelInfo as MRPT reads it: version 1, bytes per pixel (1 to 8), rows, cols
@@ -328,16 +326,7 @@ class ObjectSizeCheck {
     // MRPT stores the bit fields in the next integer size up: 3 in 4 bytes, 5 to 7 in 8.
     if (bytes_per_pixel == 0 || bytes_per_pixel > 8) return false;  // MRPT refuses it
     bytes_per_pixel = bytes_per_pixel <= 2 ? bytes_per_pixel : bytes_per_pixel <= 4 ? 4 : 8;
-    std::uint32_t rows = 0, cols = 0;
-    if (!read(rows) || !read(cols)) return false;
-    const std::uint64_t need = std::uint64_t{rows} * cols * bytes_per_pixel;
-    const std::uint64_t max_side = std::numeric_limits<std::int32_t>::max();
-    if (need > left() || rows > max_side || cols > max_side) {
-      problem = what + " of " + std::to_string(rows) + " x " + std::to_string(cols) + " pixels needs " + bytes(need) +
-                " but " + bytes(left()) + " remain in the stream";
-      return false;
-    }
-    if (!skip(need)) return false;
+    if (!grid(what, bytes_per_pixel, "pixels", problem)) return false;
     for (int i = 0; i < 3; ++i)
       if (!string(what + " names' type", problem)) return false;
     std::uint32_t n = 0;

@@ -45,7 +45,10 @@ struct Waypoint {
 
 }  // namespace
 
-CameraPath makeCameraPath(const CameraPathOptions& options) {
+namespace {
+
+/// Throws gasp::Error unless the frames and the rate are ones a path may have.
+void checkPathOptions(const CameraPathOptions& options) {
   if (options.frames < kMinPathFrames)
     throw Error("camera path: frames must be at least " + std::to_string(kMinPathFrames) + ", got " +
                 std::to_string(options.frames));
@@ -59,6 +62,16 @@ CameraPath makeCameraPath(const CameraPathOptions& options) {
                 std::to_string(kMaxRateHz) + " Hz, got " + std::to_string(options.rate_hz));
   if (!std::isfinite(options.start_time_s))
     throw Error("camera path: start_time_s must be finite");
+}
+
+double frameTime(const CameraPathOptions& options, int f) {
+  return std::round((options.start_time_s + f / options.rate_hz) * 1e6) / 1e6;
+}
+
+}  // namespace
+
+CameraPath makeCameraPath(const CameraPathOptions& options) {
+  checkPathOptions(options);
 
   // Waypoints (world: z up, metres). See scenes.cpp for what is where.
   const std::array<Waypoint, 5> wp{{
@@ -92,12 +105,38 @@ CameraPath makeCameraPath(const CameraPathOptions& options) {
     const Eigen::Quaterniond q1(lookAt(w1.position, w1.target).linear());
     const double roll = (w0.roll_deg + a * (w1.roll_deg - w0.roll_deg)) * EIGEN_PI / 180.0;
     StampedPose p;
-    p.timestamp = std::round((options.start_time_s + f / options.rate_hz) * 1e6) / 1e6;
+    p.timestamp = frameTime(options, f);
     p.T_world_camera = Isometry3::Identity();
     p.T_world_camera.linear() = (q0.slerp(a, q1).toRotationMatrix() *
                                  Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitZ()).toRotationMatrix());
     p.T_world_camera.translation() = (1.0 - a) * w0.position + a * w1.position;
     path.poses.push_back(p);
+  }
+  return path;
+}
+
+CameraPath makeHandHeldPath(const HandHeldView& view, const CameraPathOptions& options) {
+  checkPathOptions(options);
+  for (const double v : {view.sweep_m, view.bob_m, view.look_sweep_m, view.roll_deg})
+    if (!(std::isfinite(v) && v >= 0.0)) throw Error("hand-held path: amplitudes must be finite and >= 0");
+  if (!(std::isfinite(view.period_s) && view.period_s > 0.0)) throw Error("hand-held path: period_s must be > 0");
+  if (!view.eye.allFinite() || !view.target.allFinite() || !view.drift_mps.allFinite())
+    throw Error("hand-held path: eye, target and drift must be finite");
+  // Periods as fractions of the slowest one, pairwise incommensurate; phases spread.
+  const double w = 2.0 * EIGEN_PI / view.period_s;
+  auto wave = [&](double t, double ratio, double phase) { return std::sin(w * t / ratio + phase); };
+  CameraPath path;
+  path.segments.push_back({kHandHeld, 0, options.frames - 1});
+  for (int f = 0; f < options.frames; ++f) {
+    const double t = f / options.rate_hz;
+    const Eigen::Vector3d eye = view.eye + view.drift_mps * t +
+                                Eigen::Vector3d(view.sweep_m * wave(t, 1.0, 0.0), view.sweep_m * wave(t, 0.77, 0.9),
+                                                view.bob_m * wave(t, 0.53, 0.3));
+    const Eigen::Vector3d target = view.target + view.drift_mps * t +
+                                   Eigen::Vector3d(view.look_sweep_m * wave(t, 0.61, 1.7),
+                                                   view.look_sweep_m * wave(t, 0.89, 2.3), 0.0);
+    const double roll = view.roll_deg * EIGEN_PI / 180.0 * wave(t, 0.71, 0.5);
+    path.poses.push_back({frameTime(options, f), lookAt(eye, target, roll)});
   }
   return path;
 }

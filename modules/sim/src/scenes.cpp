@@ -108,9 +108,123 @@ Scene corridorScene() {
   return s;
 }
 
+// ---- Plane-dominated scenes under a hand-held camera (issue 46): where most of the view is one
+//      plane, the planar patches cannot fix the directions along it; the few objects decide.
+
+/// A floor (20 x 20 m at z = 0) and a camera held 1.1 m above it, looking down at about 55 deg
+/// towards the objects 0.7 m ahead.
+Scene floorScene(const std::string& name, int objects) {
+  Scene s;
+  s.name = name;
+  s.degenerate = true;
+  s.add("floor", Rectangle{10.0, 10.0}, placeAt(0.0, 0.0, 0.0));
+  HandHeldView view;
+  view.eye = Eigen::Vector3d(0.0, 0.0, 1.1);
+  view.target = Eigen::Vector3d(0.75, 0.0, 0.0);
+  s.hand_held = view;
+  std::string what;
+  // Low objects, in the order they are added: a box, a chair's four legs (its seat out of view),
+  // a cable (1 cm: hardly above the depth noise), a book, a bin, a shoe.
+  if (objects >= 1) {
+    s.add("box", box(0.15, 0.1, 0.075), placeAt(0.75, 0.12, 0.075, 20.0));
+    what = "a box";
+  }
+  if (objects >= 3) {
+    int leg = 0;
+    for (double dx : {-0.17, 0.17})
+      for (double dy : {-0.17, 0.17})
+        s.add("chair_leg" + std::to_string(leg++), Cylinder{0.015, 0.22}, placeAt(0.95 + dx, -0.35 + dy, 0.22));
+    s.add("cable", box(0.005, 0.6, 0.005), placeAt(0.5, -0.05, 0.005, 35.0));
+    what = "a box, a chair's legs, a cable";
+  }
+  if (objects >= 6) {
+    s.add("book", box(0.12, 0.09, 0.02), placeAt(0.45, 0.4, 0.02, -25.0));
+    s.add("bin", Cylinder{0.12, 0.15}, placeAt(1.2, 0.35, 0.15));
+    s.add("shoe", box(0.14, 0.05, 0.05), placeAt(0.6, -0.45, 0.05, 60.0));
+    what += ", a book, a bin, a shoe";
+  }
+  s.description = "plane-dominated: a floor seen from 1.1 m by a hand-held camera" +
+                  (objects == 0 ? std::string(", nothing on it") : ", with " + what);
+  return s;
+}
+
+/// A wall (x = 2 m) with a door: the wall around the opening, the door leaf 4 cm behind it and
+/// a frame standing 2 cm out of it; a floor. The camera is held 1.5 m high, 2 m from the wall.
+Scene wallDoorScene() {
+  Scene s;
+  s.name = "wall_door";
+  s.description = "plane-dominated: a wall with a door (frame 2 cm proud, leaf 4 cm recessed) seen by a hand-held camera";
+  s.degenerate = true;
+  auto facing = [](double x, double y, double z) {  // a Rectangle's +z normal towards -x
+    Isometry3 T = placeAt(x, y, z);
+    T.linear() = Eigen::AngleAxisd(-EIGEN_PI / 2.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    return T;
+  };
+  // Door opening: y in [-0.45, 0.45], z in [0, 2.05]. Rectangle half sizes are (z, y) after the turn.
+  s.add("wall_left", Rectangle{1.5, 2.275}, facing(2.0, 2.725, 1.5));
+  s.add("wall_right", Rectangle{1.5, 2.275}, facing(2.0, -2.725, 1.5));
+  s.add("wall_above", Rectangle{0.475, 0.45}, facing(2.0, 0.0, 2.525));
+  s.add("door_leaf", Rectangle{1.025, 0.45}, facing(2.04, 0.0, 1.025));
+  s.add("frame_left", box(0.01, 0.03, 1.04), placeAt(1.99, 0.48, 1.04));
+  s.add("frame_right", box(0.01, 0.03, 1.04), placeAt(1.99, -0.48, 1.04));
+  s.add("frame_top", box(0.01, 0.51, 0.03), placeAt(1.99, 0.0, 2.08));
+  s.add("floor", Rectangle{10.0, 10.0}, placeAt(0.0, 0.0, 0.0));
+  HandHeldView view;
+  view.eye = Eigen::Vector3d(0.0, 0.0, 1.5);
+  view.target = Eigen::Vector3d(2.0, 0.0, 1.4);
+  s.hand_held = view;
+  return s;
+}
+
+/// A corridor 2 m wide (walls at y = +-1 m), with a floor, walked along +x at 0.3 m/s.
+Scene corridorWalkScene() {
+  Scene s;
+  s.name = "corridor_walk";
+  s.description = "plane-dominated: a corridor 2 m wide with a floor, walked along by a hand-held camera";
+  s.degenerate = true;
+  for (int side : {-1, 1}) {
+    Isometry3 T = placeAt(10.0, 1.0 * side, 1.5);
+    T.linear() = Eigen::AngleAxisd(side * EIGEN_PI / 2.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
+    s.add(side < 0 ? "wall_right" : "wall_left", Rectangle{20.0, 1.5}, T);
+  }
+  s.add("floor", Rectangle{20.0, 1.0}, placeAt(10.0, 0.0, 0.0));
+  HandHeldView view;
+  view.eye = Eigen::Vector3d(0.0, 0.0, 1.4);
+  view.target = Eigen::Vector3d(3.0, 0.0, 1.0);
+  view.sweep_m = 0.1;
+  view.look_sweep_m = 0.3;
+  view.drift_mps = Eigen::Vector3d(0.3, 0.0, 0.0);
+  s.hand_held = view;
+  return s;
+}
+
+/// A table (1.2 x 0.8 m, top at 0.75 m, four legs) on a floor, seen from 0.85 m above its top.
+Scene tableTopScene() {
+  Scene s;
+  s.name = "table_top";
+  s.description = "plane-dominated: a table top seen from above by a hand-held camera, the floor around it";
+  s.degenerate = true;
+  s.add("floor", Rectangle{10.0, 10.0}, placeAt(0.0, 0.0, 0.0));
+  s.add("table_top", box(0.6, 0.4, 0.025), placeAt(0.6, 0.0, 0.725));
+  int leg = 0;
+  for (double dx : {-0.55, 0.55})
+    for (double dy : {-0.35, 0.35})
+      s.add("table_leg" + std::to_string(leg++), Cylinder{0.03, 0.35}, placeAt(0.6 + dx, dy, 0.35));
+  HandHeldView view;
+  view.eye = Eigen::Vector3d(0.0, 0.0, 1.6);
+  view.target = Eigen::Vector3d(0.6, 0.0, 0.75);
+  view.sweep_m = 0.2;
+  view.look_sweep_m = 0.15;
+  s.hand_held = view;
+  return s;
+}
+
 }  // namespace
 
-std::vector<std::string> sceneNames() { return {"room", "repeated", "sparse", "plane", "corridor"}; }
+std::vector<std::string> sceneNames() {
+  return {"room",    "repeated", "sparse",  "plane",     "corridor",      "floor_0",
+          "floor_1", "floor_3",  "floor_6", "wall_door", "corridor_walk", "table_top"};
+}
 
 Scene makeScene(const std::string& name) {
   if (name == "room") return roomScene();
@@ -118,6 +232,11 @@ Scene makeScene(const std::string& name) {
   if (name == "sparse") return sparseScene();
   if (name == "plane") return planeScene();
   if (name == "corridor") return corridorScene();
+  for (int objects : {0, 1, 3, 6})
+    if (name == "floor_" + std::to_string(objects)) return floorScene(name, objects);
+  if (name == "wall_door") return wallDoorScene();
+  if (name == "corridor_walk") return corridorWalkScene();
+  if (name == "table_top") return tableTopScene();
   std::string valid;
   for (const auto& n : sceneNames()) valid += (valid.empty() ? "" : ", ") + n;
   throw Error("unknown scene '" + name + "'; valid scenes: " + valid);

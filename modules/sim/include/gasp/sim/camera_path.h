@@ -54,6 +54,32 @@ constexpr double kMaxRateHz = 10000.0;
 /// frames is outside [kMinPathFrames, kMaxPathFrames] or the rate outside [kMinRateHz, kMaxRateHz].
 CameraPath makeCameraPath(const CameraPathOptions& options = {});
 
+/// Segment name of a hand-held path: all of it.
+inline const char* const kHandHeld = "hand_held";
+
+/// A camera held by hand over a scene (the plane-dominated scenes): held at `eye` and looking at
+/// `target`, it wanders as a hand does, each coordinate of the eye and of the look-at point a
+/// sum of slow sines of incommensurate periods (never repeating within a sequence), with a roll
+/// about the optical axis, and both may drift at a constant velocity (a walk along a corridor).
+/// With the defaults the camera moves at most about 0.3 m/s and, looking down at a floor, turns
+/// at up to about 60 deg/s: pairs 5, 10 and 20 frames apart at 30 Hz are a few to about 30 cm
+/// apart.
+struct HandHeldView {
+  Eigen::Vector3d eye{0.0, 0.0, 1.2};     ///< [m], world (z up)
+  Eigen::Vector3d target{0.7, 0.0, 0.0};  ///< [m]
+  double sweep_m = 0.3;       ///< amplitude of the eye's horizontal wander [m]
+  double bob_m = 0.05;        ///< amplitude of its vertical wander [m]
+  double look_sweep_m = 0.2;  ///< amplitude of the look-at point's horizontal wander [m]
+  double roll_deg = 6.0;      ///< amplitude of the roll about the optical axis [deg]
+  double period_s = 9.0;      ///< period of the slowest sine [s]
+  Eigen::Vector3d drift_mps = Eigen::Vector3d::Zero();  ///< eye and target move at this velocity [m/s]
+};
+
+/// The hand-held path over `options.frames` frames, one segment (kHandHeld). Throws gasp::Error
+/// as makeCameraPath for the frames and rate, and for a view whose amplitudes or period are not
+/// finite and >= 0 (> 0 for the period) or that looks along the vertical.
+CameraPath makeHandHeldPath(const HandHeldView& view, const CameraPathOptions& options = {});
+
 /// Optical camera pose at `position` looking at `target` with world `up` (image y points down),
 /// then rolled by roll_rad about the optical axis. Throws gasp::Error when the viewing direction
 /// is zero or parallel to up.

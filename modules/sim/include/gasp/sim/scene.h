@@ -4,10 +4,12 @@
 /// World frame: z up, metres; the floor of the room scenes is z = 0.
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "gasp/core/pose.h"
+#include "gasp/sim/camera_path.h"
 #include "gasp/sim/shapes.h"
 
 namespace gasp::sim {
@@ -39,8 +41,12 @@ struct SceneObject {
 struct Scene {
   std::string name;         ///< the name makeScene() knows it by
   std::string description;  ///< one line
-  /// True for the degenerate scenes (plane, corridor): no occluder is added to them.
+  /// True for the degenerate and plane-dominated scenes (plane, corridor, floor_*, ...): no
+  /// occluder is added to them.
   bool degenerate = false;
+  /// How the camera moves: the room tour of makeCameraPath() when empty, else this hand-held view
+  /// (makeHandHeldPath; the plane-dominated scenes).
+  std::optional<HandHeldView> hand_held;
   std::vector<SceneObject> objects;
 
   /// Appends an object, giving its faces the next free surface ids; returns its first id.
@@ -55,15 +61,18 @@ struct Scene {
   const SceneObject* objectOfSurface(std::uint16_t id) const;
 };
 
-/// Names makeScene() accepts: room (the default), repeated, sparse, plane, corridor.
+/// Names makeScene() accepts: room (the default), repeated, sparse, plane, corridor, and the
+/// plane-dominated scenes seen by a hand-held camera: floor_0, floor_1, floor_3, floor_6 (a floor
+/// with that many low objects), wall_door, corridor_walk, table_top.
 std::vector<std::string> sceneNames();
 
 /// The default scene's name ("room").
 inline std::string defaultSceneName() { return "room"; }
 
 /// A scene by name (see sceneNames()); throws gasp::Error listing the valid names otherwise.
-/// Scenes are laid out for the camera path of camera_path.h (the camera moves around x in
-/// [-1, 0.2], y in [-0.7, 0.6] at 1.2-1.4 m height and looks towards +x).
+/// The room-tour scenes are laid out for the camera path of camera_path.h (the camera moves around
+/// x in [-1, 0.2], y in [-0.7, 0.6] at 1.2-1.4 m height and looks towards +x); the others carry
+/// their hand-held view.
 Scene makeScene(const std::string& name);
 
 /// Pose helper: translation (x, y, z) [m] and a rotation of yaw_deg about the world z axis.
