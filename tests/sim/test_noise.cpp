@@ -113,3 +113,23 @@ TEST(SimNoise, SameSeedSameFramesDifferentSeedDifferentNoise) {
   EXPECT_NE(gasp::sim::frameSeed(7, 3), gasp::sim::frameSeed(7, 4));
   EXPECT_NE(gasp::sim::frameSeed(7, 3), gasp::sim::frameSeed(8, 3));
 }
+
+// The systematic radial depth error: z (1 + K rho^2), none at the principal point, the most in
+// the corners, the same in every frame; out of [-0.2, 0.2] it is refused.
+TEST(SimNoise, RadialDepthBiasBendsAPlaneIntoABowl) {
+  auto model = gasp::sim::KinectNoiseModel::exact();
+  model.radial_depth_bias = 0.01;
+  const auto frame = tiltedPlane(0.0);  // z = 2 m everywhere
+  const cv::Mat depth = gasp::sim::sensorDepth(frame, model, kK, 1, 0);
+  const double rho2_corner = std::pow((0 - kK.cx) / kK.fx, 2) + std::pow((0 - kK.cy) / kK.fy, 2);
+  EXPECT_NEAR(depth.at<float>(0, 0), 2.0 * (1.0 + 0.01 * rho2_corner), 2e-4);
+  EXPECT_NEAR(depth.at<float>(240, 320), 2.0, 2e-4);
+  EXPECT_GT(depth.at<float>(0, 0) - depth.at<float>(240, 320), 0.01);  // 1.1 cm deeper in the corner
+  const cv::Mat again = gasp::sim::sensorDepth(frame, model, kK, 7, 3);
+  EXPECT_EQ(cv::norm(depth, again, cv::NORM_INF), 0.0);  // not random
+  EXPECT_NO_THROW(model.validate());
+  model.radial_depth_bias = 0.3;
+  EXPECT_THROW(model.validate(), gasp::Error);
+  model.radial_depth_bias = std::nan("");
+  EXPECT_THROW(model.validate(), gasp::Error);
+}

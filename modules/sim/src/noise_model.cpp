@@ -46,6 +46,8 @@ void KinectNoiseModel::validate() const {
   positive(max_range_m, "max_range_m");
   positive(discontinuity_fraction, "discontinuity_fraction");
   positive(max_incidence_deg, "max_incidence_deg");
+  if (!(std::isfinite(radial_depth_bias) && std::abs(radial_depth_bias) <= 0.2))
+    throw Error("noise model: radial_depth_bias must be within [-0.2, 0.2], got " + std::to_string(radial_depth_bias));
   if (min_range_m >= max_range_m)
     throw Error("noise model: min_range_m (" + std::to_string(min_range_m) +
                 ") must be below max_range_m (" + std::to_string(max_range_m) + ")");
@@ -110,6 +112,10 @@ cv::Mat sensorDepth(const RenderedFrame& frame, const KinectNoiseModel& m,
     for (int u = 0; u < out.cols; ++u) {
       if (mask_row[u]) continue;
       double z = z_row[u];
+      if (m.radial_depth_bias != 0.0) {
+        const double x = (u - K.cx) / K.fx, y = (v - K.cy) / K.fy;
+        z *= 1.0 + m.radial_depth_bias * (x * x + y * y);
+      }
       if (m.axial_noise) z += m.axialSigma(z) * normal(rng);
       if (m.quantise_disparity && z > 0.0) {
         const double d = std::round(fb / z / m.disparity_step_px) * m.disparity_step_px;

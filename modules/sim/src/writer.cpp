@@ -87,6 +87,7 @@ void writeSceneInfo(const fs::path& path, const Simulation& sim) {
       << "noise.discontinuity_fraction: " << n.discontinuity_fraction << '\n'
       << "noise.drop_grazing: " << n.drop_grazing << '\n'
       << "noise.max_incidence_deg: " << n.max_incidence_deg << '\n'
+      << "noise.radial_depth_bias: " << n.radial_depth_bias << '\n'
       << "depth_units_per_metre: " << kTumDepthUnitsPerMetre << '\n';
   closeText(file);
 }
