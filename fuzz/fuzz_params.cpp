@@ -6,6 +6,8 @@
 //  - gasp-graphslam's configuration (libgasp_graphslam): the bytes as an ini file, checked with
 //    gasp::graphslam::checkGraphSlamIni and loaded by the loadParams of CGaspOdometryNRD,
 //    CGaspLoopClosureERD and CGaspPoseGraphGSO (sections named after them).
+//  - the params file every program loads (libgasp_params): the bytes as its YAML text
+//    (gasp::readParamsYaml); an ini section's `params_file` key names a file read the same way.
 // MRPT's own multi-map loader (TSetOfMetricMapInitializers: `pointsMap_count=-1` allocates
 // without end, docs/mrpt.md) is MRPT's, not GASP's, and is not fuzzed. Seeds: fuzz/make_seeds.sh
 // (every key with its default, the docs' examples, gasp-graphslam.ini).
@@ -22,10 +24,13 @@
 #include "gasp/graphslam/ini_check.h"
 #include "gasp/mrpt/CGaspAligner.h"
 #include "gasp/mrpt/CSuperpixelMap.h"
+#include "gasp/params/params_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const gasp::fuzz::ScratchDir dir("params");
   const std::string text(reinterpret_cast<const char*>(data), size);
+
+  gasp::fuzz::expectErrorsOnly([&] { static_cast<void>(gasp::readParamsYaml(text, "params 'fuzz'")); });
 
   std::unique_ptr<mrpt::config::CConfigFileMemory> ini;
   gasp::fuzz::expectErrorsOnly([&] { ini = std::make_unique<mrpt::config::CConfigFileMemory>(text); });

@@ -8,7 +8,8 @@
 #                   of compressed data mostly die at the CRC, so it needs the plain ones)
 #   fuzz_tum_text   first byte 0..3 (the reader, see fuzz_tum_text.cpp) + the files' first lines
 #   fuzz_depth_png  the shrunk depth and rgb PNGs (32x24, 64x48)
-#   fuzz_params     every key at its default (fuzz_seed_params), gasp-graphslam.ini, small inis
+#   fuzz_params     every key at its default (fuzz_seed_params), gasp-graphslam.ini, small inis,
+#                   the params file of defaults (params/gasp.yaml) and a small one
 # BUILD_DIR is a GASP_FUZZ build; the programs used are built there if missing. The corpora are not
 # committed (only crash inputs, as regression tests).
 set -euo pipefail
@@ -93,6 +94,8 @@ done
 q=$out/fuzz_params
 "$bin/fuzz_seed_params" "$q"
 cp "$repo/rawlog_tools/gasp-graphslam/gasp-graphslam.ini" "$q/gasp-graphslam.ini"
+cp "$repo/params/gasp.yaml" "$q/params_defaults.yaml"
+printf 'associate:\n  lambda: 0.6  # a comment\n  candidate_key: mean\nrefine:\n  dense_gates_m: [0.1, 0.03]\n  dense_loss: "cauchy"\ncertify:\n  model_error_t_m:\n    - 0.01\npose_graph: {}\n' > "$q/params_small.yaml"
 printf '[M_superpixelMap_00_creationOpts]\ntarget_patch_area_m2 = 0.004\nseed = 7\ncrease_borders = false\n[M_superpixelMap_00_likelihoodOpts]\nsigma_m = 0.02\nmax_distance_m = 0.10\ncandidate_key = mean\n[M_superpixelMap_00_renderOpts]\nstyle = points\npoint_step_px = 4\n' > "$q/plugin_map_small.ini"
 printf '[GaspAligner]\ncandidates = 30\nrefinement_loss = huber\ndense_gates_m = 0.2, 0.05, 0.02\ncost_replace = inf\nmutual_check = yes\n' > "$q/plugin_aligner_small.ini"
 printf '[CGaspOdometryNRD]\nkeyframe_distance_m = 0.2\nsensor_label = KINECT\nscene_change = 0\n[CGaspLoopClosureERD]\nsearch_radius_m = 0.8\nmax_candidates = 4\nenabled = 0\n[CGaspPoseGraphGSO]\nmax_iterations = 7\ndrop_chi2 = 0\n' > "$q/graphslam_small.ini"

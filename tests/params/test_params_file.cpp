@@ -157,6 +157,20 @@ TEST(ParamsFile, BadFilesAreErrorsNamingTheLineAndTheKey) {
   } catch (const gasp::Error& e) {
     EXPECT_STREQ(e.what(), "params '/no/such/params.yaml': cannot open the file");
   }
+  // Not a params file: a device read without end, a folder, a file of megabytes.
+  auto fileError = [](const std::string& path) {
+    try {
+      gasp::readParamsFile(path);
+    } catch (const gasp::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(fileError("/dev/zero"), "params '/dev/zero': not a regular file (a params file is a YAML text file)");
+  EXPECT_EQ(fileError("/tmp"), "params '/tmp': not a regular file (a params file is a YAML text file)");
+  const std::string big = gasp::test::scratchDir() + "/big.yaml";
+  std::ofstream(big) << std::string(gasp::kMaxParamsFileBytes + 1, '#');
+  EXPECT_NE(fileError(big).find("bytes, more than a params file holds"), std::string::npos) << fileError(big);
 }
 
 TEST(ParamsFile, WrittenThroughATemporaryFileThatLoadsBack) {

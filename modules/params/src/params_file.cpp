@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -302,6 +303,18 @@ SlamParams readParamsNode(const mrpt::containers::yaml& node, const std::string&
 }
 
 SlamParams readParamsFile(const std::string& path, const SlamParams& base) {
+  // A params file is a regular file of a few kilobytes: a device or a FIFO (/dev/zero) would be
+  // read without end, a huge file is no params file.
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) throw Error("params '" + path + "': cannot open the file");
+  if (!std::filesystem::is_regular_file(status))
+    throw Error("params '" + path + "': not a regular file (a params file is a YAML text file)");
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) throw Error("params '" + path + "': cannot read the file: " + ec.message());
+  if (size > kMaxParamsFileBytes)
+    throw Error("params '" + path + "': " + std::to_string(size) + " bytes, more than a params file holds (at most " +
+                std::to_string(kMaxParamsFileBytes) + ")");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error("params '" + path + "': cannot open the file");
   std::ostringstream text;

@@ -11,6 +11,7 @@
 /// the file and the key.
 #include <mrpt/containers/yaml.h>
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -31,7 +32,11 @@ SlamParams readParamsYaml(const std::string& yaml_text, const std::string& sourc
 /// The same from a YAML node already parsed (the MRPT matcher's parameters): a map of sections.
 SlamParams readParamsNode(const mrpt::containers::yaml& node, const std::string& source, const SlamParams& base = {});
 
-/// readParamsYaml over a file's text; an unreadable file is an error naming it.
+/// The largest params file read (the file of every key is about 5 KB).
+constexpr std::size_t kMaxParamsFileBytes = 1 << 20;
+
+/// readParamsYaml over a file's text; an unreadable file, one that is not a regular file (a device,
+/// a FIFO, a folder) or one over kMaxParamsFileBytes is an error naming it.
 SlamParams readParamsFile(const std::string& path, const SlamParams& base = {});
 
 /// The YAML text of every parameter, section by section, each number written so that it reads
