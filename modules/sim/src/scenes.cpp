@@ -95,16 +95,23 @@ Scene planeScene() {
   return s;
 }
 
+/// Two parallel walls along x at y = +-half_width_m, facing each other, centred at (centre_x_m,
+/// +-half_width_m, centre_z_m), each half_length_m x half_height_m (half sizes).
+void addCorridorWalls(Scene& s, double centre_x_m, double half_width_m, double centre_z_m, double half_length_m,
+                      double half_height_m) {
+  for (int side : {-1, 1}) {
+    Isometry3 T = placeAt(centre_x_m, half_width_m * side, centre_z_m);
+    T.linear() = Eigen::AngleAxisd(side * EIGEN_PI / 2.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
+    s.add(side < 0 ? "wall_right" : "wall_left", Rectangle{half_length_m, half_height_m}, T);
+  }
+}
+
 Scene corridorScene() {
   Scene s;
   s.name = "corridor";
   s.description = "degenerate: two parallel walls at y = +-1.2 m along x, nothing else";
   s.degenerate = true;
-  for (int side : {-1, 1}) {
-    Isometry3 T = placeAt(5.0, 1.2 * side, 1.4);
-    T.linear() = Eigen::AngleAxisd(side * EIGEN_PI / 2.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
-    s.add(side < 0 ? "wall_right" : "wall_left", Rectangle{20.0, 10.0}, T);
-  }
+  addCorridorWalls(s, 5.0, 1.2, 1.4, 20.0, 10.0);
   return s;
 }
 
@@ -182,11 +189,7 @@ Scene corridorWalkScene() {
   s.name = "corridor_walk";
   s.description = "plane-dominated: a corridor 2 m wide with a floor, walked along by a hand-held camera";
   s.degenerate = true;
-  for (int side : {-1, 1}) {
-    Isometry3 T = placeAt(10.0, 1.0 * side, 1.5);
-    T.linear() = Eigen::AngleAxisd(side * EIGEN_PI / 2.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
-    s.add(side < 0 ? "wall_right" : "wall_left", Rectangle{20.0, 1.5}, T);
-  }
+  addCorridorWalls(s, 10.0, 1.0, 1.5, 20.0, 1.5);
   s.add("floor", Rectangle{20.0, 1.0}, placeAt(10.0, 0.0, 0.0));
   HandHeldView view;
   view.eye = Eigen::Vector3d(0.0, 0.0, 1.4);
