@@ -1,13 +1,10 @@
 #include "gasp/params/params_file.h"
 
 #include <charconv>
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
-#include <set>
 #include <sstream>
 
 #include "gasp/core/error.h"

@@ -51,8 +51,6 @@ std::string keysInvalidAlone(const std::vector<std::string>& keys, const P& base
   return out.empty() ? out : out + ")";
 }
 
-/// Reads the keys `fields(p, f)` lists from an ini section over `params`, then validates them;
-/// unknown keys (except `other_allowed`) and invalid values throw naming the section and key.
 /// With a `params_file = PATH` key in the section, `params` read over by that params file first
 /// (`part` maps the file's SlamParams to the section's part of it, both ways), so that an MRPT ini
 /// and every program share one file; the section's own keys then override it.
@@ -79,6 +77,8 @@ auto partOf(P& params, Field&& field) {
   };
 }
 
+/// Reads the keys `fields(p, f)` lists from an ini section over `params`, then validates them;
+/// unknown keys (except `other_allowed`) and invalid values throw naming the section and key.
 template <class P, class Fields>
 void readSection(const mrpt::config::CConfigFileBase& source, const std::string& section, P& params,
                  std::set<std::string> other_allowed, Fields&& fields) {

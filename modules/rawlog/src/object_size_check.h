@@ -352,7 +352,8 @@ class ObjectSizeCheck {
     return true;
   }
 
-  /// A string (uint32 length, bytes). False when it cannot be followed (problem set when too long).
+  /// A string or any length-prefixed bytes (uint32 length, bytes). False when it cannot be followed
+  /// (problem set when too long).
   bool string(const std::string& what, std::string& problem) {
     std::uint32_t n = 0;
     if (!read(n)) return false;
@@ -419,16 +420,8 @@ class ObjectSizeCheck {
     return skip(count);
   }
 
-  /// A JPEG: byte count (uint32) and bytes (the JPEG's own header: OpenCV's).
-  bool jpeg(const std::string& what, std::string& problem) {
-    std::uint32_t n = 0;
-    if (!read(n)) return false;
-    if (n > left()) {
-      problem = what + " (JPEG) claims " + bytes(n) + " but " + bytes(left()) + " remain in the stream";
-      return false;
-    }
-    return skip(n);
-  }
+  /// A JPEG: byte count (uint32) and bytes, laid out as a string (the JPEG's own header: OpenCV's).
+  bool jpeg(const std::string& what, std::string& problem) { return string(what + " (JPEG)", problem); }
 
   /// A grey image of versions 2 to 9: width, height, origin, byte count (int32), a pixel depth
   /// (int32, version 9), whether it is zipped (version 5 on; version 3 always, version 4 above
