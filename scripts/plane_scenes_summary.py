@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Counts of the pairs of gasp-pairs --pairs-csv files (scripts/plane_scenes.sh): per file and
 skip, the pairs, the full poses within 5 cm and 2 deg of the truth (right) and beyond (wrong), the
-partial poses (a `partial` column of 1, when the CSV has one) and the pairs without an estimate,
-with the most common reason for those. Prints a Markdown table.
+partial poses (a `partial` column of 1, when the CSV has one) right and wrong by the same limits
+in their observed directions (`observed_t_err_m`, `observed_r_err_deg`; a partial pose without
+them counts as wrong), and the pairs without an estimate, with the most common reason for those.
+Prints a Markdown table.
 
 Usage: plane_scenes_summary.py PATH [PATH ...]   (PATH: a CSV, or PREFIX of PREFIX.pairs.csv)
 """
@@ -36,32 +38,44 @@ def short_reason(reason):
     return reason.split(":")[0].strip() or "-"
 
 
+def within(t_err_m, r_err_deg):
+    """Whether both errors are given and within the limits."""
+    if not t_err_m or not r_err_deg:
+        return False
+    return float(t_err_m) <= RIGHT_T_M and float(r_err_deg) <= RIGHT_R_DEG
+
+
 def main(paths):
     if not paths:
         fail("give at least one --pairs-csv file")
     files = [rows_of(path) for path in paths]  # every file checked before anything is printed
-    print("| scene | skip | pairs | full right | full wrong | partial | no estimate | most common reason |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| scene | skip | pairs | full right | full wrong | partial right | partial wrong | no estimate |"
+          " most common reason |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for name, rows in files:
         by_skip = collections.defaultdict(list)
         for row in rows:
             if row["method"] == "gasp":
                 by_skip[int(row["skip"])].append(row)
         for skip in sorted(by_skip):
-            right = wrong = partial = none = 0
+            right = wrong = partial_right = partial_wrong = none = 0
             reasons = collections.Counter()
             for row in by_skip[skip]:
-                if row["estimated"] != "1":
+                if row.get("partial") == "1":
+                    if within(row.get("observed_t_err_m"), row.get("observed_r_err_deg")):
+                        partial_right += 1
+                    else:
+                        partial_wrong += 1
+                elif row["estimated"] != "1":
                     none += 1
                     reasons[short_reason(row["reason"])] += 1
-                elif row.get("partial") == "1":
-                    partial += 1
-                elif float(row["t_err_m"]) <= RIGHT_T_M and float(row["r_err_deg"]) <= RIGHT_R_DEG:
+                elif within(row["t_err_m"], row["r_err_deg"]):
                     right += 1
                 else:
                     wrong += 1
             reason = "%s (%d)" % reasons.most_common(1)[0] if reasons else "-"
-            print(f"| {name} | {skip} | {len(by_skip[skip])} | {right} | {wrong} | {partial} | {none} | {reason} |")
+            print(f"| {name} | {skip} | {len(by_skip[skip])} | {right} | {wrong} | {partial_right} | {partial_wrong} |"
+                  f" {none} | {reason} |")
 
 
 if __name__ == "__main__":

@@ -84,6 +84,8 @@ mrpt::poses::CPose3DPDF::Ptr CGaspAligner::Align3DPDF(const mrpt::maps::CMetricM
     best.inliers = r.pose.num_inliers;
     best.degenerate = r.pose.degenerate;
     best.reason = r.pose.reason;
+    // An alignment is a full pose: a partial one (certify_stage.h) is no estimate here.
+    if (r.pose.partial) best.reason = "degenerate scene: only a " + r.pose.reason + " (an alignment needs a full pose)";
     if (r.pose.success) {
       const Isometry3 T_m1_m2 = vi.T_map_camera * r.pose.T_target_source * vj.T_map_camera.inverse();
       best.information = informationInFrame(r.edge_information, vi.T_map_camera);

@@ -7,8 +7,10 @@
 #include <chrono>
 
 #include "gasp/core/error.h"
+#include "gasp/core/pose_perturbation.h"
 #include "gasp/core/stopwatch.h"
 #include "gasp/params/params_io.h"
+#include "gasp/registration/partial_pose.h"
 #include "gasp/mrpt/pose_covariance.h"
 #include "gasp/rawlog/observation_conversion.h"
 
@@ -60,11 +62,16 @@ MatchConstraint ObservationMatcher_GASP::match(const mrpt::obs::CObservation& a,
   c.inliers = r.pose.num_inliers;
   c.degenerate = r.pose.degenerate;
   c.success = r.pose.success;
+  c.partial = r.pose.partial;
   c.reason = r.pose.reason;
-  if (c.success) {
+  if (r.pose.estimated()) {
     const Isometry3& S_a = fa.T_robot_camera;
     c.T_a_b = toCPose3D(S_a * r.pose.T_target_source * fb.T_robot_camera.inverse());
     c.information = informationInFrame(r.edge_information, S_a);
+  }
+  if (c.partial) {
+    c.free_directions = adjoint(fa.T_robot_camera) * unobservableTwists(r.pose);
+    for (Eigen::Index k = 0; k < c.free_directions.cols(); ++k) c.free_directions.col(k).normalize();
   }
   c.time_ms = msSince(t0);
   return c;

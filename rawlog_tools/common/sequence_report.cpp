@@ -25,14 +25,14 @@ int reportPartial(const SequenceEnd& end) {
 }
 
 void writeFramesCsv(std::ostream& out, const std::vector<OdometryFrame>& frames) {
-  out << "index,timestamp,tracked,keyframe,reference,patches,inliers,deskewed,segmentation_ms,registration_ms,scene_change,reason\n";
+  out << "index,timestamp,tracked,keyframe,reference,patches,inliers,deskewed,segmentation_ms,registration_ms,scene_change,partial,reason\n";
   for (const auto& f : frames) {
     std::string reason = f.reason;
     std::replace(reason.begin(), reason.end(), '"', '\'');
     char buf[200];
-    std::snprintf(buf, sizeof buf, "%zu,%.6f,%d,%d,%zu,%d,%d,%d,%.2f,%.2f,%d,", f.index, f.timestamp, f.tracked ? 1 : 0,
+    std::snprintf(buf, sizeof buf, "%zu,%.6f,%d,%d,%zu,%d,%d,%d,%.2f,%.2f,%d,%d,", f.index, f.timestamp, f.tracked ? 1 : 0,
                   f.keyframe ? 1 : 0, f.reference, f.patches, f.inliers, f.deskewed ? 1 : 0, f.segmentation_ms,
-                  f.registration_ms, f.scene_change ? 1 : 0);
+                  f.registration_ms, f.scene_change ? 1 : 0, f.partial ? 1 : 0);
     out << buf << '"' << reason << "\"\n";
   }
 }
@@ -52,6 +52,9 @@ void printOdometrySummary(const DepthOdometry& odometry) {
   if (listed > 10) changed += ", ...";
   std::printf("scene_changes: %zu%s\n", odometry.sceneChangeCount(),
               changed.empty() ? "" : (" (frames " + changed + ")").c_str());
+  std::size_t partial = 0;
+  for (const auto& f : frames) partial += f.partial ? 1 : 0;
+  std::printf("partial_poses: %zu (tracked with free directions held by the motion prediction)\n", partial);
   std::printf("keyframes: %zu\n", odometry.keyframeCount());
   std::printf("graph_components: %zu\n", odometry.componentCount());
   std::printf("median_ms_per_frame: %.1f (medians: segmentation %.1f, registration %.1f)\n", median(total), median(seg),

@@ -253,6 +253,14 @@ int main(int argc, char** argv) {
     }
     std::printf("inliers: %d\none_way_fallback: %s\nguided_support: %d\n", r.pose.num_inliers,
                 r.used_one_way ? "yes" : "no", r.guided_support);
+    if (r.pose.partial) {  // observed directions only: printed, but no full pose (exit 4)
+      const auto& T = r.pose.T_target_source;
+      const Eigen::Quaterniond q(T.linear());
+      std::printf("partial_pose_T_b_a: %.5f %.5f %.5f %.6f %.6f %.6f %.6f (tx ty tz qx qy qz qw; free directions "
+                  "arbitrary)\nfree_directions: %d\n",
+                  T.translation().x(), T.translation().y(), T.translation().z(), q.x(), q.y(), q.z(), q.w(),
+                  static_cast<int>(r.pose.unobservable_directions.cols()));
+    }
     if (!r.pose.success) {
       std::printf("pose: none (%s)\n", r.pose.reason.c_str());
       return 4;

@@ -44,6 +44,11 @@ MethodRun runGasp(const std::string& method, std::size_t i, std::size_t j, Frame
   run.estimated = r.pose.success;
   run.T_target_source = r.pose.T_target_source;
   run.reason = r.pose.reason;
+  run.partial = r.pose.partial;
+  if (r.pose.partial) {
+    run.free_directions = static_cast<int>(r.pose.unobservable_directions.cols());
+    if (T_gt) run.observed = observedError(r.pose, *T_gt);
+  }
   run.ms = va.ms + vb.ms + reg_ms;
   run.associations = r.association.associations.size();
   run.inliers = r.pose.num_inliers;

@@ -16,6 +16,7 @@
 #include "gasp/core/pose.h"
 #include "gasp/eval/pose_consistency.h"
 #include "gasp/pipeline/pair_registration.h"
+#include "gasp/registration/partial_pose.h"
 #ifdef GASP_HAVE_BASELINES
 #include "gasp/baselines/baseline_registration.h"
 #endif
@@ -31,8 +32,13 @@ bool needsColour(const std::string& method);
 
 /// One pair, one method: the outcome plus what the pairs CSV and the pictures need.
 struct MethodRun {
-  bool estimated = false;
+  bool estimated = false;  ///< a full pose
   Isometry3 T_target_source = Isometry3::Identity();
+  /// GASP: a partial pose (certify_stage.h; estimated is then false), its number of free
+  /// directions and, with ground truth, its error in the observed directions (partial_pose.h).
+  bool partial = false;
+  int free_directions = 0;
+  std::optional<ObservedError> observed;
   std::string reason;
   double ms = 0;
   std::size_t associations = 0;

@@ -26,7 +26,8 @@ std::string pairsCsvHeader() {
          "motion_t_m,motion_r_deg,ref_icp_t_m,ref_icp_r_deg,est_vs_ref_icp_t_m,est_vs_ref_icp_r_deg,"
          "est_icp_t_m,est_icp_r_deg,icp_est_vs_ref_icp_t_m,icp_est_vs_ref_icp_r_deg,verified_precision_ref_icp,"
          "rgb_inliers,rgb_parallax_px,rgb_r_vs_ref_deg,rgb_r_vs_est_deg,rgb_r_vs_ref_icp_deg,nees,nees_t,nees_r,"
-         "nees_refinement,violation_ratio_lesser,violation_blob_share_lesser,violation_blob_share,reason";
+         "nees_refinement,violation_ratio_lesser,violation_blob_share_lesser,violation_blob_share,partial,free_directions,"
+         "observed_t_err_m,observed_r_err_deg,reason";
 }
 
 std::string pairsCsvRow(const eval::PairOutcome& o, const std::string& method, const MethodRun& run,
@@ -73,7 +74,10 @@ std::string pairsCsvRow(const eval::PairOutcome& o, const std::string& method, c
   s << ',';
   if (run.nees_refinement) s << *run.nees_refinement;
   s << ',' << run.violation_ratio_lesser << ',' << run.violation_blob_share_lesser << ',' << run.violation_blob_share
-    << ",\"";
+    << ',' << (run.partial ? 1 : 0) << ',' << run.free_directions << ',';
+  if (run.observed) s << run.observed->translation_m << ',' << run.observed->rotation_deg;
+  else s << ',';
+  s << ",\"";
   for (const char ch : o.reason) s << (ch == '"' ? "\"\"" : std::string(1, ch));  // RFC 4180 quoting
   s << '"';
   return s.str();

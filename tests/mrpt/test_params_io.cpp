@@ -86,6 +86,7 @@ PairParams everythingChanged() {
   p.refine.edges.terms.line_neighbours = 6, p.refine.edges.terms.max_distance_m = 0.07, p.refine.edges.terms.weight = 1.5;
   p.refine.edges.wide_gate_factor = 2.5, p.refine.edges.wide_min_paired_share = 0.5;
   p.refine.solver.degeneracy.min_eigenvalue_ratio = 2e-3, p.refine.solver.degeneracy.max_std_m = 0.06, p.certify.min_dense_terms = 250;
+  p.certify.partial_poses = false;
   p.refine.slide_scan.enabled = false, p.refine.slide_scan.range_m = 0.25, p.refine.slide_scan.step_m = 0.02;
   p.refine.slide_scan.min_gain = 0.006, p.refine.slide_scan.pixel_step = 6;
   p.certify.visibility.pixel_step = 6, p.certify.visibility.gate_m = 0.035, p.certify.visibility.gate_per_m2 = 0.025;

@@ -10,6 +10,7 @@
 #include "gasp/core/stopwatch.h"
 #include "gasp/core/undistortion.h"
 #include "gasp/pipeline/pair_registration.h"
+#include "gasp/registration/partial_pose.h"
 
 namespace gasp {
 
@@ -40,12 +41,31 @@ DepthOdometry::DepthOdometry(const OdometryParams& params, const Isometry3& T_wo
 
 bool DepthOdometry::track(const DepthView& view, const DepthView& ref, std::size_t ref_index, OdometryFrame& f,
                           const char* attempt, const PairParams& pair, const std::optional<Isometry3>& T_ref_predicted,
-                          bool* visibility_refused) {
-  const PairResult r = registerViews(view, ref, pair);  // T_ref_frame
+                          bool* visibility_refused, const std::optional<Isometry3>& T_ref_motion) {
+  PairResult r = registerViews(view, ref, pair);  // T_ref_frame
   // The free-space check refused a pose, at the default scale or in the finer-scale retry.
   if (visibility_refused && r.visibility_refused) *visibility_refused = true;
-  std::string why = r.pose.success ? std::string() : r.pose.reason;
   const double dt = f.timestamp - frames_[ref_index].timestamp;
+  // A partial pose: its free directions from the motion prediction one step ahead of the
+  // previous frame, with the prediction gate's width over that step (scene_change.h) as their
+  // standard deviation.
+  const bool partial = r.pose.partial && T_ref_motion && !T_ref_predicted;
+  std::string why = r.pose.success || partial ? std::string() : r.pose.reason;
+  if (partial) {
+    const double step_dt = f.timestamp - frames_.back().timestamp;
+    why = predictionTooWide(step_dt, params_.scene_change);
+    if (why.empty()) {
+      const PredictionGate width = predictionGate(*T_ref_motion, *T_ref_motion, step_dt, params_.scene_change);
+      r.pose.T_target_source = withPrediction(r.pose, *T_ref_motion);
+      Vector6 prior;
+      const double st = width.gate_m, sr = width.gate_deg * M_PI / 180.0;
+      prior << 1 / (st * st), 1 / (st * st), 1 / (st * st), 1 / (sr * sr), 1 / (sr * sr), 1 / (sr * sr);
+      const Matrix6 free = Matrix6::Identity() - observedProjector(r.pose);
+      r.edge_information += free.transpose() * prior.asDiagonal() * free;
+    } else {
+      why = "partial pose, but " + why;
+    }
+  }
   if (why.empty()) why = implausibleMotion(r.pose.T_target_source, dt, params_);
   PredictionGate gate;
   if (why.empty() && T_ref_predicted) {
@@ -64,6 +84,11 @@ bool DepthOdometry::track(const DepthView& view, const DepthView& ref, std::size
     f.reason += head + buf + gate.describe();
     f.scene_change = true;
   }
+  if (partial) {
+    f.partial = true;
+    f.free_directions = static_cast<int>(r.pose.unobservable_directions.cols());
+    f.reason += head + ": " + r.pose.reason + " (held by the motion prediction)";
+  }
   f.tracked = true;
   f.reference = ref_index;
   f.inliers = r.pose.num_inliers;
@@ -75,6 +100,7 @@ bool DepthOdometry::track(const DepthView& view, const DepthView& ref, std::size
   c.information = r.edge_information;
   c.inliers = r.pose.num_inliers;
   c.scene_change = f.scene_change;
+  c.free_directions = f.free_directions;
   constraints_.push_back(c);
   return true;
 }
@@ -134,14 +160,19 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
     const std::size_t prev = f.index - 1;
     const double dt = timestamp - frames_[prev].timestamp;
     bool visibility_refused = false;  // by a strict attempt: the scene may have changed
+    // The motion model's prediction of this frame (standing still without a velocity), in the
+    // keyframe's and the previous frame's frames: it holds a partial pose's free directions.
+    const Isometry3 T_prev_frame = velocity_ ? stepOf(*velocity_, dt) : Isometry3::Identity();
+    const Isometry3 T_key_predicted =
+        frames_[keyframe_index_].T_world_camera.inverse() * frames_[prev].T_world_camera * T_prev_frame;
     if (track(view, *keyframe_view_, keyframe_index_, f, "against keyframe", params_.pair, std::nullopt,
-              &visibility_refused)) {
+              &visibility_refused, T_key_predicted)) {
       const Isometry3 T_key_frame = frames_[keyframe_index_].T_world_camera.inverse() * f.T_world_camera;
       new_keyframe = translationNorm(T_key_frame) > params_.keyframe_distance_m ||
                      rotationAngle(T_key_frame) * 180.0 / M_PI > params_.keyframe_angle_deg;
     } else if (prev != keyframe_index_ &&
                track(view, *previous_view_, prev, f, "against the previous", params_.pair, std::nullopt,
-                     &visibility_refused)) {
+                     &visibility_refused, T_prev_frame)) {
       new_keyframe = true;  // the keyframe no longer reaches this far
     } else if (params_.scene_change.enabled && velocity_ && visibility_refused) {
       // A velocity exists only when the previous frame was tracked.

@@ -163,6 +163,7 @@ template <class P, class F>
 void certifyFields(P& p, F&& f) {  // the views' degeneracy, dense support, free space (visibility_check.h), model error
   auto& c = p.certify;
   f("view_degeneracy_min_eigenvalue_ratio", c.view_degeneracy.min_eigenvalue_ratio);
+  f("partial_poses", c.partial_poses);
   f("min_dense_terms", c.min_dense_terms);
   f("visibility_pixel_step", c.visibility.pixel_step);
   f("visibility_gate_m", c.visibility.gate_m);

@@ -3,6 +3,8 @@
 #include <algorithm>
 
 #include "gasp/core/error.h"
+#include "gasp/core/pose_perturbation.h"
+#include "gasp/registration/partial_pose.h"
 
 namespace gasp {
 
@@ -16,20 +18,24 @@ void validate(const CertifyParams& p) {
   validate(p.model_error);
 }
 
-std::optional<RegistrationResult> certifyViews(const DepthView& source, const DepthView& target,
-                                               const CertifyParams& params) {
+ViewsCertificate certifyViews(const DepthView& source, const DepthView& target, const CertifyParams& params) {
+  ViewsCertificate out;
   for (const auto* view : {&source, &target}) {
     const auto d = analyseViewGeometry(view->segmentation, params.view_degeneracy);
     if (!d.degenerate) continue;
+    (view == &source ? out.source_free : out.target_free) = d.unobservable_twists;
+    const bool partial_possible = params.partial_poses && d.unobservable_directions.cols() > 0 &&
+                                  d.unobservable_directions.cols() <= kMaxFreeDirections;
+    if (partial_possible || out.refusal) continue;
     RegistrationResult r;
     r.degenerate = true;
     r.information_eigenvalues = d.eigenvalues;
     r.unobservable_directions = d.unobservable_directions;
     r.reason = std::string("degenerate scene: the ") + (view == &source ? "source" : "target") +
                " view's geometry leaves free: " + d.reason;
-    return r;
+    out.refusal = std::move(r);
   }
-  return std::nullopt;
+  return out;
 }
 
 FreeSpaceTest freeSpaceTest(const DepthView& source, const DepthView& target, const CertifyParams& params,
@@ -42,11 +48,36 @@ FreeSpaceTest freeSpaceTest(const DepthView& source, const DepthView& target, co
   };
 }
 
+namespace {
+
+/// The directions the views and the dense problem leave free, in the pose's conditioned
+/// coordinates: the source view's move its camera frame, hence Ad(T) into the target frame's.
+Eigen::Matrix<double, 6, Eigen::Dynamic> freeDirections(const RegistrationResult& pose, const ViewsCertificate& views) {
+  Eigen::Matrix<double, 6, Eigen::Dynamic> more(6, views.source_free.cols() + views.target_free.cols());
+  if (views.source_free.cols() > 0)
+    more.leftCols(views.source_free.cols()) = adjoint(pose.T_target_source) * views.source_free;
+  if (views.target_free.cols() > 0) more.rightCols(views.target_free.cols()) = views.target_free;
+  return unitedDirections(pose, more);
+}
+
+}  // namespace
+
 Certificate certify(const RegistrationResult& pose, std::optional<int> dense_terms, const FreeSpaceTest& free_space,
-                    const std::optional<VisibilityCheck>& done, const CertifyParams& params) {
+                    const std::optional<VisibilityCheck>& done, const ViewsCertificate& views,
+                    const CertifyParams& params) {
   Certificate c;
-  if (!pose.success) {
+  if (!pose.estimated() || (pose.partial && !params.partial_poses)) {
     c.reason = pose.reason;
+    return c;
+  }
+  c.free_directions = freeDirections(pose, views);
+  if (c.free_directions.cols() > 0 && !params.partial_poses) {
+    c.reason = "unobservable: " + directionsText(c.free_directions);
+    return c;
+  }
+  if (c.free_directions.cols() > kMaxFreeDirections) {
+    c.reason = "unobservable: " + directionsText(c.free_directions) + " (more than " +
+               std::to_string(kMaxFreeDirections) + " directions: not even a plane is fixed)";
     return c;
   }
   if (dense_terms && *dense_terms < params.min_dense_terms) {
@@ -61,13 +92,23 @@ Certificate certify(const RegistrationResult& pose, std::optional<int> dense_ter
     c.free_space_refused = c.visibility->free_space_refused;
     return c;
   }
+  c.partial = c.free_directions.cols() > 0;
   try {
-    c.edge_information = informationWithModelError(pose.information, params.model_error);
-  } catch (const Error& e) {  // a claimed pose's information is positive definite; if not, no claim
+    if (c.partial) {
+      RegistrationResult observed = pose;
+      observed.unobservable_directions = c.free_directions;
+      c.edge_information =
+          observedInformationWithCovariance(observed, pose.information, modelErrorCovariance(params.model_error));
+    } else {
+      c.edge_information = informationWithModelError(pose.information, params.model_error);
+    }
+  } catch (const Error& e) {  // a claimed pose's information is positive definite where observed; if not, no claim
     c.reason = std::string("edge information: ") + e.what();
+    c.partial = false;
     return c;
   }
   c.claimed = true;
+  if (c.partial) c.reason = "partial pose, free: " + directionsText(c.free_directions);
   return c;
 }
 

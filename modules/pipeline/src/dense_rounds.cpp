@@ -59,7 +59,7 @@ LineSearch searchLine(const RegistrationResult& pose, const RegistrationResult& 
   }
   const bool worse = score_after < score_before;
   if (!worse && fraction < 1.0) out.shortened = ops.solve(landing, out.there.terms, true);
-  out.stop = worse || (out.shortened && !out.shortened->success);
+  out.stop = worse || (out.shortened && !out.shortened->estimated());
   return out;
 }
 
@@ -113,9 +113,10 @@ RegistrationResult runDenseRounds(const RegistrationResult& start, const std::ve
     rounds.terms = static_cast<int>(gathered.terms.size());
     rounds.run = round + 1;
     RegistrationResult next = ops.solve(pose.T_target_source, gathered.terms, false);
-    if (!next.success) {
+    if (!next.estimated()) {
       // The dense problem may be degenerate or fail where the patch problem was not: then no
-      // pose is claimed (never a silently weaker one).
+      // pose is claimed (never a silently weaker one). A partial pose goes on: its rounds move
+      // it in the observed directions only (refinement.h).
       next.reason = "dense refinement: " + next.reason;
       pose = std::move(next);
       break;

@@ -16,6 +16,14 @@ void validate(const ModelError& e) {
     throw Error("ModelError: sigma_r_deg must be from 0 to 180 deg");
 }
 
+Eigen::Matrix<double, 6, 6> modelErrorCovariance(const ModelError& e) {
+  validate(e);
+  const double sr = e.sigma_r_deg * M_PI / 180.0;
+  Eigen::Matrix<double, 6, 1> d;
+  d << e.sigma_t_m * e.sigma_t_m, e.sigma_t_m * e.sigma_t_m, e.sigma_t_m * e.sigma_t_m, sr * sr, sr * sr, sr * sr;
+  return d.asDiagonal();
+}
+
 Eigen::Matrix<double, 6, 6> informationWithModelError(const Eigen::Matrix<double, 6, 6>& information,
                                                       const ModelError& e) {
   using Matrix6 = Eigen::Matrix<double, 6, 6>;
@@ -25,10 +33,7 @@ Eigen::Matrix<double, 6, 6> informationWithModelError(const Eigen::Matrix<double
   const Eigen::LLT<Matrix6> llt(I);
   if (llt.info() != Eigen::Success) throw Error("informationWithModelError: the information is not positive definite");
   if (e.sigma_t_m == 0.0 && e.sigma_r_deg == 0.0) return information;
-  Matrix6 C = llt.solve(Matrix6::Identity());
-  const double st2 = e.sigma_t_m * e.sigma_t_m;
-  const double sr = e.sigma_r_deg * M_PI / 180.0;
-  for (int k = 0; k < 3; ++k) C(k, k) += st2, C(k + 3, k + 3) += sr * sr;
+  Matrix6 C = llt.solve(Matrix6::Identity()) + modelErrorCovariance(e);
   C = 0.5 * (C + C.transpose());
   const Eigen::LLT<Matrix6> llt_c(C);
   if (llt_c.info() != Eigen::Success) throw Error("informationWithModelError: the covariance is not positive definite");

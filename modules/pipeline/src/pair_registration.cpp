@@ -9,6 +9,7 @@
 
 #include "gasp/core/error.h"
 #include "gasp/core/stopwatch.h"
+#include "gasp/pipeline/plane_hypothesis.h"
 #include "gasp/superpixels/depth_superpixels.h"
 #include "retry_policy.h"
 
@@ -28,7 +29,7 @@ namespace {
 /// Stage 4's outcome in the result.
 void record(const Refinement& dense, double ms, PairResult& r) {
   r.pose = dense.pose;
-  r.dense_unobservable = !r.pose.success && r.pose.degenerate;
+  r.dense_unobservable = !r.pose.success && r.pose.degenerate;  // a partial pose included
   r.dense_terms = dense.rounds.terms;
   r.dense_rounds_run = dense.rounds.run;
   r.dense_last_step_m = dense.rounds.last_step_m;
@@ -45,8 +46,17 @@ void record(const Certificate& c, PairResult& r) {
   if (c.visibility) r.visibility = *c.visibility;
   r.visibility_refused = c.free_space_refused;
   r.edge_information = c.edge_information;
-  if (c.claimed || !r.pose.success) return;
-  r.pose.success = false;
+  if (!c.claimed) {
+    r.pose.success = false;
+    r.pose.partial = false;
+    if (!c.reason.empty()) r.pose.reason = c.reason;
+    return;
+  }
+  r.pose.success = !c.partial;
+  r.pose.partial = c.partial;
+  r.pose.degenerate = c.partial;
+  if (!c.partial) return;
+  r.pose.unobservable_directions = c.free_directions;
   r.pose.reason = c.reason;
 }
 
@@ -54,8 +64,10 @@ void record(const Certificate& c, PairResult& r) {
 /// associations only; its poses face the fallback limit).
 PairResult registerAtScale(const DepthView& source, const DepthView& target, const PairParams& p, bool finer) {
   PairResult r;
-  if (auto refused = certifyViews(source, target, p.certify)) {  // can these views fix a pose at all?
-    r.pose = std::move(*refused);
+  const ViewsCertificate views = certifyViews(source, target, p.certify);  // can these views fix a pose at all?
+  r.views_free_directions = static_cast<int>(views.source_free.cols() + views.target_free.cols());
+  if (views.refusal) {
+    r.pose = *views.refusal;
     return r;
   }
   const AssociatedViews a = associate(source, target, p.associate);
@@ -66,7 +78,17 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
     return r;
   }
   const Hypothesis h = detail::hypothesiseWithFallback(a, p.hypothesise, p.retry.one_way_fallback && !finer, r);
-  if (!h.verified) return r;
+  std::string no_hypothesis;  // why association gave none, when the plane hypothesis stands in
+  if (!h.verified) {
+    // Views that leave directions free: their dominant planes fix the others (plane_hypothesis.h).
+    const auto ps = p.certify.partial_poses && r.views_free_directions > 0 ? dominantPlane(source.segmentation) : std::nullopt;
+    const auto pt = ps ? dominantPlane(target.segmentation) : std::nullopt;
+    if (!pt) return r;
+    no_hypothesis = std::move(r.pose.reason);
+    r.pose = RegistrationResult{};
+    r.pose.T_target_source = alignPlanes(*ps, *pt);
+    r.plane_hypothesis = true;
+  }
 
   const FreeSpaceTest free_space = freeSpaceTest(source, target, p.certify, finer || r.used_one_way);
   std::optional<Refinement> dense;
@@ -79,9 +101,11 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
   }
   const auto t1 = std::chrono::steady_clock::now();
   record(certify(r.pose, dense ? std::optional<int>(dense->rounds.terms) : std::nullopt, free_space,
-                 dense ? dense->check : std::nullopt, p.certify),
+                 dense ? dense->check : std::nullopt, views, p.certify),
          r);
   r.timings.certify_ms = msSince(t1);
+  if (r.plane_hypothesis && !r.pose.estimated())
+    r.pose.reason = no_hypothesis + "; from the views' dominant planes: " + r.pose.reason;
   if (!r.pose.success || !p.hypothesise.guided.enabled) return r;
   // The verified associations: the guided ones at the claimed pose.
   if (!dense && !p.hypothesise.guided.densify) {
@@ -113,7 +137,7 @@ PairResult retryAtFinerScale(const DepthView& source, const DepthView& target, c
   PairTimings total = r.timings;
   total.addStages(retry.timings);
   total.retry_segmentation_ms = segmentation_ms;
-  if (retry.pose.success) {
+  if (retry.pose.estimated()) {
     retry.retried = true;
     retry.retry_views = std::move(views);
     retry.timings = total;

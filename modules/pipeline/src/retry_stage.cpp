@@ -57,8 +57,10 @@ Hypothesis hypothesiseWithFallback(const AssociatedViews& a, const HypothesisePa
 }
 
 bool finerScaleRetryApplies(const PairResult& r, const DepthView& source, const DepthView& target) {
-  const bool degenerate = r.pose.degenerate && !r.dense_unobservable;
-  return !r.pose.success && !degenerate && !source.depth_m.empty() && !target.depth_m.empty();
+  // A view's own geometry that leaves directions free is no better at a finer scale; a partial
+  // pose is already an estimate.
+  const bool degenerate = (r.pose.degenerate && !r.dense_unobservable) || r.views_free_directions > 0;
+  return !r.pose.estimated() && !degenerate && !source.depth_m.empty() && !target.depth_m.empty();
 }
 
 DepthView finerScaleView(const DepthView& view, double area_factor) {

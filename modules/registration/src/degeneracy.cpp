@@ -37,6 +37,20 @@ std::string directionText(const Vector6d& d) {
 
 }  // namespace
 
+Matrix6d conditioning(const Eigen::Vector3d& centre, double radius_m) {
+  Matrix6d B = Matrix6d::Identity();  // xi = B xi_c: rho = rho_c + c x omega
+  B.topRightCorner<3, 3>() = skew(centre);
+  Matrix6d S = Matrix6d::Identity();  // omega = arc / L
+  S.bottomRightCorner<3, 3>() /= std::max(radius_m, kMinSceneRadiusM);
+  return B * S;
+}
+
+std::string directionsText(const Eigen::Matrix<double, 6, Eigen::Dynamic>& directions) {
+  std::string text;
+  for (Eigen::Index j = 0; j < directions.cols(); ++j) text += (j ? "; " : "") + directionText(directions.col(j));
+  return text;
+}
+
 void validate(const DegeneracyParams& params) {
   if (!(params.min_eigenvalue_ratio >= 0.0 && params.min_eigenvalue_ratio < 1.0))
     throw Error("DegeneracyParams.min_eigenvalue_ratio must be in [0, 1)");
@@ -44,11 +58,7 @@ void validate(const DegeneracyParams& params) {
 }
 
 Matrix6d conditionedInformation(const Matrix6d& information, const Eigen::Vector3d& centre, double radius_m) {
-  Matrix6d B = Matrix6d::Identity();  // xi = B xi_c: rho = rho_c + c x omega
-  B.topRightCorner<3, 3>() = skew(centre);
-  Matrix6d S = Matrix6d::Identity();  // omega = arc / L
-  S.bottomRightCorner<3, 3>() /= std::max(radius_m, kMinSceneRadiusM);
-  const Matrix6d BS = B * S;
+  const Matrix6d BS = conditioning(centre, radius_m);
   const Matrix6d Ic = BS.transpose() * information * BS;
   return 0.5 * (Ic + Ic.transpose());
 }
@@ -72,8 +82,8 @@ DegeneracyAnalysis analyseDegeneracy(const Matrix6d& information, const Eigen::V
   const Eigen::MatrixXd directions = N * svd.matrixV().rowwise().reverse();  // least rotation first
   out.degenerate = true;
   out.unobservable_directions = directions;
-  out.reason = "unobservable: ";
-  for (int j = 0; j < k; ++j) out.reason += (j ? "; " : "") + directionText(directions.col(j));
+  out.unobservable_twists = conditioning(centre, radius_m) * directions;
+  out.reason = "unobservable: " + directionsText(directions);
   char ratio[96];
   std::snprintf(ratio, sizeof ratio, " (smallest eigenvalue %.3g, %.3g of the largest)", out.eigenvalues(0),
                 out.eigenvalues(5) > 0 ? out.eigenvalues(0) / out.eigenvalues(5) : 0.0);

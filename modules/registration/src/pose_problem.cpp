@@ -89,6 +89,11 @@ Isometry3 PoseProblem::pose() const {
   return T;
 }
 
+void PoseProblem::setPose(const Isometry3& T) {
+  Eigen::Map<Eigen::Quaterniond>(q_.data()) = Eigen::Quaterniond(T.rotation()).normalized();
+  Eigen::Map<Eigen::Vector3d>(t_.data()) = T.translation();
+}
+
 std::vector<double> PoseProblem::residuals() {
   ceres::Problem::EvaluateOptions options;
   options.apply_loss_function = false;

@@ -22,6 +22,7 @@ class PoseProblem {
 
   ceres::Solver::Summary solve();
   Isometry3 pose() const;
+  void setPose(const Isometry3& T);  ///< moves the parameters (no solve)
   /// Residuals [m] at the current pose, without weights or robust loss.
   std::vector<double> residuals();
   /// J^T J / sigma^2 over xi = [rho; omega] (refinement.h), robustified and weighted.

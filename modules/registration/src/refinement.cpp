@@ -5,7 +5,9 @@
 #include <cmath>
 
 #include "gasp/core/error.h"
+#include "gasp/core/pose_perturbation.h"
 #include "gasp/core/stopwatch.h"
+#include "gasp/registration/partial_pose.h"
 #include "pose_problem.h"
 
 namespace gasp {
@@ -71,15 +73,30 @@ RegistrationResult refinePose(const std::vector<PatchCorrespondence>& correspond
   out.num_inliers = static_cast<int>(out.inliers.size());
   residualStatistics(problem.residuals(), out);
 
-  out.information = problem.information();
-  problem.sceneExtent(out.scene_centre, out.scene_radius_m);
-  DegeneracyAnalysis analysis =
-      analyseDegeneracy(out.information, out.scene_centre, out.scene_radius_m, params.degeneracy);
-  out.information_eigenvalues = analysis.eigenvalues;
-  out.degenerate = analysis.degenerate;
-  out.unobservable_directions = std::move(analysis.unobservable_directions);
-  out.reason = std::move(analysis.reason);
+  const auto analyse = [&] {
+    out.information = problem.information();
+    problem.sceneExtent(out.scene_centre, out.scene_radius_m);
+    DegeneracyAnalysis analysis =
+        analyseDegeneracy(out.information, out.scene_centre, out.scene_radius_m, params.degeneracy);
+    out.information_eigenvalues = analysis.eigenvalues;
+    out.degenerate = analysis.degenerate;
+    out.unobservable_directions = std::move(analysis.unobservable_directions);
+    out.reason = std::move(analysis.reason);
+  };
+  analyse();
   out.success = !out.degenerate;
+  out.partial = params.partial_poses && out.degenerate && out.unobservable_directions.cols() <= kMaxFreeDirections;
+  if (out.partial && params.max_iterations > 0) {
+    // The step along the free directions is noise: back to T_init there, along them only, so the
+    // observed directions keep the solve's optimum.
+    const Isometry3 remapped = withPrediction(out, T_init);
+    problem.setPose(remapped);
+    out.T_target_source = remapped;
+    residualStatistics(problem.residuals(), out);
+    analyse();
+    out.success = !out.degenerate;
+    out.partial = out.degenerate && out.unobservable_directions.cols() <= kMaxFreeDirections;
+  }
   out.refine_ms = msSince(start);
   return out;
 }

@@ -17,8 +17,15 @@ namespace gasp {
 /// What a matcher returns: the pose of observation b's robot frame in observation a's robot frame
 /// (the edge a -> b of a pose graph), or no estimate with the reason.
 struct MatchConstraint {
-  bool success = false;
-  bool degenerate = false;         ///< some direction unobservable: no pose is claimed
+  bool success = false;            ///< a full pose is claimed
+  bool degenerate = false;         ///< some direction unobservable: no full pose is claimed
+  /// A partial pose is claimed (success false; docs/pipeline.md "Step 5. Certify"): T_a_b holds in
+  /// the observed directions only, `information` is zero along each column of free_directions.
+  /// Not a constraint for a graph that treats edges as full poses.
+  bool partial = false;
+  /// Partial only: the free directions as unit left perturbations [t; omega] of T_a_b in a's
+  /// robot frame (as `information`), one per column.
+  Eigen::Matrix<double, 6, Eigen::Dynamic> free_directions;
   mrpt::poses::CPose3D T_a_b;      ///< robot frame of b in robot frame of a (sensorPose honoured)
   /// 6x6 information of T_a_b over the left perturbation T_a_b <- Exp(xi) T_a_b, xi = [t; omega]
   /// in a's robot frame ([m], [rad]): the refinement's (from its Jacobians, docs/registration.md)
@@ -30,7 +37,7 @@ struct MatchConstraint {
   bool finer_scale = false;
   int inliers = 0;
   double time_ms = 0.0;
-  std::string reason;  ///< why there is no estimate
+  std::string reason;  ///< why there is no estimate; for a partial pose, which directions are free
 };
 
 /// Base class of observation matchers, created by name through mrpt::rtti.

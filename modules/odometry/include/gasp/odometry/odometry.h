@@ -52,6 +52,11 @@ struct OdometryFrame {
   /// strict attempts failed and what the scene-change attempt measured. The frame becomes the
   /// keyframe.
   bool scene_change = false;
+  /// Tracked with a partial pose (certify_stage.h): GASP fixed only some directions against the
+  /// reference (a floor, a wall, a corridor); the free ones (free_directions of them) are the
+  /// constant-velocity prediction's. `reason` names them.
+  bool partial = false;
+  int free_directions = 0;
   bool deskewed = false;       ///< the depth was deskewed for the rolling shutter before segmenting
   double segmentation_ms = 0.0;  ///< deskew + superpixels
   double registration_ms = 0.0;  ///< all registration attempts
@@ -99,9 +104,11 @@ class DepthOdometry {
   /// the constraint. With `T_ref_predicted` (the scene-change attempt) the pose must also lie
   /// within the gate of that prediction (predictionGate()).
   /// `visibility_refused` (when given) is set when the visibility check refused the pose it found.
+  /// `T_ref_motion` (when given): the motion model's prediction of the frame in `ref`'s frame, which
+  /// holds a partial pose's free directions (without it a partial pose is not taken).
   bool track(const DepthView& view, const DepthView& ref, std::size_t ref_index, OdometryFrame& f,
              const char* attempt, const PairParams& pair, const std::optional<Isometry3>& T_ref_predicted = std::nullopt,
-             bool* visibility_refused = nullptr);
+             bool* visibility_refused = nullptr, const std::optional<Isometry3>& T_ref_motion = std::nullopt);
 
   OdometryParams params_;
   Isometry3 T_world_first_;

@@ -25,6 +25,10 @@ struct PoseConstraint {
   /// pose. The information is GASP's as for any edge (docs/odometry.md, "Scenes that change");
   /// a back-end may weigh such edges down.
   bool scene_change = false;
+  /// Odometry through a partial pose (certify_stage.h): GASP observed only some directions; the
+  /// others are the motion prediction's. `information` is GASP's in the observed directions plus
+  /// the prediction's in the free ones (docs/odometry.md "Views that fix only part of the pose").
+  int free_directions = 0;
 };
 
 }  // namespace gasp

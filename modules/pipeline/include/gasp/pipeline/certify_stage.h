@@ -1,14 +1,20 @@
 #pragma once
-/// \file certify_stage.h Stage 5 of the pair pipeline: whether a pose is claimed, and with which
-/// information. Before association, each view's own geometry must be able to fix a pose
-/// (view_degeneracy.h: one plane, parallel planes cannot). After refinement, a pose is claimed
-/// when its dense problem was observable (the refine stage's solver verdict), rests on enough
-/// dense terms, and passes the free-space test (visibility_check.h: the mapped views must not
-/// contradict each other's free space, as look-alike structure and repeated objects do). A
-/// claimed pose's information for pose graphs adds the model error (model_error.h) to the
-/// refinement's.
+/// \file certify_stage.h Stage 5 of the pair pipeline: whether a full pose, a partial pose or no
+/// estimate is claimed, and with which information.
+///
+/// The rule: a direction of the pose is observed when both views' patch geometry
+/// (view_degeneracy.h) and the dense problem's information (the refine stage's solver,
+/// degeneracy.h) constrain it; a pose resting on enough dense terms that passes the free-space
+/// test (visibility_check.h) is full when every direction is observed, partial when at most three
+/// are not (partial_pose.h: one plane fixes three), and no estimate otherwise. A partial pose's
+/// information is zero in exactly its free directions. A claimed pose's information for pose
+/// graphs adds the model error (model_error.h) to the refinement's, in its observed directions.
+/// With partial_poses off, a view that cannot fix a pose gives no estimate before association,
+/// and so does a pose with any unobservable direction.
 #include <optional>
 #include <string>
+
+#include <Eigen/Core>
 
 #include "gasp/pipeline/depth_view.h"
 #include "gasp/pipeline/model_error.h"
@@ -20,6 +26,8 @@ namespace gasp {
 
 struct CertifyParams {
   ViewDegeneracyParams view_degeneracy;  ///< eigenvalue ratio 1e-3 of a view's patch planes
+  /// Claim partial poses (the file's comment); off: only full poses.
+  bool partial_poses = true;
   /// A claimed pose rests on at least this many terms in its last dense round (pixel terms at the
   /// refine stage's pixel step 8 -- scale by (8 / step)^2 for another step -- plus edge terms):
   /// fewer say it puts too little surface of one view onto the other. 0 = no limit.
@@ -40,10 +48,17 @@ struct CertifyParams {
 /// Throws gasp::Error naming the first invalid parameter.
 void validate(const CertifyParams& params);
 
-/// Whether each view's geometry can fix a pose: nullopt when both can; else the no-estimate
-/// verdict (degenerate, its eigenvalues, unobservable directions and the reason naming the view).
-std::optional<RegistrationResult> certifyViews(const DepthView& source, const DepthView& target,
-                                               const CertifyParams& params);
+/// What each view's geometry leaves free.
+struct ViewsCertificate {
+  /// The no-estimate verdict (degenerate, its eigenvalues, unobservable directions and the reason
+  /// naming the view) when a view cannot fix a pose -- with partial_poses, only when it leaves
+  /// more than three directions free; nullopt: go on.
+  std::optional<RegistrationResult> refusal;
+  /// The directions each view leaves free, as left perturbations [t r] of its own camera frame
+  /// (DegeneracyAnalysis::unobservable_twists); no columns when it fixes a pose.
+  Eigen::Matrix<double, 6, Eigen::Dynamic> source_free, target_free;
+};
+ViewsCertificate certifyViews(const DepthView& source, const DepthView& target, const CertifyParams& params);
 
 /// The free-space test a pose from this pair faces; `fallback`: the pose came from a fallback
 /// hypothesis set (fallback_max_violation_ratio applies).
@@ -51,17 +66,23 @@ FreeSpaceTest freeSpaceTest(const DepthView& source, const DepthView& target, co
                             bool fallback);
 
 struct Certificate {
-  bool claimed = false;
-  std::string reason;           ///< why not claimed
+  bool claimed = false;         ///< a full or a partial pose
+  bool partial = false;         ///< claimed in the observed directions only
+  /// Partial: the free directions, an orthonormal basis in the pose's conditioned coordinates
+  /// (RegistrationResult::unobservable_directions), the views' and the dense problem's together.
+  Eigen::Matrix<double, 6, Eigen::Dynamic> free_directions;
+  std::string reason;           ///< why not claimed; for a partial pose, which directions are free
   std::optional<VisibilityCheck> visibility;  ///< the free-space test of the pose (when it ran)
   bool free_space_refused = false;  ///< refused on the free-space test's violation or occlusion limits
-  Matrix6d edge_information = Matrix6d::Zero();  ///< claimed only: information with the model error
+  /// Claimed only: information with the model error, zero in a partial pose's free directions.
+  Matrix6d edge_information = Matrix6d::Zero();
 };
 
-/// The verdict on `pose` (pose.success: the refinement claims it). `dense_terms`: terms of the
-/// last dense round (nullopt: no dense refinement ran, no limit); `done`: the free-space test of
-/// this pose, when already run.
+/// The verdict on `pose` (pose.estimated(): the refinement gives a full or partial pose).
+/// `dense_terms`: terms of the last dense round (nullopt: no dense refinement ran, no limit);
+/// `done`: the free-space test of this pose, when already run; `views`: certifyViews() of the pair.
 Certificate certify(const RegistrationResult& pose, std::optional<int> dense_terms, const FreeSpaceTest& free_space,
-                    const std::optional<VisibilityCheck>& done, const CertifyParams& params);
+                    const std::optional<VisibilityCheck>& done, const ViewsCertificate& views,
+                    const CertifyParams& params);
 
 }  // namespace gasp

@@ -60,7 +60,7 @@ struct DenseRoundsOps {
   /// The terms at T_target_source with round `round`'s gate.
   std::function<GatedTerms(const Isometry3& T_target_source, int round)> gather;
   /// The pose solved from `start` on `terms`; with evaluate_only, no iterations: the result at
-  /// `start` (information, residuals, degeneracy). A plain solve's success false ends the rounds
+  /// `start` (information, residuals, degeneracy). A plain solve that claims neither a full nor a partial pose ends the rounds
   /// with that result; an evaluation's ends them at the last refined pose (a line-search stop).
   std::function<RegistrationResult(const Isometry3& start, const std::vector<PointToPlane>& terms, bool evaluate_only)> solve;
   /// The line search's score of a pose against terms gathered at it; larger is better.

@@ -25,6 +25,9 @@ struct ModelError {
 /// Throws gasp::Error unless both sigmas are finite and >= 0.
 void validate(const ModelError& e);
 
+/// diag(s_t^2, s_t^2, s_t^2, s_r^2, s_r^2, s_r^2) [m^2, rad^2] (validate()s e).
+Eigen::Matrix<double, 6, 6> modelErrorCovariance(const ModelError& e);
+
 /// I_edge above. Throws gasp::Error when the information is not finite or not positive definite
 /// (a claimed pose's always is).
 Eigen::Matrix<double, 6, 6> informationWithModelError(const Eigen::Matrix<double, 6, 6>& information,

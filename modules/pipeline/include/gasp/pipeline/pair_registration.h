@@ -5,7 +5,8 @@
 ///   2. associate    invariant neighbourhood feature sets, restricted Damerau-Levenshtein matching
 ///                   (associate_stage.h)
 ///   3. hypothesise  RANSAC over the associated centroids, patch point-to-plane refinement, guided
-///                   verification (hypothesise_stage.h)
+///                   verification (hypothesise_stage.h); for views that leave directions free and
+///                   give no hypothesis, their dominant planes aligned (plane_hypothesis.h)
 ///   4. refine       dense point-to-plane and edge rounds (refine_stage.h)
 ///   5. certify      observability, dense support, free space; the information (certify_stage.h)
 ///   6. retry        one-way partners, then a finer scale, when the chain gives no estimate
@@ -60,11 +61,19 @@ struct PairTimings {
 };
 
 struct PairResult {
-  RegistrationResult pose;  ///< pose.success = an estimate is claimed; pose.reason otherwise
+  /// pose.success: a full pose is claimed; pose.partial: a partial one (certify_stage.h), free
+  /// along pose.unobservable_directions (partial_pose.h); neither: no estimate, pose.reason says why.
+  RegistrationResult pose;
   /// For a pose graph: pose.information with CertifyParams::model_error added (model_error.h), in
-  /// the same coordinates; zero when no pose is claimed. pose.information itself is the
-  /// refinement's, on which the degeneracy verdicts rest.
+  /// the same coordinates, zero in a partial pose's free directions; zero when no pose is
+  /// claimed. pose.information itself is the refinement's, on which the degeneracy verdicts rest.
   Matrix6d edge_information = Matrix6d::Zero();
+  /// Directions the views' own patch geometry leaves free, counted over both views
+  /// (certifyViews(); 0: each view can fix a pose).
+  int views_free_directions = 0;
+  /// Association gave no hypothesis and the views leave directions free: the dense rounds started
+  /// from the views' dominant planes aligned (plane_hypothesis.h; partial poses only).
+  bool plane_hypothesis = false;
   AssociationResult association;
   /// What the hypothesis stage ran on: one per entry of `used`, same order.
   std::vector<PatchCorrespondence> correspondences;

@@ -49,12 +49,15 @@ struct RefineParams {
   /// The solver: Huber 0.02 m, sigma 0.01 m. Degeneracy by the eigenvalue ratio 1e-3 (and
   /// 0.05 m): the thousands of pixel terms are not independent, so their absolute standard
   /// deviations are optimistic and only the ratio separates a plane (about 1e-4) from a scene.
+  /// Partial poses on: a round that leaves up to three directions unobservable moves the pose in
+  /// the observed ones only, and the rounds go on (the certificate decides what is claimed).
   RefinementParams solver = defaultSolver();
   SlideScanParams slide_scan;
 
   static RefinementParams defaultSolver() {
     RefinementParams p;
     p.degeneracy = DegeneracyParams{1e-3, 0.05};
+    p.partial_poses = true;
     return p;
   }
 };

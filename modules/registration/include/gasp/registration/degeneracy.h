@@ -36,13 +36,22 @@ struct DegeneracyAnalysis {
   /// Unit columns in I_c's coordinates [translation [m]; rotation as arc length at L [m]], a basis
   /// of the unobservable subspace, translation-like directions first.
   Eigen::Matrix<double, 6, Eigen::Dynamic> unobservable_directions;
+  /// The same directions as left perturbations [t r] of the pose (rotations about the origin in
+  /// radians), B S times each column: what another analysis can take over.
+  Eigen::Matrix<double, 6, Eigen::Dynamic> unobservable_twists;
   /// "translation along (x, y, z); rotation about (x, y, z)" (directions in the target frame,
   /// rotations about axes through c); empty when nothing is unobservable.
   std::string reason;
 };
 
+/// B S (above): maps conditioned coordinates [rho_c; arc] to the left perturbation [rho; omega].
+Matrix6d conditioning(const Eigen::Vector3d& centre, double radius_m);
+
 /// I_c from I (above).
 Matrix6d conditionedInformation(const Matrix6d& information, const Eigen::Vector3d& centre, double radius_m);
+
+/// "translation along (x, y, z); rotation about (x, y, z)" for unit columns in I_c's coordinates.
+std::string directionsText(const Eigen::Matrix<double, 6, Eigen::Dynamic>& conditioned_directions);
 
 /// The eigen-decomposition of I_c and the verdict.
 DegeneracyAnalysis analyseDegeneracy(const Matrix6d& information, const Eigen::Vector3d& centre, double radius_m,

@@ -16,7 +16,10 @@
 /// Information: the Jacobian J of the residuals at the solution (Problem::Evaluate, robustified:
 /// row i scaled by sqrt(w_i rho'(r_i^2)), Ceres' corrector for rho'' <= 0) is mapped to the left
 /// perturbation xi = [rho; omega] of registration_result.h, and I = J^T J / noise_sigma_m^2.
-/// The degeneracy check (degeneracy.h) runs on I; a degenerate estimate is not claimed.
+/// The degeneracy check (degeneracy.h) runs on I; a degenerate estimate is not claimed. With
+/// partial_poses, an estimate with at most kMaxFreeDirections unobservable directions is a partial
+/// one (partial_pose.h): the solve's step is kept in the observed directions only (solution
+/// remapping, Zhang, Kaess & Singh, ICRA 2016), so the free directions stay where T_init had them.
 #include <vector>
 
 #include "gasp/core/pose.h"
@@ -35,6 +38,7 @@ struct RefinementParams {
   int max_iterations = 50;     ///< Levenberg-Marquardt iterations; 0 evaluates at T_init only
   double noise_sigma_m = 0.01; ///< sigma of a point-to-plane residual, scales the information [m]
   DegeneracyParams degeneracy; ///< ratio 1e-2, max std 0.05 m
+  bool partial_poses = false;  ///< a degenerate estimate may be a partial pose (above)
 };
 
 /// Throws gasp::Error naming the first invalid parameter.

@@ -13,6 +13,11 @@ namespace gasp {
 struct RegistrationResult {
   bool success = false;     ///< a pose is claimed: solved, enough inliers and not degenerate
   bool degenerate = false;  ///< some direction is unobservable (degeneracy.h); success is then false
+  /// A partial pose is claimed (partial_pose.h): degenerate, success false, and T_target_source
+  /// holds in the observed directions only; unobservable_directions are free (the information
+  /// must be used with them zeroed: observedInformation()).
+  bool partial = false;
+  bool estimated() const { return success || partial; }  ///< a full or a partial pose is claimed
   Isometry3 T_target_source = Isometry3::Identity();  ///< the estimate (also when not claimed)
 
   std::vector<int> inliers;  ///< correspondences the final estimate rests on (ascending indices)
