@@ -4,6 +4,7 @@
 
 #include "gasp/core/error.h"
 #include "gasp/core/pose_perturbation.h"
+#include "gasp/pipeline/plane_hypothesis.h"
 #include "gasp/registration/partial_pose.h"
 
 namespace gasp {
@@ -20,6 +21,8 @@ void validate(const CertifyParams& p) {
 
 ViewsCertificate certifyViews(const DepthView& source, const DepthView& target, const CertifyParams& params) {
   ViewsCertificate out;
+  out.source = &source;
+  out.target = &target;
   for (const auto* view : {&source, &target}) {
     const auto d = analyseViewGeometry(view->segmentation, params.view_degeneracy);
     if (!d.degenerate) continue;
@@ -93,6 +96,17 @@ Certificate certify(const RegistrationResult& pose, std::optional<int> dense_ter
     return c;
   }
   c.partial = c.free_directions.cols() > 0;
+  if (c.partial && views.source && views.target) {
+    for (const DepthView* view : {views.source, views.target}) {
+      const auto plane = dominantPlane(view->segmentation);
+      if (plane && plane->ambiguous()) {
+        c.reason = std::string("partial pose not unique: the ") + (view == views.source ? "source" : "target") +
+                   " view holds two large parallel planes, and its free directions leave which matches which open";
+        c.partial = false;
+        return c;
+      }
+    }
+  }
   try {
     if (c.partial) {
       RegistrationResult observed = pose;

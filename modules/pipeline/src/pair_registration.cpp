@@ -81,12 +81,13 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
   std::string no_hypothesis;  // why association gave none, when the plane hypothesis stands in
   if (!h.verified) {
     // Views that leave directions free: their dominant planes fix the others (plane_hypothesis.h).
-    const auto ps = p.certify.partial_poses && r.views_free_directions > 0 ? dominantPlane(source.segmentation) : std::nullopt;
-    const auto pt = ps ? dominantPlane(target.segmentation) : std::nullopt;
-    if (!pt) return r;
+    const auto T = p.certify.partial_poses && r.views_free_directions > 0
+                       ? planeHypothesis(source.segmentation, target.segmentation)
+                       : std::nullopt;
+    if (!T) return r;
     no_hypothesis = std::move(r.pose.reason);
     r.pose = RegistrationResult{};
-    r.pose.T_target_source = alignPlanes(*ps, *pt);
+    r.pose.T_target_source = *T;
     r.plane_hypothesis = true;
   }
 
@@ -137,7 +138,7 @@ PairResult retryAtFinerScale(const DepthView& source, const DepthView& target, c
   PairTimings total = r.timings;
   total.addStages(retry.timings);
   total.retry_segmentation_ms = segmentation_ms;
-  if (retry.pose.estimated()) {
+  if (retry.pose.success || (retry.pose.partial && !r.pose.partial)) {  // a full pose, else a partial one
     retry.retried = true;
     retry.retry_views = std::move(views);
     retry.timings = total;

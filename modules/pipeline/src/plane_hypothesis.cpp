@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -48,7 +49,25 @@ std::optional<DominantPlane> dominantPlane(const SuperpixelSegmentation& view) {
   plane.normal = n.normalized();
   plane.centroid = c / plane.area_m2;
   plane.share = plane.area_m2 / total;
+  // The largest parallel plane off this one: patches with its normal, beyond its offset gate,
+  // each as a seed of a plane of their own.
+  for (const SurfacePatch* seed : patches) {
+    if (onPlane(*seed, plane.normal, plane.centroid, cos_max) || seed->normal.normalized().dot(plane.normal) < cos_max)
+      continue;
+    double area = 0.0;
+    for (const SurfacePatch* p : patches)
+      if (!onPlane(*p, plane.normal, plane.centroid, cos_max) && onPlane(*p, plane.normal, seed->centroid, cos_max))
+        area += p->area_m2;
+    plane.parallel_area_m2 = std::max(plane.parallel_area_m2, area);
+  }
   return plane;
+}
+
+std::optional<Isometry3> planeHypothesis(const SuperpixelSegmentation& source, const SuperpixelSegmentation& target) {
+  const auto ps = dominantPlane(source);
+  const auto pt = ps && !ps->ambiguous() ? dominantPlane(target) : std::nullopt;
+  if (!pt || pt->ambiguous()) return std::nullopt;
+  return alignPlanes(*ps, *pt);
 }
 
 Isometry3 alignPlanes(const DominantPlane& source, const DominantPlane& target) {

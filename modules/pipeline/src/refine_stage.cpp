@@ -9,6 +9,7 @@
 
 #include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
+#include "gasp/pipeline/plane_hypothesis.h"
 #include "slide_scan.h"
 
 namespace gasp {
@@ -141,17 +142,27 @@ void widenEdges(const DenseProblem& problem, const Isometry3& start, const Refin
 }
 
 /// The slide scan of a pose that passes the free-space test and whose patch problem was
-/// degenerate (slide_scan.h).
+/// degenerate (slide_scan.h); and of a partial pose, along the target view's dominant plane: its
+/// observed directions may rest on a few objects matched at a slid alignment, which a better
+/// agreeing alignment along the plane shows.
 void scanSlides(const DepthView& source, const DepthView& target, const DenseProblem& problem,
                 const RegistrationResult& hypothesis, const RefineParams& params, const FreeSpaceTest& free_space,
                 Refinement& out) {
-  if (!params.slide_scan.enabled || !out.pose.success || !hypothesis.degenerate) return;
+  const bool partial = out.pose.partial;
+  if (!params.slide_scan.enabled || !((out.pose.success && hypothesis.degenerate) || partial)) return;
+  std::optional<RegistrationResult> along_plane;
+  if (partial) {
+    const auto plane = dominantPlane(target.segmentation);
+    if (!plane) return;
+    along_plane = detail::planeSymmetries(plane->normal, plane->centroid, out.pose.scene_radius_m);
+  }
   if (!out.check) out.check = free_space(out.pose.T_target_source);
   if (!out.check->passed) return;
   DenseRounds rounds_scan;
   const auto refine_from = [&](const Isometry3& start) { return problem.refineFrom(start, 1.0, rounds_scan); };
   detail::SlideScanOutcome scan =
-      detail::scanSlide(source, target, hypothesis, out.pose.T_target_source, refine_from, params.slide_scan, free_space);
+      detail::scanSlide(source, target, along_plane ? *along_plane : hypothesis, out.pose.T_target_source, refine_from,
+                        params.slide_scan, free_space, partial);
   out.slide = scan.report;
   if (!scan.report.moved) return;
   out.pose = std::move(scan.pose);

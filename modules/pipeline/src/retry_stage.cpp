@@ -58,9 +58,10 @@ Hypothesis hypothesiseWithFallback(const AssociatedViews& a, const HypothesisePa
 
 bool finerScaleRetryApplies(const PairResult& r, const DepthView& source, const DepthView& target) {
   // A view's own geometry that leaves directions free is no better at a finer scale; a partial
-  // pose is already an estimate.
+  // pose from the dense rounds may become a full one there (smaller patches pair up where the
+  // default ones did not).
   const bool degenerate = (r.pose.degenerate && !r.dense_unobservable) || r.views_free_directions > 0;
-  return !r.pose.estimated() && !degenerate && !source.depth_m.empty() && !target.depth_m.empty();
+  return !r.pose.success && !degenerate && !source.depth_m.empty() && !target.depth_m.empty();
 }
 
 DepthView finerScaleView(const DepthView& view, double area_factor) {

@@ -53,7 +53,7 @@ struct SlideDirection {
 
 SlideScanOutcome scanSlide(const DepthView& source, const DepthView& target, const RegistrationResult& patch_pose,
                            const Isometry3& claimed, const std::function<RegistrationResult(const Isometry3&)>& refine_from,
-                           const SlideScanParams& params, const FreeSpaceTest& free_space) {
+                           const SlideScanParams& params, const FreeSpaceTest& free_space, bool partial_ok) {
   SlideScanOutcome out;
   const auto& basis = patch_pose.unobservable_directions;
   if (basis.cols() == 0 || source.segmentation.patches.empty()) return out;
@@ -97,7 +97,7 @@ SlideScanOutcome scanSlide(const DepthView& source, const DepthView& target, con
   if (!(best > out.report.agreement_before + params.min_gain)) return out;
 
   RegistrationResult refined = refine_from(best_start);
-  if (!refined.success) return out;
+  if (!(partial_ok ? refined.estimated() : refined.success)) return out;
   out.report.agreement_after = agree(refined.T_target_source);
   if (!(out.report.agreement_after > out.report.agreement_before + params.min_gain)) return out;
   VisibilityCheck check = free_space(refined.T_target_source);
@@ -106,6 +106,19 @@ SlideScanOutcome scanSlide(const DepthView& source, const DepthView& target, con
   out.pose = std::move(refined);
   out.check = std::move(check);
   return out;
+}
+
+RegistrationResult planeSymmetries(const Eigen::Vector3d& normal, const Eigen::Vector3d& centroid, double radius_m) {
+  RegistrationResult r;
+  const Eigen::Vector3d n = normal.normalized(), u = n.unitOrthogonal(), v = n.cross(u);
+  r.unobservable_directions = Eigen::Matrix<double, 6, 3>::Zero();
+  r.unobservable_directions.col(0).head<3>() = u;
+  r.unobservable_directions.col(1).head<3>() = v;
+  r.unobservable_directions.col(2).tail<3>() = n;  // conditioned: a rotation about the centre
+  r.scene_centre = centroid;
+  r.scene_radius_m = radius_m;
+  r.degenerate = true;
+  return r;
 }
 
 }  // namespace detail

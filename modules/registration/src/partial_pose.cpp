@@ -1,6 +1,7 @@
 #include "gasp/registration/partial_pose.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 
 #include <algorithm>
@@ -66,18 +67,23 @@ Eigen::Matrix<double, 6, Eigen::Dynamic> unobservableTwists(const RegistrationRe
 
 Eigen::Matrix<double, 6, Eigen::Dynamic> unitedDirections(const RegistrationResult& r,
                                                           const Eigen::Matrix<double, 6, Eigen::Dynamic>& more) {
-  Eigen::Matrix<double, 6, Eigen::Dynamic> U = r.unobservable_directions;
+  // The sum of the directions' projectors, S = U U^T + sum d d^T (unit d, conditioned): two unit
+  // directions at an angle theta give the eigenvalues 1 +- cos(theta), so the eigenvectors above
+  // 1 - cos(kSameDirectionDeg) span every direction that is not a near copy of another -- also
+  // where one analysis finds a mixture of two directions the other finds apart.
+  const Eigen::Matrix<double, 6, Eigen::Dynamic>& U = r.unobservable_directions;
+  if (more.cols() == 0) return U;
   const Matrix6d to_conditioned = conditioning(r).inverse();
+  Matrix6d S = U * U.transpose();
   for (Eigen::Index j = 0; j < more.cols(); ++j) {
-    Vector6d d = to_conditioned * more.col(j);
-    if (!d.allFinite() || d.norm() == 0.0) continue;
-    d.normalize();
-    d -= U * (U.transpose() * d);  // Gram-Schmidt against the basis so far: |d| = sin(angle to it)
-    if (d.norm() < std::sin(kSameDirectionDeg * M_PI / 180.0)) continue;
-    U.conservativeResize(Eigen::NoChange, U.cols() + 1);
-    U.col(U.cols() - 1) = d.normalized();
+    const Vector6d d = to_conditioned * more.col(j);
+    if (d.allFinite() && d.norm() > 0.0) S += d.normalized() * d.normalized().transpose();
   }
-  return U;
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(S);
+  const double floor = 1.0 - std::cos(kSameDirectionDeg * M_PI / 180.0);
+  int k = 0;
+  while (k < 6 && eig.eigenvalues()(5 - k) > floor) ++k;
+  return eig.eigenvectors().rightCols(k).rowwise().reverse();
 }
 
 ObservedError observedError(const RegistrationResult& r, const Isometry3& T_true) {

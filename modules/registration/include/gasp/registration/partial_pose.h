@@ -43,8 +43,8 @@ Matrix6d observedInformationWithCovariance(const RegistrationResult& r, const Ma
 /// The basis U spanning both r's unobservable directions and `more` (raw left perturbations
 /// [t r] of T_target_source, one per column), orthonormal in r's conditioned coordinates. Two
 /// analyses of the same views find the same free direction a few degrees apart (noise, other
-/// centres of conditioning), so a column of `more` within kSameDirectionDeg of the span so far
-/// adds nothing; one further away adds its component orthogonal to it.
+/// centres of conditioning): directions closer than kSameDirectionDeg count once (the
+/// eigenvectors of the sum of their projectors above 1 - cos(kSameDirectionDeg)).
 Eigen::Matrix<double, 6, Eigen::Dynamic> unitedDirections(const RegistrationResult& r,
                                                           const Eigen::Matrix<double, 6, Eigen::Dynamic>& more);
 
