@@ -106,3 +106,29 @@ TEST(ObservationMatcher, BadObservationsGiveClearErrors) {
   EXPECT_FALSE(c.success);
   EXPECT_FALSE(c.reason.empty());
 }
+
+TEST(ObservationMatcher, OnePlaneGivesAPartialPoseWithItsFreeDirections) {
+  // Two views of one plane 1.5 m in front (the camera mounted on the robot): no full pose, a
+  // partial one whose information is zero along each free direction, given in the robot frame.
+  RgbdFrame f;
+  f.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(1.5f));
+  f.T_robot_camera = someMount();
+  const auto a = observationFromFrame(f), b = observationFromFrame(f);
+  const auto matcher = createObservationMatcher("gasp::ObservationMatcher_GASP");
+  const MatchConstraint c = matcher->match(*a, *b);
+  EXPECT_FALSE(c.success);
+  ASSERT_TRUE(c.partial) << c.reason;
+  EXPECT_TRUE(c.degenerate);
+  ASSERT_EQ(c.free_directions.cols(), 3);
+  EXPECT_NE(c.reason.find("partial pose, free: "), std::string::npos) << c.reason;
+  for (Eigen::Index k = 0; k < 3; ++k) {
+    EXPECT_NEAR(c.free_directions.col(k).norm(), 1.0, 1e-9);
+    EXPECT_LT((c.information * c.free_directions.col(k)).norm(), 1e-6 * c.information.norm());
+  }
+  // The plane's normal in the robot frame (the camera's optical axis, mounted) is observed: a
+  // translation along it is no free direction.
+  const Eigen::Vector3d normal = someMount().linear() * Eigen::Vector3d::UnitZ();
+  Eigen::Matrix<double, 6, 1> along_normal;
+  along_normal << normal, Eigen::Vector3d::Zero();
+  EXPECT_GT(along_normal.dot(c.information * along_normal), 0.0);
+}
