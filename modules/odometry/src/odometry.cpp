@@ -1,5 +1,6 @@
 #include "gasp/odometry/odometry.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -46,22 +47,22 @@ bool DepthOdometry::track(const DepthView& view, const DepthView& ref, std::size
   // The free-space check refused a pose, at the default scale or in the finer-scale retry.
   if (visibility_refused && r.visibility_refused) *visibility_refused = true;
   const double dt = f.timestamp - frames_[ref_index].timestamp;
-  // A partial pose: its free directions from the motion prediction one step ahead of the
-  // previous frame, with the prediction gate's width over that step (scene_change.h) as their
-  // standard deviation.
+  // A partial pose: its free directions from the motion prediction, taken while the prediction
+  // one step ahead of the previous frame is narrow enough; their standard deviation on this edge
+  // is the prediction gate's width (scene_change.h) over the time since the reference.
   const bool partial = r.pose.partial && T_ref_motion && !T_ref_predicted;
   std::string why = r.pose.success || partial ? std::string() : r.pose.reason;
+  if (r.pose.partial && !partial && !r.pose.success) why = "partial pose not taken: " + r.pose.reason;
   if (partial) {
-    const double step_dt = f.timestamp - frames_.back().timestamp;
-    why = predictionTooWide(step_dt, params_.scene_change);
+    why = predictionTooWide(f.timestamp - frames_.back().timestamp, params_.scene_change);
     if (why.empty()) {
-      const PredictionGate width = predictionGate(*T_ref_motion, *T_ref_motion, step_dt, params_.scene_change);
+      const PredictionGate width = predictionGate(*T_ref_motion, *T_ref_motion, dt, params_.scene_change);
       r.pose.T_target_source = withPrediction(r.pose, *T_ref_motion);
-      Vector6 prior;
-      const double st = width.gate_m, sr = width.gate_deg * M_PI / 180.0;
-      prior << 1 / (st * st), 1 / (st * st), 1 / (st * st), 1 / (sr * sr), 1 / (sr * sr), 1 / (sr * sr);
+      // (ModelError's bounds: beyond them a standard deviation says nothing more.)
+      const Matrix6 prior =
+          modelErrorCovariance(ModelError{std::min(width.gate_m, 100.0), std::min(width.gate_deg, 180.0)}).inverse();
       const Matrix6 free = Matrix6::Identity() - observedProjector(r.pose);
-      r.edge_information += free.transpose() * prior.asDiagonal() * free;
+      r.edge_information += free.transpose() * prior * free;
     } else {
       why = "partial pose, but " + why;
     }

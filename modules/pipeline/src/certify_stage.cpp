@@ -96,7 +96,9 @@ Certificate certify(const RegistrationResult& pose, std::optional<int> dense_ter
     return c;
   }
   c.partial = c.free_directions.cols() > 0;
-  if (c.partial && views.source && views.target) {
+  // Where the views' own geometry leaves directions free, their dominant plane carries the pose.
+  const bool plane_borne = views.source_free.cols() + views.target_free.cols() > 0;
+  if (c.partial && plane_borne && views.source && views.target) {
     for (const DepthView* view : {views.source, views.target}) {
       const auto plane = dominantPlane(view->segmentation);
       if (plane && plane->ambiguous()) {

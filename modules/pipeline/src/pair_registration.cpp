@@ -50,6 +50,10 @@ void record(const Certificate& c, PairResult& r) {
     r.pose.success = false;
     r.pose.partial = false;
     if (!c.reason.empty()) r.pose.reason = c.reason;
+    if (c.free_directions.cols() > 0) {  // refused for its free directions: the set the reason names
+      r.pose.degenerate = true;
+      r.pose.unobservable_directions = c.free_directions;
+    }
     return;
   }
   r.pose.success = !c.partial;
@@ -73,11 +77,11 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
   const AssociatedViews a = associate(source, target, p.associate);
   r.association = a.result;
   r.timings.association_ms = a.ms;
-  if (a.result.associations.empty() && a.result.one_way.empty()) {
+  Hypothesis h;
+  if (a.result.associations.empty() && a.result.one_way.empty())
     r.pose.reason = "no associations: " + a.result.reason;
-    return r;
-  }
-  const Hypothesis h = detail::hypothesiseWithFallback(a, p.hypothesise, p.retry.one_way_fallback && !finer, r);
+  else
+    h = detail::hypothesiseWithFallback(a, p.hypothesise, p.retry.one_way_fallback && !finer, r);
   std::string no_hypothesis;  // why association gave none, when the plane hypothesis stands in
   if (!h.verified) {
     // Views that leave directions free: their dominant planes fix the others (plane_hypothesis.h).
@@ -97,7 +101,9 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<PatchCorrespondence> inliers;  // they stay in the dense problem, anchoring it where pixels are few
     for (int i : r.pose.inliers) inliers.push_back(r.correspondences[static_cast<std::size_t>(i)]);
-    dense = refine(source, target, r.pose, inliers, p.refine, free_space);
+    RefineParams refine_params = p.refine;  // partial rounds only where partial poses are claimed
+    refine_params.solver.partial_poses = refine_params.solver.partial_poses && p.certify.partial_poses;
+    dense = refine(source, target, r.pose, inliers, refine_params, free_space);
     record(*dense, msSince(t0), r);
   }
   const auto t1 = std::chrono::steady_clock::now();
@@ -146,7 +152,7 @@ PairResult retryAtFinerScale(const DepthView& source, const DepthView& target, c
   }
   r.retried = true;
   r.timings = total;
-  r.pose.reason += "; " + detail::finerScaleReason(f, retry.pose.reason);
+  if (!r.pose.partial) r.pose.reason += "; " + detail::finerScaleReason(f, retry.pose.reason);
   r.visibility_refused = r.visibility_refused || retry.visibility_refused;
   return r;
 }
@@ -189,6 +195,8 @@ bool better(const ViewSetRegistration& c, const ViewSetRegistration* best) {
   if (!best) return true;
   const bool cs = c.result.pose.success, bs = best->result.pose.success;
   if (cs != bs) return cs;
+  const bool cp = c.result.pose.partial, bp = best->result.pose.partial;  // then partial over none
+  if (cp != bp) return cp;
   if (cs && c.finer_scale != best->finer_scale) return !c.finer_scale;
   return c.result.pose.num_inliers > best->result.pose.num_inliers;
 }

@@ -47,7 +47,17 @@ Matrix6d observedInformationWithCovariance(const RegistrationResult& r, const Ma
   Q = Q.rightCols(6 - U.cols()).eval();
   const Eigen::MatrixXd Ic = BS.transpose() * information * BS;
   const Eigen::MatrixXd Cc = to_conditioned * added_covariance * to_conditioned.transpose();
-  const Eigen::MatrixXd Iq = Q.transpose() * Ic * Q;
+  // The observed directions' marginal: the free ones are unknown, so what the information says
+  // about them is taken out (Schur complement; a pseudo-inverse, as they may carry none).
+  Eigen::MatrixXd Iq = Q.transpose() * Ic * Q;
+  if (U.cols() > 0) {
+    const Eigen::MatrixXd Iff = U.transpose() * Ic * U, Iqf = Q.transpose() * Ic * U;
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (Iff + Iff.transpose()));
+    const double tiny = 1e-12 * std::max(1.0, eig.eigenvalues().cwiseAbs().maxCoeff());
+    Eigen::VectorXd inv = eig.eigenvalues();
+    for (Eigen::Index k = 0; k < inv.size(); ++k) inv(k) = inv(k) > tiny ? 1.0 / inv(k) : 0.0;
+    Iq -= Iqf * eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose() * Iqf.transpose();
+  }
   const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (Iq + Iq.transpose()));
   if (llt.info() != Eigen::Success)
     throw Error("observed information: the information is not positive definite in the observed directions");

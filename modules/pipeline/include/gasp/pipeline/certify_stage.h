@@ -7,9 +7,10 @@
 /// degeneracy.h) constrain it; a pose resting on enough dense terms that passes the free-space
 /// test (visibility_check.h) is full when every direction is observed, partial when at most three
 /// are not (partial_pose.h: one plane fixes three), and no estimate otherwise. A partial pose's
-/// information is zero in exactly its free directions. A partial pose rests on the alignment of
-/// the views' dominant plane, which is unique only when no other large parallel plane could be
-/// matched instead (plane_hypothesis.h: a floor under a table top): otherwise no estimate. A claimed pose's information for pose
+/// information is zero in exactly its free directions. Where the views' own geometry leaves
+/// directions free, a partial pose rests on the alignment of their dominant plane, which is unique
+/// only when no other large parallel plane could be matched instead (plane_hypothesis.h: a floor
+/// under a table top): otherwise no estimate. A claimed pose's information for pose
 /// graphs adds the model error (model_error.h) to the refinement's, in its observed directions.
 /// With partial_poses off, a view that cannot fix a pose gives no estimate before association,
 /// and so does a pose with any unobservable direction.

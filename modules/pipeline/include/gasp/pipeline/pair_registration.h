@@ -149,9 +149,9 @@ struct ViewSetRegistration {
 };
 struct ViewSetResult {
   std::vector<ViewSetRegistration> registrations;  ///< every registration run, in order
-  /// The one to use: the claimed pose at the views' own scale with the most inliers, else the
-  /// finer-scale one with the most inliers; without any, the failure with the most inliers (its
-  /// reason is the informative one). -1: nothing was registered.
+  /// The one to use: the full pose at the views' own scale with the most inliers, else the
+  /// finer-scale one with the most inliers; without any, a partial pose (most inliers); else the
+  /// failure with the most inliers (its reason is the informative one). -1: nothing was registered.
   int best = -1;
   /// Views whose finer-scale segmentation failed ("source view 2: ..."); their pairs are not retried.
   std::vector<std::string> notes;

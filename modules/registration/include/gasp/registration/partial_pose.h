@@ -34,7 +34,9 @@ Matrix6d observedInformation(const RegistrationResult& r, const Matrix6d& inform
 
 /// The information of r's observed directions after adding a covariance (in the same
 /// coordinates as the information, e.g. a model error): with Q an orthonormal basis of the
-/// observed directions (conditioned), (Q^T I_c Q)^-1 + Q^T C_c Q is inverted on them, and the
+/// observed directions and U of the free ones (conditioned), the observed directions' marginal
+/// M = Q^T I_c Q - Q^T I_c U (U^T I_c U)^+ U^T I_c Q (the free ones are unknown: what the
+/// information says about them is taken out), then (M^-1 + Q^T C_c Q)^-1 on them, and the
 /// unobservable directions get zero. Throws gasp::Error when the information is not positive
 /// definite on the observed directions or not finite.
 Matrix6d observedInformationWithCovariance(const RegistrationResult& r, const Matrix6d& information,
