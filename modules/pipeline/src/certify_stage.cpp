@@ -53,14 +53,14 @@ FreeSpaceTest freeSpaceTest(const DepthView& source, const DepthView& target, co
 
 namespace {
 
-/// The directions the views and the dense problem leave free, in the pose's conditioned
-/// coordinates: the source view's move its camera frame, hence Ad(T) into the target frame's.
-Eigen::Matrix<double, 6, Eigen::Dynamic> freeDirections(const RegistrationResult& pose, const ViewsCertificate& views) {
+/// The directions the views leave free, as left perturbations of the pose: the source view's
+/// move its camera frame, hence Ad(T) into the target frame's.
+Eigen::Matrix<double, 6, Eigen::Dynamic> viewsFree(const RegistrationResult& pose, const ViewsCertificate& views) {
   Eigen::Matrix<double, 6, Eigen::Dynamic> more(6, views.source_free.cols() + views.target_free.cols());
   if (views.source_free.cols() > 0)
     more.leftCols(views.source_free.cols()) = adjoint(pose.T_target_source) * views.source_free;
   if (views.target_free.cols() > 0) more.rightCols(views.target_free.cols()) = views.target_free;
-  return unitedDirections(pose, more);
+  return more;
 }
 
 }  // namespace
@@ -73,9 +73,19 @@ Certificate certify(const RegistrationResult& pose, std::optional<int> dense_ter
     c.reason = pose.reason;
     return c;
   }
-  c.free_directions = freeDirections(pose, views);
+  // The free directions in the pose's conditioned coordinates: the dense problem's and the views'.
+  const Eigen::Matrix<double, 6, Eigen::Dynamic> views_free = viewsFree(pose, views);
+  c.free_directions = unitedDirections(pose, views_free);
   if (c.free_directions.cols() > 0 && !params.partial_poses) {
     c.reason = "unobservable: " + directionsText(c.free_directions);
+    return c;
+  }
+  // A partial pose needs views whose own geometry leaves some direction free: where both views
+  // fix every direction and the pose's terms do not, the structure that fixes them was not
+  // brought into alignment -- what a wrong pose does.
+  if (c.free_directions.cols() > 0 && views_free.cols() == 0) {
+    c.reason = "unobservable: " + directionsText(c.free_directions) +
+               ", which the views' own geometry fixes: the structure that fixes it is not aligned";
     return c;
   }
   if (c.free_directions.cols() > kMaxFreeDirections) {

@@ -6,7 +6,9 @@
 /// (view_degeneracy.h) and the dense problem's information (the refine stage's solver,
 /// degeneracy.h) constrain it; a pose resting on enough dense terms that passes the free-space
 /// test (visibility_check.h) is full when every direction is observed, partial when at most three
-/// are not (partial_pose.h: one plane fixes three), and no estimate otherwise. A partial pose's
+/// are not (partial_pose.h: one plane fixes three) and the views' own geometry leaves some
+/// direction free (where both views fix every direction and the pose's terms do not, the
+/// structure that fixes them was not brought into alignment), and no estimate otherwise. A partial pose's
 /// information is zero in exactly its free directions. Where the views' own geometry leaves
 /// directions free, a partial pose rests on the alignment of their dominant plane, which is unique
 /// only when no other large parallel plane could be matched instead (plane_hypothesis.h: a floor
