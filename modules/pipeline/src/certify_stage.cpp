@@ -4,7 +4,6 @@
 
 #include "gasp/core/error.h"
 #include "gasp/core/pose_perturbation.h"
-#include "gasp/pipeline/plane_hypothesis.h"
 #include "gasp/registration/partial_pose.h"
 
 namespace gasp {
@@ -21,8 +20,6 @@ void validate(const CertifyParams& p) {
 
 ViewsCertificate certifyViews(const DepthView& source, const DepthView& target, const CertifyParams& params) {
   ViewsCertificate out;
-  out.source = &source;
-  out.target = &target;
   for (const auto* view : {&source, &target}) {
     const auto d = analyseViewGeometry(view->segmentation, params.view_degeneracy);
     if (!d.degenerate) continue;
@@ -37,6 +34,10 @@ ViewsCertificate certifyViews(const DepthView& source, const DepthView& target, 
     r.reason = std::string("degenerate scene: the ") + (view == &source ? "source" : "target") +
                " view's geometry leaves free: " + d.reason;
     out.refusal = std::move(r);
+  }
+  if (params.partial_poses && !out.refusal && out.source_free.cols() + out.target_free.cols() > 0) {
+    out.source_plane = dominantPlane(source.segmentation);
+    out.target_plane = dominantPlane(target.segmentation);
   }
   return out;
 }
@@ -106,17 +107,13 @@ Certificate certify(const RegistrationResult& pose, std::optional<int> dense_ter
     return c;
   }
   c.partial = c.free_directions.cols() > 0;
-  // Where the views' own geometry leaves directions free, their dominant plane carries the pose.
-  const bool plane_borne = views.source_free.cols() + views.target_free.cols() > 0;
-  if (c.partial && plane_borne && views.source && views.target) {
-    for (const DepthView* view : {views.source, views.target}) {
-      const auto plane = dominantPlane(view->segmentation);
-      if (plane && plane->ambiguous()) {
-        c.reason = std::string("partial pose not unique: the ") + (view == views.source ? "source" : "target") +
-                   " view holds two large parallel planes, and its free directions leave which matches which open";
-        c.partial = false;
-        return c;
-      }
+  // The views leave directions free (above), so their dominant plane carries the pose.
+  for (const auto* plane : {&views.source_plane, &views.target_plane}) {
+    if (c.partial && *plane && (*plane)->ambiguous()) {
+      c.reason = std::string("partial pose not unique: the ") + (plane == &views.source_plane ? "source" : "target") +
+                 " view holds two large parallel planes, and its free directions leave which matches which open";
+      c.partial = false;
+      return c;
     }
   }
   try {

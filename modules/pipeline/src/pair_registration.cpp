@@ -9,7 +9,6 @@
 
 #include "gasp/core/error.h"
 #include "gasp/core/stopwatch.h"
-#include "gasp/pipeline/plane_hypothesis.h"
 #include "gasp/superpixels/depth_superpixels.h"
 #include "retry_policy.h"
 
@@ -85,8 +84,8 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
   std::string no_hypothesis;  // why association gave none, when the plane hypothesis stands in
   if (!h.verified) {
     // Views that leave directions free: their dominant planes fix the others (plane_hypothesis.h).
-    const auto T = p.certify.partial_poses && r.views_free_directions > 0
-                       ? planeHypothesis(source.segmentation, target.segmentation)
+    const auto T = views.source_plane && views.target_plane
+                       ? planeHypothesis(*views.source_plane, *views.target_plane)
                        : std::nullopt;
     if (!T) return r;
     no_hypothesis = std::move(r.pose.reason);
@@ -103,7 +102,8 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
     for (int i : r.pose.inliers) inliers.push_back(r.correspondences[static_cast<std::size_t>(i)]);
     RefineParams refine_params = p.refine;  // partial rounds only where partial poses are claimed
     refine_params.solver.partial_poses = refine_params.solver.partial_poses && p.certify.partial_poses;
-    dense = refine(source, target, r.pose, inliers, refine_params, free_space);
+    dense = refine(source, target, r.pose, inliers, refine_params, free_space,
+                   views.target_plane ? &*views.target_plane : nullptr);
     record(*dense, msSince(t0), r);
   }
   const auto t1 = std::chrono::steady_clock::now();

@@ -9,7 +9,6 @@
 
 #include "gasp/core/depth_image.h"
 #include "gasp/core/error.h"
-#include "gasp/pipeline/plane_hypothesis.h"
 #include "slide_scan.h"
 
 namespace gasp {
@@ -147,12 +146,12 @@ void widenEdges(const DenseProblem& problem, const Isometry3& start, const Refin
 /// agreeing alignment along the plane shows.
 void scanSlides(const DepthView& source, const DepthView& target, const DenseProblem& problem,
                 const RegistrationResult& hypothesis, const RefineParams& params, const FreeSpaceTest& free_space,
-                Refinement& out) {
+                const DominantPlane* target_plane, Refinement& out) {
   const bool partial = out.pose.partial;
   if (!params.slide_scan.enabled || !((out.pose.success && hypothesis.degenerate) || partial)) return;
   std::optional<RegistrationResult> along_plane;
   if (partial) {
-    const auto plane = dominantPlane(target.segmentation);
+    const auto plane = target_plane ? std::optional<DominantPlane>(*target_plane) : dominantPlane(target.segmentation);
     if (!plane) return;
     along_plane = detail::planeSymmetries(plane->normal, plane->centroid, out.pose.scene_radius_m);
   }
@@ -187,12 +186,12 @@ void validate(const RefineParams& p) {
 
 Refinement refine(const DepthView& source, const DepthView& target, const RegistrationResult& hypothesis,
                   const std::vector<PatchCorrespondence>& inliers, const RefineParams& params,
-                  const FreeSpaceTest& free_space) {
+                  const FreeSpaceTest& free_space, const DominantPlane* target_plane) {
   const DenseProblem problem(source, target, hypothesis, inliers, params);
   Refinement out;
   out.pose = problem.refineFrom(hypothesis.T_target_source, 1.0, out.rounds);
   widenEdges(problem, hypothesis.T_target_source, params, free_space, out);
-  scanSlides(source, target, problem, hypothesis, params, free_space, out);
+  scanSlides(source, target, problem, hypothesis, params, free_space, target_plane, out);
   // The hypothesis's inlier bookkeeping goes with whichever pose is kept.
   out.pose.inliers = hypothesis.inliers;
   out.pose.num_inliers = hypothesis.num_inliers;

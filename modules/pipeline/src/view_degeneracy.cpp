@@ -12,7 +12,7 @@ DegeneracyAnalysis analyseViewGeometry(const SuperpixelSegmentation& view, const
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   double total_area = 0.0;
   for (const auto& p : view.patches) {
-    if (!p.centroid.allFinite() || !p.normal.allFinite() || !(p.area_m2 > 0) || p.normal.squaredNorm() < 1e-12) continue;
+    if (!countsInViewGeometry(p)) continue;
     centre += p.area_m2 * p.centroid;
     total_area += p.area_m2;
   }
@@ -25,7 +25,7 @@ DegeneracyAnalysis analyseViewGeometry(const SuperpixelSegmentation& view, const
   centre /= total_area;
   double spread = 0.0;
   for (const auto& p : view.patches) {
-    if (!p.centroid.allFinite() || !p.normal.allFinite() || !(p.area_m2 > 0) || p.normal.squaredNorm() < 1e-12) continue;
+    if (!countsInViewGeometry(p)) continue;
     const Eigen::Vector3d n = p.normal.normalized();
     Vector6d j;
     j << n, p.centroid.cross(n);

@@ -23,6 +23,7 @@
 
 #include "gasp/pipeline/depth_view.h"
 #include "gasp/pipeline/model_error.h"
+#include "gasp/pipeline/plane_hypothesis.h"
 #include "gasp/pipeline/view_degeneracy.h"
 #include "gasp/pipeline/visibility_check.h"
 #include "gasp/registration/registration_result.h"
@@ -62,8 +63,9 @@ struct ViewsCertificate {
   /// The directions each view leaves free, as left perturbations [t r] of its own camera frame
   /// (DegeneracyAnalysis::unobservable_twists); no columns when it fixes a pose.
   Eigen::Matrix<double, 6, Eigen::Dynamic> source_free, target_free;
-  const DepthView* source = nullptr;  ///< the views certified (for the partial pose's plane test)
-  const DepthView* target = nullptr;
+  /// Each view's dominant plane (plane_hypothesis.h), found once per pair where a partial pose
+  /// can rest on it: with partial_poses, when a view leaves directions free.
+  std::optional<DominantPlane> source_plane, target_plane;
 };
 ViewsCertificate certifyViews(const DepthView& source, const DepthView& target, const CertifyParams& params);
 

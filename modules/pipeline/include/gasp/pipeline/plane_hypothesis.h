@@ -38,9 +38,9 @@ struct DominantPlane {
 /// The view's dominant plane; nullopt without a usable patch.
 std::optional<DominantPlane> dominantPlane(const SuperpixelSegmentation& view);
 
-/// T_target_source aligning the source's dominant plane with the target's (the file's comment);
-/// nullopt when either plane is ambiguous.
-std::optional<Isometry3> planeHypothesis(const SuperpixelSegmentation& source, const SuperpixelSegmentation& target);
+/// T_target_source aligning the source view's dominant plane with the target view's (the file's
+/// comment); nullopt when either plane is ambiguous.
+std::optional<Isometry3> planeHypothesis(const DominantPlane& source, const DominantPlane& target);
 
 /// The alignment itself.
 Isometry3 alignPlanes(const DominantPlane& source, const DominantPlane& target);

@@ -18,6 +18,7 @@
 #include "gasp/pipeline/dense_rounds.h"
 #include "gasp/pipeline/depth_view.h"
 #include "gasp/pipeline/edge_terms.h"
+#include "gasp/pipeline/plane_hypothesis.h"
 #include "gasp/pipeline/projective_terms.h"
 #include "gasp/pipeline/slide_scan.h"
 #include "gasp/pipeline/visibility_check.h"
@@ -81,9 +82,11 @@ struct Refinement {
 
 /// Refines `hypothesis` (RANSAC + patch refinement), whose inlier correspondences `inliers` stay
 /// in every round. `free_space(T)`: the test a claimed pose will face (certify_stage.h).
+/// `target_plane`: the target view's dominant plane when already found (plane_hypothesis.h; a
+/// partial pose's slide scan searches along it; null: found here when needed).
 /// Requires params.dense.rounds > 0. Never throws for data.
 Refinement refine(const DepthView& source, const DepthView& target, const RegistrationResult& hypothesis,
                   const std::vector<PatchCorrespondence>& inliers, const RefineParams& params,
-                  const FreeSpaceTest& free_space);
+                  const FreeSpaceTest& free_space, const DominantPlane* target_plane = nullptr);
 
 }  // namespace gasp

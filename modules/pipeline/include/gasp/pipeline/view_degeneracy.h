@@ -12,6 +12,12 @@
 
 namespace gasp {
 
+/// A patch that counts in a view's plane geometry: finite centroid and normal, a normal of
+/// non-zero length and a positive area.
+inline bool countsInViewGeometry(const SurfacePatch& p) {
+  return p.centroid.allFinite() && p.normal.allFinite() && p.area_m2 > 0 && p.normal.squaredNorm() >= 1e-12;
+}
+
 struct ViewDegeneracyParams {
   double min_eigenvalue_ratio = 1e-3;  ///< smallest / largest eigenvalue of the conditioned I
 };
