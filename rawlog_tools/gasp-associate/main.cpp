@@ -253,6 +253,9 @@ int main(int argc, char** argv) {
     }
     std::printf("inliers: %d\none_way_fallback: %s\nguided_support: %d\n", r.pose.num_inliers,
                 r.used_one_way ? "yes" : "no", r.guided_support);
+    if (std::isfinite(r.uniqueness_log_ratio))  // the certificate compared the pose with RANSAC's distinct alternative
+      std::printf("uniqueness: log-likelihood ratio %.1f over a distinct alternative%s\n", r.uniqueness_log_ratio,
+                  r.alternative_taken ? " (the alternative was taken)" : "");
     if (r.pose.partial) {  // observed directions only: printed, but no full pose (exit 4)
       const auto& T = r.pose.T_target_source;
       const Eigen::Quaterniond q(T.linear());

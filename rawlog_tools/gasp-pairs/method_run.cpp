@@ -45,6 +45,8 @@ MethodRun runGasp(const std::string& method, std::size_t i, std::size_t j, Frame
   run.T_target_source = r.pose.T_target_source;
   run.reason = r.pose.reason;
   run.partial = r.pose.partial;
+  run.uniqueness_log_ratio = r.uniqueness_log_ratio;
+  run.alternative_taken = r.alternative_taken;
   if (r.pose.partial) {
     run.free_directions = static_cast<int>(r.pose.unobservable_directions.cols());
     if (T_gt) run.observed = observedError(r.pose, *T_gt);

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <map>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,6 +40,10 @@ struct MethodRun {
   bool partial = false;
   int free_directions = 0;
   std::optional<ObservedError> observed;
+  /// GASP: the certificate's uniqueness test (PairResult::uniqueness_log_ratio; NaN: not tested)
+  /// and whether RANSAC's alternative replaced the pose.
+  double uniqueness_log_ratio = std::numeric_limits<double>::quiet_NaN();
+  bool alternative_taken = false;
   std::string reason;
   double ms = 0;
   std::size_t associations = 0;

@@ -27,7 +27,7 @@ std::string pairsCsvHeader() {
          "est_icp_t_m,est_icp_r_deg,icp_est_vs_ref_icp_t_m,icp_est_vs_ref_icp_r_deg,verified_precision_ref_icp,"
          "rgb_inliers,rgb_parallax_px,rgb_r_vs_ref_deg,rgb_r_vs_est_deg,rgb_r_vs_ref_icp_deg,nees,nees_t,nees_r,"
          "nees_refinement,violation_ratio_lesser,violation_blob_share_lesser,violation_blob_share,partial,free_directions,"
-         "observed_t_err_m,observed_r_err_deg,reason";
+         "observed_t_err_m,observed_r_err_deg,uniqueness_log_ratio,alternative_taken,reason";
 }
 
 std::string pairsCsvRow(const eval::PairOutcome& o, const std::string& method, const MethodRun& run,
@@ -77,7 +77,9 @@ std::string pairsCsvRow(const eval::PairOutcome& o, const std::string& method, c
     << ',' << (run.partial ? 1 : 0) << ',' << run.free_directions << ',';
   if (run.observed) s << run.observed->translation_m << ',' << run.observed->rotation_deg;
   else s << ',';
-  s << ",\"";
+  s << ',';
+  if (std::isfinite(run.uniqueness_log_ratio)) s << run.uniqueness_log_ratio;
+  s << ',' << (run.alternative_taken ? 1 : 0) << ",\"";
   for (const char ch : o.reason) s << (ch == '"' ? "\"\"" : std::string(1, ch));  // RFC 4180 quoting
   s << '"';
   return s.str();

@@ -183,6 +183,39 @@ TEST(Ransac, GuidedSamplingFindsAFewInliersAmongManyOutliers) {
   std::printf("uniform sampling: %d of 5\n", uniform_ok);
 }
 
+TEST(Ransac, TwoConsistentMotionsGiveTheWeakerAsTheAlternative) {
+  // 120 correspondences follow T, 60 follow T moved by 30 cm: the best model is T, the best
+  // distinct alternative the moved one with exactly its 60 inliers.
+  for (const Isometry3& T : testMotions()) {
+    const Isometry3 moved = Eigen::Translation3d(0.2, -0.1, 0.2) * T;
+    SceneOptions o;
+    o.n = 120;
+    Scene s = makeScene(roomCorner(), T, o);
+    o.n = 60;
+    o.seed = 8;
+    const Scene other = makeScene(roomCorner(), moved, o);
+    s.correspondences.insert(s.correspondences.end(), other.correspondences.begin(), other.correspondences.end());
+    const RansacResult r = ransacPose(s.correspondences);
+    ASSERT_TRUE(r.success) << r.reason;
+    EXPECT_LT(translationError(r.T_target_source, T), 1e-9);
+    ASSERT_TRUE(r.alternative_T_target_source.has_value());
+    EXPECT_LT(translationError(*r.alternative_T_target_source, moved), 1e-9);
+    EXPECT_LT(rotationErrorDeg(*r.alternative_T_target_source, moved), 1e-7);
+    EXPECT_EQ(r.alternative_inliers, selectInliers(s.correspondences, moved, RansacParams().inlier));
+    EXPECT_EQ(r.alternative_inliers.size(), 60u);
+  }
+}
+
+TEST(Ransac, OneMotionWithoutOutliersHasNoAlternative) {
+  // Every sample of noise-free correspondences of one motion gives that motion.
+  for (const Isometry3& T : testMotions()) {
+    const RansacResult r = ransacPose(makeScene(roomCorner(), T, {}).correspondences);
+    ASSERT_TRUE(r.success) << r.reason;
+    EXPECT_FALSE(r.alternative_T_target_source.has_value());
+    EXPECT_TRUE(r.alternative_inliers.empty());
+  }
+}
+
 TEST(Ransac, InvalidParametersThrow) {
   for (const double tol : {0.0, 181.0}) {
     RansacParams q;

@@ -25,4 +25,20 @@ double rotationAngle(const Isometry3& T) {
   return std::acos(std::clamp(c, -1.0, 1.0));
 }
 
+PointSpread pointSpread(const std::vector<Eigen::Vector3d>& points) {
+  PointSpread s;
+  if (points.empty()) return s;
+  for (const auto& p : points) s.mean += p;
+  s.mean /= static_cast<double>(points.size());
+  for (const auto& p : points) s.covariance += (p - s.mean) * (p - s.mean).transpose();
+  s.covariance /= static_cast<double>(points.size());
+  return s;
+}
+
+double rmsDisplacement(const Isometry3& T_a, const Isometry3& T_b, const PointSpread& points) {
+  const Eigen::Matrix3d D = T_a.linear() - T_b.linear();
+  const Eigen::Vector3d at_mean = D * points.mean + (T_a.translation() - T_b.translation());
+  return std::sqrt(std::max(0.0, at_mean.squaredNorm() + (D.transpose() * D * points.covariance).trace()));
+}
+
 }  // namespace gasp

@@ -160,7 +160,7 @@ void refineFields(P& p, F&& f) {  // dense rounds (dense_rounds.h), pixel and ed
 }
 
 template <class P, class F>
-void certifyFields(P& p, F&& f) {  // the views' degeneracy, dense support, free space (visibility_check.h), model error
+void certifyFields(P& p, F&& f) {  // the views' degeneracy, dense support, free space (visibility_check.h), model error, uniqueness
   auto& c = p.certify;
   f("view_degeneracy_min_eigenvalue_ratio", c.view_degeneracy.min_eigenvalue_ratio);
   f("partial_poses", c.partial_poses);
@@ -175,6 +175,7 @@ void certifyFields(P& p, F&& f) {  // the views' degeneracy, dense support, free
   f("one_way_max_violation_ratio", c.fallback_max_violation_ratio);
   f("model_error_t_m", c.model_error.sigma_t_m);
   f("model_error_r_deg", c.model_error.sigma_r_deg);
+  f("min_likelihood_ratio", c.min_likelihood_ratio);
 }
 
 template <class P, class F>

@@ -1,9 +1,13 @@
 #include "gasp/pipeline/certify_stage.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
 
 #include "gasp/core/error.h"
 #include "gasp/core/pose_perturbation.h"
+#include "gasp/pipeline/pose_likelihood.h"
 #include "gasp/registration/partial_pose.h"
 
 namespace gasp {
@@ -16,6 +20,8 @@ void validate(const CertifyParams& p) {
   if (!(p.fallback_max_violation_ratio >= 0.0 && p.fallback_max_violation_ratio <= 1.0))
     throw Error("certify: fallback_max_violation_ratio must be in [0, 1]");
   validate(p.model_error);
+  if (!(p.min_likelihood_ratio == 0.0 || p.min_likelihood_ratio >= 1.0) || !std::isfinite(p.min_likelihood_ratio))
+    throw Error("certify: min_likelihood_ratio must be 0 (off) or finite and >= 1");
 }
 
 ViewsCertificate certifyViews(const DepthView& source, const DepthView& target, const CertifyParams& params) {
@@ -133,6 +139,38 @@ Certificate certify(const RegistrationResult& pose, std::optional<int> dense_ter
   c.claimed = true;
   if (c.partial) c.reason = "partial pose, free: " + directionsText(c.free_directions);
   return c;
+}
+
+Uniqueness compareAlternative(const DepthView& source, const DepthView& target, const RegistrationResult& chosen,
+                              const RegistrationResult& alternative, double distinct_m, const CertifyParams& params) {
+  Uniqueness u;
+  if (params.min_likelihood_ratio == 0.0) return u;
+  std::vector<Eigen::Vector3d> centroids;
+  for (const auto& p : source.segmentation.patches)
+    if (p.centroid.allFinite()) centroids.push_back(p.centroid);
+  // The chosen pose moved along its free directions towards the alternative: what is left apart
+  // is the difference in its observed directions.
+  const Isometry3 nearest = chosen.partial ? withPrediction(chosen, alternative.T_target_source) : chosen.T_target_source;
+  u.distance_m = rmsDisplacement(nearest, alternative.T_target_source, pointSpread(centroids));
+  if (!(u.distance_m > distinct_m)) return u;
+  u.tested = true;
+  const LikelihoodRatio lr = logLikelihoodRatio(source, target, chosen.T_target_source, alternative.T_target_source);
+  u.log_ratio = lr.log_ratio;
+  u.standard_error = lr.standard_error;
+  const double needed = std::max(std::log(params.min_likelihood_ratio), kUniquenessStandardErrors * lr.standard_error);
+  if (u.log_ratio >= needed) return u;
+  if (-u.log_ratio >= needed) {
+    u.take_alternative = true;
+    return u;
+  }
+  char buf[360];
+  std::snprintf(buf, sizeof buf,
+                "not unique: a distinct alternative pose (%.2f m away) explains the views almost as well "
+                "(log-likelihood ratio %.1f +- %.1f; at least log %g and %g standard errors needed)",
+                u.distance_m, u.log_ratio, u.standard_error, params.min_likelihood_ratio, kUniquenessStandardErrors);
+  u.reason = buf;
+  u.refused = true;
+  return u;
 }
 
 }  // namespace gasp

@@ -63,6 +63,50 @@ void record(const Certificate& c, PairResult& r) {
   r.pose.reason = c.reason;
 }
 
+/// The certificate's uniqueness test (certify_stage.h): the best distinct alternative RANSAC found
+/// for hypothesis `h` is refined and certified like the claimed pose in `r`, and the more likely
+/// of the two stays claimed only when it is min_likelihood_ratio times more likely.
+void testUniqueness(const DepthView& source, const DepthView& target, const Hypothesis& h, const PairParams& p,
+                    const RefineParams& refine_params, const FreeSpaceTest& free_space, const ViewsCertificate& views,
+                    PairResult& r) {
+  const auto t0 = std::chrono::steady_clock::now();
+  RegistrationResult start;
+  start.success = true;
+  start.T_target_source = *h.pose.alternative_T_target_source;
+  start.inliers = h.pose.alternative_inliers;
+  start.num_inliers = static_cast<int>(start.inliers.size());
+  std::vector<PatchCorrespondence> inliers;
+  for (int i : start.inliers) inliers.push_back(r.correspondences[static_cast<std::size_t>(i)]);
+  Refinement alternative = refine(source, target, start, inliers, refine_params, free_space,
+                                  views.target_plane ? &*views.target_plane : nullptr);
+  const Certificate c =
+      certify(alternative.pose, alternative.rounds.terms, free_space, alternative.check, views, p.certify);
+  Uniqueness u;
+  if (c.claimed) {
+    alternative.pose.success = !c.partial;
+    alternative.pose.partial = c.partial;
+    if (c.partial) alternative.pose.unobservable_directions = c.free_directions;
+    u = compareAlternative(source, target, r.pose, alternative.pose, p.hypothesise.pose.ransac.inlier.distance_m,
+                           p.certify);
+  }
+  const double ms = msSince(t0);
+  r.timings.certify_ms += ms;
+  if (!u.tested) return;
+  r.uniqueness_log_ratio = u.log_ratio;
+  if (u.take_alternative) {
+    const PairTimings timings = r.timings;
+    record(alternative, timings.dense_ms, r);
+    record(c, r);
+    r.timings = timings;
+    r.alternative_taken = true;
+    r.uniqueness_log_ratio = -u.log_ratio;
+  } else if (u.refused) {
+    Certificate refusal;
+    refusal.reason = u.reason;
+    record(refusal, r);
+  }
+}
+
 /// Stages 2-5 on the views as segmented. `finer`: the views of the finer-scale retry (mutual
 /// associations only; its poses face the fallback limit).
 PairResult registerAtScale(const DepthView& source, const DepthView& target, const PairParams& p, bool finer) {
@@ -96,12 +140,12 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
 
   const FreeSpaceTest free_space = freeSpaceTest(source, target, p.certify, finer || r.used_one_way);
   std::optional<Refinement> dense;
+  RefineParams refine_params = p.refine;  // partial rounds only where partial poses are claimed
+  refine_params.solver.partial_poses = refine_params.solver.partial_poses && p.certify.partial_poses;
   if (p.refine.dense.rounds > 0) {
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<PatchCorrespondence> inliers;  // they stay in the dense problem, anchoring it where pixels are few
     for (int i : r.pose.inliers) inliers.push_back(r.correspondences[static_cast<std::size_t>(i)]);
-    RefineParams refine_params = p.refine;  // partial rounds only where partial poses are claimed
-    refine_params.solver.partial_poses = refine_params.solver.partial_poses && p.certify.partial_poses;
     dense = refine(source, target, r.pose, inliers, refine_params, free_space,
                    views.target_plane ? &*views.target_plane : nullptr);
     record(*dense, msSince(t0), r);
@@ -111,6 +155,9 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
                  dense ? dense->check : std::nullopt, views, p.certify),
          r);
   r.timings.certify_ms = msSince(t1);
+  if (r.pose.estimated() && dense && h.verified && h.pose.alternative_T_target_source &&
+      p.certify.min_likelihood_ratio > 0.0)
+    testUniqueness(source, target, h, p, refine_params, free_space, views, r);
   if (r.plane_hypothesis && !r.pose.estimated())
     r.pose.reason = no_hypothesis + "; from the views' dominant planes: " + r.pose.reason;
   if (!r.pose.success || !p.hypothesise.guided.enabled) return r;

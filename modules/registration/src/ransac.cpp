@@ -87,6 +87,64 @@ int adaptiveIterations(double all_inlier, const RansacParams& params) {
   return std::max(1, static_cast<int>(n));
 }
 
+/// The best models sampled, one per distinct placement of the source centroids (at most kMaxModes,
+/// the worst dropped): where the best distinct alternative comes from.
+class Modes {
+ public:
+  static constexpr std::size_t kMaxModes = 16;
+  Modes(const std::vector<PatchCorrespondence>& c, double distinct_m) : distinct_m_(distinct_m) {
+    std::vector<Eigen::Vector3d> points;
+    points.reserve(c.size());
+    for (const auto& ci : c) points.push_back(ci.p_source);
+    spread_ = pointSpread(points);
+  }
+  bool distinct(const Isometry3& a, const Isometry3& b) const { return rmsDisplacement(a, b, spread_) > distinct_m_; }
+  void add(const Isometry3& T, const Score& sc) {
+    for (auto& m : modes_)
+      if (!distinct(m.T, T)) {
+        if (sc.betterThan(m.sc)) m = {T, sc};
+        return;
+      }
+    modes_.push_back({T, sc});
+    if (modes_.size() <= kMaxModes) return;
+    const auto worst = std::min_element(modes_.begin(), modes_.end(),
+                                        [](const Mode& x, const Mode& y) { return y.sc.betterThan(x.sc); });
+    modes_.erase(worst);
+  }
+  /// The best mode distinct from T, best first.
+  std::vector<Isometry3> distinctFrom(const Isometry3& T) const {
+    std::vector<Mode> d;
+    for (const auto& m : modes_)
+      if (distinct(m.T, T)) d.push_back(m);
+    std::sort(d.begin(), d.end(), [](const Mode& x, const Mode& y) { return x.sc.betterThan(y.sc); });
+    std::vector<Isometry3> out;
+    for (const auto& m : d) out.push_back(m.T);
+    return out;
+  }
+
+ private:
+  struct Mode {
+    Isometry3 T;
+    Score sc;
+  };
+  double distinct_m_;
+  PointSpread spread_;
+  std::vector<Mode> modes_;
+};
+
+/// Re-fits T on its inliers (weighted least squares) and recounts them, twice.
+std::vector<int> refit(const std::vector<PatchCorrespondence>& c, const RansacParams& params, Isometry3& T) {
+  std::vector<int> inliers = selectInliers(c, T, params.inlier);
+  for (int round = 0; round < 2 && static_cast<int>(inliers.size()) >= params.min_inliers; ++round) {
+    T = detail::fitRigid(c, inliers);
+    std::vector<int> recount = selectInliers(c, T, params.inlier);
+    const bool same = recount == inliers;
+    inliers = std::move(recount);
+    if (same) break;
+  }
+  return inliers;
+}
+
 Sample drawSample(std::mt19937& rng, int n) {
   std::uniform_int_distribution<int> pick(0, n - 1);
   Sample s{pick(rng), 0, 0};
@@ -127,6 +185,7 @@ RansacResult ransacPose(const std::vector<PatchCorrespondence>& c, const RansacP
   std::mt19937 rng(params.seed);
   Score best;
   Isometry3 best_T = Isometry3::Identity();
+  Modes modes(c, params.inlier.distance_m);
   int thin = 0, misses = 0, needed = params.max_iterations;
   std::unique_ptr<detail::CompatibilityGraph> graph;
   if (params.guided_sampling && n <= params.max_guided_correspondences) {
@@ -154,6 +213,7 @@ RansacResult ransacPose(const std::vector<PatchCorrespondence>& c, const RansacP
     }
     const Isometry3 T = fitSample(c, s);
     const Score sc = score(c, T, params.inlier);
+    if (sc.inliers >= params.min_inliers) modes.add(T, sc);
     if (sc.betterThan(best)) {
       best = sc;
       best_T = T;
@@ -170,15 +230,7 @@ RansacResult ransacPose(const std::vector<PatchCorrespondence>& c, const RansacP
     return result;
   }
 
-  // Re-fit on all inliers (weighted least squares) and recount, twice.
-  std::vector<int> inliers = selectInliers(c, best_T, params.inlier);
-  for (int round = 0; round < 2 && static_cast<int>(inliers.size()) >= params.min_inliers; ++round) {
-    best_T = detail::fitRigid(c, inliers);
-    std::vector<int> recount = selectInliers(c, best_T, params.inlier);
-    const bool same = recount == inliers;
-    inliers = std::move(recount);
-    if (same) break;
-  }
+  std::vector<int> inliers = refit(c, params, best_T);
   result.T_target_source = best_T;
   if (static_cast<int>(inliers.size()) < params.min_inliers) {
     result.reason = "no consensus: the best model has " + std::to_string(inliers.size()) +
@@ -187,6 +239,13 @@ RansacResult ransacPose(const std::vector<PatchCorrespondence>& c, const RansacP
   }
   result.inliers = std::move(inliers);
   result.success = true;
+  for (Isometry3 T : modes.distinctFrom(best_T)) {  // re-fitting may bring a mode onto the best model
+    std::vector<int> alternative = refit(c, params, T);
+    if (static_cast<int>(alternative.size()) < params.min_inliers || !modes.distinct(T, best_T)) continue;
+    result.alternative_T_target_source = T;
+    result.alternative_inliers = std::move(alternative);
+    break;
+  }
   return result;
 }
 

@@ -59,6 +59,8 @@ RegistrationResult estimatePose(const std::vector<PatchCorrespondence>& correspo
     out.reason = "RANSAC: " + ransac.reason;
   }
   out.num_inliers = static_cast<int>(out.inliers.size());
+  out.alternative_T_target_source = ransac.alternative_T_target_source;
+  out.alternative_inliers = ransac.alternative_inliers;
   out.ransac_iterations = ransac.iterations;
   out.ransac_ms = ransac_ms;
   return out;

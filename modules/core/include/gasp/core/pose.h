@@ -6,6 +6,8 @@
 /// into the target view. Camera frames are optical (x right, y down, z forward), as in TUM.
 #include <Eigen/Geometry>
 
+#include <vector>
+
 namespace gasp {
 
 using Isometry3 = Eigen::Isometry3d;
@@ -25,5 +27,18 @@ double rotationAngle(const Isometry3& T);
 
 /// Translation length [m].
 inline double translationNorm(const Isometry3& T) { return T.translation().norm(); }
+
+/// A point set's first two moments: what the RMS displacement between two poses needs.
+struct PointSpread {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< (1/n) sum (p - mean)(p - mean)^T
+};
+
+/// The moments of `points` (zero for none).
+PointSpread pointSpread(const std::vector<Eigen::Vector3d>& points);
+
+/// RMS over the points of |T_a p - T_b p| [m], exactly from their moments:
+/// |D mean + dt|^2 + trace(D^T D covariance), D = R_a - R_b, dt = t_a - t_b.
+double rmsDisplacement(const Isometry3& T_a, const Isometry3& T_b, const PointSpread& points);
 
 }  // namespace gasp

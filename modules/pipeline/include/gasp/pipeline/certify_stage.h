@@ -16,6 +16,14 @@
 /// graphs adds the model error (model_error.h) to the refinement's, in its observed directions.
 /// With partial_poses off, a view that cannot fix a pose gives no estimate before association,
 /// and so does a pose with any unobservable direction.
+///
+/// Uniqueness: a claimed pose must explain the views at least min_likelihood_ratio times better
+/// (pose_likelihood.h), and by kUniquenessStandardErrors standard errors of the ratio, than the
+/// best distinct alternative RANSAC found, refined like it and claimed by the rule above; where the alternative explains them that much better it is taken
+/// instead, and otherwise there is no estimate ("not unique"). Distinct: the two poses place the
+/// source patches' centroids more than RANSAC's inlier distance apart (RMS), in the chosen pose's
+/// observed directions.
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -49,6 +57,9 @@ struct CertifyParams {
   /// Added to a claimed pose's covariance for PairResult::edge_information: 1 cm and 0.75 deg per
   /// axis, what the refinement's information leaves out (model_error.h).
   ModelError model_error;
+  /// Uniqueness (above): the likelihood ratio a claimed pose needs over a distinct alternative;
+  /// 1000 is about two patches' worth of surface explained (pose_likelihood.h). 0 = not tested.
+  double min_likelihood_ratio = 1000.0;
 };
 
 /// Throws gasp::Error naming the first invalid parameter.
@@ -93,5 +104,26 @@ struct Certificate {
 Certificate certify(const RegistrationResult& pose, std::optional<int> dense_terms, const FreeSpaceTest& free_space,
                     const std::optional<VisibilityCheck>& done, const ViewsCertificate& views,
                     const CertifyParams& params);
+
+/// Standard errors of the log-likelihood ratio (pose_likelihood.h) a pose needs over a distinct
+/// alternative: less is what the sensor's noise gives between poses the surfaces cannot tell apart.
+constexpr double kUniquenessStandardErrors = 3.0;
+
+/// The uniqueness test of a claimed pose against a distinct alternative (above).
+struct Uniqueness {
+  bool tested = false;  ///< the alternative was claimed and distinct
+  /// log L(chosen) - log L(alternative) (pose_likelihood.h); NaN when not tested.
+  double log_ratio = std::numeric_limits<double>::quiet_NaN();
+  double standard_error = 0.0;  ///< of log_ratio
+  double distance_m = 0.0;   ///< RMS displacement of the source centroids between the two, observed directions
+  bool take_alternative = false;  ///< the alternative explains the views min_likelihood_ratio times better
+  bool refused = false;           ///< neither is min_likelihood_ratio times more likely: no estimate
+  std::string reason;             ///< when refused
+};
+
+/// `chosen` and `alternative` are claimed poses of the same views (certify()); `distinct_m`:
+/// RANSAC's inlier distance. Not tested when the ratio is 0 or the two are not distinct.
+Uniqueness compareAlternative(const DepthView& source, const DepthView& target, const RegistrationResult& chosen,
+                              const RegistrationResult& alternative, double distinct_m, const CertifyParams& params);
 
 }  // namespace gasp

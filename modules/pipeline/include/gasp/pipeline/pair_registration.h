@@ -14,6 +14,7 @@
 /// The result is what a SLAM system consumes: T_target_source with its information matrix, or
 /// no estimate with the reason (too few associations, no consensus, degenerate geometry,
 /// contradicted free space).
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -109,6 +110,12 @@ struct PairResult {
   /// at the first dense refinement's pose (-1: not measured -- no edge terms, no dense rounds or no pose).
   double edge_paired_share = -1.0;
   SlideScanReport slide;  ///< the slide scan of the claimed pose (slide.ran false: not needed)
+  /// The certificate's uniqueness test (certify_stage.h): log L(claimed) - log L(the best distinct
+  /// alternative RANSAC found, refined and claimed), or for a refused pose the ratio that refused
+  /// it; NaN when there was no such alternative (not tested).
+  double uniqueness_log_ratio = std::numeric_limits<double>::quiet_NaN();
+  /// The alternative explained the views min_likelihood_ratio times better and replaced the pose.
+  bool alternative_taken = false;
   PairTimings timings;
   /// The finer-scale retry ran (RetryParams::finer_area_factor): the default scale gave no estimate.
   bool retried = false;

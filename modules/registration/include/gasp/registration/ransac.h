@@ -25,6 +25,13 @@
 /// (InlierCriterion), ties broken by the truncated cost sum_i min(d_i^2 / d_max^2, 1) (MSAC). The
 /// best model is re-fitted on its inliers (weighted least squares) and the inliers recounted,
 /// twice. Single-threaded and deterministic for a seed.
+///
+/// The best distinct alternative: the best-scoring model among those sampled (with at least
+/// min_inliers inliers) that places the source centroids more than the inlier distance away from
+/// the best model's placement, RMS (rmsDisplacement, pose.h) -- so most of its inliers cannot be
+/// the best model's. It is re-fitted like the best model. The pipeline's certificate asks whether
+/// the chosen pose explains the views better than it (certify_stage.h, uniqueness).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -58,6 +65,9 @@ struct RansacResult {
   bool success = false;  ///< a model with >= min_inliers inliers was found
   Isometry3 T_target_source = Isometry3::Identity();
   std::vector<int> inliers;   ///< ascending indices into the correspondences
+  /// The best distinct alternative (above); empty when RANSAC sampled none with min_inliers.
+  std::optional<Isometry3> alternative_T_target_source;
+  std::vector<int> alternative_inliers;  ///< ascending indices into the correspondences
   int iterations = 0;         ///< samples drawn
   int rejected_samples = 0;   ///< of those, rejected by the consistency checks before fitting
   std::string reason;         ///< why there is no estimate

@@ -2,6 +2,7 @@
 /// \file registration_result.h What a pose estimate claims and how well it is supported.
 #include <Eigen/Core>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,11 @@ struct RegistrationResult {
   Eigen::Matrix<double, 6, Eigen::Dynamic> unobservable_directions;
   Eigen::Vector3d scene_centre = Eigen::Vector3d::Zero();  ///< c of the conditioning, target frame [m]
   double scene_radius_m = 0.0;                             ///< L of the conditioning [m]
+
+  /// RANSAC's best distinct alternative (ransac.h; estimatePose only, as RANSAC left it), and its
+  /// inliers (ascending indices into the correspondences).
+  std::optional<Isometry3> alternative_T_target_source;
+  std::vector<int> alternative_inliers;
 
   double ransac_ms = 0.0;  ///< wall time of RANSAC (estimatePose only)
   double refine_ms = 0.0;  ///< wall time of refinement / evaluation

@@ -1,0 +1,56 @@
+#pragma once
+/// \file pose_likelihood.h How much better one pose explains two depth views than another, as a
+/// log-likelihood ratio: the certificate's uniqueness test (certify_stage.h) compares the chosen
+/// pose with the best distinct alternative RANSAC found, refined like it.
+///
+/// Every pixel_step-th pixel of either view with valid depth is mapped by each pose into the other
+/// view; only the samples that land on measured depth under both poses count, so that neither
+/// pose gains by putting more of one view inside the other's image (on one large plane, a pose
+/// slid along it explains the shared part exactly as well). Where a sample lands on measured depth
+/// z_t, its depth residual e = z - z_t along the other camera's ray has the density
+///   p(e) = w N(e; 0, sigma(z_t)^2) + (1 - w) / range,   sigma(z) = sigma_m + sigma_per_m2 z^2,
+/// a Gaussian inlier with the sensor's noise and a uniform outlier (MLESAC: Torr and Zisserman,
+/// 2000). Relative to the sample being an outlier it contributes
+/// l = log(1 + w range N(e; 0, sigma^2) / (1 - w)) >= 0: occlusions and violations add nothing,
+/// surface explained adds up to l(0) (3.7 nats at 1 cm). The samples of one patch share that
+/// patch's error (its plane, its depth bias), so they are one observation: the log-likelihood
+/// ratio is the sum over both views' patches (segmentation.labels) of the mean over their
+/// counted samples of l under one pose minus l under the other. A patch whose mean differs by at
+/// most one nat (about 1.5 sigma of movement off its surface) counts as explained equally well:
+/// the depth's correlated errors (disparity quantisation terraces, a depth bias) shift whole
+/// regions by a fraction of sigma, which summed over a thousand patches would otherwise decide
+/// between poses that the surfaces cannot tell apart (a slide along one plane).
+/// The ratio's standard error is that of a sum of independent zero-mean patch terms,
+/// sqrt(sum d_k^2): where the surfaces cannot tell two poses apart, the sensor noise of small
+/// patches (a sample or two each) still moves the sum by that much.
+/// A patch whose samples all land well counts about l(0), so a ratio of e^7 (about 1000) is two
+/// patches' worth of surface explained.
+#include "gasp/core/pose.h"
+#include "gasp/pipeline/depth_view.h"
+
+namespace gasp {
+
+/// The noise model above: sigma(z) = 5 mm + 2.5 mm/m^2 z^2 (half the depth-agreement gate of
+/// visibility_check.h, the Kinect's noise at 1-3 m with room for the model error), w = 0.5,
+/// range 1 m, every 8th pixel, a dead band of one nat per patch.
+struct PoseLikelihoodParams {
+  int pixel_step = 8;
+  double sigma_m = 0.005;
+  double sigma_per_m2 = 0.0025;
+  double inlier_prior = 0.5;
+  double outlier_range_m = 1.0;
+  double patch_deadband_nats = 1.0;
+};
+
+struct LikelihoodRatio {
+  double log_ratio = 0.0;       ///< log L(T_a) - log L(T_b) [nats]
+  double standard_error = 0.0;  ///< sqrt of the sum of the squared patch terms [nats]
+  int patches = 0;              ///< patches with a sample landing under both poses
+};
+
+/// The ratio of T_a over T_b (both T_target_source), as above; zero for views without patches
+/// or without a sample landing under both. Never throws for data; a non-finite pose gives zero.
+LikelihoodRatio logLikelihoodRatio(const DepthView& source, const DepthView& target, const Isometry3& T_a,
+                          const Isometry3& T_b, const PoseLikelihoodParams& params = {});
+
+}  // namespace gasp

@@ -1,0 +1,81 @@
+#include "gasp/pipeline/pose_likelihood.h"
+
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "gasp/core/depth_image.h"
+
+namespace gasp {
+
+namespace {
+
+/// One sample's l under T_to_from (the header's), or nullopt where it lands on no measured depth.
+class SampleTerm {
+ public:
+  SampleTerm(const DepthView& to, const PoseLikelihoodParams& p)
+      : to_(to), p_(p), scale_(p.inlier_prior / (1.0 - p.inlier_prior) * p.outlier_range_m / std::sqrt(2.0 * M_PI)) {}
+  std::optional<double> operator()(const Eigen::Vector3d& point, const Isometry3& T_to_from) const {
+    const Eigen::Vector3d q = T_to_from * point;
+    double uf = 0, vf = 0;
+    if (!to_.intrinsics.project(q, uf, vf)) return std::nullopt;
+    const int ut = static_cast<int>(std::lround(uf)), vt = static_cast<int>(std::lround(vf));
+    if (ut < 0 || vt < 0 || ut >= to_.depth_m.cols || vt >= to_.depth_m.rows) return std::nullopt;
+    const float zt = to_.depth_m.at<float>(vt, ut);
+    if (!isValidDepth(zt)) return std::nullopt;
+    const double sigma = p_.sigma_m + p_.sigma_per_m2 * zt * zt;
+    const double e = (q.z() - zt) / sigma;
+    return std::log1p(scale_ / sigma * std::exp(-0.5 * e * e));
+  }
+
+ private:
+  const DepthView& to_;
+  const PoseLikelihoodParams& p_;
+  double scale_;
+};
+
+/// Adds `from`'s patches' means of l(a) - l(b) over their counted samples, outside the dead band.
+void oneWay(const DepthView& from, const DepthView& to, const Isometry3& T_to_from_a, const Isometry3& T_to_from_b,
+            const PoseLikelihoodParams& p, LikelihoodRatio& out) {
+  const cv::Mat& d = from.depth_m;
+  const cv::Mat& labels = from.segmentation.labels;
+  const std::size_t n = from.segmentation.patches.size();
+  if (n == 0 || labels.size() != d.size() || to.depth_m.empty()) return;
+  std::vector<double> sum(n, 0.0);
+  std::vector<int> count(n, 0);
+  const SampleTerm term(to, p);
+  for (int v = 0; v < d.rows; v += p.pixel_step)
+    for (int u = 0; u < d.cols; u += p.pixel_step) {
+      const int label = labels.at<int>(v, u);
+      const float z0 = d.at<float>(v, u);
+      if (label < 0 || static_cast<std::size_t>(label) >= n || !isValidDepth(z0)) continue;
+      const Eigen::Vector3d point = from.intrinsics.unproject(u, v, z0);
+      const auto la = term(point, T_to_from_a), lb = term(point, T_to_from_b);
+      if (!la || !lb) continue;
+      const std::size_t k = static_cast<std::size_t>(label);
+      sum[k] += *la - *lb;
+      ++count[k];
+    }
+  for (std::size_t k = 0; k < n; ++k) {
+    if (count[k] == 0) continue;
+    ++out.patches;
+    const double mean = sum[k] / count[k];
+    if (std::abs(mean) <= p.patch_deadband_nats) continue;
+    out.log_ratio += mean;
+    out.standard_error += mean * mean;  // the square root is taken at the end
+  }
+}
+
+}  // namespace
+
+LikelihoodRatio logLikelihoodRatio(const DepthView& source, const DepthView& target, const Isometry3& T_a,
+                                   const Isometry3& T_b, const PoseLikelihoodParams& params) {
+  LikelihoodRatio out;
+  if (!T_a.matrix().allFinite() || !T_b.matrix().allFinite()) return out;
+  oneWay(source, target, T_a, T_b, params, out);
+  oneWay(target, source, T_a.inverse(), T_b.inverse(), params, out);
+  out.standard_error = std::sqrt(out.standard_error);
+  return out;
+}
+
+}  // namespace gasp
