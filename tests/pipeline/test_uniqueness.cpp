@@ -24,7 +24,7 @@ RegistrationResult fullPose(const Isometry3& T) {
   return r;
 }
 
-const double kRansacInlierDistance = 0.05;
+const double kDistinct = 0.10;  // twice RANSAC's inlier distance, as the pipeline uses
 
 }  // namespace
 
@@ -51,16 +51,16 @@ TEST(PoseLikelihood, TheTruthExplainsTheViewsBetterThanPosesAFewCentimetresOff) 
 TEST(Uniqueness, KeepsTheMoreLikelyPoseAndTakesABetterAlternative) {
   const Pair p = makePair("room", 10, 20);
   const RegistrationResult truth = fullPose(p.T_b_a);
-  const RegistrationResult slid = fullPose(Eigen::Translation3d(0.10, 0, 0) * p.T_b_a);
+  const RegistrationResult slid = fullPose(Eigen::Translation3d(0.15, 0, 0) * p.T_b_a);
   const CertifyParams params;
-  const Uniqueness kept = compareAlternative(p.a, p.b, truth, slid, kRansacInlierDistance, params);
-  std::printf("log-likelihood ratio of the truth over a 10 cm slide: %.1f\n", kept.log_ratio);
+  const Uniqueness kept = compareAlternative(p.a, p.b, truth, slid, kDistinct, params);
+  std::printf("log-likelihood ratio of the truth over a 15 cm slide: %.1f\n", kept.log_ratio);
   EXPECT_TRUE(kept.tested);
-  EXPECT_GT(kept.distance_m, 0.09);
+  EXPECT_GT(kept.distance_m, 0.14);
   EXPECT_GT(kept.log_ratio, std::log(params.min_likelihood_ratio));
   EXPECT_FALSE(kept.refused);
   EXPECT_FALSE(kept.take_alternative);
-  const Uniqueness taken = compareAlternative(p.a, p.b, slid, truth, kRansacInlierDistance, params);
+  const Uniqueness taken = compareAlternative(p.a, p.b, slid, truth, kDistinct, params);
   EXPECT_TRUE(taken.tested);
   EXPECT_NEAR(taken.log_ratio, -kept.log_ratio, 1e-9);
   EXPECT_TRUE(taken.take_alternative);
@@ -83,7 +83,7 @@ TEST(Uniqueness, RefusesWhenNeitherPoseIsEnoughMoreLikely) {
     // The plane is x = 3 m in the world: the world's y axis in the target camera lies in it exactly.
     const Eigen::Vector3d along = fb.T_world_camera.linear().transpose() * Eigen::Vector3d::UnitY();
     const Uniqueness u = compareAlternative(a, b, fullPose(T), fullPose(Eigen::Translation3d(0.2 * along) * T),
-                                            kRansacInlierDistance, CertifyParams{});
+                                            kDistinct, CertifyParams{});
     std::printf("%s: log-likelihood ratio of the truth over a 20 cm slide along the plane %.1f +- %.1f\n",
                 noise ? "Kinect noise" : "no noise", u.log_ratio, u.standard_error);
     EXPECT_TRUE(u.tested) << noise;
@@ -97,16 +97,16 @@ TEST(Uniqueness, RefusesWhenNeitherPoseIsEnoughMoreLikely) {
   }
 }
 
-TEST(Uniqueness, PosesCloserThanTheInlierDistanceAreNotAlternatives) {
+TEST(Uniqueness, PosesCloserThanTwiceTheInlierDistanceAreNotAlternatives) {
   const Pair p = makePair("room", 10, 20);
-  const Uniqueness u = compareAlternative(p.a, p.b, fullPose(p.T_b_a), fullPose(Eigen::Translation3d(0.02, 0, 0) * p.T_b_a),
-                                          kRansacInlierDistance, CertifyParams{});
+  const Uniqueness u = compareAlternative(p.a, p.b, fullPose(p.T_b_a), fullPose(Eigen::Translation3d(0.08, 0, 0) * p.T_b_a),
+                                          kDistinct, CertifyParams{});
   EXPECT_FALSE(u.tested);
   EXPECT_TRUE(std::isnan(u.log_ratio));
   CertifyParams off;
   off.min_likelihood_ratio = 0.0;
   EXPECT_FALSE(compareAlternative(p.a, p.b, fullPose(p.T_b_a), fullPose(Eigen::Translation3d(0.3, 0, 0) * p.T_b_a),
-                                  kRansacInlierDistance, off)
+                                  kDistinct, off)
                    .tested);
   off.min_likelihood_ratio = 0.5;
   EXPECT_THROW(validate(off), Error);
@@ -123,12 +123,12 @@ TEST(Uniqueness, APartialPoseMovedAlongItsFreeDirectionsIsTheSamePose) {
   const Eigen::Vector3d along = plane->normal.unitOrthogonal();
   RegistrationResult slid = r.pose;
   slid.T_target_source = Eigen::Translation3d(0.3 * along) * r.pose.T_target_source;
-  const Uniqueness same = compareAlternative(p.a, p.b, r.pose, slid, kRansacInlierDistance, CertifyParams{});
+  const Uniqueness same = compareAlternative(p.a, p.b, r.pose, slid, kDistinct, CertifyParams{});
   EXPECT_FALSE(same.tested) << same.distance_m;
-  // Lifted off the floor by 10 cm it is another pose.
+  // Lifted off the floor by 15 cm it is another pose.
   RegistrationResult lifted = r.pose;
-  lifted.T_target_source = Eigen::Translation3d(0.1 * plane->normal) * r.pose.T_target_source;
-  const Uniqueness other = compareAlternative(p.a, p.b, r.pose, lifted, kRansacInlierDistance, CertifyParams{});
+  lifted.T_target_source = Eigen::Translation3d(0.15 * plane->normal) * r.pose.T_target_source;
+  const Uniqueness other = compareAlternative(p.a, p.b, r.pose, lifted, kDistinct, CertifyParams{});
   EXPECT_TRUE(other.tested);
   EXPECT_FALSE(other.refused);
   EXPECT_GT(other.log_ratio, 0.0);

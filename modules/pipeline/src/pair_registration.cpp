@@ -86,7 +86,7 @@ void testUniqueness(const DepthView& source, const DepthView& target, const Hypo
     alternative.pose.success = !c.partial;
     alternative.pose.partial = c.partial;
     if (c.partial) alternative.pose.unobservable_directions = c.free_directions;
-    u = compareAlternative(source, target, r.pose, alternative.pose, p.hypothesise.pose.ransac.inlier.distance_m,
+    u = compareAlternative(source, target, r.pose, alternative.pose, 2.0 * p.hypothesise.pose.ransac.inlier.distance_m,
                            p.certify);
   }
   const double ms = msSince(t0);

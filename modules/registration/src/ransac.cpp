@@ -98,10 +98,12 @@ class Modes {
     for (const auto& ci : c) points.push_back(ci.p_source);
     spread_ = pointSpread(points);
   }
-  bool distinct(const Isometry3& a, const Isometry3& b) const { return rmsDisplacement(a, b, spread_) > distinct_m_; }
+  bool distinct(const Isometry3& a, const Isometry3& b, double apart_m) const {
+    return rmsDisplacement(a, b, spread_) > apart_m;
+  }
   void add(const Isometry3& T, const Score& sc) {
     for (auto& m : modes_)
-      if (!distinct(m.T, T)) {
+      if (!distinct(m.T, T, distinct_m_)) {
         if (sc.betterThan(m.sc)) m = {T, sc};
         return;
       }
@@ -111,11 +113,11 @@ class Modes {
                                         [](const Mode& x, const Mode& y) { return y.sc.betterThan(x.sc); });
     modes_.erase(worst);
   }
-  /// The best mode distinct from T, best first.
-  std::vector<Isometry3> distinctFrom(const Isometry3& T) const {
+  /// The modes more than apart_m from T, best first.
+  std::vector<Isometry3> distinctFrom(const Isometry3& T, double apart_m) const {
     std::vector<Mode> d;
     for (const auto& m : modes_)
-      if (distinct(m.T, T)) d.push_back(m);
+      if (distinct(m.T, T, apart_m)) d.push_back(m);
     std::sort(d.begin(), d.end(), [](const Mode& x, const Mode& y) { return x.sc.betterThan(y.sc); });
     std::vector<Isometry3> out;
     for (const auto& m : d) out.push_back(m.T);
@@ -239,9 +241,11 @@ RansacResult ransacPose(const std::vector<PatchCorrespondence>& c, const RansacP
   }
   result.inliers = std::move(inliers);
   result.success = true;
-  for (Isometry3 T : modes.distinctFrom(best_T)) {  // re-fitting may bring a mode onto the best model
-    std::vector<int> alternative = refit(c, params, T);
-    if (static_cast<int>(alternative.size()) < params.min_inliers || !modes.distinct(T, best_T)) continue;
+  for (Isometry3 T : modes.distinctFrom(best_T, 2.0 * params.inlier.distance_m)) {
+    std::vector<int> alternative = refit(c, params, T);  // re-fitting may bring a mode near the best model
+    if (static_cast<int>(alternative.size()) < params.min_inliers ||
+        !modes.distinct(T, best_T, 2.0 * params.inlier.distance_m))
+      continue;
     result.alternative_T_target_source = T;
     result.alternative_inliers = std::move(alternative);
     break;

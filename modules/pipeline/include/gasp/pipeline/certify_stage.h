@@ -21,8 +21,8 @@
 /// (pose_likelihood.h), and by kUniquenessStandardErrors standard errors of the ratio, than the
 /// best distinct alternative RANSAC found, refined like it and claimed by the rule above; where the alternative explains them that much better it is taken
 /// instead, and otherwise there is no estimate ("not unique"). Distinct: the two poses place the
-/// source patches' centroids more than RANSAC's inlier distance apart (RMS), in the chosen pose's
-/// observed directions.
+/// source patches' centroids more than twice RANSAC's inlier distance apart (RMS), in the chosen
+/// pose's observed directions: they cannot both lie within it of the truth.
 #include <limits>
 #include <optional>
 #include <string>
@@ -122,7 +122,7 @@ struct Uniqueness {
 };
 
 /// `chosen` and `alternative` are claimed poses of the same views (certify()); `distinct_m`:
-/// RANSAC's inlier distance. Not tested when the ratio is 0 or the two are not distinct.
+/// twice RANSAC's inlier distance. Not tested when the ratio is 0 or the two are not distinct.
 Uniqueness compareAlternative(const DepthView& source, const DepthView& target, const RegistrationResult& chosen,
                               const RegistrationResult& alternative, double distinct_m, const CertifyParams& params);
 

@@ -27,9 +27,11 @@
 /// twice. Single-threaded and deterministic for a seed.
 ///
 /// The best distinct alternative: the best-scoring model among those sampled (with at least
-/// min_inliers inliers) that places the source centroids more than the inlier distance away from
-/// the best model's placement, RMS (rmsDisplacement, pose.h) -- so most of its inliers cannot be
-/// the best model's. It is re-fitted like the best model. The pipeline's certificate asks whether
+/// min_inliers inliers) that places the source centroids more than twice the inlier distance
+/// away from the best model's placement, RMS (rmsDisplacement, pose.h), so that the two cannot
+/// both lie within the inlier distance of one pose. It is re-fitted like the best model; the
+/// sampled models are kept one per placement (those within the inlier distance of each other
+/// count as one). The pipeline's certificate asks whether
 /// the chosen pose explains the views better than it (certify_stage.h, uniqueness).
 #include <optional>
 #include <string>
