@@ -61,6 +61,18 @@ void printOdometrySummary(const DepthOdometry& odometry) {
               median(reg));
 }
 
+void printThroughput(const std::vector<OdometryFrame>& frames, double wall_s) {
+  if (frames.empty() || !(wall_s > 0.0)) return;
+  std::vector<double> intervals;
+  for (std::size_t i = 1; i < frames.size(); ++i) intervals.push_back(frames[i].timestamp - frames[i - 1].timestamp);
+  const double period = intervals.empty() ? 0.0 : eval::computeStatistics(intervals).median;
+  const double duration = frames.back().timestamp - frames.front().timestamp + period;
+  const double n = static_cast<double>(frames.size());
+  std::printf("wall_time_s: %.2f\nfps: %.1f\n", wall_s, n / wall_s);
+  if (duration > 0.0)
+    std::printf("real_time_factor: %.2f (the sequence spans %.2f s)\n", duration / wall_s, duration);
+}
+
 void printEvaluation(const Trajectory& ground_truth, const Trajectory& estimate, std::size_t tracked,
                      const std::string& prefix) {
   if (ground_truth.empty()) return;

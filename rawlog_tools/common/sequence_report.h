@@ -40,6 +40,11 @@ void writeGraph(OutputFile& file, const Graph& graph) {
 /// stages' own medians).
 void printOdometrySummary(const DepthOdometry& odometry);
 
+/// Prints wall_time_s: (of the run over the frames, reading included), fps: (frames per second of
+/// it) and real_time_factor: (the sequence's duration -- its timestamps' span plus one median
+/// frame interval -- over the wall time: >= 1 keeps up with the sensor).
+void printThroughput(const std::vector<OdometryFrame>& frames, double wall_s);
+
 /// Prints `<prefix>ate_rmse_m:` and `<prefix>rpe_1s_rmse:` of `estimate` against `ground_truth`
 /// (TUM's definitions, gasp/eval), or why they cannot be computed: among them, fewer than two
 /// `tracked` frames (the first frame and the predicted poses of lost frames measure nothing).

@@ -12,11 +12,13 @@
 // some frames were not tracked (their poses are predicted; see --frames-csv).
 #include <CLI/CLI.hpp>
 
+#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <optional>
 
 #include "gasp/core/error.h"
+#include "gasp/core/stopwatch.h"
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/mrpt/pose_graph.h"
 #include "gasp/odometry/odometry.h"
@@ -65,12 +67,14 @@ int main(int argc, char** argv) {
     gasp::tools::reportIntrinsics(stdout, sequence.intrinsicsSummary(), sequence.intrinsicsWarning());
     const gasp::Trajectory gt = gt_path.empty() ? sequence.groundTruth() : gasp::readTumTrajectory(gt_path);
     // Each frame is segmented while the one before it is registered (frames_ahead.h).
+    const auto run_start = std::chrono::steady_clock::now();
     const gasp::tools::SequenceEnd end = gasp::tools::forEachFrameWithViewAhead(sequence, params, sequential, [&](const gasp::RgbdFrame& frame, auto segmented) {
       const gasp::OdometryFrame& f =
           odometry.addFrame(frame.timestamp, frame.depth_m, frame.depth_intrinsics, std::move(segmented));
       if (odometry.frames().size() % 50 == 0)
         std::fprintf(stderr, "frame %zu: %zu tracked of %zu\n", f.index, odometry.trackedCount(), odometry.frames().size());
     });
+    const double wall_s = gasp::msSince(run_start) / 1000.0;
 
     const auto& frames = odometry.frames();
     gasp::OutputFile& out = outputs.at("--out");
@@ -89,6 +93,7 @@ int main(int argc, char** argv) {
     }
 
     gasp::tools::printOdometrySummary(odometry);
+    gasp::tools::printThroughput(frames, wall_s);
     std::printf("trajectory: %s\n", out_path.c_str());
     gasp::tools::printEvaluation(gt, odometry.trajectory(), odometry.trackedCount());
     if (const int code = gasp::tools::reportPartial(end); code >= 0) return code;

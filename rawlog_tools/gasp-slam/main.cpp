@@ -15,6 +15,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cmath>
+#include <chrono>
 #include <cstdio>
 #include <ostream>
 #include <iostream>
@@ -22,6 +23,7 @@
 #include <vector>
 
 #include "gasp/core/error.h"
+#include "gasp/core/stopwatch.h"
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/mrpt/keyframe_map.h"
 #include "gasp/mrpt/pose_graph.h"
@@ -107,6 +109,7 @@ int main(int argc, char** argv) {
     std::vector<gasp::RgbdFrame> keyframes;  // for --simplemap and --cloud
     const bool keep_keyframes = map_output.wanted();
     // Each frame is segmented while the one before it is registered (frames_ahead.h).
+    const auto run_start = std::chrono::steady_clock::now();
     const gasp::tools::SequenceEnd end = gasp::tools::forEachFrameWithViewAhead(sequence, params.odometry, sequential, [&](const gasp::RgbdFrame& frame, auto segmented) {
       if (!slam) {
         // World = the first frame's robot frame: the first camera sits at its sensorPose.
@@ -126,6 +129,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "frame %zu: %zu tracked of %zu, %zu loop closures\n", f.index,
                      slam->odometry().trackedCount(), slam->odometry().frames().size(), slam->loopClosures().size());
     });
+    const double wall_s = gasp::msSince(run_start) / 1000.0;
     if (!slam) throw gasp::Error(sequence.describe() + ": no frame to use");
 
     const auto& frames = slam->odometry().frames();
@@ -183,6 +187,7 @@ int main(int argc, char** argv) {
     gasp::tools::writeMapOutputs(map_output, outputs, keyframes, keyframe_poses, "keyframes", keyframe_covariances);
 
     gasp::tools::printOdometrySummary(slam->odometry());
+    gasp::tools::printThroughput(frames, wall_s);
     std::size_t tried = 0, relocalisations = 0;
     for (const auto& a : slam->attempts()) {  // an attempt is accepted while its closure is in the graph
       tried += a.relocalisation ? 0 : 1;

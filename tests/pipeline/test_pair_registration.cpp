@@ -416,7 +416,7 @@ TEST(FinerScaleRetry, ClaimsNoLookAlikePoseOnRepeatedObjects) {
   // mutual associations align look-alike boxes (90 deg and 8 deg off, 12-18 % violations), which
   // the retry's visibility limit (one_way_max_violation_ratio, 8 %) declines. Loosened to 30 %
   // (the default scale's limit was 30 % until it became 15 %, which declines them too), the wrong
-  // pose is claimed: those limits are what decline it. (Since the extrapolated dense rounds,
+  // pose is claimed: those limits are what decline it, and the uniqueness test. (Since the extrapolated dense rounds,
   // docs/pipeline.md, 3 -> 13 is registered right at the default scale, 1.4 mm off: see below.)
   for (const auto& [from, to] : {std::pair{33, 43}, std::pair{3, 13}}) {
     const Pair p = makePair("repeated", from, to);
@@ -434,6 +434,7 @@ TEST(FinerScaleRetry, ClaimsNoLookAlikePoseOnRepeatedObjects) {
     loose.certify.visibility.max_violation_ratio = 0.3;
     loose.certify.visibility.max_two_way_violation_ratio = 1.0;  // which declines a look-alike too
     loose.refine.slide_scan.enabled = false;  // 3 -> 13's loosened pose slid along a box: the scan moves it right
+    loose.certify.min_likelihood_ratio = 0.0;  // the uniqueness test declines 33 -> 43's look-alike too (below)
     if (from == 3) {
       // The 16 rounds with the extrapolation: the default scale's pose, right; nothing to retry.
       const PairResult right = registerViews(p.a, p.b, loose);
@@ -458,6 +459,13 @@ TEST(FinerScaleRetry, ClaimsNoLookAlikePoseOnRepeatedObjects) {
       const PairResult d = registerViews(p.a, p.b, two_way);
       EXPECT_FALSE(d.pose.success);
       EXPECT_NE(d.pose.reason.find("seen from both views"), std::string::npos) << d.pose.reason;
+      // So does the certificate's uniqueness test: RANSAC's distinct alternative explains the
+      // views almost as well as the look-alike.
+      PairParams unique = loose;
+      unique.certify.min_likelihood_ratio = PairParams{}.certify.min_likelihood_ratio;
+      const PairResult u = registerViews(p.a, p.b, unique);
+      EXPECT_FALSE(u.pose.success);
+      EXPECT_NE(u.pose.reason.find("not unique"), std::string::npos) << u.pose.reason;
     }
     loose.refine.slide_scan.enabled = true;
     const PairResult s = registerViews(p.a, p.b, loose);

@@ -193,9 +193,13 @@ TEST(RealPairs, WideEdgeGatesStopTheCabinetSlide) {
   narrow.refine.dense.extrapolation_max = 0.0;
   narrow.retry.finer_area_factor = 0.0;
   // The slid pose violates the other view's free space from both views (10 % and 7 %): the
-  // two-way limit declines it as well. Without that limit it is claimed.
+  // two-way limit declines it as well. Without that limit the certificate's uniqueness test
+  // declines it (RANSAC's distinct alternative explains the views about as well); without both it
+  // is claimed.
   EXPECT_TRUE(expectRightOrDeclined(p, registerViews(p.a, p.b, narrow), "seen from both views"));
   narrow.certify.visibility.max_two_way_violation_ratio = 1.0;
+  EXPECT_TRUE(expectRightOrDeclined(p, registerViews(p.a, p.b, narrow), "not unique"));
+  narrow.certify.min_likelihood_ratio = 0.0;
   const PairResult n = registerViews(p.a, p.b, narrow);
   ASSERT_TRUE(n.pose.success) << n.pose.reason;
   EXPECT_FALSE(n.wide_edge_pose);
@@ -226,11 +230,17 @@ TEST(RealPairs, ViolationsSeenFromBothViewsDeclineALookAlikeAlignment) {
   EXPECT_LT(rotationErrorDeg(p, retried), 2.0);
   PairParams loose = defaultScaleOnly();
   loose.certify.visibility.max_two_way_violation_ratio = 1.0;  // the check before
+  loose.certify.min_likelihood_ratio = 0.0;                     // and no uniqueness test (below)
   const PairResult w = registerViews(p.a, p.b, loose);
   ASSERT_TRUE(w.pose.success) << w.pose.reason;
   EXPECT_GT(translationError(p, w), 0.5);
   EXPECT_GT(w.visibility.violation_ratio_lesser, PairParams{}.certify.visibility.max_two_way_violation_ratio);
   EXPECT_LT(w.visibility.violation_ratio, PairParams{}.certify.visibility.max_violation_ratio);
+  // The certificate's uniqueness test declines the look-alike as well: RANSAC's distinct
+  // alternative explains the views about as well (certify_stage.h).
+  loose.certify.min_likelihood_ratio = PairParams{}.certify.min_likelihood_ratio;
+  const PairResult u = registerViews(p.a, p.b, loose);
+  EXPECT_TRUE(expectRightOrDeclined(p, u, "not unique"));
 }
 
 TEST(RealPairs, ARolledCabinetPairNeedsMoreThanEightRounds) {
