@@ -25,14 +25,14 @@ int reportPartial(const SequenceEnd& end) {
 }
 
 void writeFramesCsv(std::ostream& out, const std::vector<OdometryFrame>& frames) {
-  out << "index,timestamp,tracked,keyframe,reference,patches,inliers,deskewed,segmentation_ms,registration_ms,scene_change,partial,reason\n";
+  out << "index,timestamp,tracked,keyframe,reference,patches,inliers,deskewed,segmentation_ms,registration_ms,scene_change,partial,tracking_path,reason\n";
   for (const auto& f : frames) {
     std::string reason = f.reason;
     std::replace(reason.begin(), reason.end(), '"', '\'');
     char buf[200];
-    std::snprintf(buf, sizeof buf, "%zu,%.6f,%d,%d,%zu,%d,%d,%d,%.2f,%.2f,%d,%d,", f.index, f.timestamp, f.tracked ? 1 : 0,
+    std::snprintf(buf, sizeof buf, "%zu,%.6f,%d,%d,%zu,%d,%d,%d,%.2f,%.2f,%d,%d,%d,", f.index, f.timestamp, f.tracked ? 1 : 0,
                   f.keyframe ? 1 : 0, f.reference, f.patches, f.inliers, f.deskewed ? 1 : 0, f.segmentation_ms,
-                  f.registration_ms, f.scene_change ? 1 : 0, f.partial ? 1 : 0);
+                  f.registration_ms, f.scene_change ? 1 : 0, f.partial ? 1 : 0, f.tracking_path ? 1 : 0);
     out << buf << '"' << reason << "\"\n";
   }
 }
@@ -55,6 +55,10 @@ void printOdometrySummary(const DepthOdometry& odometry) {
   std::size_t partial = 0;
   for (const auto& f : frames) partial += f.partial ? 1 : 0;
   std::printf("partial_poses: %zu (tracked with free directions held by the motion prediction)\n", partial);
+  std::size_t fast = 0, after_first = frames.empty() ? 0 : frames.size() - 1;
+  for (const auto& f : frames) fast += f.tracking_path ? 1 : 0;
+  std::printf("tracking_path: %zu of %zu frames (%.1f%%; the rest took the whole pipeline or were lost)\n", fast,
+              after_first, after_first ? 100.0 * static_cast<double>(fast) / static_cast<double>(after_first) : 0.0);
   std::printf("keyframes: %zu\n", odometry.keyframeCount());
   std::printf("graph_components: %zu\n", odometry.componentCount());
   std::printf("median_ms_per_frame: %.1f (medians: segmentation %.1f, registration %.1f)\n", median(total), median(seg),

@@ -120,7 +120,7 @@ TEST(GaspOdometryProgram, TracksThroughASceneChangeByDefault) {
   std::string header;
   std::getline(in, header);
   EXPECT_EQ(header, "index,timestamp,tracked,keyframe,reference,patches,inliers,deskewed,segmentation_ms,"
-                    "registration_ms,scene_change,partial,reason");
+                    "registration_ms,scene_change,partial,tracking_path,reason");
   for (int i = 0; i < 30; ++i) {
     const std::string line = frameLine(out + "/f.csv", i);
     EXPECT_EQ(csvCell(line, 2), "1") << line;

@@ -43,7 +43,12 @@ DepthOdometry::DepthOdometry(const OdometryParams& params, const Isometry3& T_wo
 bool DepthOdometry::track(const DepthView& view, const DepthView& ref, std::size_t ref_index, OdometryFrame& f,
                           const char* attempt, const PairParams& pair, const std::optional<Isometry3>& T_ref_predicted,
                           bool* visibility_refused, const std::optional<Isometry3>& T_ref_motion) {
-  PairResult r = registerViews(view, ref, pair);  // T_ref_frame
+  return take(registerViews(view, ref, pair), ref_index, f, attempt, T_ref_predicted, visibility_refused, T_ref_motion);
+}
+
+bool DepthOdometry::take(PairResult r, std::size_t ref_index, OdometryFrame& f, const char* attempt,
+                         const std::optional<Isometry3>& T_ref_predicted, bool* visibility_refused,
+                         const std::optional<Isometry3>& T_ref_motion) {
   // The free-space check refused a pose, at the default scale or in the finer-scale retry.
   if (visibility_refused && r.visibility_refused) *visibility_refused = true;
   const double dt = f.timestamp - frames_[ref_index].timestamp;
@@ -166,7 +171,19 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
     const Isometry3 T_prev_frame = velocity_ ? stepOf(*velocity_, dt) : Isometry3::Identity();
     const Isometry3 T_key_predicted =
         frames_[keyframe_index_].T_world_camera.inverse() * frames_[prev].T_world_camera * T_prev_frame;
-    if (track(view, *keyframe_view_, keyframe_index_, f, "against keyframe", params_.pair, std::nullopt,
+    // The tracking path: from the constant-velocity prediction, the cheap stages only, taken when
+    // the certificate claims a full pose within the prediction's gate; else the whole pipeline.
+    // Only while the prediction's gate lies within the dense rounds' last gate: they then start
+    // in the basin they end in, where they are as accurate as from RANSAC's pose.
+    if (params_.tracking && velocity_ &&
+        gateAt(dt, params_.scene_change).first <= params_.pair.refine.dense.gates_m.back()) {
+      PairResult t = trackViews(view, *keyframe_view_, T_key_predicted, params_.pair);
+      f.tracking_path = t.pose.success &&
+                        predictionGate(t.pose.T_target_source, T_key_predicted, dt, params_.scene_change).within() &&
+                        take(std::move(t), keyframe_index_, f, "tracking against keyframe");
+    }
+    if (f.tracking_path ||
+        track(view, *keyframe_view_, keyframe_index_, f, "against keyframe", params_.pair, std::nullopt,
               &visibility_refused, T_key_predicted)) {
       const Isometry3 T_key_frame = frames_[keyframe_index_].T_world_camera.inverse() * f.T_world_camera;
       new_keyframe = translationNorm(T_key_frame) > params_.keyframe_distance_m ||

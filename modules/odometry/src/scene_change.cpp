@@ -20,12 +20,6 @@ void requireNonNegative(double v, const char* name) {
     throw Error(std::string("odometry: scene_change.") + name + " must be finite and >= 0");
 }
 
-/// The gate dt seconds after the reference: [m], [deg].
-std::pair<double, double> gateAt(double dt, const SceneChangeParams& p) {
-  const double half_dt2 = 0.5 * dt * dt;
-  return {p.gate_m + p.max_accel_mps2 * half_dt2, p.gate_deg + p.max_angular_accel_radps2 * half_dt2 * 180.0 / M_PI};
-}
-
 }  // namespace
 
 void validate(const SceneChangeParams& p) {
@@ -47,6 +41,11 @@ PairParams sceneChangePairParams(const PairParams& pair, const SceneChangeParams
   out.certify.visibility.max_occluded_ratio = p.max_occluded_ratio;
   out.certify.fallback_max_violation_ratio = p.max_violation_ratio;  // also the finer-scale retry's limit
   return out;
+}
+
+std::pair<double, double> gateAt(double dt, const SceneChangeParams& p) {
+  const double half_dt2 = 0.5 * dt * dt;
+  return {p.gate_m + p.max_accel_mps2 * half_dt2, p.gate_deg + p.max_angular_accel_radps2 * half_dt2 * 180.0 / M_PI};
 }
 
 std::string predictionTooWide(double dt, const SceneChangeParams& p) {

@@ -217,6 +217,40 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
   return retryAtFinerScale(source, target, params, std::move(r));
 }
 
+PairResult trackViews(const DepthView& source, const DepthView& target, const Isometry3& T_target_source_predicted,
+                      const PairParams& p) {
+  validate(p);
+  PairResult r;
+  const ViewsCertificate views = certifyViews(source, target, p.certify);
+  r.views_free_directions = static_cast<int>(views.source_free.cols() + views.target_free.cols());
+  if (views.refusal) {
+    r.pose = *views.refusal;
+    return r;
+  }
+  if (p.refine.dense.rounds == 0) {
+    r.pose.reason = "tracking: no dense rounds (refine.dense_rounds 0)";
+    return r;
+  }
+  RegistrationResult start;
+  start.success = true;
+  start.T_target_source = T_target_source_predicted;
+  const FreeSpaceTest free_space = freeSpaceTest(source, target, p.certify, false);
+  RefineParams refine_params = p.refine;
+  refine_params.solver.partial_poses = refine_params.solver.partial_poses && p.certify.partial_poses;
+  const auto t0 = std::chrono::steady_clock::now();
+  // The patch pairs RANSAC would count as inliers at the prediction stand in for its inliers.
+  ProjectiveTermParams pairs;
+  pairs.max_distance_m = p.hypothesise.pose.ransac.inlier.distance_m;
+  pairs.max_normal_angle_deg = p.hypothesise.pose.ransac.inlier.normal_angle_deg;
+  const Refinement dense = refine(source, target, start, projectivePatchPairs(source, target, start.T_target_source, pairs),
+                                  refine_params, free_space, views.target_plane ? &*views.target_plane : nullptr);
+  record(dense, msSince(t0), r);
+  const auto t1 = std::chrono::steady_clock::now();
+  record(certify(r.pose, dense.rounds.terms, free_space, dense.check, views, p.certify), r);
+  r.timings.certify_ms = msSince(t1);
+  return r;
+}
+
 PairResult registerViews(const DepthView& source, const DepthView& target) {
   static const PairParams defaults;
   return registerViews(source, target, defaults);

@@ -51,4 +51,29 @@ std::vector<PointToPlane> projectiveTerms(const DepthView& source, const DepthVi
   return terms;
 }
 
+std::vector<PatchCorrespondence> projectivePatchPairs(const DepthView& source, const DepthView& target,
+                                                      const Isometry3& T_target_source, const ProjectiveTermParams& p) {
+  validate(p);
+  std::vector<PatchCorrespondence> pairs;
+  const cv::Mat& lt = target.segmentation.labels;
+  if (lt.empty() || !T_target_source.matrix().allFinite()) return pairs;
+  const double cos_max = std::cos(p.max_normal_angle_deg * M_PI / 180.0);
+  for (const SurfacePatch& a : source.segmentation.patches) {
+    if (!a.centroid.allFinite() || !a.normal.allFinite()) continue;
+    const Eigen::Vector3d c_t = T_target_source * a.centroid;
+    double uf = 0, vf = 0;
+    if (!target.intrinsics.project(c_t, uf, vf)) continue;
+    const int ut = static_cast<int>(std::lround(uf)), vt = static_cast<int>(std::lround(vf));
+    if (ut < 0 || vt < 0 || ut >= lt.cols || vt >= lt.rows) continue;
+    const int lb = lt.at<int>(vt, ut);
+    if (lb < 0) continue;
+    const SurfacePatch& b = target.segmentation.patches[static_cast<std::size_t>(lb)];
+    const Eigen::Vector3d n_s = a.normal.normalized(), n_t = b.normal.normalized();
+    if ((T_target_source.linear() * n_s).dot(n_t) < cos_max) continue;
+    if ((c_t - b.centroid).norm() > p.max_distance_m) continue;
+    pairs.push_back(PatchCorrespondence{a.centroid, n_s, b.centroid, n_t, 1.0});
+  }
+  return pairs;
+}
+
 }  // namespace gasp

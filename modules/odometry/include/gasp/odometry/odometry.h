@@ -2,8 +2,10 @@
 /// \file odometry.h GASP over a sequence of depth frames: camera odometry and the pose-graph
 /// constraints a graph-SLAM back-end consumes.
 ///
-/// Each frame is segmented once (superpixels) and registered (registerViews(), the whole pair
-/// front-end) to the current keyframe. When that gives no estimate, it is registered to the frame
+/// Each frame is segmented once (superpixels) and registered to the current keyframe: first by
+/// the tracking path (trackViews(): dense rounds from the constant-velocity prediction, certified,
+/// within the prediction's gate) when a velocity is known, else or when that fails by the whole
+/// pair front-end (registerViews()). When that gives no estimate, it is registered to the frame
 /// before it, and then becomes the keyframe. When neither gives one, its pose is predicted with
 /// the last measured velocity and marked as not tracked: the trajectory goes on, the pose graph
 /// has no edge to it from the past (a break) -- unless the scene changed and the motion prediction
@@ -57,6 +59,9 @@ struct OdometryFrame {
   /// constant-velocity prediction's. `reason` names them.
   bool partial = false;
   int free_directions = 0;
+  /// The pose came from the tracking path (OdometryParams::tracking): dense rounds from the
+  /// constant-velocity prediction against the keyframe, certified; no association or RANSAC.
+  bool tracking_path = false;
   bool deskewed = false;       ///< the depth was deskewed for the rolling shutter before segmenting
   double segmentation_ms = 0.0;  ///< deskew + superpixels
   double registration_ms = 0.0;  ///< all registration attempts
@@ -109,6 +114,10 @@ class DepthOdometry {
   bool track(const DepthView& view, const DepthView& ref, std::size_t ref_index, OdometryFrame& f,
              const char* attempt, const PairParams& pair, const std::optional<Isometry3>& T_ref_predicted = std::nullopt,
              bool* visibility_refused = nullptr, const std::optional<Isometry3>& T_ref_motion = std::nullopt);
+  /// track() with the registration `r` (T_ref_frame) already made.
+  bool take(PairResult r, std::size_t ref_index, OdometryFrame& f, const char* attempt,
+            const std::optional<Isometry3>& T_ref_predicted = std::nullopt, bool* visibility_refused = nullptr,
+            const std::optional<Isometry3>& T_ref_motion = std::nullopt);
 
   OdometryParams params_;
   Isometry3 T_world_first_;

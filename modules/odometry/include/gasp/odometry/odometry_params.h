@@ -29,6 +29,14 @@ struct OdometryParams {
   /// constant-velocity prediction is narrow enough, and taken when the pose lies within its
   /// gate (scene_change.h): a moved object or a person walking in no longer breaks the trajectory.
   SceneChangeParams scene_change;
+  /// The tracking path (odometry.h): while the last step gave a velocity and the prediction's
+  /// gate (scene_change's gate_m + max_accel_mps2 dt^2 / 2) lies within the dense rounds' last
+  /// gate (pair.refine.dense.gates_m, 3 cm: frames at most 0.1 s apart with the defaults), a frame is first
+  /// registered to its keyframe from the constant-velocity prediction by the dense rounds and the
+  /// certificate alone (trackViews()), and taken when the certificate claims a full pose within
+  /// the prediction's gate (scene_change's gate_m / gate_deg, grown with the time since the
+  /// previous frame); otherwise by the whole pipeline. false: the whole pipeline for every frame.
+  bool tracking = true;
 };
 
 /// Throws gasp::Error naming the first invalid parameter (including the pair's).

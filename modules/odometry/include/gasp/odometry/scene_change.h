@@ -14,6 +14,7 @@
 /// poses are a quarter or half turn, or tens of centimetres, away from the truth;
 /// docs/pipeline.md "Violations seen from both views").
 #include <string>
+#include <utility>
 
 #include "gasp/core/pose.h"
 #include "gasp/pipeline/pair_registration.h"
@@ -60,6 +61,9 @@ struct PredictionGate {
   bool within() const { return off_m <= gate_m && off_deg <= gate_deg; }  ///< false for NaN
   std::string describe() const;  ///< "0.004 m / 0.10 deg from the constant-velocity prediction (gate ...)"
 };
+
+/// The gate dt seconds after the reference: [m], [deg].
+std::pair<double, double> gateAt(double dt, const SceneChangeParams& params);
 
 PredictionGate predictionGate(const Isometry3& T_ref_estimated, const Isometry3& T_ref_predicted, double dt,
                               const SceneChangeParams& params);

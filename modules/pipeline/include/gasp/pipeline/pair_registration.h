@@ -138,6 +138,16 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
 /// With the default parameters.
 PairResult registerViews(const DepthView& source, const DepthView& target);
 
+/// The tracking path of a sequence (odometry.h): registers `source` to `target` from a predicted
+/// pose with the cheap stages only -- the view check, the refine stage's dense rounds started at
+/// T_target_source_predicted (no association, RANSAC or patch inliers; no finer-scale retry) and
+/// the certificate. Association is what makes GASP independent of a start; given a good one the
+/// dense rounds alone reach the same pose, and the certificate says when they did not (a caller
+/// then runs registerViews()). The result's association, correspondences and verified sets are
+/// empty. Never throws for data; throws gasp::Error for invalid parameters.
+PairResult trackViews(const DepthView& source, const DepthView& target, const Isometry3& T_target_source_predicted,
+                      const PairParams& params);
+
 /// Stage 1 and the rest: both depth images segmented with params.segment (concurrently), then
 /// registerViews(). Throws gasp::Error for a depth image that does not match the intrinsics.
 PairResult registerDepthImages(const cv::Mat& source_depth_m, const cv::Mat& target_depth_m,

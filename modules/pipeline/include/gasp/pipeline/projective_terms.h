@@ -27,4 +27,16 @@ void validate(const ProjectiveTermParams& params);
 std::vector<PointToPlane> projectiveTerms(const DepthView& source, const DepthView& target,
                                           const Isometry3& T_target_source, const ProjectiveTermParams& params = {});
 
+/// Patch pairs by the same projective association, for a pose known to within a few cm: each
+/// source patch's centroid mapped by T_target_source and projected into the target image pairs
+/// with the target patch under it when the two would be a RANSAC inlier at that pose -- the
+/// mapped centroid within max_distance_m of that patch's centroid, the normals within
+/// max_normal_angle_deg (inlier_criterion.h): the same surface patch cut alike in both views.
+/// What RANSAC's inliers are to the dense rounds -- one term per patch, so that small
+/// structures count beside large planes -- where no association ran (the tracking path,
+/// pair_registration.h). Empty when nothing overlaps.
+std::vector<PatchCorrespondence> projectivePatchPairs(const DepthView& source, const DepthView& target,
+                                                      const Isometry3& T_target_source,
+                                                      const ProjectiveTermParams& params = {});
+
 }  // namespace gasp
