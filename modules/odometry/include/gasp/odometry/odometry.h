@@ -47,7 +47,7 @@ struct OdometryFrame {
   /// the keyframe failed (empty when the keyframe gave the pose).
   std::string reason;
   int patches = 0;             ///< superpixels of the frame
-  int inliers = 0;             ///< RANSAC inliers of the pose (0 when not tracked)
+  int inliers = 0;             ///< RANSAC inliers of the pose (0 when not tracked, and on the tracking path)
   /// Tracked through a scene change (scene_change.h): no strict attempt gave a pose and the
   /// visibility check refused one of theirs; the pose is the scene-change attempt's against the
   /// previous frame, within the gate of the constant-velocity prediction. `reason` says why the
