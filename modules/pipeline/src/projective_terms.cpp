@@ -15,6 +15,22 @@ void validate(const ProjectiveTermParams& p) {
     throw Error("ProjectiveTermParams: max_normal_angle_deg must be in (0, 180]");
 }
 
+namespace {
+
+/// The target pixel a target-frame point projects to, and the patch there; false when it lands
+/// off the image or on no patch.
+bool patchUnder(const DepthView& target, const Eigen::Vector3d& p_t, int& ut, int& vt, int& label) {
+  double uf = 0, vf = 0;
+  if (!target.intrinsics.project(p_t, uf, vf)) return false;
+  ut = static_cast<int>(std::lround(uf)), vt = static_cast<int>(std::lround(vf));
+  const cv::Mat& lt = target.segmentation.labels;
+  if (ut < 0 || vt < 0 || ut >= lt.cols || vt >= lt.rows) return false;
+  label = lt.at<int>(vt, ut);
+  return label >= 0;
+}
+
+}  // namespace
+
 std::vector<PointToPlane> projectiveTerms(const DepthView& source, const DepthView& target,
                                           const Isometry3& T_target_source, const ProjectiveTermParams& p) {
   validate(p);
@@ -33,12 +49,8 @@ std::vector<PointToPlane> projectiveTerms(const DepthView& source, const DepthVi
       if (!isValidDepth(z)) continue;
       const Eigen::Vector3d p_s = source.intrinsics.unproject(u, v, z);
       const Eigen::Vector3d p_t = T_target_source * p_s;
-      double uf = 0, vf = 0;
-      if (!target.intrinsics.project(p_t, uf, vf)) continue;
-      const int ut = static_cast<int>(std::lround(uf)), vt = static_cast<int>(std::lround(vf));
-      if (ut < 0 || vt < 0 || ut >= lt.cols || vt >= lt.rows) continue;
-      const int lb = lt.at<int>(vt, ut);
-      if (lb < 0) continue;
+      int ut = 0, vt = 0, lb = -1;
+      if (!patchUnder(target, p_t, ut, vt, lb)) continue;
       const float zt = target.depth_m.at<float>(vt, ut);
       if (!isValidDepth(zt)) continue;
       const Eigen::Vector3d q = target.intrinsics.unproject(ut, vt, zt);
@@ -61,12 +73,8 @@ std::vector<PatchCorrespondence> projectivePatchPairs(const DepthView& source, c
   for (const SurfacePatch& a : source.segmentation.patches) {
     if (!a.centroid.allFinite() || !a.normal.allFinite()) continue;
     const Eigen::Vector3d c_t = T_target_source * a.centroid;
-    double uf = 0, vf = 0;
-    if (!target.intrinsics.project(c_t, uf, vf)) continue;
-    const int ut = static_cast<int>(std::lround(uf)), vt = static_cast<int>(std::lround(vf));
-    if (ut < 0 || vt < 0 || ut >= lt.cols || vt >= lt.rows) continue;
-    const int lb = lt.at<int>(vt, ut);
-    if (lb < 0) continue;
+    int ut = 0, vt = 0, lb = -1;
+    if (!patchUnder(target, c_t, ut, vt, lb)) continue;
     const SurfacePatch& b = target.segmentation.patches[static_cast<std::size_t>(lb)];
     const Eigen::Vector3d n_s = a.normal.normalized(), n_t = b.normal.normalized();
     if ((T_target_source.linear() * n_s).dot(n_t) < cos_max) continue;
