@@ -175,12 +175,14 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
     // the certificate claims a full pose within the prediction's gate; else the whole pipeline.
     // Only while the prediction's gate lies within the dense rounds' last gate: they then start
     // in the basin they end in, where they are as accurate as from RANSAC's pose.
-    if (params_.tracking && velocity_ &&
+    if (params_.tracking && velocity_ && params_.pair.refine.dense.rounds > 0 &&
         gateAt(dt, params_.scene_change).first <= params_.pair.refine.dense.gates_m.back()) {
       PairResult t = trackViews(view, *keyframe_view_, T_key_predicted, params_.pair);
+      const std::string before = f.reason;  // a failed shortcut leaves no reason: the pipeline runs next
       f.tracking_path = t.pose.success &&
                         predictionGate(t.pose.T_target_source, T_key_predicted, dt, params_.scene_change).within() &&
                         take(std::move(t), keyframe_index_, f, "tracking against keyframe");
+      if (!f.tracking_path) f.reason = before;
     }
     if (f.tracking_path ||
         track(view, *keyframe_view_, keyframe_index_, f, "against keyframe", params_.pair, std::nullopt,

@@ -153,8 +153,9 @@ Uniqueness compareAlternative(const DepthView& source, const DepthView& target, 
   const Isometry3 nearest = chosen.partial ? withPrediction(chosen, alternative.T_target_source) : chosen.T_target_source;
   u.distance_m = rmsDisplacement(nearest, alternative.T_target_source, pointSpread(centroids));
   if (!(u.distance_m > distinct_m)) return u;
-  u.tested = true;
   const LikelihoodRatio lr = logLikelihoodRatio(source, target, chosen.T_target_source, alternative.T_target_source);
+  if (lr.patches == 0) return u;  // no sample lands under both poses: nothing to compare
+  u.tested = true;
   u.log_ratio = lr.log_ratio;
   u.standard_error = lr.standard_error;
   const double needed = std::max(std::log(params.min_likelihood_ratio), kUniquenessStandardErrors * lr.standard_error);

@@ -64,17 +64,28 @@ void record(const Certificate& c, PairResult& r) {
 }
 
 /// The certificate's uniqueness test (certify_stage.h): the best distinct alternative RANSAC found
-/// for hypothesis `h` is refined and certified like the claimed pose in `r`, and the more likely
-/// of the two stays claimed only when it is min_likelihood_ratio times more likely.
-void testUniqueness(const DepthView& source, const DepthView& target, const Hypothesis& h, const PairParams& p,
-                    const RefineParams& refine_params, const FreeSpaceTest& free_space, const ViewsCertificate& views,
-                    PairResult& r) {
+/// for hypothesis `h` must pass the guided verification as the hypothesis did, and is refined and
+/// certified like the claimed pose in `r`; the more likely of the two stays claimed only when it
+/// is min_likelihood_ratio times more likely.
+void testUniqueness(const DepthView& source, const DepthView& target, const AssociatedViews& a, const Hypothesis& h,
+                    const PairParams& p, const RefineParams& refine_params, const FreeSpaceTest& free_space,
+                    const ViewsCertificate& views, PairResult& r) {
   const auto t0 = std::chrono::steady_clock::now();
   RegistrationResult start;
   start.success = true;
   start.T_target_source = *h.pose.alternative_T_target_source;
   start.inliers = h.pose.alternative_inliers;
   start.num_inliers = static_cast<int>(start.inliers.size());
+  start.ransac_iterations = h.pose.ransac_iterations;
+  start.ransac_ms = h.pose.ransac_ms;
+  int guided_support = -1;
+  if (p.hypothesise.guided.enabled) {
+    guided_support = static_cast<int>(guidedAt(a, start.T_target_source, p.hypothesise.guided).size());
+    if (guided_support < p.hypothesise.guided.min_support) {
+      r.timings.certify_ms += msSince(t0);
+      return;
+    }
+  }
   std::vector<PatchCorrespondence> inliers;
   for (int i : start.inliers) inliers.push_back(r.correspondences[static_cast<std::size_t>(i)]);
   Refinement alternative = refine(source, target, start, inliers, refine_params, free_space,
@@ -100,6 +111,7 @@ void testUniqueness(const DepthView& source, const DepthView& target, const Hypo
     r.timings = timings;
     r.alternative_taken = true;
     r.uniqueness_log_ratio = -u.log_ratio;
+    if (guided_support >= 0) r.guided_support = guided_support;
   } else if (u.refused) {
     Certificate refusal;
     refusal.reason = u.reason;
@@ -157,7 +169,7 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
   r.timings.certify_ms = msSince(t1);
   if (r.pose.estimated() && dense && h.verified && h.pose.alternative_T_target_source &&
       p.certify.min_likelihood_ratio > 0.0)
-    testUniqueness(source, target, h, p, refine_params, free_space, views, r);
+    testUniqueness(source, target, a, h, p, refine_params, free_space, views, r);
   if (r.plane_hypothesis && !r.pose.estimated())
     r.pose.reason = no_hypothesis + "; from the views' dominant planes: " + r.pose.reason;
   if (!r.pose.success || !p.hypothesise.guided.enabled) return r;

@@ -75,10 +75,11 @@ std::vector<PatchCorrespondence> projectivePatchPairs(const DepthView& source, c
     const Eigen::Vector3d c_t = T_target_source * a.centroid;
     int ut = 0, vt = 0, lb = -1;
     if (!patchUnder(target, c_t, ut, vt, lb)) continue;
+    if (static_cast<std::size_t>(lb) >= target.segmentation.patches.size()) continue;
     const SurfacePatch& b = target.segmentation.patches[static_cast<std::size_t>(lb)];
     const Eigen::Vector3d n_s = a.normal.normalized(), n_t = b.normal.normalized();
-    if ((T_target_source.linear() * n_s).dot(n_t) < cos_max) continue;
-    if ((c_t - b.centroid).norm() > p.max_distance_m) continue;
+    if (!((T_target_source.linear() * n_s).dot(n_t) >= cos_max)) continue;  // NaN fails too
+    if (!((c_t - b.centroid).norm() <= p.max_distance_m)) continue;
     pairs.push_back(PatchCorrespondence{a.centroid, n_s, b.centroid, n_t, 1.0});
   }
   return pairs;

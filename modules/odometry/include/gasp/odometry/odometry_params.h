@@ -31,7 +31,8 @@ struct OdometryParams {
   SceneChangeParams scene_change;
   /// The tracking path (odometry.h): while the last step gave a velocity and the prediction's
   /// gate (scene_change's gate_m + max_accel_mps2 dt^2 / 2) lies within the dense rounds' last
-  /// gate (pair.refine.dense.gates_m, 3 cm: frames at most 0.1 s apart with the defaults), a frame is first
+  /// gate (pair.refine.dense.gates_m, 3 cm: frames at most 0.1 s apart with the defaults; the
+  /// gate's translation only -- its rotation part is left to the certificate), a frame is first
   /// registered to its keyframe from the constant-velocity prediction by the dense rounds and the
   /// certificate alone (trackViews()), and taken when the certificate claims a full pose within
   /// the prediction's gate (scene_change's gate_m / gate_deg, grown with the time since the

@@ -19,7 +19,9 @@
 ///
 /// Uniqueness: a claimed pose must explain the views at least min_likelihood_ratio times better
 /// (pose_likelihood.h), and by kUniquenessStandardErrors standard errors of the ratio, than the
-/// best distinct alternative RANSAC found, refined like it and claimed by the rule above; where the alternative explains them that much better it is taken
+/// best distinct alternative RANSAC found, passing the guided verification, refined by the
+/// dense rounds from RANSAC's pose (no patch refinement, so no slide scan for a full pose) and
+/// claimed by the rule above; where the alternative explains them that much better it is taken
 /// instead, and otherwise there is no estimate ("not unique"). Distinct: the two poses place the
 /// source patches' centroids more than twice RANSAC's inlier distance apart (RMS), in the chosen
 /// pose's observed directions: they cannot both lie within it of the truth.
@@ -111,7 +113,7 @@ constexpr double kUniquenessStandardErrors = 3.0;
 
 /// The uniqueness test of a claimed pose against a distinct alternative (above).
 struct Uniqueness {
-  bool tested = false;  ///< the alternative was claimed and distinct
+  bool tested = false;  ///< the alternative was claimed and distinct, and some sample lands under both
   /// log L(chosen) - log L(alternative) (pose_likelihood.h); NaN when not tested.
   double log_ratio = std::numeric_limits<double>::quiet_NaN();
   double standard_error = 0.0;  ///< of log_ratio

@@ -49,7 +49,7 @@ void validate(const PairParams& params);
 struct PairTimings {
   double association_ms = 0, ransac_ms = 0, refine_ms = 0, dense_ms = 0;
   double guided_ms = 0;    ///< guided verification (association under the pose hypotheses)
-  double certify_ms = 0;   ///< the certificate's free-space test
+  double certify_ms = 0;   ///< the certificate: its free-space test, and the uniqueness test (the alternative's refinement included)
   double retry_segmentation_ms = 0;  ///< the finer-scale retry's segmentation of both views (0: no retry)
   double total() const {
     return association_ms + ransac_ms + refine_ms + dense_ms + guided_ms + certify_ms + retry_segmentation_ms;
@@ -144,7 +144,9 @@ PairResult registerViews(const DepthView& source, const DepthView& target);
 /// the certificate. Association is what makes GASP independent of a start; given a good one the
 /// dense rounds alone reach the same pose, and the certificate says when they did not (a caller
 /// then runs registerViews()). The result's association, correspondences and verified sets are
-/// empty. Never throws for data; throws gasp::Error for invalid parameters.
+/// empty. The dense rounds are anchored by the patch pairs RANSAC would count as inliers at the
+/// prediction (projectivePatchPairs(), projective_terms.h); no patch refinement runs first, so
+/// the slide scan (slide_scan.h) runs for a partial pose only. Never throws for data; throws gasp::Error for invalid parameters.
 PairResult trackViews(const DepthView& source, const DepthView& target, const Isometry3& T_target_source_predicted,
                       const PairParams& params);
 
