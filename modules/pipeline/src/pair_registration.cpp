@@ -63,6 +63,30 @@ void record(const Certificate& c, PairResult& r) {
   r.pose.reason = c.reason;
 }
 
+/// The refine stage's parameters for this pair: partial rounds only where partial poses are claimed.
+RefineParams refineParamsOf(const PairParams& p) {
+  RefineParams out = p.refine;
+  out.solver.partial_poses = out.solver.partial_poses && p.certify.partial_poses;
+  return out;
+}
+
+/// r's correspondences at `indices` (RANSAC's inliers, or its alternative's).
+std::vector<PatchCorrespondence> correspondencesAt(const PairResult& r, const std::vector<int>& indices) {
+  std::vector<PatchCorrespondence> out;
+  out.reserve(indices.size());
+  for (int i : indices) out.push_back(r.correspondences[static_cast<std::size_t>(i)]);
+  return out;
+}
+
+/// The view check (certify_stage.h) in r: its free directions, and its refusal when a view
+/// cannot fix a pose (true: r holds the verdict).
+bool refusedByViews(const ViewsCertificate& views, PairResult& r) {
+  r.views_free_directions = static_cast<int>(views.source_free.cols() + views.target_free.cols());
+  if (!views.refusal) return false;
+  r.pose = *views.refusal;
+  return true;
+}
+
 /// The certificate's uniqueness test (certify_stage.h): the best distinct alternative RANSAC found
 /// for hypothesis `h` must pass the guided verification as the hypothesis did, and is refined and
 /// certified like the claimed pose in `r`; the more likely of the two stays claimed only when it
@@ -86,9 +110,7 @@ void testUniqueness(const DepthView& source, const DepthView& target, const Asso
       return;
     }
   }
-  std::vector<PatchCorrespondence> inliers;
-  for (int i : start.inliers) inliers.push_back(r.correspondences[static_cast<std::size_t>(i)]);
-  Refinement alternative = refine(source, target, start, inliers, refine_params, free_space,
+  Refinement alternative = refine(source, target, start, correspondencesAt(r, start.inliers), refine_params, free_space,
                                   views.target_plane ? &*views.target_plane : nullptr);
   const Certificate c =
       certify(alternative.pose, alternative.rounds.terms, free_space, alternative.check, views, p.certify);
@@ -124,11 +146,7 @@ void testUniqueness(const DepthView& source, const DepthView& target, const Asso
 PairResult registerAtScale(const DepthView& source, const DepthView& target, const PairParams& p, bool finer) {
   PairResult r;
   const ViewsCertificate views = certifyViews(source, target, p.certify);  // can these views fix a pose at all?
-  r.views_free_directions = static_cast<int>(views.source_free.cols() + views.target_free.cols());
-  if (views.refusal) {
-    r.pose = *views.refusal;
-    return r;
-  }
+  if (refusedByViews(views, r)) return r;
   const AssociatedViews a = associate(source, target, p.associate);
   r.association = a.result;
   r.timings.association_ms = a.ms;
@@ -152,13 +170,11 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
 
   const FreeSpaceTest free_space = freeSpaceTest(source, target, p.certify, finer || r.used_one_way);
   std::optional<Refinement> dense;
-  RefineParams refine_params = p.refine;  // partial rounds only where partial poses are claimed
-  refine_params.solver.partial_poses = refine_params.solver.partial_poses && p.certify.partial_poses;
+  const RefineParams refine_params = refineParamsOf(p);
   if (p.refine.dense.rounds > 0) {
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<PatchCorrespondence> inliers;  // they stay in the dense problem, anchoring it where pixels are few
-    for (int i : r.pose.inliers) inliers.push_back(r.correspondences[static_cast<std::size_t>(i)]);
-    dense = refine(source, target, r.pose, inliers, refine_params, free_space,
+    // RANSAC's inliers stay in the dense problem, anchoring it where pixels are few.
+    dense = refine(source, target, r.pose, correspondencesAt(r, r.pose.inliers), refine_params, free_space,
                    views.target_plane ? &*views.target_plane : nullptr);
     record(*dense, msSince(t0), r);
   }
@@ -234,11 +250,7 @@ PairResult trackViews(const DepthView& source, const DepthView& target, const Is
   validate(p);
   PairResult r;
   const ViewsCertificate views = certifyViews(source, target, p.certify);
-  r.views_free_directions = static_cast<int>(views.source_free.cols() + views.target_free.cols());
-  if (views.refusal) {
-    r.pose = *views.refusal;
-    return r;
-  }
+  if (refusedByViews(views, r)) return r;
   if (p.refine.dense.rounds == 0) {
     r.pose.reason = "tracking: no dense rounds (refine.dense_rounds 0)";
     return r;
@@ -247,15 +259,13 @@ PairResult trackViews(const DepthView& source, const DepthView& target, const Is
   start.success = true;
   start.T_target_source = T_target_source_predicted;
   const FreeSpaceTest free_space = freeSpaceTest(source, target, p.certify, false);
-  RefineParams refine_params = p.refine;
-  refine_params.solver.partial_poses = refine_params.solver.partial_poses && p.certify.partial_poses;
   const auto t0 = std::chrono::steady_clock::now();
   // The patch pairs RANSAC would count as inliers at the prediction stand in for its inliers.
   ProjectiveTermParams pairs;
   pairs.max_distance_m = p.hypothesise.pose.ransac.inlier.distance_m;
   pairs.max_normal_angle_deg = p.hypothesise.pose.ransac.inlier.normal_angle_deg;
   const Refinement dense = refine(source, target, start, projectivePatchPairs(source, target, start.T_target_source, pairs),
-                                  refine_params, free_space, views.target_plane ? &*views.target_plane : nullptr);
+                                  refineParamsOf(p), free_space, views.target_plane ? &*views.target_plane : nullptr);
   record(dense, msSince(t0), r);
   const auto t1 = std::chrono::steady_clock::now();
   record(certify(r.pose, dense.rounds.terms, free_space, dense.check, views, p.certify), r);
