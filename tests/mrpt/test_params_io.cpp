@@ -74,6 +74,7 @@ PairParams everythingChanged() {
   r.max_guided_correspondences = 1400;
   auto& q = p.hypothesise.pose.refinement;
   q.loss = RobustLoss::kCauchy, q.loss_scale_m = 0.03, q.bidirectional = false, q.max_iterations = 40;
+  q.solver = PoseSolver::kCeres;
   q.noise_sigma_m = 0.012, q.degeneracy.min_eigenvalue_ratio = 2e-3, q.degeneracy.max_std_m = 0.06;
   p.retry.one_way_fallback = false, p.certify.fallback_max_violation_ratio = 0.09, p.hypothesise.guided.enabled = false;
   p.hypothesise.guided.densify = true, p.hypothesise.guided.gates.max_distance_m = 0.04, p.hypothesise.guided.gates.max_normal_angle_deg = 21;
@@ -95,6 +96,7 @@ PairParams everythingChanged() {
   p.hypothesise.pose.reselection_rounds = 3;
   auto& d = p.refine.solver;
   d.loss = RobustLoss::kCauchy, d.loss_scale_m = 0.025, d.bidirectional = false, d.max_iterations = 45;
+  d.solver = PoseSolver::kCeres;
   d.noise_sigma_m = 0.011;
   p.retry.finer_area_factor = 0.4, p.certify.model_error.sigma_t_m = 0.02, p.certify.model_error.sigma_r_deg = 1.0;
   p.certify.min_likelihood_ratio = 500;
@@ -122,6 +124,7 @@ TEST(ParamsIo, EveryPairParameterIsAKeyThatReadsBackExactly) {
   EXPECT_TRUE(std::isinf(read.associate.costs.transpose));
   EXPECT_EQ(read.associate.costs.replace, 2.0);
   EXPECT_EQ(read.hypothesise.pose.refinement.loss, RobustLoss::kCauchy);
+  EXPECT_EQ(read.refine.solver.solver, PoseSolver::kCeres);
   EXPECT_EQ(read.refine.dense.gates_m, (std::vector<double>{0.2, 0.04}));
   EXPECT_EQ(read.hypothesise.pose.ransac.seed, 7u);
   EXPECT_EQ(written.at("cost_replace"), "2");
@@ -142,8 +145,9 @@ TEST(ParamsIo, SpecialValuesParseStrictlyInIniAndYaml) {
   EXPECT_EQ(readIni("dense_gates_m = 0.2, 0.1 ,0.05\n").refine.dense.gates_m, (std::vector<double>{0.2, 0.1, 0.05}));
   EXPECT_TRUE(std::isinf(readIni("cost_transpose=Infinity\n").associate.costs.transpose));
   EXPECT_EQ(readIni("refinement_loss=none\n").hypothesise.pose.refinement.loss, RobustLoss::kNone);
+  EXPECT_EQ(readIni("dense_solver=ceres\n").refine.solver.solver, PoseSolver::kCeres);
   for (const char* bad : {"dense_gates_m=0.1,,0.05\n", "dense_gates_m=\n", "candidate_key=median\n",
-                          "refinement_loss=Huber\n", "cost_insert=inf\n", "cost_replace=-inf\n", "cost_replace=nan\n",
+                          "refinement_loss=Huber\n", "dense_solver=lm\n", "cost_insert=inf\n", "cost_replace=-inf\n", "cost_replace=nan\n",
                           "ransac_seed=-1\n", "ransac_seed=99999999999\n"}) {
     try {
       readIni(bad);

@@ -177,6 +177,34 @@ TEST(Refinement, InformationIsConsistentUnderItsOwnNoiseModel) {
   EXPECT_NEAR(mean, 6.0, 0.8);  // standard error of the mean sqrt(12 / 300) = 0.2
 }
 
+TEST(Refinement, BothSolversReachTheSameMinimum) {
+  // Ceres and the normal equations minimise the same cost (refinement.h): from the same start,
+  // with noise and outliers, under every loss, they must end at the same pose and information,
+  // to the precision their common stopping rule (a relative cost change of 1e-10) leaves: about
+  // 1e-5 m and 1e-4 deg here.
+  SceneOptions o;
+  o.outlier_fraction = 0.2;
+  o.centroid_sigma_m = 0.005;
+  o.normal_sigma_deg = 2.0;
+  for (const Isometry3& T : testMotions()) {
+    const Scene s = makeScene(roomCorner(), T, o);
+    for (RobustLoss loss : {RobustLoss::kNone, RobustLoss::kHuber, RobustLoss::kCauchy}) {
+      RefinementParams p;
+      p.loss = loss;
+      p.solver = PoseSolver::kCeres;
+      const RegistrationResult by_ceres = refinePose(s.correspondences, perturbed(T), p);
+      p.solver = PoseSolver::kNormalEquations;
+      const RegistrationResult by_equations = refinePose(s.correspondences, perturbed(T), p);
+      ASSERT_EQ(by_ceres.success, by_equations.success) << by_ceres.reason << " / " << by_equations.reason;
+      EXPECT_LT(translationError(by_ceres.T_target_source, by_equations.T_target_source), 1e-4);
+      EXPECT_LT(rotationErrorDeg(by_ceres.T_target_source, by_equations.T_target_source), 2e-3);
+      EXPECT_LT((by_ceres.information - by_equations.information).norm(), 1e-3 * by_ceres.information.norm());
+      EXPECT_NEAR(by_ceres.rms_residual_m, by_equations.rms_residual_m, 1e-6);
+      EXPECT_GT(by_equations.iterations, 0);
+    }
+  }
+}
+
 TEST(Refinement, BadInputGivesAReason) {
   Scene s = makeScene(roomCorner(), Isometry3::Identity(), {});
   EXPECT_FALSE(refinePose({}, Isometry3::Identity()).success);

@@ -110,6 +110,7 @@ void hypothesiseFields(P& p, F&& f) {  // RANSAC (ransac.h), the patch refinemen
   f("refinement_loss_scale_m", q.loss_scale_m);
   f("refinement_bidirectional", q.bidirectional);
   f("refinement_max_iterations", q.max_iterations);
+  f("refinement_solver", q.solver);
   f("refinement_noise_sigma_m", q.noise_sigma_m);
   f("refinement_degeneracy_min_eigenvalue_ratio", q.degeneracy.min_eigenvalue_ratio);
   f("refinement_degeneracy_max_std_m", q.degeneracy.max_std_m);
@@ -149,6 +150,7 @@ void refineFields(P& p, F&& f) {  // dense rounds (dense_rounds.h), pixel and ed
   f("dense_loss_scale_m", d.solver.loss_scale_m);
   f("dense_bidirectional", d.solver.bidirectional);
   f("dense_max_iterations", d.solver.max_iterations);
+  f("dense_solver", d.solver.solver);
   f("dense_noise_sigma_m", d.solver.noise_sigma_m);
   f("dense_degeneracy_min_eigenvalue_ratio", d.solver.degeneracy.min_eigenvalue_ratio);
   f("dense_degeneracy_max_std_m", d.solver.degeneracy.max_std_m);
@@ -231,6 +233,7 @@ void loopClosureFields(P& p, F&& f) {
   f("relocalisation_candidates", p.relocalisation_candidates);
   f("relocalisation_min_inliers", p.relocalisation_min_inliers);
   f("relocalisation_agreeing", p.relocalisation_agreeing);
+  f("background", p.background);
 }
 
 /// The pose-graph optimiser (pose_graph_optimizer.h).
@@ -326,6 +329,12 @@ inline bool parse(const std::string& text, RobustLoss& v) {
   return false;
 }
 
+inline bool parse(const std::string& text, PoseSolver& v) {
+  if (text == "ceres") return v = PoseSolver::kCeres, true;
+  if (text == "normal_equations") return v = PoseSolver::kNormalEquations, true;
+  return false;
+}
+
 /// A comma-separated list of finite numbers (at least one).
 inline bool parse(const std::string& text, std::vector<double>& v) {
   std::vector<double> out;
@@ -351,6 +360,7 @@ template <class D>
 inline const char* typeName(const MayBeInfinite<D>&) { return "a number or inf"; }
 inline const char* typeName(const CandidateKey&) { return "quantiles or mean"; }
 inline const char* typeName(const RobustLoss&) { return "none, huber or cauchy"; }
+inline const char* typeName(const PoseSolver&) { return "ceres or normal_equations"; }
 inline const char* typeName(const std::vector<double>&) { return "a comma-separated list of finite numbers"; }
 
 inline std::string toText(double v) { return mrpt::format("%.17g", v); }  // exact: reads back to the same double
@@ -364,6 +374,7 @@ inline std::string toText(CandidateKey v) { return v == CandidateKey::kMean ? "m
 inline std::string toText(RobustLoss v) {
   return v == RobustLoss::kNone ? "none" : v == RobustLoss::kCauchy ? "cauchy" : "huber";
 }
+inline std::string toText(PoseSolver v) { return v == PoseSolver::kCeres ? "ceres" : "normal_equations"; }
 inline std::string toText(const std::vector<double>& v) {
   std::string s;
   for (const double x : v) s += (s.empty() ? "" : ",") + toText(x);

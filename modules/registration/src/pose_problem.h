@@ -1,10 +1,9 @@
 #pragma once
-// Internal: the Ceres problem behind refinement.h -- point-to-plane terms on T_target_source
-// parametrised as an Eigen quaternion (EigenQuaternionManifold) and a translation.
+// Internal: the pose problem behind refinement.h -- point-to-plane terms on T_target_source,
+// solved by Ceres (an Eigen quaternion on EigenQuaternionManifold and a translation, one residual
+// block per term) or on the 6 x 6 normal equations over the left perturbation xi = [rho; omega].
 #include <ceres/ceres.h>
 
-#include <array>
-#include <memory>
 #include <vector>
 
 #include "gasp/registration/correspondence.h"
@@ -12,42 +11,52 @@
 
 namespace gasp::detail {
 
+/// What a solve did, whichever solver ran.
+struct PoseSolve {
+  bool usable = true;   ///< the pose may be used (Ceres: Summary::IsSolutionUsable)
+  int iterations = 0;   ///< successful and unsuccessful steps
+  std::string message;  ///< why not usable
+};
+
 class PoseProblem {
  public:
   PoseProblem(const Isometry3& T_init, const RefinementParams& params);
 
   void addPatch(const PatchCorrespondence& c);  ///< forward term, and backward if bidirectional
   void addDense(const PointToPlane& term);
-  int numResiduals() const { return static_cast<int>(points_.size()); }
+  int numResiduals() const { return static_cast<int>(terms_.size()); }
 
-  ceres::Solver::Summary solve();
-  Isometry3 pose() const;
+  PoseSolve solve();  ///< by params.solver, from the current pose
+  const Isometry3& pose() const { return T_; }
   void setPose(const Isometry3& T);  ///< moves the parameters (no solve)
   /// Residuals [m] at the current pose, without weights or robust loss.
-  std::vector<double> residuals();
+  std::vector<double> residuals() const;
   /// J^T J / sigma^2 over xi = [rho; omega] (refinement.h), robustified and weighted.
-  Matrix6d information();
+  Matrix6d information() const;
   /// Weighted centroid and RMS radius [m] of the terms' points in the target frame.
   void sceneExtent(Eigen::Vector3d& centre, double& radius_m) const;
 
  private:
-  struct TermPoint {
-    Eigen::Vector3d point;  // in the source frame when mapped, else the target frame
-    bool mapped;            // true: the point is T * point in the target frame
+  /// forward:  r = n . (R a + t - b)       (a source point, b a target point on the plane n)
+  /// backward: r = n . (R^T (b - t) - a)   (b a target point, mapped back, against the source plane (a, n))
+  struct Term {
+    Eigen::Vector3d a, b, n;
     double weight;
+    bool backward;
   };
-  void add(std::unique_ptr<ceres::CostFunction> cost, double weight, const TermPoint& where);
+  /// One robustified, weighted term at T: its residual, Jacobian over xi, w rho and w rho'.
+  struct Linearised {
+    double r, rho, rho1;
+    Vector6d J;
+  };
+  Linearised linearise(const Term& term, const Isometry3& T) const;
+  void add(const Term& term);
+  PoseSolve solveByCeres();
+  PoseSolve solveByNormalEquations();
 
   RefinementParams params_;
-  std::array<double, 4> q_{};  // Eigen order x, y, z, w
-  std::array<double, 3> t_{};
-  std::vector<TermPoint> points_;
-  // Owned here; the problem below only borrows them (and is destroyed first).
-  std::unique_ptr<ceres::LossFunction> loss_;
-  std::vector<std::unique_ptr<ceres::LossFunction>> scaled_losses_;
-  std::vector<std::unique_ptr<ceres::CostFunction>> costs_;
-  std::unique_ptr<ceres::Manifold> quaternion_manifold_;
-  ceres::Problem problem_;
+  Isometry3 T_;
+  std::vector<Term> terms_;
 };
 
 }  // namespace gasp::detail

@@ -61,10 +61,10 @@ RegistrationResult refinePose(const std::vector<PatchCorrespondence>& correspond
     return out;
   }
   if (params.max_iterations > 0) {
-    const ceres::Solver::Summary summary = problem.solve();
-    out.iterations = summary.num_successful_steps + summary.num_unsuccessful_steps;
-    if (!summary.IsSolutionUsable()) {
-      out.reason = "Ceres failed: " + summary.message;
+    const detail::PoseSolve solve = problem.solve();
+    out.iterations = solve.iterations;
+    if (!solve.usable) {
+      out.reason = std::string(params.solver == PoseSolver::kCeres ? "Ceres" : "the solve") + " failed: " + solve.message;
       return out;
     }
   }

@@ -1,5 +1,5 @@
 #pragma once
-/// \file refinement.h Robust point-to-plane refinement of T_target_source (Ceres).
+/// \file refinement.h Robust point-to-plane refinement of T_target_source.
 ///
 /// With T = (R, t) and weights w, the residuals [m] are, for each patch correspondence,
 ///   forward:  r_f = n_t . (R p_s + t - p_t)            source centroid vs the target patch's plane
@@ -11,11 +11,17 @@
 ///   Huber:  rho(s) = s for s <= a^2, 2 a sqrt(s) - a^2 beyond;   Cauchy: rho(s) = a^2 log(1 + s/a^2).
 /// The pose lives on SO(3) x R^3: an Eigen quaternion with ceres::EigenQuaternionManifold
 /// (q <- [cos|d|, sin|d| d/|d|] * q, a rotation by 2|d| on the left) and a Euclidean
-/// translation. Levenberg-Marquardt, dense QR.
+/// translation. Levenberg-Marquardt on this cost, by one of two solvers (`solver`):
+///   ceres:            ceres::Solver, one residual block per term, dense QR (the paper's);
+///   normal_equations: the same Levenberg-Marquardt model (rows scaled by sqrt(w_i rho'(r_i^2)),
+///                     which is Ceres' corrector for rho'' <= 0, as for Huber and Cauchy) built as
+///                     the 6 x 6 normal equations over xi and solved in place, with Ceres' trust
+///                     region rule and stopping tolerances. It reaches the same minimum without
+///                     Ceres' per-block overhead: many times faster for thousands of dense terms.
 ///
-/// Information: the Jacobian J of the residuals at the solution (Problem::Evaluate, robustified:
-/// row i scaled by sqrt(w_i rho'(r_i^2)), Ceres' corrector for rho'' <= 0) is mapped to the left
-/// perturbation xi = [rho; omega] of registration_result.h, and I = J^T J / noise_sigma_m^2.
+/// Information: the Jacobian J of the residuals at the solution over the left perturbation
+/// xi = [rho; omega] of registration_result.h, robustified (row i scaled by sqrt(w_i rho'(r_i^2)),
+/// Ceres' corrector for rho'' <= 0), and I = J^T J / noise_sigma_m^2, whichever solver ran.
 /// The degeneracy check (degeneracy.h) runs on I; a degenerate estimate is not claimed. With
 /// partial_poses, an estimate with at most kMaxFreeDirections unobservable directions is a partial
 /// one (partial_pose.h): the solve's step is kept in the observed directions only (solution
@@ -30,6 +36,7 @@
 namespace gasp {
 
 enum class RobustLoss { kNone, kHuber, kCauchy };
+enum class PoseSolver { kCeres, kNormalEquations };
 
 struct RefinementParams {
   RobustLoss loss = RobustLoss::kHuber;
@@ -39,6 +46,7 @@ struct RefinementParams {
   double noise_sigma_m = 0.01; ///< sigma of a point-to-plane residual, scales the information [m]
   DegeneracyParams degeneracy; ///< ratio 1e-2, max std 0.05 m
   bool partial_poses = false;  ///< a degenerate estimate may be a partial pose (above)
+  PoseSolver solver = PoseSolver::kNormalEquations;  ///< who solves (above); the same cost and minimum
 };
 
 /// Throws gasp::Error naming the first invalid parameter.
