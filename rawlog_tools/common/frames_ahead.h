@@ -1,7 +1,9 @@
 #pragma once
 /// \file frames_ahead.h The frame loop of gasp-odometry and gasp-slam: each frame of a sequence
-/// in order, the next one read and segmented (gasp::ViewAhead) while the current one is added.
+/// in order, the next kFramesAhead frames read and segmented (gasp::ViewAhead) while the current
+/// one is added.
 #include <cstddef>
+#include <deque>
 #include <optional>
 #include <string>
 #include <utility>
@@ -20,8 +22,12 @@ struct SequenceEnd {
   std::size_t frames = 0;  ///< frames added
 };
 
+/// Frames segmented at once while one is added: a segmentation takes about twice a tracked
+/// frame's registration, so two segmentations and the registration keep two cores busy.
+inline constexpr std::size_t kFramesAhead = 2;
+
 /// Calls `add(frame, segmented)` for every frame of `sequence`, in order; `segmented` is the
-/// frame's view made while the previous call ran (empty when the odometry deskews, see
+/// frame's view made while earlier calls ran (empty when the odometry deskews, see
 /// view_ahead.h, or with `sequential`), for DepthOdometry::addFrame() / DepthSlam::addFrame().
 /// A frame the sequence cannot read ends the loop after every frame before it was added: the
 /// result says so, for the program to write what was computed and call it partial. The first
@@ -30,21 +36,32 @@ template <typename Add>
 SequenceEnd forEachFrameWithViewAhead(DepthSequence& sequence, const OdometryParams& params, bool sequential, Add&& add) {
   SequenceEnd end;
   ViewAhead ahead(params, !sequential);
-  std::optional<RgbdFrame> frame = sequence.next();
-  if (frame) ahead.start(frame->depth_m, frame->depth_intrinsics);
-  while (frame) {
-    std::optional<SegmentedDepth> segmented = ahead.take();
-    std::optional<RgbdFrame> next;
+  std::deque<RgbdFrame> frames;  // read, and started in `ahead` in the same order
+  const auto started = [&](std::optional<RgbdFrame> f) {
+    if (!f) return false;
+    ahead.start(f->depth_m, f->depth_intrinsics);
+    frames.push_back(std::move(*f));
+    return true;
+  };
+  // The next frame, read and started; false at the end of the input or at its error.
+  const auto readOne = [&] {
     try {
-      next = sequence.next();
+      return started(sequence.next());
     } catch (const Error& e) {
       end.complete = false;
       end.error = e.what();
+      return false;
     }
-    if (next) ahead.start(next->depth_m, next->depth_intrinsics);
-    add(*frame, std::move(segmented));
+  };
+  bool more = started(sequence.next());
+  while (more && frames.size() < kFramesAhead) more = readOne();
+  while (!frames.empty()) {
+    RgbdFrame frame = std::move(frames.front());
+    frames.pop_front();
+    if (more) more = readOne();  // read while the frames before it are still being segmented
+    std::optional<SegmentedDepth> segmented = ahead.take();
+    add(frame, std::move(segmented));
     ++end.frames;
-    frame = std::move(next);
   }
   return end;
 }

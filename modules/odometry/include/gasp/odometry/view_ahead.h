@@ -1,14 +1,15 @@
 #pragma once
-/// \file view_ahead.h Segmenting the next frame while the odometry registers the current one.
+/// \file view_ahead.h Segmenting the next frames while the odometry registers the current one.
 ///
 /// A frame's two stages are its segmentation (makeDepthView()) and its registration. The
 /// segmentation needs nothing of the odometry's state unless the frame is deskewed (the deskew
 /// needs the velocity its predecessor's registration measures), so with
-/// rolling_shutter_readout_s = 0 the next frame can be segmented on a second thread while the
-/// current one is registered. The result is the same view addFrame() would make: the poses are
+/// rolling_shutter_readout_s = 0 the next frames can be segmented on threads of their own while
+/// the current one is registered. The result is the same view addFrame() would make: the poses are
 /// identical, only sooner.
 #include <opencv2/core.hpp>
 
+#include <deque>
 #include <future>
 #include <optional>
 
@@ -24,7 +25,7 @@ struct SegmentedDepth {
   double ms = 0.0;  ///< makeDepthView()'s time on its own thread
 };
 
-/// One segmentation at a time on a background thread (std::async).
+/// Segmentations on background threads (std::async), taken in the order they were started.
 class ViewAhead {
  public:
   /// Segments with `params.pair.segment`; does nothing when `params` deskew or `enabled` is
@@ -34,18 +35,21 @@ class ViewAhead {
   ViewAhead(const ViewAhead&) = delete;
   ViewAhead& operator=(const ViewAhead&) = delete;
 
-  /// Starts segmenting `depth_m` (shared, not copied: the caller leaves it unchanged until take())
-  /// after waiting for the one started before, if it was not taken.
+  /// Starts segmenting `depth_m` (shared, not copied: the caller leaves it unchanged until its
+  /// take()) on a thread of its own; the caller bounds how many run at once (frames_ahead.h).
   void start(const cv::Mat& depth_m, const CameraIntrinsics& intrinsics);
-  /// The view of the depth started last, waiting for it; empty when none was started, when the
-  /// odometry deskews, or when the segmentation failed (addFrame() then segments the frame itself
-  /// and reports the error as it would without this).
+  /// The view of the oldest start() not yet taken, waiting for it; empty when none is pending,
+  /// when the odometry deskews, when that depth was not segmented (addFrame() would refuse it) or
+  /// when the segmentation failed (addFrame() then segments the frame itself and reports the
+  /// error as it would without this).
   std::optional<SegmentedDepth> take();
+  /// Segmentations started and not yet taken.
+  std::size_t pending() const { return pending_.size(); }
 
  private:
   SuperpixelParams superpixels_;
   bool enabled_ = false;
-  std::future<SegmentedDepth> pending_;
+  std::deque<std::future<SegmentedDepth>> pending_;  ///< oldest first; invalid: not segmented
 };
 
 }  // namespace gasp
