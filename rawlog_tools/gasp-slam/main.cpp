@@ -129,6 +129,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "frame %zu: %zu tracked of %zu, %zu loop closures\n", f.index,
                      slam->odometry().trackedCount(), slam->odometry().frames().size(), slam->loopClosures().size());
     });
+    if (slam) slam->finishLoops();  // the searches still running: part of the wall time
     const double wall_s = gasp::msSince(run_start) / 1000.0;
     if (!slam) throw gasp::Error(sequence.describe() + ": no frame to use");
 

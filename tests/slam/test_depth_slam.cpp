@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,8 @@ TEST(DepthSlam, ClosesTheLoopOfACircleWithClosuresThatAreTrue) {
     EXPECT_TRUE(f.tracked) << "frame " << i << ": " << f.reason;
     gt.push_back({s.timestamps[i], s.T_world_camera[i]});
   }
+  slam.finishLoops();
+  EXPECT_EQ(slam.loopSearchesPending(), 0u);
   ASSERT_FALSE(slam.loopClosures().empty());
   for (const auto& c : slam.loopClosures()) {
     EXPECT_TRUE(c.loop_closure);
@@ -110,6 +113,7 @@ TEST(DepthSlam, RelocalisesAfterTheCameraLooksAwayAndKeepsTheUnrelatedPieceApart
   const LoopSequence s = circleSequence(30, {12, 13, 14});
   gasp::DepthSlam slam({}, s.T_world_camera[0]);
   for (std::size_t i = 0; i < s.depth.size(); ++i) slam.addFrame(s.timestamps[i], s.depth[i], s.K);
+  slam.finishLoops();
   EXPECT_GE(slam.odometry().componentCount(), 3u);
   std::size_t relocalisations = 0;
   for (const auto& a : slam.attempts()) {
@@ -165,6 +169,7 @@ TEST(DepthSlam, AMovedBoxInASymmetricSceneGivesNoWrongConstraint) {
     gt.push_back({f.timestamp, f.T_world_camera});
     truth.push_back(f.T_world_camera);
   }
+  slam.finishLoops();
   const auto check = [&truth](const gasp::PoseConstraint& c, const char* what) {
     const Isometry3 e = (truth[c.from].inverse() * truth[c.to]).inverse() * c.T_from_to;
     EXPECT_LT(gasp::translationNorm(e), 0.02) << what << ' ' << c.from + 12 << " -> " << c.to + 12;
@@ -178,6 +183,47 @@ TEST(DepthSlam, AMovedBoxInASymmetricSceneGivesNoWrongConstraint) {
   std::printf("repeated scene, box moved at 25, frames %d-%d: %zu loop closures of %zu tried (%zu across the move), "
               "ATE %.4f m\n", first, last, slam.loopClosures().size(), slam.attempts().size(), across, ate);
   EXPECT_LT(ate, 0.01);
+}
+
+TEST(DepthSlam, SearchesInTheBackgroundAreTheSearchesInPlace) {
+  // The same circle with the searches in place and on their own thread: the same registrations
+  // tried, the same taken, the same graph; the poses agree to the optimiser's precision (in the
+  // background the frames tracked meanwhile are in the graph when it is optimised).
+  const LoopSequence s = circleSequence(30, {12, 13, 14});  // near loops and relocalisation
+  std::vector<std::unique_ptr<gasp::DepthSlam>> runs;
+  for (const bool background : {false, true}) {
+    gasp::SlamParams p;
+    p.loop.background = background;
+    runs.push_back(std::make_unique<gasp::DepthSlam>(p, s.T_world_camera[0]));
+    for (std::size_t i = 0; i < s.depth.size(); ++i) {
+      runs.back()->addFrame(s.timestamps[i], s.depth[i], s.K);
+      if (!background) {
+        EXPECT_EQ(runs.back()->loopSearchesPending(), 0u);
+      }
+    }
+    runs.back()->finishLoops();
+    EXPECT_EQ(runs.back()->loopSearchesPending(), 0u);
+  }
+  const gasp::DepthSlam &in_place = *runs[0], &background = *runs[1];
+  ASSERT_EQ(in_place.attempts().size(), background.attempts().size());
+  ASSERT_FALSE(in_place.attempts().empty());
+  for (std::size_t i = 0; i < in_place.attempts().size(); ++i) {
+    const auto &a = in_place.attempts()[i], &b = background.attempts()[i];
+    EXPECT_EQ(a.from, b.from) << i;
+    EXPECT_EQ(a.to, b.to) << i;
+    EXPECT_EQ(a.relocalisation, b.relocalisation) << i;
+    EXPECT_EQ(a.accepted, b.accepted) << i;
+    EXPECT_EQ(a.inliers, b.inliers) << i;
+    EXPECT_EQ(a.reason, b.reason) << i;
+  }
+  EXPECT_EQ(in_place.loopClosures().size(), background.loopClosures().size());
+  EXPECT_EQ(in_place.pieceCount(), background.pieceCount());
+  ASSERT_EQ(in_place.poses().size(), background.poses().size());
+  for (std::size_t i = 0; i < in_place.poses().size(); ++i) {
+    const Isometry3 e = in_place.poses()[i].inverse() * background.poses()[i];
+    EXPECT_LT(gasp::translationNorm(e), 1e-4) << i;
+    EXPECT_LT(gasp::rotationAngle(e) * 180 / M_PI, 1e-3) << i;
+  }
 }
 
 TEST(DepthSlam, WithoutLoopClosuresItIsTheOdometry) {
@@ -225,6 +271,7 @@ TEST(DepthSlam, Fr1XyzRevisitsGiveLoopClosuresThatLowerTheError) {
   gasp::DepthSlam slam;
   // Frames 0-358, every second: the camera moves along x and back, then along y.
   for (std::size_t i = 0; i < 360 && i < ds.size(); i += 2) slam.addFrame(ds.frame(i).timestamp, ds.loadDepth(i), ds.intrinsics());
+  slam.finishLoops();
   const gasp::Trajectory gt = ds.groundTruth();
   const double ate_odo = gasp::eval::computeAte(gt, slam.odometry().trajectory()).translation.rmse;
   const double ate = gasp::eval::computeAte(gt, slam.trajectory()).translation.rmse;

@@ -18,6 +18,10 @@ namespace gasp {
 DepthSlam::DepthSlam(const SlamParams& params, const Isometry3& T_world_first)
     : params_(params), odometry_((validate(params), params.odometry), T_world_first), votes_(params.loop) {}
 
+DepthSlam::~DepthSlam() {
+  if (job_ && job_->registered.valid()) job_->registered.wait();
+}
+
 const OdometryFrame& DepthSlam::addFrame(double timestamp, const cv::Mat& depth_m, const CameraIntrinsics& intrinsics,
                                          std::optional<SegmentedDepth> segmented) {
   // Throws: nothing added.
@@ -36,15 +40,75 @@ const OdometryFrame& DepthSlam::addFrame(double timestamp, const cv::Mat& depth_
   if (f.keyframe && params_.loop.enabled) {
     keyframes_.push_back(f.index);
     keyframe_views_.emplace(f.index, *odometry_.keyframeView());
-    closeLoops(f.index);
+    if (params_.loop.background)
+      waiting_keyframes_.push_back(f.index);
+    else
+      closeLoops(f.index);
   }
+  if (params_.loop.background) takeLoops(false);
   return f;
 }
 
+void DepthSlam::finishLoops() { takeLoops(true); }
+
 void DepthSlam::closeLoops(std::size_t k) {
+  if (searchLoops(k, graphFor(k), params_.odometry.pair, params_.loop, attempts_, votes_, vote_groups_)) optimise();
+}
+
+void DepthSlam::startJob(std::size_t k, const std::vector<std::size_t>& candidates, bool relocalisation, bool taken) {
+  LoopJob job;
+  job.keyframe = k;
+  job.relocalisation = relocalisation;
+  job.taken = taken;
+  if (candidates.empty()) {  // nothing to register: ended at once
+    std::promise<std::vector<LoopRegistration>> none;
+    none.set_value({});
+    job.registered = none.get_future();
+  } else {
+    // The views stay put: keyframe_views_ only grows (std::map keeps its elements in place).
+    std::vector<std::pair<std::size_t, const DepthView*>> with_views;
+    for (const std::size_t c : candidates) with_views.emplace_back(c, &keyframe_views_.at(c));
+    job.registered = std::async(std::launch::async, [k, view_k = &keyframe_views_.at(k), with_views, relocalisation,
+                                                     pair = params_.odometry.pair, loop = params_.loop] {
+      return registerCandidates(k, *view_k, with_views, relocalisation, pair, loop);
+    });
+  }
+  job_ = std::move(job);
+}
+
+void DepthSlam::takeLoops(bool wait) {
+  for (;;) {
+    if (job_) {
+      if (!wait && job_->registered.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+      std::vector<LoopRegistration> registered = job_->registered.get();
+      const LoopJob job{job_->keyframe, job_->relocalisation, job_->taken, {}};
+      job_.reset();
+      const LoopSearchGraph g = graphFor(job.keyframe);
+      if (!job.relocalisation) {
+        const bool taken = takeNearLoops(job.keyframe, g, std::move(registered), params_.loop, attempts_);
+        const std::vector<std::size_t> relocalisation = relocalisationCandidatesOf(job.keyframe, g, params_.loop);
+        if (!relocalisation.empty()) {
+          startJob(job.keyframe, relocalisation, true, taken);
+          continue;
+        }
+        if (taken) optimise();
+      } else if (takeRelocalisations(job.keyframe, g, std::move(registered), attempts_, votes_, vote_groups_) ||
+                 job.taken) {
+        optimise();
+      }
+      continue;
+    }
+    if (waiting_keyframes_.empty()) return;
+    const std::size_t k = waiting_keyframes_.front();
+    waiting_keyframes_.pop_front();
+    startJob(k, nearLoopCandidates(k, graphFor(k), params_.loop), false, false);
+  }
+}
+
+LoopSearchGraph DepthSlam::graphFor(std::size_t k) {
   LoopSearchGraph g;
   g.node_count = T_world_frame_.size();
-  g.keyframes = keyframes_;
+  g.keyframes.assign(keyframes_.begin(), std::upper_bound(keyframes_.begin(), keyframes_.end(), k));
   g.T_world_camera = T_world_frame_;
   g.tree = odometry_.constraints();
   g.view = [this](std::size_t i) -> const DepthView& { return keyframe_views_.at(i); };
@@ -66,7 +130,7 @@ void DepthSlam::closeLoops(std::size_t k) {
       if (roots[i] == moved) T_world_frame_[i] = T_move * T_world_frame_[i];
     return std::string();
   };
-  if (searchLoops(k, g, params_.odometry.pair, params_.loop, attempts_, votes_, vote_groups_)) optimise();
+  return g;
 }
 
 void DepthSlam::optimise() {

@@ -1,43 +1,80 @@
 #include "gasp/slam/loop_search.h"
 
+#include <string>
 #include <utility>
 
+#include "gasp/core/error.h"
 #include "gasp/slam/pose_graph.h"
 
 namespace gasp {
 
 namespace {
 
-/// The loop candidates near the estimate: registered, gated against the odometry, taken.
-bool closeNearLoops(std::size_t k, const LoopSearchGraph& g, const PairParams& pair, const LoopClosureParams& loop,
-                    std::vector<LoopClosureAttempt>& attempts) {
+/// The candidates with their views, as the graph gives them.
+std::vector<std::pair<std::size_t, const DepthView*>> withViews(const std::vector<std::size_t>& candidates,
+                                                                const LoopSearchGraph& g) {
+  std::vector<std::pair<std::size_t, const DepthView*>> out;
+  out.reserve(candidates.size());
+  for (const std::size_t c : candidates) out.emplace_back(c, &g.view(c));
+  return out;
+}
+
+/// The candidates are chosen for the graph's last keyframe: it must be k.
+void requireLast(std::size_t k, const LoopSearchGraph& g) {
+  if (g.keyframes.empty() || g.keyframes.back() != k)
+    throw Error("loop search: keyframe " + std::to_string(k) + " is not the last keyframe of the graph searched");
+}
+
+}  // namespace
+
+std::vector<std::size_t> nearLoopCandidates(std::size_t k, const LoopSearchGraph& g, const LoopClosureParams& loop) {
+  requireLast(k, g);
+  return loopCandidates(g.keyframes, g.T_world_camera, pieceRoots(g.node_count, g.links()), loop);
+}
+
+std::vector<std::size_t> relocalisationCandidatesOf(std::size_t k, const LoopSearchGraph& g,
+                                                    const LoopClosureParams& loop) {
+  requireLast(k, g);
+  if (loop.relocalisation_candidates == 0) return {};
+  return relocalisationCandidates(g.keyframes, pieceRoots(g.node_count, g.links()), loop);
+}
+
+std::vector<LoopRegistration> registerCandidates(std::size_t k, const DepthView& view_k,
+                                                 const std::vector<std::pair<std::size_t, const DepthView*>>& candidates,
+                                                 bool relocalisation, const PairParams& pair,
+                                                 const LoopClosureParams& loop) {
+  std::vector<LoopRegistration> out(candidates.size());
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    out[i].attempt = registerLoopClosure(*candidates[i].second, view_k, candidates[i].first, k, relocalisation, pair,
+                                         loop, out[i].constraint);
+  return out;
+}
+
+bool takeNearLoops(std::size_t k, const LoopSearchGraph& g, std::vector<LoopRegistration> registered,
+                   const LoopClosureParams& loop, std::vector<LoopClosureAttempt>& attempts) {
   bool taken = false;
-  const std::vector<std::size_t> roots = pieceRoots(g.node_count, g.links());
-  for (const std::size_t cand : loopCandidates(g.keyframes, g.T_world_camera, roots, loop)) {
-    PoseConstraint c;
-    LoopClosureAttempt a = registerLoopClosure(g.view(cand), g.view(k), cand, k, false, pair, loop, c);
+  for (LoopRegistration& r : registered) {
+    LoopClosureAttempt& a = r.attempt;
     // Agreement with the odometry between the two keyframes, within both uncertainties.
-    if (a.reason.empty()) gateLoopClosure(c, composeAlongTree(g.tree, g.node_count, cand, k), loop, a);
+    if (a.reason.empty()) gateLoopClosure(r.constraint, composeAlongTree(g.tree, g.node_count, a.from, k), loop, a);
     a.accepted = a.reason.empty();
     attempts.push_back(std::move(a));
     if (!attempts.back().accepted) continue;
-    g.insert(c, attempts.size() - 1, 0);
+    g.insert(r.constraint, attempts.size() - 1, 0);
     taken = true;
   }
   return taken;
 }
 
-}  // namespace
-
-bool searchLoops(std::size_t k, const LoopSearchGraph& g, const PairParams& pair, const LoopClosureParams& loop,
-                 std::vector<LoopClosureAttempt>& attempts, RelocalisationVotes& votes, std::size_t& vote_groups) {
-  bool taken = closeNearLoops(k, g, pair, loop, attempts);
-  if (loop.relocalisation_candidates == 0) return taken;
+bool takeRelocalisations(std::size_t k, const LoopSearchGraph& g, std::vector<LoopRegistration> registered,
+                         std::vector<LoopClosureAttempt>& attempts, RelocalisationVotes& votes,
+                         std::size_t& vote_groups) {
+  bool taken = false;
   std::vector<std::size_t> roots = pieceRoots(g.node_count, g.links());
-  for (const std::size_t cand : relocalisationCandidates(g.keyframes, roots, loop)) {
-    if (roots[cand] == roots[k]) continue;  // joined by an earlier candidate
-    PoseConstraint c;
-    attempts.push_back(registerLoopClosure(g.view(cand), g.view(k), cand, k, true, pair, loop, c));
+  for (LoopRegistration& r : registered) {
+    if (roots[r.attempt.from] == roots[k]) continue;  // joined by an earlier candidate
+    const PoseConstraint& c = r.constraint;
+    attempts.push_back(std::move(r.attempt));
     if (!attempts.back().reason.empty()) continue;
     // A vote: the pieces are joined when enough votes agree (relocalisation.h).
     const RelocalisationVotes::Decision d = votes.offer(c, attempts.size() - 1, g.tree, g.node_count, roots);
@@ -62,6 +99,20 @@ bool searchLoops(std::size_t k, const LoopSearchGraph& g, const PairParams& pair
     for (const RelocalisationVotes::Vote& v : votes.removeJoined(roots))
       attempts[v.attempt].reason = "not used: its pieces were joined by other votes";
   }
+  return taken;
+}
+
+bool searchLoops(std::size_t k, const LoopSearchGraph& g, const PairParams& pair, const LoopClosureParams& loop,
+                 std::vector<LoopClosureAttempt>& attempts, RelocalisationVotes& votes, std::size_t& vote_groups) {
+  const DepthView& view_k = g.view(k);
+  bool taken = takeNearLoops(
+      k, g, registerCandidates(k, view_k, withViews(nearLoopCandidates(k, g, loop), g), false, pair, loop), loop,
+      attempts);
+  const std::vector<std::size_t> relocalisation = relocalisationCandidatesOf(k, g, loop);
+  if (relocalisation.empty()) return taken;
+  taken = takeRelocalisations(k, g, registerCandidates(k, view_k, withViews(relocalisation, g), true, pair, loop),
+                              attempts, votes, vote_groups) ||
+          taken;
   return taken;
 }
 

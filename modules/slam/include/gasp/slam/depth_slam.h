@@ -10,12 +10,21 @@
 /// the odometry lost track and the graph fell into pieces, new keyframes are also registered to
 /// the latest keyframes of the other pieces (relocalisation), which joins them.
 ///
+/// With LoopClosureParams::background (the default) a keyframe's registrations run on a thread
+/// of their own while the next frames are tracked; what they give is taken into the graph, and
+/// the graph optimised, by the first addFrame() after they end, or by finishLoops(). One
+/// keyframe's search runs at a time, in keyframe order; each phase is planned on the graph as it
+/// is when it starts, so the searches are those the search in place would make, only later.
+///
 /// Memory: every keyframe's segmented view is kept (about 2.5 MB at 640x480: the depth, the
 /// labels and the patches) so that it can be registered again later.
 #include <opencv2/core.hpp>
 
 #include <cstddef>
+#include <deque>
+#include <future>
 #include <map>
+#include <optional>
 #include <vector>
 
 #include "gasp/core/camera_intrinsics.h"
@@ -36,11 +45,20 @@ class DepthSlam {
  public:
   /// Throws gasp::Error for invalid parameters. T_world_first: the first frame's pose.
   explicit DepthSlam(const SlamParams& params = {}, const Isometry3& T_world_first = Isometry3::Identity());
+  ~DepthSlam();  ///< waits for a loop search still running (its results are dropped)
+  DepthSlam(const DepthSlam&) = delete;
+  DepthSlam& operator=(const DepthSlam&) = delete;
 
   /// Adds the next frame (DepthOdometry::addFrame(), same errors), then, when it became a
-  /// keyframe, searches for loop closures and optimises the graph if one is taken.
+  /// keyframe, searches for loop closures and optimises the graph if one is taken (in the
+  /// background: starts or queues the search, and takes a search that has ended).
   const OdometryFrame& addFrame(double timestamp, const cv::Mat& depth_m, const CameraIntrinsics& intrinsics,
                                 std::optional<SegmentedDepth> segmented = std::nullopt);
+  /// Waits for every loop search still running or queued and takes them: afterwards the graph,
+  /// poses() and attempts() hold every keyframe's search. Call it after the last frame.
+  void finishLoops();
+  /// Keyframes whose loop search has not been taken yet (always 0 without background).
+  std::size_t loopSearchesPending() const { return waiting_keyframes_.size() + (job_ ? 1 : 0); }
 
   const DepthOdometry& odometry() const { return odometry_; }
   /// Every frame's pose in the optimised graph (the odometry's until a loop closure is taken).
@@ -66,8 +84,22 @@ class DepthSlam {
   const SlamParams& params() const { return params_; }
 
  private:
-  /// The loop search of a new keyframe (loop_search.h), then the optimisation when it took any.
+  /// One phase of a keyframe's loop search on the background thread (loop_search.h).
+  struct LoopJob {
+    std::size_t keyframe = 0;
+    bool relocalisation = false;  ///< phase 2
+    bool taken = false;           ///< phase 1 took a constraint
+    std::future<std::vector<LoopRegistration>> registered;
+  };
+  /// The graph as the loop search of keyframe k sees it: keyframes up to k.
+  LoopSearchGraph graphFor(std::size_t k);
+  /// The loop search of a new keyframe in place, then the optimisation when it took any.
   void closeLoops(std::size_t keyframe);
+  /// Registers `candidates` to keyframe k on the background thread.
+  void startJob(std::size_t k, const std::vector<std::size_t>& candidates, bool relocalisation, bool taken);
+  /// Takes the running job when it has ended (or waits for it), plans the next phase or the next
+  /// queued keyframe, and so on until a job is running or none is left.
+  void takeLoops(bool wait);
   void optimise();
 
   SlamParams params_;
@@ -83,6 +115,8 @@ class DepthSlam {
   RelocalisationVotes votes_;                   ///< relocalisations waiting for agreement
   std::size_t optimisations_ = 0;
   double optimisation_ms_ = 0.0;
+  std::deque<std::size_t> waiting_keyframes_;  ///< background: keyframes whose search has not started
+  std::optional<LoopJob> job_;                 ///< last: destroyed (waited for) before the views it reads
 };
 
 }  // namespace gasp

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gasp/slam/loop_closure.h"
@@ -37,8 +38,41 @@ struct LoopSearchGraph {
 
 /// The search for keyframe `k` (a node of `graph`). Appends every registration to `attempts`;
 /// `votes` and `vote_groups` carry the relocalisations waiting for agreement and the groups taken
-/// so far across keyframes. Returns whether any constraint was taken.
+/// so far across keyframes. Returns whether any constraint was taken. It is the two phases below,
+/// one after the other, each registered where it is planned.
 bool searchLoops(std::size_t k, const LoopSearchGraph& graph, const PairParams& pair, const LoopClosureParams& loop,
                  std::vector<LoopClosureAttempt>& attempts, RelocalisationVotes& votes, std::size_t& vote_groups);
+
+/// The search in parts, for an owner that registers on another thread (DepthSlam with
+/// LoopClosureParams::background): per phase, the candidates are chosen on the graph as it is,
+/// registered by registerCandidates() (the views and parameters only: safe on any thread while
+/// the views stay put), and the registrations taken into the graph. Phase 1 (near loops) must be
+/// taken before phase 2 (relocalisation) is planned: a near loop may join the pieces phase 2
+/// would otherwise try.
+struct LoopRegistration {
+  LoopClosureAttempt attempt;  ///< its reason set when there is no estimate or too few inliers
+  PoseConstraint constraint;
+};
+
+/// Phase 1's candidates: earlier keyframes near `k` (loopCandidates()); `k` must be the last of
+/// graph.keyframes (gasp::Error otherwise), as for phase 2.
+std::vector<std::size_t> nearLoopCandidates(std::size_t k, const LoopSearchGraph& graph, const LoopClosureParams& loop);
+/// Phase 2's: the latest keyframes of the other pieces (relocalisationCandidates()); none when
+/// relocalisation is off.
+std::vector<std::size_t> relocalisationCandidatesOf(std::size_t k, const LoopSearchGraph& graph,
+                                                    const LoopClosureParams& loop);
+/// Keyframe `k`'s view (`view_k`) registered to each candidate's (registerLoopClosure()).
+std::vector<LoopRegistration> registerCandidates(std::size_t k, const DepthView& view_k,
+                                                 const std::vector<std::pair<std::size_t, const DepthView*>>& candidates,
+                                                 bool relocalisation, const PairParams& pair,
+                                                 const LoopClosureParams& loop);
+/// Phase 1 taken: each registration gated against the odometry and inserted when it agrees.
+bool takeNearLoops(std::size_t k, const LoopSearchGraph& graph, std::vector<LoopRegistration> registered,
+                   const LoopClosureParams& loop, std::vector<LoopClosureAttempt>& attempts);
+/// Phase 2 taken: each registration offered as a vote, the pieces joined when enough agree; a
+/// candidate whose piece an earlier vote of this phase joined to k's is left out (as if never tried).
+bool takeRelocalisations(std::size_t k, const LoopSearchGraph& graph, std::vector<LoopRegistration> registered,
+                         std::vector<LoopClosureAttempt>& attempts, RelocalisationVotes& votes,
+                         std::size_t& vote_groups);
 
 }  // namespace gasp

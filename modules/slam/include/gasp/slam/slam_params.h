@@ -42,6 +42,10 @@ struct LoopClosureParams {
   /// search for agreeing votes looks at the best kMaxRelocalisationAgreeing - 1 waiting ones).
   std::size_t relocalisation_agreeing = 2;
   static constexpr std::size_t kMaxRelocalisationAgreeing = 25;
+  /// DepthSlam registers a keyframe's candidates on a thread of its own while the next frames are
+  /// tracked, and takes the results when they are ready (depth_slam.h); false: in place, the
+  /// tracking waiting for them. The graph-SLAM plugin's edge decider always searches in place.
+  bool background = true;
 };
 
 struct SlamParams {
