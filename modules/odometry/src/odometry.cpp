@@ -177,7 +177,9 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
     // in the basin they end in, where they are as accurate as from RANSAC's pose.
     if (params_.tracking && velocity_ && params_.pair.refine.dense.rounds > 0 &&
         gateAt(dt, params_.scene_change).first <= params_.pair.refine.dense.gates_m.back()) {
-      PairResult t = trackViews(view, *keyframe_view_, T_key_predicted, params_.pair);
+      if (!keyframe_edges_ && params_.pair.refine.edges.enabled)
+        keyframe_edges_ = std::make_shared<const EdgeTargets>(*keyframe_view_, params_.pair.refine.edges.terms);
+      PairResult t = trackViews(view, *keyframe_view_, T_key_predicted, params_.pair, keyframe_edges_.get());
       const std::string before = f.reason;  // a failed shortcut leaves no reason: the pipeline runs next
       f.tracking_path = t.pose.success &&
                         predictionGate(t.pose.T_target_source, T_key_predicted, dt, params_.scene_change).within() &&
@@ -232,6 +234,7 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
     f.keyframe = true;
     keyframe_index_ = f.index;
     keyframe_view_ = view;
+    keyframe_edges_.reset();
   }
   previous_view_ = std::move(view);
   frames_.push_back(std::move(f));

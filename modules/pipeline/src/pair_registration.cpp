@@ -246,7 +246,7 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
 }
 
 PairResult trackViews(const DepthView& source, const DepthView& target, const Isometry3& T_target_source_predicted,
-                      const PairParams& p) {
+                      const PairParams& p, const EdgeTargets* target_edges) {
   validate(p);
   PairResult r;
   const ViewsCertificate views = certifyViews(source, target, p.certify);
@@ -265,7 +265,8 @@ PairResult trackViews(const DepthView& source, const DepthView& target, const Is
   pairs.max_distance_m = p.hypothesise.pose.ransac.inlier.distance_m;
   pairs.max_normal_angle_deg = p.hypothesise.pose.ransac.inlier.normal_angle_deg;
   const Refinement dense = refine(source, target, start, projectivePatchPairs(source, target, start.T_target_source, pairs),
-                                  refineParamsOf(p), free_space, views.target_plane ? &*views.target_plane : nullptr);
+                                  refineParamsOf(p), free_space, views.target_plane ? &*views.target_plane : nullptr,
+                                  target_edges);
   record(dense, msSince(t0), r);
   const auto t1 = std::chrono::steady_clock::now();
   record(certify(r.pose, dense.rounds.terms, free_space, dense.check, views, p.certify), r);

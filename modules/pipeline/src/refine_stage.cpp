@@ -34,11 +34,20 @@ int edgePointsInView(const EdgePoints& source, const DepthView& target, const Is
 class DenseProblem {
  public:
   DenseProblem(const DepthView& source, const DepthView& target, const RegistrationResult& hypothesis,
-               const std::vector<PatchCorrespondence>& inliers, const RefineParams& params)
-      : source_(source), target_(target), hypothesis_(hypothesis), inliers_(inliers), params_(params) {
-    if (params.edges.enabled)
+               const std::vector<PatchCorrespondence>& inliers, const RefineParams& params,
+               const EdgeTargets* target_edges)
+      : source_(source), target_(target), hypothesis_(hypothesis), inliers_(inliers), params_(params),
+        edge_targets_(target_edges) {
+    if (params.edges.enabled && edge_targets_)
+      source_edges_ = findEdgePoints(source, params.edges.terms);
+    else if (params.edges.enabled)
       tbb::parallel_invoke([&] { source_edges_ = findEdgePoints(source, params.edges.terms); },
-                           [&] { edge_targets_ = std::make_unique<EdgeTargets>(target, params.edges.terms); });
+                           [&] {
+                             own_edge_targets_ = std::make_unique<EdgeTargets>(target, params.edges.terms);
+                             edge_targets_ = own_edge_targets_.get();
+                           });
+    else
+      edge_targets_ = nullptr;
     for (const auto& p : source.segmentation.patches)
       if (p.centroid.allFinite()) centroids_.push_back(p.centroid);
     evaluation_ = params.solver;
@@ -100,7 +109,8 @@ class DenseProblem {
   const std::vector<PatchCorrespondence>& inliers_;
   const RefineParams& params_;
   EdgePoints source_edges_;
-  std::unique_ptr<EdgeTargets> edge_targets_;
+  const EdgeTargets* edge_targets_;                // the caller's, or own_edge_targets_
+  std::unique_ptr<EdgeTargets> own_edge_targets_;
   std::vector<Eigen::Vector3d> centroids_;
   RefinementParams evaluation_;
 };
@@ -186,8 +196,9 @@ void validate(const RefineParams& p) {
 
 Refinement refine(const DepthView& source, const DepthView& target, const RegistrationResult& hypothesis,
                   const std::vector<PatchCorrespondence>& inliers, const RefineParams& params,
-                  const FreeSpaceTest& free_space, const DominantPlane* target_plane) {
-  const DenseProblem problem(source, target, hypothesis, inliers, params);
+                  const FreeSpaceTest& free_space, const DominantPlane* target_plane,
+                  const EdgeTargets* target_edges) {
+  const DenseProblem problem(source, target, hypothesis, inliers, params, target_edges);
   Refinement out;
   out.pose = problem.refineFrom(hypothesis.T_target_source, 1.0, out.rounds);
   widenEdges(problem, hypothesis.T_target_source, params, free_space, out);

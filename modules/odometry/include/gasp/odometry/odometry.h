@@ -18,6 +18,7 @@
 #include <opencv2/core.hpp>
 
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,6 +31,7 @@
 #include "gasp/odometry/pose_constraint.h"
 #include "gasp/odometry/view_ahead.h"
 #include "gasp/pipeline/depth_view.h"
+#include "gasp/pipeline/edge_terms.h"
 
 namespace gasp {
 
@@ -124,6 +126,9 @@ class DepthOdometry {
   std::vector<OdometryFrame> frames_;
   std::vector<PoseConstraint> constraints_;
   std::optional<DepthView> keyframe_view_;
+  /// The keyframe's edge targets for the tracking path, built at its first tracked frame (shared:
+  /// immutable, and the odometry stays copyable).
+  std::shared_ptr<const EdgeTargets> keyframe_edges_;
   std::size_t keyframe_index_ = 0;
   std::optional<DepthView> previous_view_;
   /// Velocity of the last step (frames i-1 -> i) when both were tracked and it was plausible, in

@@ -146,9 +146,11 @@ PairResult registerViews(const DepthView& source, const DepthView& target);
 /// then runs registerViews()). The result's association, correspondences and verified sets are
 /// empty. The dense rounds are anchored by the patch pairs RANSAC would count as inliers at the
 /// prediction (projectivePatchPairs(), projective_terms.h); no patch refinement runs first, so
-/// the slide scan (slide_scan.h) runs for a partial pose only. Never throws for data; throws gasp::Error for invalid parameters.
+/// the slide scan (slide_scan.h) runs for a partial pose only. `target_edges`: the target's edge
+/// targets when built before (refine(); e.g. a keyframe's, once for all the frames tracked
+/// against it). Never throws for data; throws gasp::Error for invalid parameters.
 PairResult trackViews(const DepthView& source, const DepthView& target, const Isometry3& T_target_source_predicted,
-                      const PairParams& params);
+                      const PairParams& params, const EdgeTargets* target_edges = nullptr);
 
 /// Stage 1 and the rest: both depth images segmented with params.segment (concurrently), then
 /// registerViews(). Throws gasp::Error for a depth image that does not match the intrinsics.

@@ -83,10 +83,13 @@ struct Refinement {
 /// Refines `hypothesis` (RANSAC + patch refinement), whose inlier correspondences `inliers` stay
 /// in every round. `free_space(T)`: the test a claimed pose will face (certify_stage.h).
 /// `target_plane`: the target view's dominant plane when already found (plane_hypothesis.h; a
-/// partial pose's slide scan searches along it; null: found here when needed).
+/// partial pose's slide scan searches along it; null: found here when needed). `target_edges`:
+/// the target's edge targets when built before from `target` with params.edges.terms (a
+/// keyframe's, for every frame tracked against it; null: built here when edge terms are on).
 /// Requires params.dense.rounds > 0. Never throws for data.
 Refinement refine(const DepthView& source, const DepthView& target, const RegistrationResult& hypothesis,
                   const std::vector<PatchCorrespondence>& inliers, const RefineParams& params,
-                  const FreeSpaceTest& free_space, const DominantPlane* target_plane = nullptr);
+                  const FreeSpaceTest& free_space, const DominantPlane* target_plane = nullptr,
+                  const EdgeTargets* target_edges = nullptr);
 
 }  // namespace gasp
