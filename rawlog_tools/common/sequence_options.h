@@ -67,7 +67,7 @@ inline void addOdometryOptions(CLI::App& app, OdometryParams& params) {
 /// --sequential: no segmentation ahead (frames_ahead.h).
 inline void addSequentialOption(CLI::App& app, bool& sequential) {
   app.add_flag("--sequential", sequential,
-               "segment each frame only when it is added (by default the next frame is segmented on a second thread "
+               "segment each frame only when it is added (by default the next two frames are segmented on threads of their own "
                "while the current one is registered; the poses are the same)");
 }
 
