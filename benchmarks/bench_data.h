@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -36,6 +37,21 @@ inline DepthPairs loadFr1XyzPairs(int n_pairs) {
   for (std::size_t i = 0; i + 10 < ds.size() && p.depth.size() < n; i += step)
     p.depth.emplace_back(ds.loadDepth(i), ds.loadDepth(i + 10));
   return p;
+}
+
+/// The arguments without "NAME VALUE" (the rest go to Google Benchmark), and VALUE as an integer
+/// (`fallback` when the option is not given).
+inline int takeIntOption(int argc, char** argv, const char* name, int fallback, std::vector<char*>& rest) {
+  int value = fallback;
+  rest.clear();
+  for (int a = 0; a < argc; ++a) {
+    if (a + 1 < argc && std::strcmp(argv[a], name) == 0) {
+      value = std::atoi(argv[++a]);
+      continue;
+    }
+    rest.push_back(argv[a]);
+  }
+  return value;
 }
 
 }  // namespace gasp::bench

@@ -11,7 +11,6 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <random>
 #include <vector>
 
@@ -84,15 +83,8 @@ BENCHMARK(BM_LikelihoodFurtherPose)->Unit(benchmark::kMillisecond)->MinTime(2.0)
 }  // namespace
 
 int main(int argc, char** argv) {
-  int views = 1;
   std::vector<char*> args;
-  for (int a = 0; a < argc; ++a) {
-    if (a + 1 < argc && std::strcmp(argv[a], "--views") == 0) {
-      views = std::atoi(argv[++a]);
-      continue;
-    }
-    args.push_back(argv[a]);
-  }
+  const int views = gasp::bench::takeIntOption(argc, argv, "--views", 1, args);
   if (views < 1 || views > 70) {
     std::fprintf(stderr, "error: --views must be 1 to 70\n");
     return 2;
