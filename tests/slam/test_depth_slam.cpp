@@ -185,6 +185,28 @@ TEST(DepthSlam, AMovedBoxInASymmetricSceneGivesNoWrongConstraint) {
   EXPECT_LT(ate, 0.01);
 }
 
+TEST(DepthSlam, RetrievalByPlaceDescriptorsClosesTheCircleWithoutTheRadius) {
+  // The circle's loop found with candidates chosen by place descriptor alone (no radius around
+  // the estimate), and every closure taken true.
+  const LoopSequence s = circleSequence(30);
+  gasp::SlamParams p;
+  p.loop.search = gasp::LoopSearch::kRetrieval;
+  gasp::DepthSlam slam(p, s.T_world_camera[0]);
+  for (std::size_t i = 0; i < s.depth.size(); ++i) slam.addFrame(s.timestamps[i], s.depth[i], s.K);
+  slam.finishLoops();
+  ASSERT_FALSE(slam.loopClosures().empty());
+  std::size_t longest = 0;
+  for (const auto& c : slam.loopClosures()) {
+    const auto [t, r] = closureError(c, s);
+    EXPECT_LT(t, 0.02) << c.from << " -> " << c.to;
+    EXPECT_LT(r, 1.0) << c.from << " -> " << c.to;
+    longest = std::max(longest, c.to - c.from);
+  }
+  std::printf("circle by retrieval: %zu loop closures of %zu tried, the longest %zu frames\n", slam.loopClosures().size(),
+              slam.attempts().size(), longest);
+  EXPECT_GE(longest, 20u);  // the end back at the start
+}
+
 TEST(DepthSlam, SearchesInTheBackgroundAreTheSearchesInPlace) {
   // The same circle with the searches in place and on their own thread: the same registrations
   // tried, the same taken, the same graph; the poses agree to the optimiser's precision (in the

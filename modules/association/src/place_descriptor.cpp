@@ -53,6 +53,11 @@ double placeDistance(const PlaceDescriptor& a, const PlaceDescriptor& b) {
   return std::sqrt(std::max(0.0, 1.0 - bc));
 }
 
+const PlaceDescriptor* PlaceIndex::find(std::size_t id) const {
+  const auto it = std::find(ids_.begin(), ids_.end(), id);
+  return it == ids_.end() ? nullptr : &descriptors_[static_cast<std::size_t>(it - ids_.begin())];
+}
+
 bool PlaceIndex::add(std::size_t id, PlaceDescriptor descriptor) {
   if (descriptor.sqrt_frequencies.empty()) return false;
   const auto it = std::find(ids_.begin(), ids_.end(), id);

@@ -234,6 +234,8 @@ void loopClosureFields(P& p, F&& f) {
   f("relocalisation_min_inliers", p.relocalisation_min_inliers);
   f("relocalisation_agreeing", p.relocalisation_agreeing);
   f("background", p.background);
+  f("loop_search", p.search);
+  f("retrieval_candidates", p.retrieval_candidates);
 }
 
 /// The pose-graph optimiser (pose_graph_optimizer.h).
@@ -335,6 +337,13 @@ inline bool parse(const std::string& text, PoseSolver& v) {
   return false;
 }
 
+inline bool parse(const std::string& text, LoopSearch& v) {
+  if (text == "radius") return v = LoopSearch::kRadius, true;
+  if (text == "retrieval") return v = LoopSearch::kRetrieval, true;
+  if (text == "both") return v = LoopSearch::kBoth, true;
+  return false;
+}
+
 /// A comma-separated list of finite numbers (at least one).
 inline bool parse(const std::string& text, std::vector<double>& v) {
   std::vector<double> out;
@@ -361,6 +370,7 @@ inline const char* typeName(const MayBeInfinite<D>&) { return "a number or inf";
 inline const char* typeName(const CandidateKey&) { return "quantiles or mean"; }
 inline const char* typeName(const RobustLoss&) { return "none, huber or cauchy"; }
 inline const char* typeName(const PoseSolver&) { return "ceres or normal_equations"; }
+inline const char* typeName(const LoopSearch&) { return "radius, retrieval or both"; }
 inline const char* typeName(const std::vector<double>&) { return "a comma-separated list of finite numbers"; }
 
 inline std::string toText(double v) { return mrpt::format("%.17g", v); }  // exact: reads back to the same double
@@ -373,6 +383,9 @@ inline std::string toText(const MayBeInfinite<D>& w) { return std::isinf(w.value
 inline std::string toText(CandidateKey v) { return v == CandidateKey::kMean ? "mean" : "quantiles"; }
 inline std::string toText(RobustLoss v) {
   return v == RobustLoss::kNone ? "none" : v == RobustLoss::kCauchy ? "cauchy" : "huber";
+}
+inline std::string toText(LoopSearch v) {
+  return v == LoopSearch::kRetrieval ? "retrieval" : v == LoopSearch::kBoth ? "both" : "radius";
 }
 inline std::string toText(PoseSolver v) { return v == PoseSolver::kCeres ? "ceres" : "normal_equations"; }
 inline std::string toText(const std::vector<double>& v) {

@@ -7,6 +7,8 @@
 #include <string>
 #include <utility>
 
+#include "gasp/association/feature_sets.h"
+#include "gasp/association/patch_geometry.h"
 #include "gasp/core/error.h"
 #include "gasp/core/format.h"
 #include "gasp/core/stopwatch.h"
@@ -40,6 +42,9 @@ const OdometryFrame& DepthSlam::addFrame(double timestamp, const cv::Mat& depth_
   if (f.keyframe && params_.loop.enabled) {
     keyframes_.push_back(f.index);
     keyframe_views_.emplace(f.index, *odometry_.keyframeView());
+    if (params_.loop.search != LoopSearch::kRadius)
+      places_.add(f.index, describePlace(computeFeatureSets(toPatchGeometry(odometry_.keyframeView()->segmentation.patches),
+                                                            params_.odometry.pair.associate.feature_sets)));
     if (params_.loop.background)
       waiting_keyframes_.push_back(f.index);
     else
@@ -113,6 +118,14 @@ LoopSearchGraph DepthSlam::graphFor(std::size_t k) {
   g.tree = odometry_.constraints();
   g.view = [this](std::size_t i) -> const DepthView& { return keyframe_views_.at(i); };
   g.links = [this] { return constraints(); };
+  g.retrieve = [this](std::size_t key) {
+    std::vector<std::size_t> out;
+    const PlaceDescriptor* d = places_.find(key);
+    if (!d) return out;  // no descriptor (no features): nothing to retrieve with
+    for (const auto& [id, distance] : places_.query(*d, places_.size(), [key](std::size_t id) { return id >= key; }))
+      out.push_back(id);
+    return out;
+  };
   g.insert = [this](const PoseConstraint& c, std::size_t attempt, std::size_t group) {
     loop_closures_.push_back(c);
     loop_attempt_.push_back(attempt);

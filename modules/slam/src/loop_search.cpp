@@ -1,5 +1,6 @@
 #include "gasp/slam/loop_search.h"
 
+#include <algorithm>
 #include <string>
 #include <utility>
 
@@ -29,7 +30,24 @@ void requireLast(std::size_t k, const LoopSearchGraph& g) {
 
 std::vector<std::size_t> nearLoopCandidates(std::size_t k, const LoopSearchGraph& g, const LoopClosureParams& loop) {
   requireLast(k, g);
-  return loopCandidates(g.keyframes, g.T_world_camera, pieceRoots(g.node_count, g.links()), loop);
+  const std::vector<std::size_t> roots = pieceRoots(g.node_count, g.links());
+  std::vector<std::size_t> out;
+  if (loop.search != LoopSearch::kRetrieval) out = loopCandidates(g.keyframes, g.T_world_camera, roots, loop);
+  if (loop.search == LoopSearch::kRadius) return out;
+  if (!g.retrieve) throw Error("loop search: retrieval needs the keyframes' place descriptors (DepthSlam has them)");
+  // Keyframes at least min_keyframe_gap back: those before position n - gap in g.keyframes.
+  const std::size_t n = g.keyframes.size();
+  std::size_t taken = 0;
+  for (const std::size_t c : g.retrieve(k)) {
+    if (taken >= loop.retrieval_candidates) break;
+    const auto pos = std::find(g.keyframes.begin(), g.keyframes.end(), c);
+    if (pos == g.keyframes.end() || static_cast<std::size_t>(pos - g.keyframes.begin()) + loop.min_keyframe_gap >= n)
+      continue;
+    if (roots[c] != roots[k] || std::find(out.begin(), out.end(), c) != out.end()) continue;
+    out.push_back(c);
+    ++taken;
+  }
+  return out;
 }
 
 std::vector<std::size_t> relocalisationCandidatesOf(std::size_t k, const LoopSearchGraph& g,

@@ -52,6 +52,8 @@ class PlaceIndex {
   /// Adds (or replaces) the descriptor of `id`; an empty descriptor is not added (false).
   bool add(std::size_t id, PlaceDescriptor descriptor);
   std::size_t size() const { return ids_.size(); }
+  /// The descriptor of `id`, or null.
+  const PlaceDescriptor* find(std::size_t id) const;
   /// The `k` nearest to `query` (id, distance), nearest first, ties by id; `exclude(id)` true
   /// leaves an id out (e.g. the query's own recent keyframes). Empty for an empty query.
   template <class Exclude>

@@ -32,6 +32,7 @@
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/odometry/odometry.h"
 #include "gasp/odometry/pose_constraint.h"
+#include "gasp/association/place_descriptor.h"
 #include "gasp/pipeline/depth_view.h"
 #include "gasp/slam/loop_closure.h"
 #include "gasp/slam/loop_search.h"
@@ -107,6 +108,7 @@ class DepthSlam {
   std::vector<Isometry3> T_world_frame_;
   std::vector<std::size_t> keyframes_;          ///< frame indices, ascending
   std::map<std::size_t, DepthView> keyframe_views_;
+  PlaceIndex places_;  ///< the keyframes' place descriptors, when the loop search uses retrieval
   std::vector<PoseConstraint> loop_closures_;
   std::vector<std::size_t> loop_attempt_;       ///< for each loop closure, its index in attempts_
   std::vector<std::size_t> loop_group_;         ///< for each loop closure, its votes' group (0: none)

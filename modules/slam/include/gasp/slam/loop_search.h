@@ -25,6 +25,10 @@ struct LoopSearchGraph {
   std::vector<PoseConstraint> tree;       ///< the odometry's constraints (its prediction)
   std::function<const DepthView&(std::size_t node)> view;
   std::function<std::vector<PoseConstraint>()> links;  ///< every constraint now: the tree and the closures taken
+  /// The keyframes before `k` whose place descriptors are nearest to k's, nearest first
+  /// (PlaceIndex); needed when LoopClosureParams::search uses retrieval (empty: the owner has no
+  /// descriptors, and such a search is an error).
+  std::function<std::vector<std::size_t>(std::size_t k)> retrieve;
   /// A constraint taken: its attempt's index and its group (0: a loop closure; else the vote
   /// group of a relocalisation, whose votes entered together).
   std::function<void(const PoseConstraint& c, std::size_t attempt, std::size_t group)> insert;
@@ -54,8 +58,11 @@ struct LoopRegistration {
   PoseConstraint constraint;
 };
 
-/// Phase 1's candidates: earlier keyframes near `k` (loopCandidates()); `k` must be the last of
-/// graph.keyframes (gasp::Error otherwise), as for phase 2.
+/// Phase 1's candidates: earlier keyframes near `k` (loopCandidates()) and/or those whose place
+/// descriptors are nearest (LoopClosureParams::search; at most retrieval_candidates, in k's piece,
+/// at least min_keyframe_gap keyframes back, none twice); `k` must be the last of
+/// graph.keyframes (gasp::Error otherwise, as for phase 2, and for a retrieval without
+/// graph.retrieve).
 std::vector<std::size_t> nearLoopCandidates(std::size_t k, const LoopSearchGraph& graph, const LoopClosureParams& loop);
 /// Phase 2's: the latest keyframes of the other pieces (relocalisationCandidates()); none when
 /// relocalisation is off.

@@ -8,6 +8,10 @@
 
 namespace gasp {
 
+/// How loop-closure candidates are chosen: near the new keyframe at the current estimate, by the
+/// nearest place descriptors over the whole map (place_descriptor.h; DepthSlam only), or both.
+enum class LoopSearch { kRadius, kRetrieval, kBoth };
+
 struct LoopClosureParams {
   bool enabled = true;  ///< false: odometry only (the graph is then a tree and never optimised)
   /// Candidates: earlier keyframes of the same graph piece within this distance of the new
@@ -46,6 +50,10 @@ struct LoopClosureParams {
   /// tracked, and takes the results when they are ready (depth_slam.h); false: in place, the
   /// tracking waiting for them. The graph-SLAM plugin's edge decider always searches in place.
   bool background = true;
+  LoopSearch search = LoopSearch::kRadius;
+  /// Retrieval: the keyframes with the nearest place descriptors taken as candidates (at least
+  /// min_keyframe_gap keyframes back, in the new keyframe's piece), besides the radius's with kBoth.
+  std::size_t retrieval_candidates = 2;
 };
 
 struct SlamParams {
