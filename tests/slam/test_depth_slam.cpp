@@ -107,11 +107,17 @@ TEST(DepthSlam, ClosesTheLoopOfACircleWithClosuresThatAreTrue) {
   EXPECT_LT(nees.back(), 12.59);
 }
 
-TEST(DepthSlam, RelocalisesAfterTheCameraLooksAwayAndKeepsTheUnrelatedPieceApart) {
+class DepthSlamRelocalisation : public ::testing::TestWithParam<gasp::LoopSearch> {};
+
+TEST_P(DepthSlamRelocalisation, AfterTheCameraLooksAwayKeepingTheUnrelatedPieceApart) {
   // Frames 12-14 look away: the odometry loses track twice (into that view and back), so the
   // graph falls into pieces: 0-11, 12-14 (13 registered to 12) and 15-29 (16 registered to 15).
+  // The candidates of the other pieces are their latest keyframes, or the nearest by place
+  // descriptor (retrieval).
   const LoopSequence s = circleSequence(30, {12, 13, 14});
-  gasp::DepthSlam slam({}, s.T_world_camera[0]);
+  gasp::SlamParams p;
+  p.loop.search = GetParam();
+  gasp::DepthSlam slam(p, s.T_world_camera[0]);
   for (std::size_t i = 0; i < s.depth.size(); ++i) slam.addFrame(s.timestamps[i], s.depth[i], s.K);
   slam.finishLoops();
   EXPECT_GE(slam.odometry().componentCount(), 3u);
@@ -137,6 +143,10 @@ TEST(DepthSlam, RelocalisesAfterTheCameraLooksAwayAndKeepsTheUnrelatedPieceApart
     EXPECT_LT(gasp::rotationAngle(e) * 180 / M_PI, 1.0) << "frame " << i;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Candidates, DepthSlamRelocalisation,
+                         ::testing::Values(gasp::LoopSearch::kRadius, gasp::LoopSearch::kRetrieval),
+                         [](const auto& p) { return p.param == gasp::LoopSearch::kRadius ? "Latest" : "Retrieval"; });
 
 TEST(DepthSlam, AMovedBoxInASymmetricSceneGivesNoWrongConstraint) {
   // The repeated scene (identical boxes in a grid that a half turn maps onto itself) at 5 Hz,

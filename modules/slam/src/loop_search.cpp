@@ -54,7 +54,20 @@ std::vector<std::size_t> relocalisationCandidatesOf(std::size_t k, const LoopSea
                                                     const LoopClosureParams& loop) {
   requireLast(k, g);
   if (loop.relocalisation_candidates == 0) return {};
-  return relocalisationCandidates(g.keyframes, pieceRoots(g.node_count, g.links()), loop);
+  const std::vector<std::size_t> roots = pieceRoots(g.node_count, g.links());
+  std::vector<std::size_t> out;
+  if (loop.search != LoopSearch::kRetrieval) out = relocalisationCandidates(g.keyframes, roots, loop);
+  if (loop.search == LoopSearch::kRadius) return out;
+  if (!g.retrieve) throw Error("loop search: retrieval needs the keyframes' place descriptors (DepthSlam has them)");
+  // The nearest descriptors of the other pieces, as many again as the latest keyframes' rule takes.
+  std::size_t taken = 0;
+  for (const std::size_t c : g.retrieve(k)) {
+    if (taken >= loop.relocalisation_candidates) break;
+    if (roots[c] == roots[k] || std::find(out.begin(), out.end(), c) != out.end()) continue;
+    out.push_back(c);
+    ++taken;
+  }
+  return out;
 }
 
 std::vector<LoopRegistration> registerCandidates(std::size_t k, const DepthView& view_k,

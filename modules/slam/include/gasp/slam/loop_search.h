@@ -64,8 +64,9 @@ struct LoopRegistration {
 /// graph.keyframes (gasp::Error otherwise, as for phase 2, and for a retrieval without
 /// graph.retrieve).
 std::vector<std::size_t> nearLoopCandidates(std::size_t k, const LoopSearchGraph& graph, const LoopClosureParams& loop);
-/// Phase 2's: the latest keyframes of the other pieces (relocalisationCandidates()); none when
-/// relocalisation is off.
+/// Phase 2's: the latest keyframes of the other pieces (relocalisationCandidates()) and/or the
+/// other pieces' keyframes with the nearest place descriptors (LoopClosureParams::search; at most
+/// relocalisation_candidates of each kind, none twice); none when relocalisation is off.
 std::vector<std::size_t> relocalisationCandidatesOf(std::size_t k, const LoopSearchGraph& graph,
                                                     const LoopClosureParams& loop);
 /// Keyframe `k`'s view (`view_k`) registered to each candidate's (registerLoopClosure()).
