@@ -26,6 +26,21 @@ void requireLast(std::size_t k, const LoopSearchGraph& g) {
     throw Error("loop search: keyframe " + std::to_string(k) + " is not the last keyframe of the graph searched");
 }
 
+/// Appends to `out` up to `count` keyframes before k, nearest to it by place descriptor first,
+/// that `keep` accepts and `out` does not hold yet.
+template <class Keep>
+void appendRetrieved(std::size_t k, const LoopSearchGraph& g, std::size_t count, std::vector<std::size_t>& out,
+                     Keep&& keep) {
+  if (!g.retrieve) throw Error("loop search: retrieval needs the keyframes' place descriptors (DepthSlam has them)");
+  std::size_t taken = 0;
+  for (const std::size_t c : g.retrieve(k)) {
+    if (taken >= count) break;
+    if (!keep(c) || std::find(out.begin(), out.end(), c) != out.end()) continue;
+    out.push_back(c);
+    ++taken;
+  }
+}
+
 }  // namespace
 
 std::vector<std::size_t> nearLoopCandidates(std::size_t k, const LoopSearchGraph& g, const LoopClosureParams& loop) {
@@ -34,19 +49,13 @@ std::vector<std::size_t> nearLoopCandidates(std::size_t k, const LoopSearchGraph
   std::vector<std::size_t> out;
   if (loop.search != LoopSearch::kRetrieval) out = loopCandidates(g.keyframes, g.T_world_camera, roots, loop);
   if (loop.search == LoopSearch::kRadius) return out;
-  if (!g.retrieve) throw Error("loop search: retrieval needs the keyframes' place descriptors (DepthSlam has them)");
-  // Keyframes at least min_keyframe_gap back: those before position n - gap in g.keyframes.
+  // Keyframes at least min_keyframe_gap back (before position n - gap in g.keyframes), in k's piece.
   const std::size_t n = g.keyframes.size();
-  std::size_t taken = 0;
-  for (const std::size_t c : g.retrieve(k)) {
-    if (taken >= loop.retrieval_candidates) break;
+  appendRetrieved(k, g, loop.retrieval_candidates, out, [&](std::size_t c) {
     const auto pos = std::find(g.keyframes.begin(), g.keyframes.end(), c);
-    if (pos == g.keyframes.end() || static_cast<std::size_t>(pos - g.keyframes.begin()) + loop.min_keyframe_gap >= n)
-      continue;
-    if (roots[c] != roots[k] || std::find(out.begin(), out.end(), c) != out.end()) continue;
-    out.push_back(c);
-    ++taken;
-  }
+    return pos != g.keyframes.end() && static_cast<std::size_t>(pos - g.keyframes.begin()) + loop.min_keyframe_gap < n &&
+           roots[c] == roots[k];
+  });
   return out;
 }
 
@@ -58,15 +67,8 @@ std::vector<std::size_t> relocalisationCandidatesOf(std::size_t k, const LoopSea
   std::vector<std::size_t> out;
   if (loop.search != LoopSearch::kRetrieval) out = relocalisationCandidates(g.keyframes, roots, loop);
   if (loop.search == LoopSearch::kRadius) return out;
-  if (!g.retrieve) throw Error("loop search: retrieval needs the keyframes' place descriptors (DepthSlam has them)");
   // The nearest descriptors of the other pieces, as many again as the latest keyframes' rule takes.
-  std::size_t taken = 0;
-  for (const std::size_t c : g.retrieve(k)) {
-    if (taken >= loop.relocalisation_candidates) break;
-    if (roots[c] == roots[k] || std::find(out.begin(), out.end(), c) != out.end()) continue;
-    out.push_back(c);
-    ++taken;
-  }
+  appendRetrieved(k, g, loop.relocalisation_candidates, out, [&](std::size_t c) { return roots[c] != roots[k]; });
   return out;
 }
 
