@@ -201,6 +201,7 @@ TEST(Refinement, BothSolversReachTheSameMinimum) {
       EXPECT_LT((by_ceres.information - by_equations.information).norm(), 1e-3 * by_ceres.information.norm());
       EXPECT_NEAR(by_ceres.rms_residual_m, by_equations.rms_residual_m, 1e-6);
       EXPECT_GT(by_equations.iterations, 0);
+      EXPECT_GT(by_ceres.iterations, 0);
     }
   }
 }

@@ -123,6 +123,7 @@ PoseSolve PoseProblem::solveByCeres() {
   costs.reserve(terms_.size());
   Eigen::Quaterniond q(T_.rotation());
   Eigen::Vector3d t = T_.translation();
+  PoseSolve out;
   {
     ceres::Problem problem(problem_options);  // destroyed before what it borrows
     problem.AddParameterBlock(q.coeffs().data(), 4, &quaternion_manifold);
@@ -149,17 +150,13 @@ PoseSolve PoseProblem::solveByCeres() {
     options.logging_type = ceres::SILENT;
     ceres::Solver::Summary summary;
     ceres::Solve(options, &problem, &summary);
-    PoseSolve out;
     out.iterations = summary.num_successful_steps + summary.num_unsuccessful_steps;
     out.usable = summary.IsSolutionUsable();
     out.message = summary.message;
     if (!out.usable) return out;
   }
-  Isometry3 T = Isometry3::Identity();
-  T.linear() = q.normalized().toRotationMatrix();
-  T.translation() = t;
-  T_ = T;
-  PoseSolve out;
+  T_.linear() = q.normalized().toRotationMatrix();
+  T_.translation() = t;
   return out;
 }
 
