@@ -38,16 +38,15 @@ class DenseProblem {
                const EdgeTargets* target_edges)
       : source_(source), target_(target), hypothesis_(hypothesis), inliers_(inliers), params_(params),
         edge_targets_(target_edges) {
-    if (params.edges.enabled && edge_targets_)
+    if (!params.edges.enabled) {
+      edge_targets_ = nullptr;  // the caller's go unused
+    } else if (edge_targets_) {
       source_edges_ = findEdgePoints(source, params.edges.terms);
-    else if (params.edges.enabled)
+    } else {
       tbb::parallel_invoke([&] { source_edges_ = findEdgePoints(source, params.edges.terms); },
-                           [&] {
-                             own_edge_targets_ = std::make_unique<EdgeTargets>(target, params.edges.terms);
-                             edge_targets_ = own_edge_targets_.get();
-                           });
-    else
-      edge_targets_ = nullptr;
+                           [&] { own_edge_targets_ = std::make_unique<EdgeTargets>(target, params.edges.terms); });
+      edge_targets_ = own_edge_targets_.get();
+    }
     for (const auto& p : source.segmentation.patches)
       if (p.centroid.allFinite()) centroids_.push_back(p.centroid);
     evaluation_ = params.solver;

@@ -56,13 +56,6 @@ constexpr double kInitialRadius = 1e4, kMaxRadius = 1e16, kMinRadius = 1e-32;
 constexpr double kMinLmDiagonal = 1e-6, kMaxLmDiagonal = 1e32;
 constexpr double kMinRelativeDecrease = 1e-3;
 
-/// The normal equations at one pose: cost = 1/2 sum w rho, H = sum w rho' J J^T, g = sum w rho' r J.
-struct NormalEquations {
-  double cost = 0.0;
-  Matrix6d H = Matrix6d::Zero();
-  Vector6d g = Vector6d::Zero();
-};
-
 }  // namespace
 
 PoseProblem::PoseProblem(const Isometry3& T_init, const RefinementParams& params) : params_(params) { setPose(T_init); }
@@ -160,18 +153,20 @@ PoseSolve PoseProblem::solveByCeres() {
   return out;
 }
 
+PoseProblem::NormalEquations PoseProblem::equationsAt(const Isometry3& T) const {
+  NormalEquations e;
+  Matrix6d lower = Matrix6d::Zero();
+  for (const Term& term : terms_) {
+    const Linearised l = linearise(term, T);
+    e.cost += 0.5 * l.rho;
+    lower.selfadjointView<Eigen::Lower>().rankUpdate(l.J, l.rho1);
+    e.g += l.rho1 * l.r * l.J;
+  }
+  e.H = lower.selfadjointView<Eigen::Lower>();
+  return e;
+}
+
 PoseSolve PoseProblem::solveByNormalEquations() {
-  const auto equationsAt = [this](const Isometry3& T) {
-    NormalEquations e;
-    for (const Term& term : terms_) {
-      const Linearised l = linearise(term, T);
-      e.cost += 0.5 * l.rho;
-      e.H.selfadjointView<Eigen::Lower>().rankUpdate(l.J, l.rho1);
-      e.g += l.rho1 * l.r * l.J;
-    }
-    e.H = e.H.selfadjointView<Eigen::Lower>();
-    return e;
-  };
   PoseSolve out;
   NormalEquations here = equationsAt(T_);
   if (!std::isfinite(here.cost)) {
@@ -224,12 +219,8 @@ std::vector<double> PoseProblem::residuals() const {
 }
 
 Matrix6d PoseProblem::information() const {
-  Matrix6d JtJ = Matrix6d::Zero();
-  for (const Term& term : terms_) {
-    const Linearised l = linearise(term, T_);
-    JtJ.selfadjointView<Eigen::Lower>().rankUpdate(l.J, l.rho1);
-  }
-  const Matrix6d information = Matrix6d(JtJ.selfadjointView<Eigen::Lower>()) / (params_.noise_sigma_m * params_.noise_sigma_m);
+  // H of the normal equations is the robustified J^T J.
+  const Matrix6d information = equationsAt(T_).H / (params_.noise_sigma_m * params_.noise_sigma_m);
   return 0.5 * (information + information.transpose());
 }
 

@@ -50,6 +50,13 @@ class PoseProblem {
     Vector6d J;
   };
   Linearised linearise(const Term& term, const Isometry3& T) const;
+  /// The normal equations at T: cost = 1/2 sum w rho, H = sum w rho' J J^T, g = sum w rho' r J.
+  struct NormalEquations {
+    double cost = 0.0;
+    Matrix6d H = Matrix6d::Zero();
+    Vector6d g = Vector6d::Zero();
+  };
+  NormalEquations equationsAt(const Isometry3& T) const;
   void add(const Term& term);
   PoseSolve solveByCeres();
   PoseSolve solveByNormalEquations();

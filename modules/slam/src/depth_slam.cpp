@@ -85,9 +85,9 @@ void DepthSlam::takeLoops(bool wait) {
   for (;;) {
     if (job_) {
       if (!wait && job_->registered.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
-      std::vector<LoopRegistration> registered = job_->registered.get();
-      const LoopJob job{job_->keyframe, job_->relocalisation, job_->taken, {}};
+      LoopJob job = std::move(*job_);
       job_.reset();
+      std::vector<LoopRegistration> registered = job.registered.get();
       const LoopSearchGraph g = graphFor(job.keyframe);
       if (!job.relocalisation) {
         const bool taken = takeNearLoops(job.keyframe, g, std::move(registered), params_.loop, attempts_);
@@ -122,8 +122,8 @@ LoopSearchGraph DepthSlam::graphFor(std::size_t k) {
     std::vector<std::size_t> out;
     const PlaceDescriptor* d = places_.find(key);
     if (!d) return out;  // no descriptor (no features): nothing to retrieve with
-    for (const auto& [id, distance] : places_.query(*d, places_.size(), [key](std::size_t id) { return id >= key; }))
-      out.push_back(id);
+    for (const auto& nearest : places_.query(*d, places_.size(), [key](std::size_t id) { return id >= key; }))
+      out.push_back(nearest.first);
     return out;
   };
   g.insert = [this](const PoseConstraint& c, std::size_t attempt, std::size_t group) {

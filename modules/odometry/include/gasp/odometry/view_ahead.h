@@ -43,8 +43,6 @@ class ViewAhead {
   /// when the segmentation failed (addFrame() then segments the frame itself and reports the
   /// error as it would without this).
   std::optional<SegmentedDepth> take();
-  /// Segmentations started and not yet taken.
-  std::size_t pending() const { return pending_.size(); }
 
  private:
   SuperpixelParams superpixels_;
