@@ -295,6 +295,39 @@ TEST(DepthOdometry, TheFirstFrameWithPatchesIsTheOrigin) {
   EXPECT_EQ(odo.componentCount(), 2u);  // frame 0 alone, frames 1-2
 }
 
+TEST(DepthOdometry, ASessionStartsAfreshWithItsOwnOriginAndClock) {
+  const auto& sim = room();
+  const auto K = sim.options().intrinsics;
+  DepthOdometry odo;
+  odo.startSession(Isometry3::Identity());  // before any frame: the first session's origin only
+  for (int i = 0; i < 3; ++i) odo.addFrame(sim.frame(i).timestamp, sim.frame(i).depth, K);
+  Isometry3 T_world_second = Isometry3::Identity();
+  T_world_second.translation() = Eigen::Vector3d(5, 0, 0);
+  odo.startSession(Isometry3::Identity());
+  odo.startSession(T_world_second);  // again before its first frame: only the origin changes
+  // The second session's clock starts earlier than the first's last frame: allowed at its start.
+  const auto empty = odo.addFrame(sim.frame(0).timestamp - 100.0, cv::Mat::zeros(K.height, K.width, CV_32FC1), K);
+  EXPECT_FALSE(empty.tracked);
+  EXPECT_EQ(empty.session, 1u);
+  EXPECT_NE(empty.reason.find("no surface patches"), std::string::npos) << empty.reason;
+  const auto& origin = odo.addFrame(sim.frame(5).timestamp - 100.0, sim.frame(5).depth, K);
+  EXPECT_TRUE(origin.tracked && origin.keyframe);
+  EXPECT_EQ(origin.reference, origin.index);  // not registered to the first session
+  EXPECT_TRUE(origin.T_world_camera.isApprox(T_world_second));
+  const auto& next = odo.addFrame(sim.frame(6).timestamp - 100.0, sim.frame(6).depth, K);
+  EXPECT_TRUE(next.tracked) << next.reason;
+  EXPECT_EQ(next.reference, 4u);
+  EXPECT_EQ(next.session, 1u);
+  EXPECT_EQ(odo.sessionStarts(), (std::vector<std::size_t>{0, 3}));
+  EXPECT_EQ(odo.componentCount(), 3u);  // frames 0-2, frame 3 alone, frames 4-5
+  // Within the session the clock must still go forward.
+  EXPECT_NE(errorOf([&] { odo.addFrame(sim.frame(6).timestamp - 100.0, sim.frame(7).depth, K); }).find("not later"),
+            std::string::npos);
+  const Isometry3 T_step = origin.T_world_camera.inverse() * next.T_world_camera;
+  const Isometry3 T_step_true = sim.frame(5).T_world_camera.inverse() * sim.frame(6).T_world_camera;
+  EXPECT_LT(gasp::translationNorm(T_step_true.inverse() * T_step), 0.01);
+}
+
 TEST(DepthOdometry, AnImplausibleSpeedIsNotTaken) {
   const auto& sim = room();
   const auto K = sim.options().intrinsics;

@@ -29,8 +29,12 @@ using gasp::test::circleSequence;
 using gasp::test::LoopSequence;
 
 /// Translation [m] and rotation [deg] error of a closure against the truth.
-std::pair<double, double> closureError(const gasp::PoseConstraint& c, const LoopSequence& s) {
-  const Isometry3 truth = s.T_world_camera[c.from].inverse() * s.T_world_camera[c.to];
+/// `truth_index`: the sequence's frame of each frame added (empty: the same).
+std::pair<double, double> closureError(const gasp::PoseConstraint& c, const LoopSequence& s,
+                                       const std::vector<std::size_t>& truth_index = {}) {
+  const std::size_t from = truth_index.empty() ? c.from : truth_index[c.from];
+  const std::size_t to = truth_index.empty() ? c.to : truth_index[c.to];
+  const Isometry3 truth = s.T_world_camera[from].inverse() * s.T_world_camera[to];
   const Isometry3 e = truth.inverse() * c.T_from_to;
   return {gasp::translationNorm(e), gasp::rotationAngle(e) * 180 / M_PI};
 }
@@ -257,6 +261,84 @@ TEST(DepthSlam, SearchesInTheBackgroundAreTheSearchesInPlace) {
     EXPECT_LT(gasp::rotationAngle(e) * 180 / M_PI, 1e-3) << i;
   }
 }
+
+class DepthSlamSessions : public ::testing::TestWithParam<gasp::LoopSearch> {};
+
+TEST_P(DepthSlamSessions, SessionsThatShareThePlacesAreJoinedInOneFrame) {
+  // The circle in two sessions, the second half recorded first: each starts where it believes
+  // (the first at the truth, the second at the origin), its timestamps from its own clock. The
+  // second session's keyframes find the first's by relocalisation and the agreeing votes join
+  // them; the second session then lies in the first one's world.
+  const LoopSequence s = circleSequence(30);
+  gasp::SlamParams p;
+  p.loop.search = GetParam();
+  gasp::DepthSlam slam(p, s.T_world_camera[15]);
+  std::vector<std::size_t> truth_index;  // the circle's frame of each frame added
+  for (const std::size_t start : {15, 0}) {
+    if (start == 0) slam.startSession(Isometry3::Identity());
+    for (std::size_t i = start; i < start + 15; ++i) {
+      slam.addFrame(s.timestamps[i], s.depth[i], s.K);
+      truth_index.push_back(i);
+    }
+  }
+  slam.finishLoops();
+  ASSERT_EQ(slam.odometry().sessionStarts(), (std::vector<std::size_t>{0, 15}));
+  for (std::size_t i = 0; i < 30; ++i) {
+    EXPECT_EQ(slam.odometry().frames()[i].session, i < 15 ? 0u : 1u) << i;
+    EXPECT_TRUE(slam.odometry().frames()[i].tracked) << i << ": " << slam.odometry().frames()[i].reason;
+  }
+  EXPECT_EQ(slam.odometry().componentCount(), 2u);  // no odometry edge between the sessions
+  EXPECT_EQ(slam.pieceCount(), 1u);
+  const auto links = slam.sessionLinks();
+  ASSERT_EQ(links.size(), 2u);
+  EXPECT_GE(links[0][1], 2u);  // at least the agreeing votes
+  EXPECT_EQ(links[0][1], links[1][0]);
+  for (const auto& c : slam.loopClosures()) {
+    const auto [t, r] = closureError(c, s, truth_index);
+    EXPECT_LT(t, 0.02) << c.from << " -> " << c.to;
+    EXPECT_LT(r, 1.0) << c.from << " -> " << c.to;
+  }
+  for (std::size_t i = 0; i < 30; ++i) {
+    const Isometry3 e = s.T_world_camera[truth_index[i]].inverse() * slam.poses()[i];
+    EXPECT_LT(gasp::translationNorm(e), 0.02) << "frame " << i;
+    EXPECT_LT(gasp::rotationAngle(e) * 180 / M_PI, 1.0) << "frame " << i;
+  }
+}
+
+TEST(DepthSlam, SessionsThatShareNoPlaceStayApart) {
+  // A third of the circle looking ahead, then a third of it looking 90 degrees to the right: the two
+  // sessions see different walls, so no vote may join them; each keeps the world it began in.
+  // Both kinds of relocalisation candidates (the latest keyframes and the nearest descriptors).
+  const LoopSequence ahead = circleSequence(30);
+  std::vector<int> all(30);
+  for (int i = 0; i < 30; ++i) all[static_cast<std::size_t>(i)] = i;
+  const LoopSequence away = circleSequence(30, all);
+  gasp::SlamParams p;
+  p.loop.search = gasp::LoopSearch::kBoth;
+  gasp::DepthSlam slam(p, ahead.T_world_camera[0]);
+  for (std::size_t i = 0; i < 10; ++i) slam.addFrame(ahead.timestamps[i], ahead.depth[i], ahead.K);
+  slam.startSession(away.T_world_camera[0]);
+  for (std::size_t i = 0; i < 10; ++i) slam.addFrame(away.timestamps[i], away.depth[i], away.K);
+  slam.finishLoops();
+  EXPECT_EQ(slam.odometry().componentCount(), 2u);
+  EXPECT_EQ(slam.pieceCount(), 2u);
+  EXPECT_EQ(slam.sessionLinks()[0][1], 0u);
+  std::size_t relocalisations = 0;
+  for (const auto& a : slam.attempts()) relocalisations += a.relocalisation ? 1 : 0;
+  EXPECT_GT(relocalisations, 0u);  // the sessions were tried against each other
+  for (std::size_t i = 0; i < 10; ++i) {
+    for (const auto& [truth, pose] : {std::pair{ahead.T_world_camera[i], slam.poses()[i]},
+                                      std::pair{away.T_world_camera[i], slam.poses()[10 + i]}}) {
+      const Isometry3 e = truth.inverse() * pose;
+      EXPECT_LT(gasp::translationNorm(e), 0.02) << "frame " << i;
+      EXPECT_LT(gasp::rotationAngle(e) * 180 / M_PI, 1.0) << "frame " << i;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Candidates, DepthSlamSessions,
+                         ::testing::Values(gasp::LoopSearch::kRadius, gasp::LoopSearch::kRetrieval),
+                         [](const auto& p) { return p.param == gasp::LoopSearch::kRadius ? "Latest" : "Retrieval"; });
 
 TEST(DepthSlam, WithoutLoopClosuresItIsTheOdometry) {
   const LoopSequence s = circleSequence(30);

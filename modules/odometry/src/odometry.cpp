@@ -40,6 +40,17 @@ DepthOdometry::DepthOdometry(const OdometryParams& params, const Isometry3& T_wo
   validate(params_);
 }
 
+void DepthOdometry::startSession(const Isometry3& T_world_first) {
+  T_world_first_ = T_world_first;
+  if (frames_.empty() || session_pending_) return;  // the current session has no frame yet
+  session_pending_ = true;
+  keyframe_view_.reset();
+  keyframe_edges_.reset();
+  keyframe_index_ = 0;
+  previous_view_.reset();
+  velocity_.reset();
+}
+
 bool DepthOdometry::track(const DepthView& view, const DepthView& ref, std::size_t ref_index, OdometryFrame& f,
                           const char* attempt, const PairParams& pair, const std::optional<Isometry3>& T_ref_predicted,
                           bool* visibility_refused, const std::optional<Isometry3>& T_ref_motion) {
@@ -115,7 +126,8 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
                                              const CameraIntrinsics& intrinsics,
                                              std::optional<SegmentedDepth> segmented) {
   if (!std::isfinite(timestamp)) throw Error("odometry: frame " + std::to_string(frames_.size()) + ": timestamp is not finite");
-  if (!frames_.empty() && !(timestamp > frames_.back().timestamp)) {
+  const bool session_start = frames_.empty() || session_pending_;
+  if (!session_start && !(timestamp > frames_.back().timestamp)) {
     char buf[200];
     std::snprintf(buf, sizeof buf, "odometry: frame %zu: timestamp %.6f is not later than the previous frame's (%.6f)",
                   frames_.size(), timestamp, frames_.back().timestamp);
@@ -130,6 +142,7 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
   }
   OdometryFrame f;
   f.index = frames_.size();
+  f.session = session_start ? session_starts_.size() : frames_.back().session;
   f.timestamp = timestamp;
   f.reference = f.index;
 
@@ -214,7 +227,7 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
   f.registration_ms = msSince(t_reg);
 
   // The velocity of this step (both frames tracked), for the next frame's deskew and prediction.
-  if (f.index > 0) {
+  if (!session_start) {
     const OdometryFrame& p = frames_.back();
     const Isometry3 T_p_f = p.T_world_camera.inverse() * f.T_world_camera;
     const double dt = timestamp - p.timestamp;
@@ -237,6 +250,8 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
     keyframe_edges_.reset();
   }
   previous_view_ = std::move(view);
+  if (session_start) session_starts_.push_back(f.index);
+  session_pending_ = false;
   frames_.push_back(std::move(f));
   return frames_.back();
 }

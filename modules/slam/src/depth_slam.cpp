@@ -32,12 +32,12 @@ const OdometryFrame& DepthSlam::addFrame(double timestamp, const cv::Mat& depth_
   if (f.tracked && f.reference != f.index) {
     const PoseConstraint& c = odometry_.constraints().back();  // the one ending in f
     T_world_frame_.push_back(T_world_frame_[c.from] * c.T_from_to);
-  } else if (f.index > 0 && !f.tracked) {
-    // Predicted: follow the predecessor as the odometry did.
+  } else if (!f.tracked && f.index != odometry_.sessionStarts().back()) {
+    // Predicted: follow the predecessor (of the same session) as the odometry did.
     const Isometry3 T_prev_f = frames[f.index - 1].T_world_camera.inverse() * f.T_world_camera;
     T_world_frame_.push_back(T_world_frame_[f.index - 1] * T_prev_f);
   } else {
-    T_world_frame_.push_back(f.T_world_camera);  // the origin, or an untracked first frame
+    T_world_frame_.push_back(f.T_world_camera);  // a session's origin, or its untracked first frame
   }
   if (f.keyframe && params_.loop.enabled) {
     keyframes_.push_back(f.index);
@@ -53,6 +53,8 @@ const OdometryFrame& DepthSlam::addFrame(double timestamp, const cv::Mat& depth_
   if (params_.loop.background) takeLoops(false);
   return f;
 }
+
+void DepthSlam::startSession(const Isometry3& T_world_first) { odometry_.startSession(T_world_first); }
 
 void DepthSlam::finishLoops() { takeLoops(true); }
 
@@ -154,11 +156,12 @@ void DepthSlam::optimise() {
     const PoseGraphResult r = optimizePoseGraph(T_world_frame_, edges, params_.graph);
     ++optimisations_;
     T_world_frame_ = r.T_world_node;
-    // Frames no constraint reaches follow their predecessor, as the odometry predicted them.
+    // Frames no constraint reaches follow their predecessor in the session, as the odometry
+    // predicted them (a session's first frame keeps its place).
     std::vector<bool> linked(T_world_frame_.size(), false);
     for (const PoseConstraint& c : edges) linked[c.from] = linked[c.to] = true;
     for (std::size_t i = 1; i < T_world_frame_.size(); ++i)
-      if (!linked[i])
+      if (!linked[i] && frames[i].session == frames[i - 1].session)
         T_world_frame_[i] = T_world_frame_[i - 1] * (frames[i - 1].T_world_camera.inverse() * frames[i].T_world_camera);
     // Drop the closure the optimised graph contradicts most, if any does, and optimise again.
     const std::optional<Contradiction> contradiction =
@@ -208,6 +211,19 @@ Trajectory DepthSlam::trajectory() const {
   const std::vector<OdometryFrame>& frames = odometry_.frames();
   for (std::size_t i = 0; i < frames.size(); ++i) t.push_back({frames[i].timestamp, T_world_frame_[i]});
   return t;
+}
+
+std::vector<std::vector<std::size_t>> DepthSlam::sessionLinks() const {
+  const std::vector<OdometryFrame>& frames = odometry_.frames();
+  const std::size_t n = odometry_.sessionStarts().size();
+  std::vector<std::vector<std::size_t>> links(n, std::vector<std::size_t>(n, 0));
+  for (const PoseConstraint& c : loop_closures_) {
+    const std::size_t a = frames[c.from].session, b = frames[c.to].session;
+    if (a == b) continue;
+    ++links[a][b];
+    ++links[b][a];
+  }
+  return links;
 }
 
 std::size_t DepthSlam::pieceCount() const { return gasp::pieceCount(T_world_frame_.size(), constraints()); }

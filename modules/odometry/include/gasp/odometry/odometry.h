@@ -38,6 +38,7 @@ namespace gasp {
 /// What the odometry did with one frame.
 struct OdometryFrame {
   std::size_t index = 0;
+  std::size_t session = 0;  ///< the session it belongs to (DepthOdometry::startSession()), from 0
   double timestamp = 0.0;  ///< [s]
   Isometry3 T_world_camera = Isometry3::Identity();  ///< world = the first frame's camera (or as given)
   /// The pose was measured by GASP against `reference` (the first frame with patches: the origin,
@@ -79,13 +80,22 @@ class DepthOdometry {
   /// intrinsics is resampled away as in makeDepthView()). A frame without usable depth (no
   /// surface patch) is not tracked, with the reason; the first frame with patches is the origin.
   /// Throws gasp::Error, and does not add the frame, for a timestamp that is not finite or not
-  /// later than the previous frame's, an empty image, or one whose size or type does not match
+  /// later than the previous frame's of its session, an empty image, or one whose size or type does not match
   /// its intrinsics.
   /// `segmented`: the frame's view made ahead from the same depth and intrinsics (ViewAhead,
   /// view_ahead.h), used when the frame is not deskewed (else, or when empty, the frame is
   /// segmented here).
   const OdometryFrame& addFrame(double timestamp, const cv::Mat& depth_m, const CameraIntrinsics& intrinsics,
                                 std::optional<SegmentedDepth> segmented = std::nullopt);
+
+  /// Starts a new session (another recording, with no known relation to the frames before): the
+  /// next frame with patches is its origin, at T_world_first, as the first frame is the first
+  /// session's; nothing of the previous session (keyframe, velocity, timestamps) is used, so the
+  /// sessions are pieces of the pose graph of their own until a loop closer joins them. While the
+  /// current session has no frame, only its T_world_first changes.
+  void startSession(const Isometry3& T_world_first);
+  /// The first frame of each session (0 for the first); a session with no frame yet is not listed.
+  const std::vector<std::size_t>& sessionStarts() const { return session_starts_; }
 
   const std::vector<OdometryFrame>& frames() const { return frames_; }
   /// One per tracked frame after the first (from = its reference, to = the frame), in frame order.
@@ -134,6 +144,8 @@ class DepthOdometry {
   /// Velocity of the last step (frames i-1 -> i) when both were tracked and it was plausible, in
   /// the camera's frame; empty otherwise.
   std::optional<CameraTwist> velocity_;
+  std::vector<std::size_t> session_starts_;  ///< as sessionStarts()
+  bool session_pending_ = false;             ///< startSession() called: the next frame starts one
 };
 
 }  // namespace gasp

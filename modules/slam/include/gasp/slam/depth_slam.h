@@ -16,6 +16,10 @@
 /// keyframe's search runs at a time, in keyframe order; each phase is planned on the graph as it
 /// is when it starts, so the searches are those the search in place would make, only later.
 ///
+/// Several sessions (recordings with no known relation between them) go into one graph by
+/// startSession() between them: each is tracked on its own, and relocalisation joins it to the
+/// others where they share places (sessionLinks() says by how many constraints).
+///
 /// Memory: every keyframe's segmented view is kept (about 2.5 MB at 640x480: the depth, the
 /// labels and the patches) so that it can be registered again later.
 #include <opencv2/core.hpp>
@@ -55,6 +59,11 @@ class DepthSlam {
   /// background: starts or queues the search, and takes a search that has ended).
   const OdometryFrame& addFrame(double timestamp, const cv::Mat& depth_m, const CameraIntrinsics& intrinsics,
                                 std::optional<SegmentedDepth> segmented = std::nullopt);
+  /// Starts a new session (DepthOdometry::startSession()): its frames are tracked on their own,
+  /// from T_world_first, and its keyframes searched for loops like any others, so relocalisation
+  /// (agreeing votes, relocalisation.h) joins it to the sessions before when they share places,
+  /// and never otherwise. A session that is not joined keeps the world it started in.
+  void startSession(const Isometry3& T_world_first);
   /// Waits for every loop search still running or queued and takes them: afterwards the graph,
   /// poses() and attempts() hold every keyframe's search. Call it after the last frame.
   void finishLoops();
@@ -80,6 +89,9 @@ class DepthSlam {
   /// Connected pieces of the graph over all frames (the odometry's componentCount() before
   /// loop closures join pieces).
   std::size_t pieceCount() const;
+  /// The loop closures and relocalisations in the graph between each two sessions: links[a][b]
+  /// (a < b; symmetric) counts the constraints with one end in session a and the other in b.
+  std::vector<std::vector<std::size_t>> sessionLinks() const;
   std::size_t optimisationCount() const { return optimisations_; }
   double optimisationMs() const { return optimisation_ms_; }  ///< total wall time of the optimisations
   const SlamParams& params() const { return params_; }
