@@ -1,13 +1,18 @@
 // gasp-slam: a map built offline from a depth sequence with GASP: odometry, loop closures and the
 // optimised pose graph (gasp/slam/depth_slam.h).
-//   gasp-slam --tum DIR | --rawlog FILE [--sensor LABEL] [--gt TRAJ.txt] --out TRAJ.txt
-//             [--graph G.graph] [--simplemap MAP.simplemap] [--cloud MAP.ply]
-//             [--marginals-csv M.csv] [--params FILE] [options]
+//   gasp-slam --tum DIR | --rawlog FILE | --session PATH[@FIRST-LAST]... [--sensor LABEL]
+//             [--gt TRAJ.txt] --out TRAJ.txt [--graph G.graph] [--simplemap MAP.simplemap]
+//             [--cloud MAP.ply] [--marginals-csv M.csv] [--sessions-report R.yaml]
+//             [--params FILE] [options]
 // Writes the optimised trajectory of the depth camera (TUM format) in the world of the first
 // frame's robot frame (MRPT's sensorPose; TUM folders: the camera looking along the robot's +X),
 // optionally the pose graph with its loop closures (MRPT VERTEX3 / EDGE3), the keyframes as an
 // MRPT simple map (for MRPT's observations2map; each pose with its marginal covariance in the
 // graph) and a voxel point map (PLY).
+// Several sessions (--session, repeated: recordings with no known relation) are tracked one after
+// the other, each on its own, and joined where relocalisation finds agreeing constraints between
+// them (never otherwise): one trajectory per session (TRAJ.session<N>.txt) in its map's world,
+// one graph and map over all, and the report of which sessions were joined.
 // Every output is opened before the run and written whole or not at all (run_outputs.h).
 // Exit codes: 0 every frame tracked and the graph in one piece, 1 bad input (when the input ends
 // with an error after some frames, the outputs are written for those frames, marked partial),
@@ -37,6 +42,7 @@
 #include "marginals_report.h"
 #include "sequence_options.h"
 #include "sequence_report.h"
+#include "sessions.h"
 
 namespace {
 
@@ -65,6 +71,17 @@ int main(int argc, char** argv) {
   gasp::SlamParams params;
   if (!params_options.preload(argc, argv, params)) return 1;
   gasp::tools::addSequenceOptions(app, input, gt_path);
+  std::vector<std::string> session_specs;
+  std::string sessions_report;
+  auto* sessions_option = app.add_option(
+      "--session", session_specs,
+      "one session: a TUM folder or a rawlog, optionally its frames FIRST-LAST (PATH@FIRST-LAST); repeat for several "
+      "sessions, tracked each on its own and joined into one map where they share places (--every, --sensor, "
+      "--intrinsics, --depth-scale apply to all)");
+  for (const char* single : {"--tum", "--rawlog", "--gt", "--first", "--max-frames"})
+    sessions_option->excludes(app.get_option(single));
+  app.add_option("--sessions-report", sessions_report,
+                 "the sessions' report to write (YAML: each session's frames, map, links to the others and ATE)");
   app.add_option("--out", out_path, "optimised trajectory to write (TUM format: timestamp tx ty tz qx qy qz qw of the depth camera; required)");
   app.add_option("--odometry-out", odometry_out, "the odometry's trajectory before loop closures (TUM format, same world)");
   app.add_option("--graph", graph_path, "pose graph to write: odometry and loop-closure edges at the optimised poses (MRPT VERTEX3/EDGE3, robot frames)");
@@ -84,8 +101,8 @@ int main(int argc, char** argv) {
   if (no_loops) params.loop.enabled = false;
   if (const int code = gasp::tools::validOptionValues(params); code >= 0) return code;
   if (const int code = params_options.printIfAsked(params); code >= 0) return code;
-  if (input.tum_dir.empty() && input.rawlog_path.empty()) {
-    std::cerr << "error: give --tum DIR or --rawlog FILE\n";
+  if (input.tum_dir.empty() && input.rawlog_path.empty() && session_specs.empty()) {
+    std::cerr << "error: give --tum DIR, --rawlog FILE or --session PATH\n";
     return 2;
   }
   if (out_path.empty()) {
@@ -96,52 +113,104 @@ int main(int argc, char** argv) {
   try {
     gasp::validate(params);
     const gasp::VoxelPointMap probe(map_output.voxel_m, map_output.cloud_max_depth_m);  // checked before the run
-    std::vector<std::pair<std::string, std::string>> output_paths{
-        {"--out", out_path}, {"--odometry-out", odometry_out}, {"--graph", graph_path}, {"--frames-csv", frames_csv},
-        {"--loops-csv", loops_csv}, {"--marginals-csv", marginals_csv}};
+    // The sessions: --session, each; or --tum / --rawlog, one.
+    std::vector<gasp::DepthSequenceOptions> sessions;
+    for (const std::string& spec : session_specs) sessions.push_back(gasp::tools::sessionOptions(spec, input));
+    if (sessions.empty()) sessions.push_back(input);
+    const std::size_t n_sessions = sessions.size();
+    std::vector<std::string> trajectory_paths, odometry_paths;
+    std::vector<std::pair<std::string, std::string>> output_paths;
+    for (std::size_t s = 0; s < n_sessions; ++s) {
+      trajectory_paths.push_back(gasp::tools::sessionPath(out_path, s, n_sessions));
+      odometry_paths.push_back(gasp::tools::sessionPath(odometry_out, s, n_sessions));
+      output_paths.push_back({"--out", trajectory_paths.back()});
+      output_paths.push_back({"--odometry-out", odometry_paths.back()});
+    }
+    for (const auto& p : std::vector<std::pair<std::string, std::string>>{
+             {"--graph", graph_path}, {"--frames-csv", frames_csv}, {"--loops-csv", loops_csv},
+             {"--marginals-csv", marginals_csv}, {"--sessions-report", sessions_report}})
+      output_paths.push_back(p);
     for (const auto& p : gasp::tools::mapOutputPaths(map_output)) output_paths.push_back(p);
-    gasp::tools::RunOutputs outputs(output_paths, gasp::tools::sequenceInputs(input, gt_path));  // before the run
-    gasp::DepthSequence sequence(input);
-    gasp::tools::reportIntrinsics(stdout, sequence.intrinsicsSummary(), sequence.intrinsicsWarning());
-    const gasp::Trajectory gt = gt_path.empty() ? sequence.groundTruth() : gasp::readTumTrajectory(gt_path);
+    std::vector<std::string> input_files;
+    for (const auto& session : sessions)
+      for (const std::string& f : gasp::tools::sequenceInputs(session, gt_path)) input_files.push_back(f);
+    gasp::tools::RunOutputs outputs(output_paths, input_files);  // before the run
+
+    // Every input opened before the run: a missing one is reported now, not after the others.
+    std::vector<gasp::DepthSequence> sequences;
+    for (const auto& session : sessions) sequences.emplace_back(session);
     std::optional<gasp::DepthSlam> slam;
     gasp::Isometry3 T_robot_camera = gasp::Isometry3::Identity();
     std::vector<gasp::RgbdFrame> keyframes;  // for --simplemap and --cloud
     const bool keep_keyframes = map_output.wanted();
-    // Each frame is segmented while the one before it is registered (frames_ahead.h).
+    std::vector<gasp::tools::SessionRun> runs;
     const auto run_start = std::chrono::steady_clock::now();
-    const gasp::tools::SequenceEnd end = gasp::tools::forEachFrameWithViewAhead(sequence, params.odometry, sequential, [&](const gasp::RgbdFrame& frame, auto segmented) {
-      if (!slam) {
-        // World = the first frame's robot frame: the first camera sits at its sensorPose.
-        T_robot_camera = frame.T_robot_camera;
-        slam.emplace(params, T_robot_camera);
+    for (std::size_t s = 0; s < n_sessions; ++s) {
+      gasp::DepthSequence& sequence = sequences[s];
+      gasp::tools::SessionRun run;
+      run.input = sequence.describe() + (session_specs.empty() ? "" : " (" + session_specs[s] + ")");
+      run.first_frame = slam ? slam->odometry().frames().size() : 0;
+      if (n_sessions > 1) std::printf("session %zu: %s\n", s + 1, run.input.c_str());
+      gasp::tools::reportIntrinsics(stdout, sequence.intrinsicsSummary(), sequence.intrinsicsWarning());
+      run.ground_truth = gt_path.empty() ? sequence.groundTruth() : gasp::readTumTrajectory(gt_path);
+      bool session_started = false;
+      // Each frame is segmented while the one before it is registered (frames_ahead.h). With
+      // several sessions, one that fails ends there (partial) and the others still run.
+      try {
+        run.end = gasp::tools::forEachFrameWithViewAhead(sequence, params.odometry, sequential, [&](const gasp::RgbdFrame& frame, auto segmented) {
+          if (!slam) {
+            // World = the first frame's robot frame: the first camera sits at its sensorPose.
+            T_robot_camera = frame.T_robot_camera;
+            slam.emplace(params, T_robot_camera);
+          } else if (!session_started) {
+            // A new session starts in the world of its own first robot frame, as the first did.
+            if (!frame.T_robot_camera.isApprox(T_robot_camera, 1e-9))
+              throw gasp::Error(sequence.describe() + ": its depth camera sits on the robot (sensorPose) otherwise than the "
+                                "first session's: the sessions of one map must share one camera mounting");
+            slam->startSession(T_robot_camera);
+          }
+          session_started = true;
+          const gasp::OdometryFrame& f =
+              slam->addFrame(frame.timestamp, frame.depth_m, frame.depth_intrinsics, std::move(segmented));
+          if (f.keyframe && keep_keyframes) {
+            gasp::RgbdFrame kept = frame;
+            kept.rgb.release();  // the map keeps depth only
+            // A deskewed keyframe goes to the map as it was registered (keyframe_map.h).
+            const gasp::DepthView* view = slam->odometry().keyframeView();
+            keyframes.push_back(f.deskewed && view ? gasp::withViewDepth(std::move(kept), *view) : std::move(kept));
+          }
+          if (slam->odometry().frames().size() % 50 == 0)
+            std::fprintf(stderr, "frame %zu: %zu tracked of %zu, %zu loop closures\n", f.index,
+                         slam->odometry().trackedCount(), slam->odometry().frames().size(), slam->loopClosures().size());
+        });
+      } catch (const gasp::Error& e) {
+        if (n_sessions == 1) throw;
+        run.end.complete = false;
+        run.end.error = sequence.describe() + ": " + e.what();
       }
-      const gasp::OdometryFrame& f =
-          slam->addFrame(frame.timestamp, frame.depth_m, frame.depth_intrinsics, std::move(segmented));
-      if (f.keyframe && keep_keyframes) {
-        gasp::RgbdFrame kept = frame;
-        kept.rgb.release();  // the map keeps depth only
-        // A deskewed keyframe goes to the map as it was registered (keyframe_map.h).
-        const gasp::DepthView* view = slam->odometry().keyframeView();
-        keyframes.push_back(f.deskewed && view ? gasp::withViewDepth(std::move(kept), *view) : std::move(kept));
-      }
-      if (slam->odometry().frames().size() % 50 == 0)
-        std::fprintf(stderr, "frame %zu: %zu tracked of %zu, %zu loop closures\n", f.index,
-                     slam->odometry().trackedCount(), slam->odometry().frames().size(), slam->loopClosures().size());
-    });
-    if (slam) slam->finishLoops();  // the searches still running: part of the wall time
+      if (n_sessions == 1 && !slam) throw gasp::Error(sequence.describe() + ": no frame to use");
+      const std::size_t frame_count = slam ? slam->odometry().frames().size() : 0;
+      run.frames = frame_count - run.first_frame;
+      run.end.frames = run.frames;
+      for (std::size_t i = run.first_frame; i < frame_count; ++i) run.tracked += slam->odometry().frames()[i].tracked ? 1 : 0;
+      runs.push_back(std::move(run));
+    }
+    if (!slam) throw gasp::Error("no session gave a frame to use");
+    slam->finishLoops();  // the searches still running: part of the wall time
     const double wall_s = gasp::msSince(run_start) / 1000.0;
-    if (!slam) throw gasp::Error(sequence.describe() + ": no frame to use");
 
     const auto& frames = slam->odometry().frames();
-    gasp::OutputFile& out = outputs.at("--out");
-    gasp::writeTumTrajectory(out.stream(), slam->trajectory(),
-                             gasp::tools::trajectoryHeader("depth camera trajectory by gasp-slam (optimised)", end));
-    out.commit();
-    if (auto* f = outputs.find("--odometry-out")) {
-      gasp::writeTumTrajectory(f->stream(), slam->odometry().trajectory(),
-                               gasp::tools::trajectoryHeader("depth camera trajectory by gasp-slam (odometry)", end));
-      f->commit();
+    const gasp::Trajectory trajectory = slam->trajectory(), odometry_trajectory = slam->odometry().trajectory();
+    for (std::size_t s = 0; s < n_sessions; ++s) {
+      gasp::OutputFile& out = outputs.at("--out", trajectory_paths[s]);
+      gasp::writeTumTrajectory(out.stream(), gasp::tools::sessionTrajectory(trajectory, runs[s]),
+                               gasp::tools::trajectoryHeader("depth camera trajectory by gasp-slam (optimised)", runs[s].end));
+      out.commit();
+      if (odometry_out.empty()) continue;
+      gasp::OutputFile& f = outputs.at("--odometry-out", odometry_paths[s]);
+      gasp::writeTumTrajectory(f.stream(), gasp::tools::sessionTrajectory(odometry_trajectory, runs[s]),
+                               gasp::tools::trajectoryHeader("depth camera trajectory by gasp-slam (odometry)", runs[s].end));
+      f.commit();
     }
     if (auto* f = outputs.find("--frames-csv")) {
       gasp::tools::writeFramesCsv(f->stream(), frames);
@@ -164,7 +233,6 @@ int main(int argc, char** argv) {
     } catch (const gasp::Error& e) {  // no covariance, but the outputs are still written
       marginals.message = e.what();
     }
-    const gasp::Trajectory trajectory = slam->trajectory();
     if (auto* f = outputs.find("--marginals-csv")) {
       gasp::tools::writeMarginalsCsv(f->stream(), marginals, trajectory);
       f->commit();
@@ -198,12 +266,26 @@ int main(int argc, char** argv) {
                 slam->loopClosures().size() - relocalisations, tried, relocalisations);
     std::printf("optimisations: %zu (%.1f ms in all)\n", slam->optimisationCount(), slam->optimisationMs());
     std::printf("graph_pieces: %zu (odometry alone: %zu)\n", slam->pieceCount(), slam->odometry().componentCount());
-    std::printf("trajectory: %s\n", out_path.c_str());
     const std::size_t tracked = slam->odometry().trackedCount();
-    gasp::tools::printEvaluation(gt, slam->odometry().trajectory(), tracked, "odometry_");
-    gasp::tools::printEvaluation(gt, trajectory, tracked);
-    gasp::tools::printMarginals(marginals, trajectory, gt);
-    if (const int code = gasp::tools::reportPartial(end); code >= 0) return code;
+    if (n_sessions == 1) {
+      const gasp::Trajectory& gt = runs[0].ground_truth;
+      std::printf("trajectory: %s\n", out_path.c_str());
+      gasp::tools::printEvaluation(gt, odometry_trajectory, tracked, "odometry_");
+      gasp::tools::printEvaluation(gt, trajectory, tracked);
+      gasp::tools::printMarginals(marginals, trajectory, gt);
+    } else {
+      gasp::tools::printMarginals(marginals, trajectory, {});
+    }
+    if (auto* f = outputs.find("--sessions-report")) {
+      gasp::tools::reportSessions(runs, *slam, trajectory, trajectory_paths, &f->stream());
+      f->commit();
+    } else if (n_sessions > 1) {
+      gasp::tools::reportSessions(runs, *slam, trajectory, trajectory_paths, nullptr);
+    }
+    int partial = -1;
+    for (const auto& run : runs)
+      if (const int code = gasp::tools::reportPartial(run.end); code >= 0) partial = code;
+    if (partial >= 0) return partial;
     const std::size_t lost = frames.size() - tracked;
     if (lost > 0) std::printf("not_tracked: %zu frames (poses predicted; reasons in --frames-csv)\n", lost);
     if (lost > 0 || slam->pieceCount() > 1) return 3;

@@ -210,6 +210,56 @@ TEST(GaspSlamProgram, WithTheDeskewTheMapHoldsTheDepthEachKeyframeWasRegisteredW
   EXPECT_GE(deskewed, 2);
 }
 
+TEST(GaspSlamProgram, SessionsOfAFolderAndARawlogThatShareFramesAreJoinedInOneWorld) {
+  // Frames 0-9 of the folder, then frames 6-15 of the same scene as a rawlog: two sessions with
+  // no known relation, which see frames 6-9 both. Joined, each session's trajectory is in the
+  // first one's world, so the frames they share have the same pose in both files.
+  const std::string out = gasp::test::scratchDir();
+  const std::string sim = simulatedFolder(out);
+  auto run = runProgram("gasp-tum2rawlog", sim + " " + out + "/sim.rawlog --max-frames 16 --no-rgb");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  run = runProgram("gasp-slam", "--session " + sim + "@0-9 --session " + out + "/sim.rawlog@6-15 --out " + out +
+                                    "/traj.txt --odometry-out " + out + "/odo.txt --graph " + out + "/g.graph --sessions-report " +
+                                    out + "/sessions.yaml");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "sessions: 2 in 1 map\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "map 1: sessions 1, 2 joined")) << run.output;
+  const auto first = gasp::readTumTrajectory(out + "/traj.session1.txt");
+  const auto second = gasp::readTumTrajectory(out + "/traj.session2.txt");
+  ASSERT_EQ(first.size(), 10u);
+  ASSERT_EQ(second.size(), 10u);
+  EXPECT_EQ(gasp::readTumTrajectory(out + "/odo.session2.txt").size(), 10u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_NEAR(first[6 + i].timestamp, second[i].timestamp, 1e-6);
+    const gasp::Isometry3 e = first[6 + i].T_world_camera.inverse() * second[i].T_world_camera;
+    EXPECT_LT(gasp::translationNorm(e), 0.01) << "frame " << 6 + i;
+    EXPECT_LT(gasp::rotationAngle(e) * 180 / M_PI, 1.0) << "frame " << 6 + i;
+  }
+  std::ifstream yaml(out + "/sessions.yaml");
+  std::stringstream report;
+  report << yaml.rdbuf();
+  EXPECT_TRUE(contains(report.str(), "  - session: 2\n")) << report.str();
+  EXPECT_TRUE(contains(report.str(), "    map: 1\n    trajectory: ")) << report.str();
+  EXPECT_TRUE(contains(report.str(), "maps:\n  - sessions: [1, 2]\n")) << report.str();
+  EXPECT_EQ(countLinesStartingWith(out + "/g.graph", "VERTEX"), 20u);
+}
+
+TEST(GaspSlamProgram, SessionsOfDifferentScenesStayApartAndTheReportSaysSo) {
+  const std::string out = gasp::test::scratchDir();
+  const std::string sim = simulatedFolder(out);
+  auto run = runProgram("gasp-simulate", "--scene repeated --out " + out + "/repeated --frames 8 --rate 5");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  run = runProgram("gasp-slam", "--session " + sim + "@0-5 --session " + out + "/repeated --out " + out + "/traj.txt");
+  EXPECT_EQ(run.exit_code, 3) << run.output;  // written, the graph in pieces
+  EXPECT_TRUE(contains(run.output, "sessions: 2 in 2 maps\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "map 2: session 2 alone: no constraint joins it to another")) << run.output;
+  EXPECT_EQ(gasp::readTumTrajectory(out + "/traj.session1.txt").size(), 6u);
+  EXPECT_EQ(gasp::readTumTrajectory(out + "/traj.session2.txt").size(), 8u);
+  // Each session aligned alone is right; no alignment over sessions in different maps.
+  EXPECT_TRUE(contains(run.output, "session 2: ate_rmse_m: ")) << run.output;
+  EXPECT_FALSE(contains(run.output, "in its map's frame")) << run.output;
+}
+
 TEST(GaspSlamProgram, BadInputExitsWith1OrAUsageCode) {
   const std::string out = gasp::test::scratchDir();
   auto run = runProgram("gasp-slam", "--tum " + out + "/nothing --out " + out + "/t.txt");
@@ -235,6 +285,16 @@ TEST(GaspSlamProgram, BadInputExitsWith1OrAUsageCode) {
   std::ofstream(out + "/garbage.rawlog") << "not a rawlog";
   run = runProgram("gasp-slam", "--rawlog " + out + "/garbage.rawlog --out " + out + "/t.txt");
   EXPECT_EQ(run.exit_code, 1) << run.output;
+  // Sessions: a range backwards, a missing input (named before any session runs), --tum besides.
+  run = runProgram("gasp-slam", "--session " + sim + "@5-2 --out " + out + "/t.txt");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "@5-2: the last frame comes before the first")) << run.output;
+  run = runProgram("gasp-slam", "--session " + sim + " --session " + out + "/missing.rawlog --out " + out + "/t.txt");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "missing.rawlog")) << run.output;
+  EXPECT_FALSE(contains(run.output, "frames: ")) << run.output;
+  run = runProgram("gasp-slam", "--session " + sim + " --tum " + sim + " --out " + out + "/t.txt");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
 }
 
 TEST(GaspSlamProgram, TheOccluderFrameLeavesTheGraphInPiecesOrRejoinsItAndSaysSo) {
