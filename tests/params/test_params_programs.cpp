@@ -17,7 +17,7 @@ using gasp::test::runProgram;
 
 const char* const kPrograms[] = {"gasp-simulate", "gasp-tum2rawlog", "gasp-rawlog2tum", "gasp-eval",
                                  "gasp-segment",  "gasp-associate",  "gasp-pairs",      "gasp-pairs-plot",
-                                 "gasp-odometry", "gasp-slam",       "gasp-graphslam"};
+                                 "gasp-odometry", "gasp-slam",       "gasp-graphslam",  "gasp-loops"};
 
 /// A params file with a value changed in every section.
 const char* const kChanged =

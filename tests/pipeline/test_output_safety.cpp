@@ -80,10 +80,17 @@ TEST(OutputSafety, AnOutputThatIsNotARegularFileIsRefusedBeforeTheWork) {
       EXPECT_TRUE(contains(r.output, "'/dev/full': is not a regular file")) << r.output;
       EXPECT_FALSE(contains(r.output, "intrinsics:")) << "the sequence was opened before the outputs: " << r.output;
     }
-  for (const std::string option : {"--odometry-out", "--loops-csv", "--marginals-csv", "--simplemap", "--cloud"}) {
+  for (const std::string option : {"--odometry-out", "--loops-csv", "--marginals-csv", "--simplemap", "--cloud",
+                                   "--sessions-report"}) {
     const ProgramRun r = runProgram("gasp-slam", base + out + option + " /dev/full");
     EXPECT_EQ(r.exit_code, 1) << option << ": " << r.output;
     EXPECT_TRUE(contains(r.output, option + " '/dev/full'")) << r.output;
+  }
+  for (const std::string option : {"--csv", "--curve-csv"}) {
+    const ProgramRun r = runProgram("gasp-loops", base + option + " /dev/full");
+    EXPECT_EQ(r.exit_code, 1) << option << ": " << r.output;
+    EXPECT_TRUE(contains(r.output, option + " '/dev/full'")) << r.output;
+    EXPECT_FALSE(contains(r.output, "keyframes:")) << "the sequence was read before the outputs: " << r.output;
   }
   const ProgramRun eval = runProgram("gasp-eval", "ate --gt " + s.tum + "/groundtruth.txt --est " + s.tum +
                                                       "/groundtruth.txt --aligned /dev/full");
@@ -129,6 +136,8 @@ TEST(OutputSafety, NoOutputReplacesAnInputImage) {
         {"gasp-associate", "--tum " + copy + " --from 0 --to 4 --out " + target},
         {"gasp-odometry", "--tum " + copy + " --out " + target},
         {"gasp-slam", "--tum " + copy + " --out " + copy + "/t.txt --cloud " + target},
+        {"gasp-slam", "--session " + copy + "@0-3 --session " + copy + "@4-7 --out " + copy + "/t.txt --sessions-report " + target},
+        {"gasp-loops", "--tum " + copy + " --csv " + target},
         {"gasp-tum2rawlog", copy + " " + target},
         {"gasp-segment", "--depth " + image + " --out " + target},
     };
