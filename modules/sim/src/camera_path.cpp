@@ -2,6 +2,8 @@
 
 #include <array>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "gasp/core/error.h"
 
@@ -137,6 +139,48 @@ CameraPath makeHandHeldPath(const HandHeldView& view, const CameraPathOptions& o
                                                    view.look_sweep_m * wave(t, 0.89, 2.3), 0.0);
     const double roll = view.roll_deg * EIGEN_PI / 180.0 * wave(t, 0.71, 0.5);
     path.poses.push_back({frameTime(options, f), lookAt(eye, target, roll)});
+  }
+  return path;
+}
+
+CameraPath makeWalkPath(const std::vector<WalkWaypoint>& walk, const CameraPathOptions& options) {
+  checkPathOptions(options);
+  if (walk.size() < 2) throw Error("walk path: needs at least two waypoints");
+  const std::size_t legs = walk.size() - 1;
+  if (static_cast<std::size_t>(options.frames) < legs + 1)
+    throw Error("walk path: " + std::to_string(options.frames) + " frames for " + std::to_string(legs) + " legs");
+  std::vector<Eigen::Quaterniond> q;
+  for (const WalkWaypoint& w : walk) {
+    if (!w.position.allFinite() || !w.target.allFinite()) throw Error("walk path: a waypoint is not finite");
+    q.emplace_back(lookAt(w.position, w.target).linear());  // throws when looking along the vertical
+  }
+  // Each leg's share of the frames by its effort; every leg at least one step.
+  std::vector<double> cumulative{0.0};
+  for (std::size_t i = 0; i < legs; ++i)
+    cumulative.push_back(cumulative.back() + (walk[i + 1].position - walk[i].position).norm() +
+                         kWalkMetresPerRadian * q[i].angularDistance(q[i + 1]));
+  const int last = options.frames - 1;
+  std::vector<int> key;
+  for (const double c : cumulative)
+    key.push_back(cumulative.back() > 0 ? static_cast<int>(std::lround(c / cumulative.back() * last)) : 0);
+  for (std::size_t i = 1; i < key.size(); ++i)
+    if (key[i] <= key[i - 1]) key[i] = key[i - 1] + 1;
+  for (std::size_t i = key.size() - 1; i > 0 && key[i] > last - static_cast<int>(key.size() - 1 - i); --i)
+    key[i] = last - static_cast<int>(key.size() - 1 - i);  // pushed past the end: back from the end
+  key.back() = last;
+
+  CameraPath path;
+  for (std::size_t i = 0; i < legs; ++i) path.segments.push_back({walk[i].leg, key[i], key[i + 1]});
+  for (int f = 0; f <= last; ++f) {
+    std::size_t i = 0;
+    while (i + 1 < legs && f > key[i + 1]) ++i;
+    const double a = static_cast<double>(f - key[i]) / static_cast<double>(key[i + 1] - key[i]);
+    StampedPose p;
+    p.timestamp = frameTime(options, f);
+    p.T_world_camera = Isometry3::Identity();
+    p.T_world_camera.linear() = q[i].slerp(a, q[i + 1]).toRotationMatrix();
+    p.T_world_camera.translation() = (1.0 - a) * walk[i].position + a * walk[i + 1].position;
+    path.poses.push_back(p);
   }
   return path;
 }

@@ -2,6 +2,9 @@
 // stays near x in [-1, 0.2], y in [-0.7, 0.6], z in [1.2, 1.4] and looks towards +x (wide
 // baseline, roll, occluder) and towards -y (partial-overlap pan).
 #include <algorithm>
+#include <cmath>
+#include <string>
+#include <tuple>
 
 #include "gasp/core/error.h"
 #include "gasp/sim/scene.h"
@@ -222,11 +225,100 @@ Scene tableTopScene() {
   return s;
 }
 
+/// A wall 10 cm thick and `height` high on the floor, from (x0, y0) to (x1, y1) along x or y.
+void addWall(Scene& s, const std::string& name, double x0, double y0, double x1, double y1, double height) {
+  const double hx = x0 == x1 ? 0.05 : std::abs(x1 - x0) / 2, hy = y0 == y1 ? 0.05 : std::abs(y1 - y0) / 2;
+  s.add(name, box(hx, hy, height / 2), placeAt((x0 + x1) / 2, (y0 + y1) / 2, height / 2));
+}
+
+/// Two furnished rooms, A (x in [0, 6], y in [0, 5]) and B (x in [14, 20]), joined by two
+/// corridors 1.2 m wide (north: y in [3.4, 4.6]; south: y in [0.4, 1.6]), 2.6 m high. The walk
+/// goes once around: from A through the north corridor into B, round B, back through the south
+/// corridor into A, and ends where it began (about 30 m). The rooms hold different furniture and
+/// each corridor a few objects of its own, so that every place can be told from the others and
+/// tracked (a bare corridor is degenerate along its axis).
+Scene twoRoomsScene() {
+  Scene s;
+  s.name = "two_rooms";
+  s.description = "two furnished rooms joined by two corridors, walked around once (a 30 m loop)";
+  const double h = 2.6;
+  s.add("floor", Rectangle{10.0, 2.5}, placeAt(10.0, 2.5, 0.0));
+  s.add("ceiling", Rectangle{10.0, 2.5}, placeAt(10.0, 2.5, h));
+  // Room A and room B: outer walls, and the wall towards the corridors with two doorways each.
+  for (const auto& [room, x_out, x_in] : {std::tuple{"a", 0.0, 6.0}, std::tuple{"b", 20.0, 14.0}}) {
+    const std::string r = room;
+    addWall(s, "wall_" + r + "_end", x_out, 0.0, x_out, 5.0, h);
+    addWall(s, "wall_" + r + "_south", std::min(x_out, x_in), 0.0, std::max(x_out, x_in), 0.0, h);
+    addWall(s, "wall_" + r + "_north", std::min(x_out, x_in), 5.0, std::max(x_out, x_in), 5.0, h);
+    addWall(s, "wall_" + r + "_door_0", x_in, 0.0, x_in, 0.4, h);
+    addWall(s, "wall_" + r + "_door_1", x_in, 1.6, x_in, 3.4, h);
+    addWall(s, "wall_" + r + "_door_2", x_in, 4.6, x_in, 5.0, h);
+  }
+  for (const auto& [corridor, y0, y1] : {std::tuple{"north", 3.4, 4.6}, std::tuple{"south", 0.4, 1.6}}) {
+    addWall(s, std::string("corridor_") + corridor + "_0", 6.0, y0, 14.0, y0, h);
+    addWall(s, std::string("corridor_") + corridor + "_1", 6.0, y1, 14.0, y1, h);
+  }
+  // Room A: a table with things on it, a chair, a shelf, a bin, a ball, a cabinet, a picture.
+  s.add("a_table_top", box(0.6, 0.4, 0.025), placeAt(3.2, 2.4, 0.75));
+  int leg = 0;
+  for (double dx : {-0.55, 0.55})
+    for (double dy : {-0.35, 0.35})
+      s.add("a_table_leg" + std::to_string(leg++), Cylinder{0.03, 0.3625}, placeAt(3.2 + dx, 2.4 + dy, 0.3625));
+  s.add("a_book", box(0.15, 0.1, 0.04), placeAt(3.0, 2.5, 0.815, 15.0));
+  s.add("a_vase", Cylinder{0.08, 0.15}, placeAt(3.5, 2.2, 0.925));
+  s.add("a_chair_seat", box(0.22, 0.22, 0.025), placeAt(2.3, 2.6, 0.45));
+  s.add("a_chair_base", box(0.15, 0.15, 0.21), placeAt(2.3, 2.6, 0.21));
+  s.add("a_chair_back", box(0.025, 0.22, 0.25), placeAt(2.09, 2.6, 0.725));
+  s.add("a_shelf", box(0.2, 0.6, 0.9), placeAt(0.3, 1.3, 0.9));
+  s.add("a_bin", Cylinder{0.25, 0.4}, placeAt(5.4, 2.5, 0.4));
+  s.add("a_ball", Sphere{0.35}, placeAt(1.2, 4.3, 0.35));
+  s.add("a_cabinet", box(0.3, 0.45, 0.5), placeAt(5.3, 0.55, 0.5, 20.0));
+  s.add("a_picture", box(0.02, 0.4, 0.3), placeAt(0.07, 3.3, 1.5));
+  s.add("a_crate", box(0.3, 0.25, 0.25), placeAt(3.5, 4.6, 0.25, -15.0));
+  // Room B: a sofa, a pillar, a round table, a floor lamp, stacked crates, a low box.
+  s.add("b_sofa_seat", box(0.45, 1.0, 0.22), placeAt(19.4, 2.5, 0.22));
+  s.add("b_sofa_back", box(0.12, 1.0, 0.4), placeAt(19.8, 2.5, 0.6));
+  s.add("b_pillar", Cylinder{0.25, 1.3}, placeAt(17.6, 4.1, 1.3));
+  s.add("b_round_table", Cylinder{0.45, 0.02}, placeAt(18.2, 1.0, 0.72));
+  s.add("b_round_table_foot", Cylinder{0.05, 0.35}, placeAt(18.2, 1.0, 0.35));
+  s.add("b_lamp_pole", Cylinder{0.03, 0.8}, placeAt(15.0, 4.5, 0.8));
+  s.add("b_lamp_shade", Sphere{0.2}, placeAt(15.0, 4.5, 1.7));
+  s.add("b_crate", box(0.35, 0.3, 0.3), placeAt(16.2, 0.5, 0.3, 10.0));
+  s.add("b_crate_top", box(0.25, 0.2, 0.2), placeAt(16.3, 0.55, 0.8, -20.0));
+  s.add("b_low_box", box(0.5, 0.3, 0.15), placeAt(18.9, 4.5, 0.15, 5.0));
+  s.add("b_ball", Sphere{0.25}, placeAt(15.5, 2.0, 0.25));
+  // The corridors: a few objects each, on both sides.
+  s.add("north_bench", box(0.5, 0.15, 0.22), placeAt(7.6, 4.42, 0.22));
+  s.add("north_extinguisher", Cylinder{0.08, 0.3}, placeAt(9.3, 3.55, 0.5));
+  s.add("north_cabinet", box(0.35, 0.12, 0.6), placeAt(11.0, 4.45, 0.6));
+  s.add("north_plant", Cylinder{0.18, 0.25}, placeAt(12.8, 3.62, 0.25));
+  s.add("north_plant_top", Sphere{0.25}, placeAt(12.8, 3.62, 0.75));
+  s.add("south_radiator", box(0.5, 0.05, 0.3), placeAt(7.4, 0.48, 0.5));
+  s.add("south_box", box(0.25, 0.2, 0.25), placeAt(9.0, 1.38, 0.25, 10.0));
+  s.add("south_ball", Sphere{0.2}, placeAt(10.6, 0.65, 0.2));
+  s.add("south_shelf", box(0.4, 0.12, 0.5), placeAt(12.3, 1.45, 0.5));
+  s.add("south_post", Cylinder{0.06, 0.55}, placeAt(13.4, 0.6, 0.55));
+  // The walk, at eye height, looking slightly down.
+  s.walk = {
+      {{1.5, 2.5, 1.4}, {5.0, 2.2, 0.9}, "room_a"},
+      {{3.5, 3.8, 1.4}, {6.5, 4.0, 1.0}, "to_north_door"},
+      {{5.5, 4.0, 1.4}, {10.0, 4.0, 1.1}, "corridor_north"},
+      {{13.5, 4.0, 1.4}, {18.0, 4.0, 1.0}, "into_room_b"},
+      {{16.0, 3.9, 1.4}, {19.0, 2.5, 0.9}, "room_b"},
+      {{17.5, 2.0, 1.4}, {15.0, 0.5, 0.9}, "to_south_door"},
+      {{14.5, 1.0, 1.4}, {10.0, 1.0, 1.1}, "corridor_south"},
+      {{6.5, 1.0, 1.4}, {2.0, 1.0, 1.0}, "into_room_a"},
+      {{4.0, 1.6, 1.4}, {2.0, 3.5, 0.9}, "back_to_start"},
+      {{1.5, 2.5, 1.4}, {5.0, 2.2, 0.9}, ""},
+  };
+  return s;
+}
+
 }  // namespace
 
 std::vector<std::string> sceneNames() {
   return {"room",    "repeated", "sparse",  "plane",     "corridor",      "floor_0",
-          "floor_1", "floor_3",  "floor_6", "wall_door", "corridor_walk", "table_top"};
+          "floor_1", "floor_3",  "floor_6", "wall_door", "corridor_walk", "table_top", "two_rooms"};
 }
 
 Scene makeScene(const std::string& name) {
@@ -240,6 +332,7 @@ Scene makeScene(const std::string& name) {
   if (name == "wall_door") return wallDoorScene();
   if (name == "corridor_walk") return corridorWalkScene();
   if (name == "table_top") return tableTopScene();
+  if (name == "two_rooms") return twoRoomsScene();
   std::string valid;
   for (const auto& n : sceneNames()) valid += (valid.empty() ? "" : ", ") + n;
   throw Error("unknown scene '" + name + "'; valid scenes: " + valid);

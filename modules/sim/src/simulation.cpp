@@ -26,8 +26,11 @@ Simulation::Simulation(const SimulationOptions& options) : options_(options) {
   path_options.frames = options_.frames;
   path_options.start_time_s = options_.start_time_s;
   path_options.rate_hz = options_.rate_hz;
-  path_ = scene_.hand_held ? makeHandHeldPath(*scene_.hand_held, path_options) : makeCameraPath(path_options);
-  if (!scene_.degenerate) addOccluder(scene_, path_);
+  if (!scene_.walk.empty())
+    path_ = makeWalkPath(scene_.walk, path_options);
+  else
+    path_ = scene_.hand_held ? makeHandHeldPath(*scene_.hand_held, path_options) : makeCameraPath(path_options);
+  if (!scene_.degenerate && scene_.walk.empty()) addOccluder(scene_, path_);
   applyObjectMoves(scene_, options_.moves, path_.size());
 }
 

@@ -70,7 +70,7 @@ void writeSceneInfo(const fs::path& path, const Simulation& sim) {
       << "frames: " << sim.size() << '\n'
       << "start_time_s: " << o.start_time_s << '\n'
       << "rate_hz: " << o.rate_hz << '\n'
-      << "occluder: " << (sim.scene().degenerate ? "none" : kOccluderName) << '\n';
+      << "occluder: " << (sim.scene().degenerate || !sim.scene().walk.empty() ? "none" : kOccluderName) << '\n';
   for (const ObjectMove& m : o.moves)  // gasp-simulate --move's form
     out << "move: " << m.prefix << ':' << m.shift_m.x() << ',' << m.shift_m.y() << ',' << m.shift_m.z() << ','
         << m.yaw_deg << '@' << m.at_frame << '\n';

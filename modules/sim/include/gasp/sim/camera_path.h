@@ -80,6 +80,23 @@ struct HandHeldView {
 /// finite and >= 0 (> 0 for the period) or that looks along the vertical.
 CameraPath makeHandHeldPath(const HandHeldView& view, const CameraPathOptions& options = {});
 
+/// One waypoint of a walk: the camera at `position` looking at `target`; `leg` names the part of
+/// the walk from this waypoint to the next (a segment of the path; empty for the last).
+struct WalkWaypoint {
+  Eigen::Vector3d position;  ///< [m], world (z up)
+  Eigen::Vector3d target;    ///< [m]
+  std::string leg;
+};
+
+/// A walk through waypoints at a steady pace (scenes walked through, e.g. two_rooms): each leg
+/// gets frames in proportion to its effort, its length plus kWalkMetresPerRadian times the angle
+/// the view turns, so a turn on the spot takes time too; between waypoints the position is
+/// interpolated linearly and the orientation by slerp. One segment per leg, named by it. Throws
+/// gasp::Error as makeCameraPath for the frames and rate, for fewer than two waypoints, fewer
+/// frames than legs, and a waypoint that is not finite or looks along the vertical.
+CameraPath makeWalkPath(const std::vector<WalkWaypoint>& walk, const CameraPathOptions& options = {});
+inline constexpr double kWalkMetresPerRadian = 0.5;
+
 /// Optical camera pose at `position` looking at `target` with world `up` (image y points down),
 /// then rolled by roll_rad about the optical axis. Throws gasp::Error when the viewing direction
 /// is zero or parallel to up.

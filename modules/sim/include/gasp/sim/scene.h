@@ -47,6 +47,8 @@ struct Scene {
   /// How the camera moves: the room tour of makeCameraPath() when empty, else this hand-held view
   /// (makeHandHeldPath; the plane-dominated scenes).
   std::optional<HandHeldView> hand_held;
+  /// ... or this walk through the scene (makeWalkPath; two_rooms). No occluder is added to it.
+  std::vector<WalkWaypoint> walk;
   std::vector<SceneObject> objects;
 
   /// Appends an object, giving its faces the next free surface ids; returns its first id.
@@ -63,7 +65,8 @@ struct Scene {
 
 /// Names makeScene() accepts: room (the default), repeated, sparse, plane, corridor, and the
 /// plane-dominated scenes seen by a hand-held camera: floor_0, floor_1, floor_3, floor_6 (a floor
-/// with that many low objects), wall_door, corridor_walk, table_top.
+/// with that many low objects), wall_door, corridor_walk, table_top; and two_rooms, walked
+/// through (a long loop).
 std::vector<std::string> sceneNames();
 
 /// The default scene's name ("room").
