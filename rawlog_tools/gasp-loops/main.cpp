@@ -1,7 +1,7 @@
 // gasp-loops: loop detection without appearance and without odometry, scored against a reference.
 //   gasp-loops --tum DIR | --rawlog FILE --gt GT.txt [--every 10] [--first N] [--max-frames N]
-//              [--candidates 3] [--min-gap 5] [--gt-offset 0] [--csv DETECTIONS.csv]
-//              [--curve-csv PR.csv] [--params FILE]
+//              [--candidates 3] [--min-gap 5] [--gt-offset 0] [--drift M,DEG]
+//              [--csv DETECTIONS.csv] [--curve-csv PR.csv] [--params FILE]
 // Every --every-th frame is a keyframe (no odometry chooses them or predicts anything). Each
 // keyframe queries the place descriptors of the keyframes at least --min-gap keyframes before it
 // (gasp/association/place_descriptor.h), takes the --candidates nearest and registers itself to
@@ -14,7 +14,16 @@
 // information (xi^T Lambda xi <= loop_closure.gate_chi2: what a pose graph takes it for). Prints
 // the positives, the detections, the precision and recall at the loop closer's own threshold
 // (loop_closure.relocalisation_min_inliers) and the recall at 100 % precision, by either rule.
-// Exit codes: 0 success, 1 bad input, 2 usage error.
+// With --drift M,DEG, whether those detections close an injected drift: each keyframe registered
+// to the one before it (the whole pair front-end, no prior) makes an odometry chain; every step
+// is then bent by the same small motion (a turn about the camera's vertical and a shift along its
+// x) so that the chain ends about M metres and DEG degrees off; the chain and every registration
+// at or above the loop closer's threshold are optimised as a pose graph (pose_graph_optimizer.h;
+// a closure the optimised graph contradicts is dropped, as gasp-slam does), starting from the
+// bent chain. Prints the keyframes' ATE of the chain and of the optimised graph, with and without
+// the drift.
+// Exit codes: 0 success, 1 bad input, 2 usage error, 3 written, but --drift found no odometry chain
+// (a keyframe not registered to the one before it).
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -38,6 +47,9 @@
 #include "gasp/pipeline/visibility_check.h"
 #include "gasp/rawlog/depth_sequence.h"
 #include "gasp/slam/loop_closure.h"
+#include "gasp/slam/pose_graph.h"
+#include "gasp/slam/pose_graph_optimizer.h"
+#include "gasp/eval/ate.h"
 #include "cli.h"
 #include "params_options.h"
 #include "run_outputs.h"
@@ -49,7 +61,7 @@ namespace {
 constexpr double kPositiveShare = 0.30;
 
 struct Keyframe {
-  std::size_t frame = 0;  ///< index among the frames used
+  std::size_t frame = 0;  ///< index among the input's frames
   double timestamp = 0.0;
   std::optional<gasp::Isometry3> T_world_camera;  ///< the reference
   gasp::DepthView view;
@@ -79,6 +91,7 @@ int main(int argc, char** argv) {
   std::string gt_path, csv_path, curve_path;
   std::size_t candidates = 3, min_gap = 5;
   double gt_offset_s = 0.0;
+  std::vector<double> drift;
   gasp::tools::ParamsOptions params_options;
   gasp::SlamParams params;
   if (!params_options.preload(argc, argv, params)) return 1;
@@ -93,6 +106,11 @@ int main(int argc, char** argv) {
                  "the reference looked up at the frame's time plus this [s] (TUM fr1: -0.03, docs/evaluation.md)")
       ->capture_default_str()
       ->check(gasp::tools::within(-1, 1));
+  app.add_option("--drift", drift,
+                 "M,DEG: bend the keyframes' odometry chain so that it ends about M metres and DEG degrees off, then "
+                 "close it with the detections (a pose graph) and print the ATE")
+      ->delimiter(',')
+      ->expected(2);
   app.add_option("--csv", csv_path,
                  "one line per registration: query and candidate frames, rank, descriptor distance, inliers, "
                  "reason, error against the reference, correct, the share of depth the pair shows");
@@ -102,6 +120,10 @@ int main(int argc, char** argv) {
   if (const int code = params_options.printIfAsked(params); code >= 0) return code;
   if (input.tum_dir.empty() && input.rawlog_path.empty()) {
     std::cerr << "error: give --tum DIR or --rawlog FILE with --gt GT.txt\n";
+    return 2;
+  }
+  if (!drift.empty() && !(std::isfinite(drift[0]) && std::isfinite(drift[1]) && drift[0] >= 0 && drift[1] >= 0 && drift[1] < 180)) {
+    std::cerr << "error: --drift: expected M,DEG with M >= 0 metres and 0 <= DEG < 180 degrees\n";
     return 2;
   }
 
@@ -117,10 +139,9 @@ int main(int argc, char** argv) {
     // Keyframes: segmented, described, with their reference poses.
     std::vector<Keyframe> keyframes;
     gasp::PlaceIndex places;
-    std::size_t used = 0;
     while (auto frame = sequence.next()) {
       Keyframe k;
-      k.frame = used++;
+      k.frame = sequence.inputIndex();
       k.timestamp = frame->timestamp;
       if (const auto i = gasp::findNearest(gt, frame->timestamp + gt_offset_s, 0.02)) k.T_world_camera = gt[*i].T_world_camera;
       k.view = gasp::makeDepthView(frame->depth_m, frame->depth_intrinsics, pair.segment);
@@ -245,6 +266,84 @@ int main(int argc, char** argv) {
           f->stream() << gasp::formatted("%s,%.0f,%zu,%zu,%.4f,%.4f\n", rule, p.threshold, p.true_positives,
                                          p.false_positives, p.precision, p.recall);
       f->commit();
+    }
+    if (!drift.empty()) {
+      // The odometry chain: each keyframe registered to the one before it.
+      std::vector<gasp::PoseConstraint> chain;
+      for (std::size_t i = 1; i < keyframes.size(); ++i) {
+        gasp::PoseConstraint c;
+        const gasp::LoopClosureAttempt a = gasp::registerLoopClosure(keyframes[i - 1].view, keyframes[i].view, i - 1, i,
+                                                                     false, pair, params.loop, c);
+        if (a.inliers == 0) {  // a pose with few inliers is still the odometry's step; none breaks the chain
+          std::printf("drift: not possible: no odometry chain: frame %zu to frame %zu: %s\n", keyframes[i].frame,
+                      keyframes[i - 1].frame, a.reason.c_str());
+          return 3;
+        }
+        c.loop_closure = false;
+        chain.push_back(c);
+      }
+      // The same bend on every step: a turn about the camera's vertical (optical y) and a shift
+      // along its x, so that the steps add up to about the drift asked for.
+      const double n = static_cast<double>(chain.size());
+      gasp::Vector6 bend;
+      bend << drift[0] / n, 0.0, 0.0, 0.0, drift[1] * M_PI / 180.0 / n, 0.0;
+      std::vector<gasp::PoseConstraint> bent = chain;
+      for (gasp::PoseConstraint& c : bent) c.T_from_to = c.T_from_to * gasp::expLeft(bend);
+      // Loop edges: every registration at or above the loop closer's threshold (no odometry gate).
+      std::vector<gasp::PoseConstraint> closures;
+      for (const Attempt& a : attempts) {
+        if (!a.attempt.reason.empty()) continue;
+        gasp::PoseConstraint c = a.constraint;
+        c.from = a.candidate;
+        c.to = a.query;
+        closures.push_back(c);
+      }
+      gasp::Trajectory reference, undrifted, drifted, closed_undrifted, closed;
+      const auto compose = [&](const std::vector<gasp::PoseConstraint>& steps) {
+        std::vector<gasp::Isometry3> T{keyframes[0].T_world_camera.value_or(gasp::Isometry3::Identity())};
+        for (const gasp::PoseConstraint& c : steps) T.push_back(T.back() * c.T_from_to);
+        return T;
+      };
+      // Optimise, drop the closure the optimised graph contradicts most, again until none is.
+      std::size_t dropped = 0;
+      const auto close = [&](const std::vector<gasp::PoseConstraint>& steps) {
+        std::vector<gasp::PoseConstraint> loops = closures;
+        std::vector<gasp::Isometry3> T = compose(steps);
+        for (;;) {
+          std::vector<gasp::PoseConstraint> edges = steps;
+          edges.insert(edges.end(), loops.begin(), loops.end());
+          T = gasp::optimizePoseGraph(T, edges, params.graph).T_world_node;
+          const auto worst = gasp::mostContradictedClosure(T, loops, params.loop.gate_chi2);
+          if (!worst) break;
+          loops.erase(loops.begin() + static_cast<std::ptrdiff_t>(worst->edge));
+          ++dropped;
+        }
+        return T;
+      };
+      const auto trajectoryOf = [&](const std::vector<gasp::Isometry3>& T) {
+        gasp::Trajectory t;
+        for (std::size_t i = 0; i < T.size(); ++i) t.push_back({keyframes[i].timestamp, T[i]});
+        return t;
+      };
+      for (const Keyframe& k : keyframes)
+        if (k.T_world_camera) reference.push_back({k.timestamp, *k.T_world_camera});
+      const std::vector<gasp::Isometry3> T_chain = compose(chain), T_bent = compose(bent);
+      const gasp::Isometry3 end = T_chain.back().inverse() * T_bent.back();
+      std::printf("drift_injected: %.3f m, %.1f deg at the last keyframe (%zu steps)\n", gasp::translationNorm(end),
+                  gasp::rotationAngle(end) * 180.0 / M_PI, chain.size());
+      const auto ate = [&](const std::vector<gasp::Isometry3>& T) {
+        return gasp::eval::computeAte(reference, trajectoryOf(T)).translation.rmse;
+      };
+      const double ate_chain = ate(T_chain), ate_bent = ate(T_bent);
+      const double ate_closed_chain = ate(close(chain));
+      const std::size_t dropped_undrifted = dropped;
+      dropped = 0;
+      const double ate_closed_bent = ate(close(bent));
+      std::printf("odometry_chain_ate_rmse_m: %.4f (with the drift: %.4f)\n", ate_chain, ate_bent);
+      std::printf("closed_ate_rmse_m: %.4f (with the drift: %.4f); %zu loop edges at >= %d inliers, %zu (with the "
+                  "drift: %zu) dropped as contradicted\n",
+                  ate_closed_chain, ate_closed_bent, closures.size(), params.loop.relocalisation_min_inliers,
+                  dropped_undrifted, dropped);
     }
   } catch (const std::exception& e) {
     std::cerr << "error: " << gasp::exceptionMessage(e) << '\n';

@@ -2,6 +2,9 @@
 // its CSVs, and bad input.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 
@@ -65,4 +68,56 @@ TEST(GaspLoopsProgram, BadInputExitsWith1OrAUsageCode) {
   run = runProgram("gasp-loops", "--tum " + out + "/sim");
   EXPECT_EQ(run.exit_code, 1) << run.output;
   EXPECT_TRUE(contains(run.output, "no reference")) << run.output;
+}
+
+namespace {
+
+/// The number after `key` in the output (NaN when absent).
+double printedValue(const std::string& output, const std::string& key) {
+  const auto pos = output.find(key);
+  return pos == std::string::npos ? std::nan("") : std::stod(output.substr(pos + key.size()));
+}
+
+}  // namespace
+
+TEST(GaspLoopsProgram, TheInjectedDriftIsBentIntoTheChainAsAsked) {
+  // The room before the occluder walks in: 9 keyframes, the chain bent by 0.3 m and 10 deg.
+  const std::string out = gasp::test::scratchDir();
+  auto run = runProgram("gasp-simulate", "--out " + out + "/sim --frames 30 --rate 5");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  run = runProgram("gasp-loops", "--tum " + out + "/sim --max-frames 9 --every 2 --min-gap 3 --drift 0.3,10");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NEAR(printedValue(run.output, "drift_injected: "), 0.3, 0.015) << run.output;
+  EXPECT_NEAR(printedValue(run.output, "m, "), 10.0, 0.5) << run.output;
+  const double chain = printedValue(run.output, "odometry_chain_ate_rmse_m: ");
+  const double bent = printedValue(run.output, "(with the drift: ");
+  EXPECT_LT(chain, 0.01) << run.output;  // exact truth: the unbent chain is right
+  EXPECT_GT(bent, 5 * chain) << run.output;
+  // Without a chain the drift cannot be closed: said, the CSVs still written, exit 3.
+  run = runProgram("gasp-loops", "--tum " + out + "/sim --every 2 --min-gap 3 --drift 0.3,10 --csv " + out + "/d.csv");
+  EXPECT_EQ(run.exit_code, 3) << run.output;
+  EXPECT_TRUE(contains(run.output, "drift: not possible: no odometry chain: frame 20 to frame 18")) << run.output;
+  EXPECT_EQ(countLinesStartingWith(out + "/d.csv", "query_frame,"), 1u);
+  run = runProgram("gasp-loops", "--tum " + out + "/sim --drift 1");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  run = runProgram("gasp-loops", "--tum " + out + "/sim --drift -1,30");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+}
+
+TEST(GaspLoopsProgram, Fr1XyzClosesADriftOfAMetreAndThirtyDegrees) {
+  // fr1_xyz's keyframes (every 10th frame) chained, the chain bent by 1 m and 30 deg, and closed
+  // by the detections alone (no odometry gate): back to the unbent chain's closed error.
+  GASP_REQUIRE_DATA(xyz, "tum/fr1_xyz");
+  const auto run = runProgram("gasp-loops", "--tum " + xyz + " --every 10 --gt-offset -0.03 --drift 1,30");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NEAR(printedValue(run.output, "drift_injected: "), 1.0, 0.05) << run.output;
+  EXPECT_TRUE(contains(run.output, "within_5cm_2deg: at >= 40 inliers precision 1.000")) << run.output;
+  const auto closed = run.output.find("closed_ate_rmse_m: ");
+  ASSERT_NE(closed, std::string::npos) << run.output;
+  const double unbent = printedValue(run.output, "closed_ate_rmse_m: ");
+  const double bent = printedValue(run.output.substr(closed), "(with the drift: ");
+  std::printf("fr1_xyz: closed ATE %.4f m, with a 1 m / 30 deg drift %.4f m\n", unbent, bent);
+  EXPECT_LT(bent, 0.02) << run.output;
+  EXPECT_LT(std::abs(bent - unbent), 0.005) << run.output;
+  EXPECT_GT(printedValue(run.output, "odometry_chain_ate_rmse_m: "), 0.0) << run.output;
 }
