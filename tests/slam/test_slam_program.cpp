@@ -28,12 +28,8 @@ namespace {
 using gasp::test::contains;
 using gasp::test::countLinesStartingWith;
 using gasp::test::medianAbsDifference;
+using gasp::test::printedCount;
 using gasp::test::runProgram;
-
-std::size_t printedCount(const std::string& output, const std::string& key) {
-  const auto pos = output.find(key);
-  return pos == std::string::npos ? static_cast<std::size_t>(-1) : std::stoul(output.substr(pos + key.size()));
-}
 
 /// A 30-frame simulated room at 5 Hz in DIR/sim (the occluder appears at frame 19). Each test
 /// makes its own: ctest runs the tests of this file in parallel processes.

@@ -47,4 +47,10 @@ inline std::size_t countLinesStartingWith(const std::string& path, const std::st
   return n;
 }
 
+/// The count printed after `key` in a program's output (SIZE_MAX when the key is absent).
+inline std::size_t printedCount(const std::string& output, const std::string& key) {
+  const auto pos = output.find(key);
+  return pos == std::string::npos ? static_cast<std::size_t>(-1) : std::stoul(output.substr(pos + key.size()));
+}
+
 }  // namespace gasp::test
