@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Several sessions in one map (docs/benchmarks.md "Sessions merged into one map"): gasp-slam over
 # fr1_xyz whole and cut into sessions (given with --session, tracked each on its own, with no
-# relation known between them), and over two sequences that share no place (fr1_xyz and
-# fr3_cabinet_kf), once per loop search (radius: relocalisation by the other sessions' latest
+# relation known between them), over two sequences that share no place (fr1_xyz and
+# fr3_cabinet_kf), and over the simulated long loop two_rooms whole and as two sessions that enter
+# the rooms by different doors (A -> north corridor -> B, then B -> south corridor -> A), once per
+# loop search (radius: relocalisation by the other sessions' latest
 # keyframes; retrieval: by the nearest place descriptors). One markdown row per run: the maps the
 # sessions ended in, the constraints between sessions, each session's ATE in its map's frame (one
 # alignment over the map), the map's ATE, and the wall time.
@@ -14,12 +16,19 @@ data=${1:-../shared/data/tum}
 out=${2:-$(mktemp -d)}
 build=${3:-build/ci}
 slam="$build/bin/gasp-slam"
-[ -x "$slam" ] || { echo "error: $slam not built" >&2; exit 1; }
+for p in gasp-slam gasp-simulate; do
+  [ -x "$build/bin/$p" ] || { echo "error: $build/bin/$p not built" >&2; exit 1; }
+done
 for d in fr1_xyz fr3_cabinet_kf; do
   [ -d "$data/$d" ] || { echo "error: no data folder $data/$d" >&2; exit 1; }
 done
 mkdir -p "$out"
 xyz="$data/fr1_xyz"
+rooms="$out/two_rooms"
+if [ ! -f "$rooms/groundtruth.txt" ]; then
+  "$build/bin/gasp-simulate" --scene two_rooms --frames 400 --rate 5 --out "$rooms" > "$out/simulate.log" 2>&1 \
+    || { echo "error: gasp-simulate failed (see $out/simulate.log)" >&2; exit 1; }
+fi
 
 echo "| Case | Loop search | Sessions | Maps | Constraints between sessions | Session ATE in the map's frame [cm] | Map ATE [cm] | Wall time |"
 echo "|---|---|---|---|---|---|---|---|"
@@ -59,5 +68,10 @@ for search in radius retrieval; do
     --session "$xyz@532-"
   run reversed "fr1_xyz in two, the later first" "$search" --session "$xyz@400-" --session "$xyz@0-399"
   run apart "fr1_xyz and fr3_cabinet_kf (no shared place)" "$search" --session "$xyz" --session "$data/fr3_cabinet_kf"
+  run rooms "two_rooms, one session" "$search" --session "$rooms"
+  # Frames 0-164: room A, the north corridor, into room B; 202-399: from room B's south door
+  # through the south corridor back into room A (docs/simulator.md, the walk's segments).
+  run rooms_doors "two_rooms in two by different doors (0-164, 202-399)" "$search" --session "$rooms@0-164" \
+    --session "$rooms@202-399"
 done
 echo "logs and sessions reports: $out"
