@@ -14,8 +14,9 @@
 // information (xi^T Lambda xi <= loop_closure.gate_chi2: what a pose graph takes it for). Prints
 // the positives, the detections, the precision and recall at the loop closer's own threshold
 // (loop_closure.relocalisation_min_inliers) and the recall at 100 % precision, by either rule.
-// With --drift M,DEG, whether those detections close an injected drift: each keyframe registered
-// to the one before it (the whole pair front-end, no prior) makes an odometry chain; every step
+// With --drift M,DEG, whether those detections close an injected drift: the odometry
+// (DepthOdometry over every frame between the first and the last keyframe) composed between
+// consecutive keyframes makes a chain; every step
 // is then bent by the same small motion (a turn about the camera's vertical and a shift along its
 // x) so that the chain ends about M metres and DEG degrees off; the chain and every registration
 // at or above the loop closer's threshold are optimised as a pose graph (pose_graph_optimizer.h;
@@ -23,7 +24,7 @@
 // bent chain. Prints the keyframes' ATE of the chain and of the optimised graph, with and without
 // the drift.
 // Exit codes: 0 success, 1 bad input, 2 usage error, 3 written, but --drift found no odometry chain
-// (a keyframe not registered to the one before it).
+// (the odometry lost track between two keyframes).
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -50,6 +51,7 @@
 #include "gasp/slam/pose_graph.h"
 #include "gasp/slam/pose_graph_optimizer.h"
 #include "gasp/eval/ate.h"
+#include "gasp/odometry/odometry.h"
 #include "cli.h"
 #include "params_options.h"
 #include "run_outputs.h"
@@ -268,18 +270,37 @@ int main(int argc, char** argv) {
       f->commit();
     }
     if (!drift.empty()) {
-      // The odometry chain: each keyframe registered to the one before it.
+      // The odometry chain: DepthOdometry over every frame from the first keyframe to the last,
+      // its constraints composed between consecutive keyframes (with their covariance).
+      gasp::DepthSequenceOptions every_frame = input;
+      every_frame.every = 1;
+      every_frame.first = keyframes.front().frame;
+      every_frame.max_frames = keyframes.back().frame - keyframes.front().frame + 1;
+      gasp::DepthSequence frames(every_frame);
+      gasp::DepthOdometry odometry(params.odometry);
+      std::vector<std::size_t> odometry_frame_of_input(keyframes.back().frame + 1, 0);
+      while (auto f = frames.next()) {
+        odometry_frame_of_input.at(frames.inputIndex()) = odometry.frames().size();
+        odometry.addFrame(f->timestamp, f->depth_m, f->depth_intrinsics);
+      }
+      std::printf("odometry: %zu of %zu frames tracked (the chain's source)\n", odometry.trackedCount(),
+                  odometry.frames().size());
       std::vector<gasp::PoseConstraint> chain;
       for (std::size_t i = 1; i < keyframes.size(); ++i) {
-        gasp::PoseConstraint c;
-        const gasp::LoopClosureAttempt a = gasp::registerLoopClosure(keyframes[i - 1].view, keyframes[i].view, i - 1, i,
-                                                                     false, pair, params.loop, c);
-        if (a.inliers == 0) {  // a pose with few inliers is still the odometry's step; none breaks the chain
-          std::printf("drift: not possible: no odometry chain: frame %zu to frame %zu: %s\n", keyframes[i].frame,
-                      keyframes[i - 1].frame, a.reason.c_str());
+        const auto step = gasp::composeAlongTree(odometry.constraints(), odometry.frames().size(),
+                                                 odometry_frame_of_input.at(keyframes[i - 1].frame),
+                                                 odometry_frame_of_input.at(keyframes[i].frame));
+        if (!step) {
+          std::printf("drift: not possible: the odometry does not link frame %zu to frame %zu (it lost track)\n",
+                      keyframes[i - 1].frame, keyframes[i].frame);
           return 3;
         }
-        c.loop_closure = false;
+        gasp::PoseConstraint c;
+        c.from = i - 1;
+        c.to = i;
+        c.T_from_to = step->T_a_b;
+        const gasp::Matrix6d S = 0.5 * (step->covariance + step->covariance.transpose());
+        c.information = S.ldlt().solve(gasp::Matrix6d::Identity());
         chain.push_back(c);
       }
       // The same bend on every step: a turn about the camera's vertical (optical y) and a shift
