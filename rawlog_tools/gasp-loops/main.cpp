@@ -35,8 +35,6 @@
 #include <string>
 #include <vector>
 
-#include "gasp/association/feature_sets.h"
-#include "gasp/association/patch_geometry.h"
 #include "gasp/association/place_descriptor.h"
 #include "gasp/core/error.h"
 #include "gasp/core/format.h"
@@ -48,6 +46,7 @@
 #include "gasp/pipeline/visibility_check.h"
 #include "gasp/rawlog/depth_sequence.h"
 #include "gasp/slam/loop_closure.h"
+#include "gasp/slam/loop_search.h"
 #include "gasp/slam/pose_graph.h"
 #include "gasp/slam/pose_graph_optimizer.h"
 #include "gasp/eval/ate.h"
@@ -147,8 +146,7 @@ int main(int argc, char** argv) {
       k.timestamp = frame->timestamp;
       if (const auto i = gasp::findNearest(gt, frame->timestamp + gt_offset_s, 0.02)) k.T_world_camera = gt[*i].T_world_camera;
       k.view = gasp::makeDepthView(frame->depth_m, frame->depth_intrinsics, pair.segment);
-      places.add(keyframes.size(), gasp::describePlace(gasp::computeFeatureSets(
-                                      gasp::toPatchGeometry(k.view.segmentation.patches), pair.associate.feature_sets)));
+      places.add(keyframes.size(), gasp::describeKeyframe(k.view, pair));
       keyframes.push_back(std::move(k));
     }
     std::printf("keyframes: %zu (every %zu-th frame of %s)\n", keyframes.size(), input.every, sequence.describe().c_str());

@@ -175,6 +175,33 @@ TEST(GraphSlamEngine, ClosesTheLoopOfACircleWithGaspsDecidersAndOptimises) {
   EXPECT_GE(e.gso.optimisations(), 2u);  // during the run (after closures) and at the end
 }
 
+TEST(GraphSlamEngine, ClosesTheCircleByPlaceRetrievalToo) {
+  // loop_search = retrieval in the loop closer's section: candidates by the nodes' place
+  // descriptors alone (as DepthSlam's), every closure true, the end found back at the start.
+  const std::string dir = gasp::test::scratchDir();
+  const auto s = gasp::test::circleSequence(30);
+  std::string ini = kEngineSections;
+  ini.replace(ini.find("[CGaspLoopClosureERD]\n"), std::string("[CGaspLoopClosureERD]\n").size(),
+              "[CGaspLoopClosureERD]\nloop_search = retrieval\n");
+  GaspEngine e(writeFile(dir + "/g.ini", ini));
+  for (std::size_t i = 0; i < s.depth.size(); ++i) e.step(scanOf(s, i));
+  e.gso.optimizeNow();
+  const std::size_t n = e.graph().nodeCount();
+  ASSERT_GE(e.erd.insertedEdges(), 1u);
+  const Isometry3 S_inv = mounting().inverse();
+  std::size_t longest = 0;
+  for (const auto& [ids, edge] : e.graph().edges) {
+    const auto [from, to] = ids;
+    if (to == from + 1) continue;
+    longest = std::max<std::size_t>(longest, to - from);
+    const Isometry3 truth = (truthOfNode(e, s, from) * S_inv).inverse() * (truthOfNode(e, s, to) * S_inv);
+    const Isometry3 err = truth.inverse() * gasp::fromCPose3D(edge.mean);
+    EXPECT_LT(gasp::translationNorm(err), 0.02) << from << " -> " << to;
+    EXPECT_LT(gasp::rotationAngle(err) * 180 / M_PI, 1.0) << from << " -> " << to;
+  }
+  EXPECT_GE(longest, n / 2) << "a closure spans much of the circle";
+}
+
 TEST(CGaspLoopClosureERD, TakesTheNodeDecidersKeyframeViewsInsteadOfSegmentingAgain) {
   // Linked to GASP's node decider (as gasp-graphslam does), the loop closer segments nothing and
   // tries and takes the same closures with the same inliers as when it segments each scan itself.

@@ -7,8 +7,6 @@
 #include <string>
 #include <utility>
 
-#include "gasp/association/feature_sets.h"
-#include "gasp/association/patch_geometry.h"
 #include "gasp/core/error.h"
 #include "gasp/core/format.h"
 #include "gasp/core/stopwatch.h"
@@ -43,8 +41,7 @@ const OdometryFrame& DepthSlam::addFrame(double timestamp, const cv::Mat& depth_
     keyframes_.push_back(f.index);
     keyframe_views_.emplace(f.index, *odometry_.keyframeView());
     if (params_.loop.search != LoopSearch::kRadius)
-      places_.add(f.index, describePlace(computeFeatureSets(toPatchGeometry(odometry_.keyframeView()->segmentation.patches),
-                                                            params_.odometry.pair.associate.feature_sets)));
+      places_.add(f.index, describeKeyframe(*odometry_.keyframeView(), params_.odometry.pair));
     if (params_.loop.background)
       waiting_keyframes_.push_back(f.index);
     else
@@ -120,14 +117,7 @@ LoopSearchGraph DepthSlam::graphFor(std::size_t k) {
   g.tree = odometry_.constraints();
   g.view = [this](std::size_t i) -> const DepthView& { return keyframe_views_.at(i); };
   g.links = [this] { return constraints(); };
-  g.retrieve = [this](std::size_t key) {
-    std::vector<std::size_t> out;
-    const PlaceDescriptor* d = places_.find(key);
-    if (!d) return out;  // no descriptor (no features): nothing to retrieve with
-    for (const auto& nearest : places_.query(*d, places_.size(), [key](std::size_t id) { return id >= key; }))
-      out.push_back(nearest.first);
-    return out;
-  };
+  g.retrieve = [this](std::size_t key) { return retrieveEarlier(places_, key); };
   g.insert = [this](const PoseConstraint& c, std::size_t attempt, std::size_t group) {
     loop_closures_.push_back(c);
     loop_attempt_.push_back(attempt);

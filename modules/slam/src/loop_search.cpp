@@ -4,6 +4,8 @@
 #include <string>
 #include <utility>
 
+#include "gasp/association/feature_sets.h"
+#include "gasp/association/patch_geometry.h"
 #include "gasp/core/error.h"
 #include "gasp/slam/pose_graph.h"
 
@@ -31,7 +33,7 @@ void requireLast(std::size_t k, const LoopSearchGraph& g) {
 template <class Keep>
 void appendRetrieved(std::size_t k, const LoopSearchGraph& g, std::size_t count, std::vector<std::size_t>& out,
                      Keep&& keep) {
-  if (!g.retrieve) throw Error("loop search: retrieval needs the keyframes' place descriptors (DepthSlam has them)");
+  if (!g.retrieve) throw Error("loop search: retrieval needs the keyframes' place descriptors, and this graph has none");
   std::size_t taken = 0;
   for (const std::size_t c : g.retrieve(k)) {
     if (taken >= count) break;
@@ -42,6 +44,19 @@ void appendRetrieved(std::size_t k, const LoopSearchGraph& g, std::size_t count,
 }
 
 }  // namespace
+
+PlaceDescriptor describeKeyframe(const DepthView& view, const PairParams& pair) {
+  return describePlace(computeFeatureSets(toPatchGeometry(view.segmentation.patches), pair.associate.feature_sets));
+}
+
+std::vector<std::size_t> retrieveEarlier(const PlaceIndex& places, std::size_t k) {
+  std::vector<std::size_t> out;
+  const PlaceDescriptor* d = places.find(k);
+  if (!d) return out;  // no descriptor (no features): nothing to retrieve with
+  for (const auto& nearest : places.query(*d, places.size(), [k](std::size_t id) { return id >= k; }))
+    out.push_back(nearest.first);
+  return out;
+}
 
 std::vector<std::size_t> nearLoopCandidates(std::size_t k, const LoopSearchGraph& g, const LoopClosureParams& loop) {
   requireLast(k, g);

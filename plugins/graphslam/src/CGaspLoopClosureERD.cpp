@@ -95,6 +95,7 @@ bool CGaspLoopClosureERD::updateState(mrpt::obs::CActionCollection::Ptr /*action
   // odometry decider registers on a step without a scan has no view: an earlier scan was taken
   // elsewhere); any other node added in the same step has none. A node without a converted scan
   // keeps the previous node's mounting, for the predictions through it.
+  const std::size_t first_new = nodes_.size();
   while (nodes_.size() < n) {
     const std::size_t id = nodes_.size();
     if (id == 0) {
@@ -112,6 +113,10 @@ bool CGaspLoopClosureERD::updateState(mrpt::obs::CActionCollection::Ptr /*action
     if (!error.empty()) MRPT_LOG_WARN_STREAM("node " << id << " has no view: " << error);
     nodes_.push_back(std::move(node));
   }
+  // Each new node's place descriptor, when the loop search retrieves (the root's too).
+  if (loop_.search != LoopSearch::kRadius)
+    for (std::size_t id = first_new; id < nodes_.size(); ++id)
+      if (nodes_[id].view) places_.add(id, describeKeyframe(*nodes_[id].view, pair_));
   if (loop_.enabled && nodes_.back().view) closeLoops(n - 1);
   return true;
 }
@@ -201,6 +206,7 @@ void CGaspLoopClosureERD::closeLoops(std::size_t k) {
     return all;
   };
   g.insert = [this](const PoseConstraint& c, std::size_t attempt, std::size_t group) { insert(c, attempt, group); };
+  g.retrieve = [this](std::size_t key) { return retrieveEarlier(places_, key); };
   // The votes enter MRPT's graph together or not at all: each needs an edge (positive definite
   // information). offer() has let them go: they do not wait again.
   g.before_join = [this](const PoseConstraint&, const RelocalisationVotes::Decision& d, const std::vector<std::size_t>&) {

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "gasp/association/place_descriptor.h"
 #include "gasp/slam/loop_closure.h"
 #include "gasp/slam/relocalisation.h"
 
@@ -39,6 +40,13 @@ struct LoopSearchGraph {
                             const std::vector<std::size_t>& roots)>
       before_join;
 };
+
+/// A keyframe's place descriptor (place_descriptor.h): its view's patches through the pair's
+/// feature sets. Empty (no features) for a view without patches.
+PlaceDescriptor describeKeyframe(const DepthView& view, const PairParams& pair);
+/// LoopSearchGraph::retrieve for an owner that keeps its keyframes' descriptors in `places`: the
+/// keyframes before `k`, nearest to k's descriptor first; none when k has no descriptor.
+std::vector<std::size_t> retrieveEarlier(const PlaceIndex& places, std::size_t k);
 
 /// The search for keyframe `k` (a node of `graph`). Appends every registration to `attempts`;
 /// `votes` and `vote_groups` carry the relocalisations waiting for agreement and the groups taken

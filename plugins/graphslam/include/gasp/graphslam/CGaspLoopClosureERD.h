@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "gasp/association/place_descriptor.h"
 #include "gasp/graphslam/CGaspOdometryNRD.h"
 #include "gasp/graphslam/graph_types.h"
 #include "gasp/odometry/pose_constraint.h"
@@ -116,6 +117,8 @@ class CGaspLoopClosureERD : public mrpt::graphslam::deciders::CEdgeRegistrationD
   std::string sensor_label_;
   std::optional<Node> root_;  ///< the root's node until the root is registered
   std::vector<Node> nodes_;
+  /// The nodes' place descriptors (by node id), for loop_search: retrieval or both.
+  PlaceIndex places_;
   std::vector<Closure> closures_;  ///< in the graph
   std::size_t vote_groups_ = 0;
   std::vector<LoopClosureAttempt> attempts_;
