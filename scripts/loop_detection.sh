@@ -50,8 +50,8 @@ run() {  # tag, label, gasp-loops arguments...
   within=$(sed -n 's/^detections: [0-9]* (\([0-9]*\) within.*/\1/p' "$log")
   consistent=$(sed -n 's/^detections: .*, \([0-9]*\) consistent.*/\1/p' "$log")
   at40=$(sed -n 's/^within_5cm_2deg: at >= [0-9]* inliers precision \([0-9.]*\), recall \([0-9.]*\).*/\1, \2/p' "$log")
-  full_w=$(sed -n 's/^within_5cm_2deg: .*recall at 100 % precision \([0-9.]*\)\( (at >= \([0-9]*\) inliers)\)\{0,1\}.*/\1 (\3)/p' "$log")
-  full_c=$(sed -n 's/^consistent: .*recall at 100 % precision \([0-9.]*\)\( (at >= \([0-9]*\) inliers)\)\{0,1\}.*/\1 (\3)/p' "$log")
+  full_w=$(sed -n 's/^within_5cm_2deg: .*recall at 100 % precision \([0-9.]*\)\( (at >= \([0-9]*\) inliers)\)\{0,1\}.*/\1 (\3)/p' "$log" | sed 's/ ()$/ (-)/')
+  full_c=$(sed -n 's/^consistent: .*recall at 100 % precision \([0-9.]*\)\( (at >= \([0-9]*\) inliers)\)\{0,1\}.*/\1 (\3)/p' "$log" | sed 's/ ()$/ (-)/')
   printf '| %s | %s | %s | %s | %s (%s; %s) | %s | %s; %s |\n' "$label" "$(v keyframes)" "$(v queries)" "$(v positives)" \
     "$(v detections)" "$within" "$consistent" "$at40" "$full_w" "$full_c"
 }

@@ -10,19 +10,22 @@ Only the Python standard library.
 """
 import argparse
 import csv
+import html
 import os
 
 COLOURS = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#8c564b']
 
 
 def read_curve(path, rule):
-    points = []
+    """The rule's points; none for a run without detections (a CSV of its header only)."""
+    points, rows = [], 0
     with open(path) as f:
         for row in csv.DictReader(f):
+            rows += 1
             if row['rule'] != rule:
                 continue
             points.append((float(row['threshold']), float(row['recall']), float(row['precision'])))
-    if not points:
+    if rows and not points:
         raise SystemExit(f'error: {path}: no points of rule {rule}')
     points.sort(key=lambda p: -p[0])  # highest threshold first: recall grows
     return points
@@ -57,6 +60,7 @@ def main():
         name, path = spec.split('=', 1)
         colour = COLOURS[k % len(COLOURS)]
         pts = read_curve(path, a.rule)
+        name = html.escape(name) + ('' if pts else ' (no detection)')
         # A step curve: from (0, 1), each threshold's point in turn.
         d = f'M {x(0):.1f} {y(1):.1f}'
         for _, r, p in pts:

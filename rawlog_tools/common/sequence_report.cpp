@@ -67,10 +67,17 @@ void printOdometrySummary(const DepthOdometry& odometry) {
 
 void printThroughput(const std::vector<OdometryFrame>& frames, double wall_s) {
   if (frames.empty() || !(wall_s > 0.0)) return;
+  // Sessions (DepthOdometry::startSession()) each have their own clock: their spans add up.
   std::vector<double> intervals;
-  for (std::size_t i = 1; i < frames.size(); ++i) intervals.push_back(frames[i].timestamp - frames[i - 1].timestamp);
+  for (std::size_t i = 1; i < frames.size(); ++i)
+    if (frames[i].session == frames[i - 1].session) intervals.push_back(frames[i].timestamp - frames[i - 1].timestamp);
   const double period = intervals.empty() ? 0.0 : eval::computeStatistics(intervals).median;
-  const double duration = frames.back().timestamp - frames.front().timestamp + period;
+  double duration = 0.0;
+  for (std::size_t first = 0, i = 1; i <= frames.size(); ++i)
+    if (i == frames.size() || frames[i].session != frames[first].session) {
+      duration += frames[i - 1].timestamp - frames[first].timestamp + period;
+      first = i;
+    }
   const double n = static_cast<double>(frames.size());
   std::printf("wall_time_s: %.2f\nfps: %.1f\n", wall_s, n / wall_s);
   if (duration > 0.0)

@@ -42,7 +42,7 @@ void printOdometrySummary(const DepthOdometry& odometry);
 
 /// Prints wall_time_s: (of the run over the frames, reading included), fps: (frames per second of
 /// it) and real_time_factor: (the sequence's duration -- its timestamps' span plus one median
-/// frame interval -- over the wall time: >= 1 keeps up with the sensor).
+/// frame interval, summed over the sessions -- over the wall time: >= 1 keeps up with the sensor).
 void printThroughput(const std::vector<OdometryFrame>& frames, double wall_s);
 
 /// Prints `<prefix>ate_rmse_m:` and `<prefix>rpe_1s_rmse:` of `estimate` against `ground_truth`

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <optional>
 #include <regex>
 
 #include "gasp/core/error.h"
@@ -21,11 +22,15 @@ DepthSequenceOptions sessionOptions(const std::string& spec, const DepthSequence
   std::smatch m;
   if (std::regex_match(spec, m, range)) {
     path = m[1];
-    const std::size_t first = std::stoul(m[2]);
+    const auto index = [&spec](const std::string& digits) -> std::size_t {
+      if (digits.size() > 9) throw Error("session " + spec + ": a frame index beyond 999999999");
+      return std::stoul(digits);
+    };
+    const std::size_t first = index(m[2]);
     o.first = first;
     o.max_frames = 0;
     if (m[3].length() > 0) {
-      const std::size_t last = std::stoul(m[3]);
+      const std::size_t last = index(m[3]);
       if (last < first) throw Error("session " + spec + ": the last frame comes before the first (expected PATH@FIRST-LAST)");
       o.max_frames = (last - first) / std::max<std::size_t>(o.every, 1) + 1;
     }
@@ -89,7 +94,7 @@ Trajectory sessionTrajectory(const Trajectory& all, const SessionRun& run) {
 namespace {
 
 /// A map's ATE: one alignment over the map's sessions, told apart by shifting each one's
-/// timestamps (reference and estimate alike) by 10^6 s times its number.
+/// timestamps (reference and estimate alike) to begin 1000 s after the previous one's end.
 struct MapAte {
   std::vector<double> session_rmse;  ///< per session (NaN: not in the map, or no reference)
   double rmse = std::nan("");        ///< over all of the map's sessions
@@ -101,14 +106,20 @@ MapAte ateInMapFrame(const std::vector<std::size_t>& map, const std::vector<Sess
                      const Trajectory& trajectory) {
   Trajectory gt, est;
   std::vector<std::size_t> est_session;
+  double end = 0.0;  // the shifted timestamps so far end before this
   for (const std::size_t s : map) {
     if (runs[s].ground_truth.empty()) continue;
-    const double shift = 1e6 * static_cast<double>(s);
+    const Trajectory mine = sessionTrajectory(trajectory, runs[s]);
+    double lo = runs[s].ground_truth.front().timestamp, hi = lo;
+    for (const Trajectory* t : {&runs[s].ground_truth, &mine})
+      for (const StampedPose& p : *t) lo = std::min(lo, p.timestamp), hi = std::max(hi, p.timestamp);
+    const double shift = end - lo;
+    end = hi + shift + 1000.0;
     for (StampedPose p : runs[s].ground_truth) {
       p.timestamp += shift;
       gt.push_back(p);
     }
-    for (StampedPose p : sessionTrajectory(trajectory, runs[s])) {
+    for (StampedPose p : mine) {
       p.timestamp += shift;
       est.push_back(p);
       est_session.push_back(s);
@@ -145,16 +156,33 @@ double ownAte(const SessionRun& run, const Trajectory& trajectory) {
   }
 }
 
-std::string quoted(std::string s) {
-  std::replace(s.begin(), s.end(), '"', '\'');
-  return '"' + s + '"';
+/// A YAML double-quoted string.
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + '"';
 }
 
 }  // namespace
 
 void reportSessions(const std::vector<SessionRun>& runs, const DepthSlam& slam, const Trajectory& trajectory,
                     const std::vector<std::string>& trajectory_paths, std::ostream* yaml) {
-  const std::vector<std::vector<std::size_t>> links = slam.sessionLinks();
+  // The links between runs: a run that gave no frame is no session of the odometry's.
+  const std::vector<std::vector<std::size_t>> session_links = slam.sessionLinks();
+  const std::vector<OdometryFrame>& frames = slam.odometry().frames();
+  const auto sessionOf = [&](const SessionRun& r) -> std::optional<std::size_t> {
+    if (r.frames == 0 || r.first_frame >= frames.size()) return std::nullopt;
+    return frames[r.first_frame].session;
+  };
+  std::vector<std::vector<std::size_t>> links(runs.size(), std::vector<std::size_t>(runs.size(), 0));
+  for (std::size_t a = 0; a < runs.size(); ++a)
+    for (std::size_t b = 0; b < runs.size(); ++b) {
+      const auto sa = sessionOf(runs[a]), sb = sessionOf(runs[b]);
+      if (sa && sb && *sa < session_links.size() && *sb < session_links.size()) links[a][b] = session_links[*sa][*sb];
+    }
   const std::vector<std::vector<std::size_t>> maps = sessionMaps(links);
   std::vector<std::size_t> map_of(runs.size(), 0);
   for (std::size_t m = 0; m < maps.size(); ++m)
@@ -175,8 +203,9 @@ void reportSessions(const std::vector<SessionRun>& runs, const DepthSlam& slam, 
     for (std::size_t b = 0; b < runs.size(); ++b)
       if (links[s][b] > 0) joined += formatted("%s%zu (%zu constraints)", joined.empty() ? "" : ", ", b + 1, links[s][b]);
     const double own = ownAte(r, trajectory);
-    std::printf("session %zu: %s: frames %zu-%zu, %zu of %zu tracked%s; map %zu; joined to %s; trajectory %s\n", s + 1,
-                r.input.c_str(), r.first_frame, r.first_frame + r.frames - (r.frames > 0 ? 1 : 0), r.tracked, r.frames,
+    const std::string span = r.frames == 0 ? "no frame" : formatted("frames %zu-%zu", r.first_frame, r.first_frame + r.frames - 1);
+    std::printf("session %zu: %s: %s, %zu of %zu tracked%s; map %zu; joined to %s; trajectory %s\n", s + 1,
+                r.input.c_str(), span.c_str(), r.tracked, r.frames,
                 r.end.complete ? "" : " (PARTIAL: the input ended with an error)", map_of[s] + 1,
                 joined.empty() ? "none" : joined.c_str(), trajectory_paths[s].c_str());
     if (!std::isnan(own))

@@ -267,6 +267,10 @@ int main(int argc, char** argv) {
                                          p.false_positives, p.precision, p.recall);
       f->commit();
     }
+    if (!drift.empty() && keyframes.size() < 3) {
+      std::printf("drift: not possible: %zu keyframes, at least 3 are needed (a chain and its ATE)\n", keyframes.size());
+      return 3;
+    }
     if (!drift.empty()) {
       // The odometry chain: DepthOdometry over every frame from the first keyframe to the last,
       // its constraints composed between consecutive keyframes (with their covariance).

@@ -165,8 +165,8 @@ int main(int argc, char** argv) {
           } else if (!session_started) {
             // A new session starts in the world of its own first robot frame, as the first did.
             if (!frame.T_robot_camera.isApprox(T_robot_camera, 1e-9))
-              throw gasp::Error(sequence.describe() + ": its depth camera sits on the robot (sensorPose) otherwise than the "
-                                "first session's: the sessions of one map must share one camera mounting");
+              throw gasp::Error("its depth camera sits on the robot (sensorPose) otherwise than the first session's: the "
+                                "sessions of one map must share one camera mounting");
             slam->startSession(T_robot_camera);
           }
           session_started = true;
@@ -248,6 +248,11 @@ int main(int argc, char** argv) {
       keyframe_covariances.clear();
       if (!map_output.simplemap_path.empty())
         std::fprintf(stderr, "warning: the simple map's poses carry a zero covariance: %s\n", marginals.message.c_str());
+    } else if (n_sessions > 1 && map_output.wanted() && slam->pieceCount() > 1) {
+      std::fprintf(stderr, "warning: the graph is in %zu pieces: sessions no constraint joins stay in the worlds they "
+                           "started in, and the simple map and the cloud hold them on top of each other (the sessions "
+                           "report says which are joined)\n",
+                   slam->pieceCount());
     } else if (!map_output.simplemap_path.empty() && slam->pieceCount() > 1) {
       std::fprintf(stderr, "warning: the graph is in %zu pieces: a simple-map pose's covariance is relative to the first "
                            "keyframe of its piece, and the pieces are placed only by the odometry's prediction\n",

@@ -240,6 +240,23 @@ TEST(GaspSlamProgram, SessionsOfAFolderAndARawlogThatShareFramesAreJoinedInOneWo
   EXPECT_EQ(countLinesStartingWith(out + "/g.graph", "VERTEX"), 20u);
 }
 
+TEST(GaspSlamProgram, ASessionThatGivesNoFrameIsReportedAndTheOthersAreStillJoined) {
+  // The middle session asks for frames past the rawlog's end: no frame, an error said, exit 1 at
+  // the end; the first and the last (which share frames 3-5) are joined all the same.
+  const std::string out = gasp::test::scratchDir();
+  const std::string sim = simulatedFolder(out);
+  auto run = runProgram("gasp-tum2rawlog", sim + " " + out + "/sim.rawlog --max-frames 8 --no-rgb");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  run = runProgram("gasp-slam", "--session " + sim + "@0-5 --session " + out + "/sim.rawlog@50-60 --session " + sim +
+                                    "@3-8 --out " + out + "/traj.txt --sessions-report " + out + "/r.yaml");
+  EXPECT_EQ(run.exit_code, 1) << run.output;  // partial: a session ended with an error
+  EXPECT_TRUE(contains(run.output, "sessions: 3 in 2 maps\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "@50-60): no frame, 0 of 0 tracked (PARTIAL")) << run.output;
+  EXPECT_TRUE(contains(run.output, "map 1: sessions 1, 3 joined")) << run.output;
+  EXPECT_EQ(gasp::readTumTrajectory(out + "/traj.session2.txt").size(), 0u);
+  EXPECT_EQ(gasp::readTumTrajectory(out + "/traj.session3.txt").size(), 6u);
+}
+
 TEST(GaspSlamProgram, SessionsOfDifferentScenesStayApartAndTheReportSaysSo) {
   const std::string out = gasp::test::scratchDir();
   const std::string sim = simulatedFolder(out);

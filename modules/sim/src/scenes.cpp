@@ -234,13 +234,13 @@ void addWall(Scene& s, const std::string& name, double x0, double y0, double x1,
 /// Two furnished rooms, A (x in [0, 6], y in [0, 5]) and B (x in [14, 20]), joined by two
 /// corridors 1.2 m wide (north: y in [3.4, 4.6]; south: y in [0.4, 1.6]), 2.6 m high. The walk
 /// goes once around: from A through the north corridor into B, round B, back through the south
-/// corridor into A, and ends where it began (about 30 m). The rooms hold different furniture and
+/// corridor into A, and ends where it began (34 m). The rooms hold different furniture and
 /// each corridor a few objects of its own, so that every place can be told from the others and
 /// tracked (a bare corridor is degenerate along its axis).
 Scene twoRoomsScene() {
   Scene s;
   s.name = "two_rooms";
-  s.description = "two furnished rooms joined by two corridors, walked around once (a 30 m loop)";
+  s.description = "two furnished rooms joined by two corridors, walked around once (a 34 m loop)";
   const double h = 2.6;
   s.add("floor", Rectangle{10.0, 2.5}, placeAt(10.0, 2.5, 0.0));
   s.add("ceiling", Rectangle{10.0, 2.5}, placeAt(10.0, 2.5, h));

@@ -153,6 +153,16 @@ void DepthSlam::optimise() {
     for (std::size_t i = 1; i < T_world_frame_.size(); ++i)
       if (!linked[i] && frames[i].session == frames[i - 1].session)
         T_world_frame_[i] = T_world_frame_[i - 1] * (frames[i - 1].T_world_camera.inverse() * frames[i].T_world_camera);
+    // A session's frames before its first linked one (no patches yet) go with it, wherever a
+    // join has moved it.
+    const std::vector<std::size_t>& starts = odometry_.sessionStarts();
+    for (std::size_t s = 0; s < starts.size(); ++s) {
+      const std::size_t end = s + 1 < starts.size() ? starts[s + 1] : T_world_frame_.size();
+      std::size_t first_linked = starts[s];
+      while (first_linked < end && !linked[first_linked]) ++first_linked;
+      for (std::size_t j = first_linked; first_linked < end && j-- > starts[s];)
+        T_world_frame_[j] = T_world_frame_[j + 1] * (frames[j + 1].T_world_camera.inverse() * frames[j].T_world_camera);
+    }
     // Drop the closure the optimised graph contradicts most, if any does, and optimise again.
     const std::optional<Contradiction> contradiction =
         mostContradictedClosure(T_world_frame_, loop_closures_, params_.loop.gate_chi2);

@@ -93,7 +93,7 @@ struct WalkWaypoint {
 /// the view turns, so a turn on the spot takes time too; between waypoints the position is
 /// interpolated linearly and the orientation by slerp. One segment per leg, named by it. Throws
 /// gasp::Error as makeCameraPath for the frames and rate, for fewer than two waypoints, fewer
-/// frames than legs, and a waypoint that is not finite or looks along the vertical.
+/// frames than waypoints, and a waypoint that is not finite or looks along the vertical.
 CameraPath makeWalkPath(const std::vector<WalkWaypoint>& walk, const CameraPathOptions& options = {});
 inline constexpr double kWalkMetresPerRadian = 0.5;
 
