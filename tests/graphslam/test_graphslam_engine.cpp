@@ -121,6 +121,23 @@ Isometry3 truthOfNode(const GaspEngine& e, const gasp::test::LoopSequence& s, st
   return s.T_world_camera[e.nrd.nodeFrames()[node]];
 }
 
+/// Every edge between non-consecutive nodes is a true loop closure (robot frames, within 2 cm and
+/// 1 deg); returns the longest one's span in nodes.
+std::size_t expectTrueClosures(const GaspEngine& e, const gasp::test::LoopSequence& s) {
+  const Isometry3 S_inv = mounting().inverse();
+  std::size_t longest = 0;
+  for (const auto& [ids, edge] : e.graph().edges) {
+    const auto [from, to] = ids;
+    if (to == from + 1) continue;
+    longest = std::max<std::size_t>(longest, to - from);
+    const Isometry3 truth = (truthOfNode(e, s, from) * S_inv).inverse() * (truthOfNode(e, s, to) * S_inv);
+    const Isometry3 err = truth.inverse() * gasp::fromCPose3D(edge.mean);
+    EXPECT_LT(gasp::translationNorm(err), 0.02) << from << " -> " << to;
+    EXPECT_LT(gasp::rotationAngle(err) * 180 / M_PI, 1.0) << from << " -> " << to;
+  }
+  return longest;
+}
+
 }  // namespace
 
 TEST(GraphSlamEngine, ClosesTheLoopOfACircleWithGaspsDecidersAndOptimises) {
@@ -142,18 +159,7 @@ TEST(GraphSlamEngine, ClosesTheLoopOfACircleWithGaspsDecidersAndOptimises) {
   EXPECT_EQ(e.graph().edgeCount(), n - 1 + e.erd.insertedEdges() - e.gso.droppedEdges());
 
   // Every edge between non-consecutive nodes is a true loop closure (robot frames).
-  const Isometry3 S_inv = mounting().inverse();
-  std::size_t longest = 0;
-  for (const auto& [ids, edge] : e.graph().edges) {
-    const auto [from, to] = ids;
-    if (to == from + 1) continue;
-    longest = std::max<std::size_t>(longest, to - from);
-    const Isometry3 truth = (truthOfNode(e, s, from) * S_inv).inverse() * (truthOfNode(e, s, to) * S_inv);
-    const Isometry3 err = truth.inverse() * gasp::fromCPose3D(edge.mean);
-    EXPECT_LT(gasp::translationNorm(err), 0.02) << from << " -> " << to;
-    EXPECT_LT(gasp::rotationAngle(err) * 180 / M_PI, 1.0) << from << " -> " << to;
-  }
-  EXPECT_GE(longest, n / 2) << "a closure spans much of the circle";
+  EXPECT_GE(expectTrueClosures(e, s), n / 2) << "a closure spans much of the circle";
 
   // The root stays at the world's origin (the first robot frame); the optimised nodes are within
   // a centimetre of the truth and no worse than the odometry's keyframes.
@@ -188,18 +194,7 @@ TEST(GraphSlamEngine, ClosesTheCircleByPlaceRetrievalToo) {
   e.gso.optimizeNow();
   const std::size_t n = e.graph().nodeCount();
   ASSERT_GE(e.erd.insertedEdges(), 1u);
-  const Isometry3 S_inv = mounting().inverse();
-  std::size_t longest = 0;
-  for (const auto& [ids, edge] : e.graph().edges) {
-    const auto [from, to] = ids;
-    if (to == from + 1) continue;
-    longest = std::max<std::size_t>(longest, to - from);
-    const Isometry3 truth = (truthOfNode(e, s, from) * S_inv).inverse() * (truthOfNode(e, s, to) * S_inv);
-    const Isometry3 err = truth.inverse() * gasp::fromCPose3D(edge.mean);
-    EXPECT_LT(gasp::translationNorm(err), 0.02) << from << " -> " << to;
-    EXPECT_LT(gasp::rotationAngle(err) * 180 / M_PI, 1.0) << from << " -> " << to;
-  }
-  EXPECT_GE(longest, n / 2) << "a closure spans much of the circle";
+  EXPECT_GE(expectTrueClosures(e, s), n / 2) << "a closure spans much of the circle";
 }
 
 TEST(CGaspLoopClosureERD, TakesTheNodeDecidersKeyframeViewsInsteadOfSegmentingAgain) {
