@@ -1,0 +1,153 @@
+#include "gasp/rawlog/range_scan.h"
+
+#include <mrpt/obs/CObservationRotatingScan.h>
+#include <mrpt/obs/CObservationVelodyneScan.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "gasp/core/error.h"
+#include "gasp/rawlog/observation_conversion.h"
+
+namespace gasp {
+
+namespace {
+
+bool isVelodyne(const std::string& model) { return model == "VLP-16" || model == "HDL-32E"; }
+
+}  // namespace
+
+std::vector<double> laserElevationsDeg(const std::string& lidar_model, int rows) {
+  if (lidar_model == "VLP-16") return {-15, 1, -13, 3, -11, 5, -9, 7, -7, 9, -5, 11, -3, 13, -1, 15};
+  if (lidar_model == "HDL-32E")
+    return {-30.67, -9.33, -29.33, -8.00, -28.00, -6.67, -26.67, -5.33, -25.33, -4.00, -24.00,
+            -2.67,  -22.67, -1.33, -21.33, 0.00,  -20.00, 1.33,  -18.67, 2.67,  -17.33, 4.00,
+            -16.00, 5.33,  -14.67, 6.67,  -13.33, 8.00,  -12.00, 9.33,  -10.67, 10.67};
+  if (lidar_model.rfind("2D_SCAN_", 0) == 0 && rows == 1) return {0.0};
+  return {};
+}
+
+Eigen::Vector3d RangeScan::direction(int row, int col) const {
+  if (!ray.empty()) {
+    const cv::Vec3f& v = ray.at<cv::Vec3f>(row, col);
+    if (v[0] != 0.0f || v[1] != 0.0f || v[2] != 0.0f) return {v[0], v[1], v[2]};
+  }
+  const double el = elevation_rad.at(static_cast<std::size_t>(row)), az = azimuth_rad.at(static_cast<std::size_t>(col));
+  return {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
+}
+
+std::vector<Eigen::Vector3d> RangeScan::points() const {
+  std::vector<Eigen::Vector3d> out;
+  for (int r = 0; r < range_m.rows; ++r)
+    for (int c = 0; c < range_m.cols; ++c)
+      if (const float d = range_m.at<float>(r, c); d > 0.0f) out.push_back(static_cast<double>(d) * direction(r, c));
+  return out;
+}
+
+RangeScan rangeScanFrom(const mrpt::obs::CObservationRotatingScan& scan) {
+  const int rows = scan.rowCount, cols_allocated = scan.columnCount;
+  if (rows == 0 || cols_allocated == 0 || scan.rangeImage.rows() != rows || scan.rangeImage.cols() != cols_allocated)
+    throw Error("rotating scan '" + scan.sensorLabel + "': empty, or its range image is not rowCount x columnCount");
+  const std::vector<double> elevations = laserElevationsDeg(scan.lidarModel, rows);
+  if (elevations.empty())
+    throw Error("rotating scan '" + scan.sensorLabel + "': the lasers' elevations of lidarModel '" + scan.lidarModel +
+                "' are not known (VLP-16, HDL-32E and 2D scans are)");
+  if (static_cast<int>(elevations.size()) != rows)
+    throw Error("rotating scan '" + scan.sensorLabel + "': lidarModel '" + scan.lidarModel + "' has " +
+                std::to_string(elevations.size()) + " lasers, the scan " + std::to_string(rows) + " rows");
+  // MRPT 2.5's fromVelodyne() layout: the returns all in the first columnCount / rowCount columns.
+  int cols = cols_allocated;
+  if (rows > 1 && cols_allocated % rows == 0) {
+    const int used = cols_allocated / rows;
+    bool beyond = false;
+    for (int r = 0; r < rows && !beyond; ++r)
+      for (int c = used; c < cols_allocated && !beyond; ++c) beyond = scan.rangeImage(r, c) != 0;
+    if (!beyond) cols = used;
+  }
+  RangeScan out;
+  out.timestamp = mrpt::Clock::toDouble(scan.timestamp);
+  out.model = scan.lidarModel;
+  out.sweep_duration_s = scan.sweepDuration;
+  out.T_robot_sensor = fromCPose3D(scan.sensorPose);
+  out.laser_of_row.resize(static_cast<std::size_t>(rows));
+  std::iota(out.laser_of_row.begin(), out.laser_of_row.end(), 0);
+  std::stable_sort(out.laser_of_row.begin(), out.laser_of_row.end(),
+                   [&](int a, int b) { return elevations[static_cast<std::size_t>(a)] < elevations[static_cast<std::size_t>(b)]; });
+  for (const int laser : out.laser_of_row) out.elevation_rad.push_back(elevations[static_cast<std::size_t>(laser)] * M_PI / 180.0);
+  // Clockwise for a Velodyne (its azimuth follows the spin), counter-clockwise for a 2D scan.
+  const double sign = isVelodyne(scan.lidarModel) ? -1.0 : 1.0;
+  for (int c = 0; c < cols; ++c)
+    out.azimuth_rad.push_back(sign * (scan.startAzimuth + scan.azimuthSpan * c / cols));
+  out.range_m = cv::Mat::zeros(rows, cols, CV_32FC1);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      const double d = scan.rangeImage(out.laser_of_row[static_cast<std::size_t>(r)], c) * scan.rangeResolution;
+      if (d > 0.0 && d >= scan.minRange && d <= scan.maxRange) out.range_m.at<float>(r, c) = static_cast<float>(d);
+    }
+  return out;
+}
+
+namespace {
+
+/// MRPT's calibrated points of a Velodyne scan, into the cells of `out` (its layout set).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wnon-virtual-dtor"  // MRPT's wrapper has no virtual destructor
+class CellFiller final : public mrpt::obs::CObservationVelodyneScan::PointCloudStorageWrapper {
+ public:
+  CellFiller(RangeScan& out, double start_rad, double span_rad) : out_(out), start_(start_rad), span_(span_rad) {
+    row_of_laser_.assign(out.laser_of_row.size(), 0);
+    for (std::size_t row = 0; row < out.laser_of_row.size(); ++row)
+      row_of_laser_[static_cast<std::size_t>(out.laser_of_row[row])] = static_cast<int>(row);
+  }
+  void add_point(float x, float y, float z, uint8_t, const mrpt::system::TTimeStamp&, const float, uint16_t laser) override {
+    const Eigen::Vector3d p(x, y, z);
+    const double d = p.norm();
+    if (!(d > 0.0) || laser >= row_of_laser_.size()) return;
+    // The column: the point's azimuth, clockwise from the sweep's start, over the span.
+    double turned = std::fmod(-std::atan2(p.y(), p.x()) - start_, 2 * M_PI);
+    if (turned < 0) turned += 2 * M_PI;
+    const int cols = out_.range_m.cols;
+    const int col = std::clamp(static_cast<int>(std::lround(turned / span_ * cols)), 0, cols - 1);
+    const int row = row_of_laser_[laser];
+    float& cell = out_.range_m.at<float>(row, col);
+    if (cell > 0.0f) {  // taken by an earlier firing
+      ++collisions_;
+      return;
+    }
+    cell = static_cast<float>(d);
+    const Eigen::Vector3d u = p / d;
+    out_.ray.at<cv::Vec3f>(row, col) = cv::Vec3f(static_cast<float>(u.x()), static_cast<float>(u.y()), static_cast<float>(u.z()));
+  }
+  std::size_t collisions() const { return collisions_; }
+
+ private:
+  RangeScan& out_;
+  double start_, span_;
+  std::vector<int> row_of_laser_;
+  std::size_t collisions_ = 0;
+};
+#pragma GCC diagnostic pop
+
+}  // namespace
+
+RangeScan rangeScanFrom(const mrpt::obs::CObservation& observation) {
+  if (const auto* rotating = dynamic_cast<const mrpt::obs::CObservationRotatingScan*>(&observation))
+    return rangeScanFrom(*rotating);
+  mrpt::obs::CObservationRotatingScan converted;
+  if (!converted.fromGeneric(observation))
+    throw Error(std::string("observation '") + observation.sensorLabel + "' of class " +
+                observation.GetRuntimeClass()->className + ": not a range scan GASP reads (rotating, Velodyne or 2D)");
+  RangeScan out = rangeScanFrom(converted);
+  if (const auto* velodyne = dynamic_cast<const mrpt::obs::CObservationVelodyneScan*>(&observation)) {
+    // The layout of the conversion, the returns and rays of MRPT's calibrated points.
+    out.range_m.setTo(0.0f);
+    out.ray = cv::Mat::zeros(out.range_m.size(), CV_32FC3);
+    CellFiller filler(out, converted.startAzimuth, converted.azimuthSpan);
+    mrpt::obs::CObservationVelodyneScan packets = *velodyne;  // generatePointCloud() is not const
+    packets.generatePointCloud(filler);
+  }
+  return out;
+}
+
+}  // namespace gasp

@@ -1,0 +1,143 @@
+// Rotating LiDAR scans as range images (gasp/rawlog/range_scan.h), on MRPT's own real samples
+// (mrpt-common: /usr/share/mrpt/datasets/rot_scan_velodyne.rawlog, test_velodyne_VLP16.rawlog).
+#include <gtest/gtest.h>
+
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/obs/CObservation2DRangeScan.h>
+#include <mrpt/obs/CObservationRotatingScan.h>
+#include <mrpt/obs/CObservationVelodyneScan.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "gasp/core/error.h"
+#include "gasp/rawlog/range_scan.h"
+
+namespace {
+
+constexpr const char* kRotating = "/usr/share/mrpt/datasets/rot_scan_velodyne.rawlog";
+constexpr const char* kVelodyne = "/usr/share/mrpt/datasets/test_velodyne_VLP16.rawlog";
+
+mrpt::serialization::CSerializable::Ptr firstObject(const std::string& path) {
+  mrpt::io::CFileGZInputStream in(path);
+  auto archive = mrpt::serialization::archiveFrom(in);
+  return archive.ReadObject();
+}
+
+/// MRPT's own points of a Velodyne scan, with their laser ids. (MRPT's wrapper has virtual
+/// functions and no virtual destructor; this one is only ever used by value.)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wnon-virtual-dtor"
+struct MrptPoints final : mrpt::obs::CObservationVelodyneScan::PointCloudStorageWrapper {
+  std::vector<Eigen::Vector3d> xyz;
+  std::vector<int> laser;
+  void add_point(float x, float y, float z, uint8_t, const mrpt::system::TTimeStamp&, const float, uint16_t id) override {
+    xyz.emplace_back(x, y, z);
+    laser.push_back(id);
+  }
+};
+#pragma GCC diagnostic pop
+
+}  // namespace
+
+TEST(RangeScan, MrptsRotatingVlp16SampleIsSixteenRowsByElevation) {
+  if (!std::filesystem::exists(kRotating)) GTEST_SKIP() << kRotating << " not found (package mrpt-common)";
+  const auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservationRotatingScan>(firstObject(kRotating));
+  ASSERT_TRUE(scan);
+  const gasp::RangeScan r = gasp::rangeScanFrom(*scan);
+  EXPECT_EQ(r.model, "VLP-16");
+  ASSERT_EQ(r.range_m.rows, 16);
+  EXPECT_EQ(r.range_m.cols, 1800);  // 75 packets x 24 firings (MRPT allocated 16 times as many)
+  for (int row = 0; row < 16; ++row) EXPECT_NEAR(r.elevation_rad[static_cast<std::size_t>(row)] * 180 / M_PI, -15 + 2 * row, 1e-9);
+  EXPECT_EQ(r.returnCount(), 11305u);  // every return of the sample kept
+  // The sweep: nearly a whole turn, clockwise from 3.4 deg.
+  EXPECT_NEAR(r.azimuth_rad.front() * 180 / M_PI, -3.43, 0.05);
+  EXPECT_NEAR((r.azimuth_rad.front() - r.azimuth_rad.back()) * 180 / M_PI, 357.9, 0.5);
+  EXPECT_NEAR(r.sweep_duration_s, 0.0995, 1e-3);
+  EXPECT_NEAR(r.T_robot_sensor.translation().z(), 0.09, 1e-6);
+  EXPECT_EQ(r.points().size(), r.returnCount());
+}
+
+TEST(RangeScan, AVelodyneScansPointsAreMrptsOwn) {
+  // The raw VLP-16 packets: each of MRPT's calibrated points in the cell of its laser and
+  // azimuth, with its own ray, so the range image gives MRPT's points back.
+  if (!std::filesystem::exists(kVelodyne)) GTEST_SKIP() << kVelodyne << " not found (package mrpt-common)";
+  const auto velodyne = std::dynamic_pointer_cast<mrpt::obs::CObservationVelodyneScan>(firstObject(kVelodyne));
+  ASSERT_TRUE(velodyne);
+  const gasp::RangeScan r = gasp::rangeScanFrom(*velodyne);
+  MrptPoints mrpt_points;
+  velodyne->generatePointCloud(mrpt_points);
+  ASSERT_FALSE(mrpt_points.xyz.empty());
+  EXPECT_EQ(r.returnCount(), mrpt_points.xyz.size());
+  // Each MRPT point has a point of its laser's row here: the nearest one, and the angle between
+  // their rays (every 7th point, for time). Two firings in one cell keep the first: none here.
+  std::vector<int> row_of_laser(16);
+  for (int row = 0; row < 16; ++row) row_of_laser[static_cast<std::size_t>(r.laser_of_row[static_cast<std::size_t>(row)])] = row;
+  std::vector<double> angle_deg, distance_m;
+  for (std::size_t i = 0; i < mrpt_points.xyz.size(); i += 7) {
+    const Eigen::Vector3d& p = mrpt_points.xyz[i];
+    const int row = row_of_laser[static_cast<std::size_t>(mrpt_points.laser[i])];
+    double best = 1e9;
+    Eigen::Vector3d nearest = Eigen::Vector3d::Zero();
+    for (int c = 0; c < r.range_m.cols; ++c) {
+      const float d = r.range_m.at<float>(row, c);
+      if (d <= 0.0f) continue;
+      const Eigen::Vector3d q = static_cast<double>(d) * r.direction(row, c);
+      if ((q - p).norm() < best) best = (q - p).norm(), nearest = q;
+    }
+    distance_m.push_back(best);
+    angle_deg.push_back(std::acos(std::clamp(nearest.normalized().dot(p.normalized()), -1.0, 1.0)) * 180 / M_PI);
+  }
+  std::sort(angle_deg.begin(), angle_deg.end());
+  std::sort(distance_m.begin(), distance_m.end());
+  const std::size_t n = angle_deg.size();
+  std::printf("VLP-16 sample: %zu points compared; nearest point here: median %.4f m, 95 %% %.4f m; the rays %.3f deg "
+              "apart (median), %.3f (95 %%)\n",
+              n, distance_m[n / 2], distance_m[n * 95 / 100], angle_deg[n / 2], angle_deg[n * 95 / 100]);
+  // Each is MRPT's point itself (float rays).
+  EXPECT_LT(distance_m.back(), 1e-4);
+  EXPECT_LT(angle_deg.back(), 1e-3);
+  EXPECT_FALSE(r.ray.empty());
+}
+
+TEST(RangeScan, AModelWithoutKnownElevationsIsAnErrorThatNamesIt) {
+  mrpt::obs::CObservationRotatingScan scan;
+  scan.rowCount = 64;
+  scan.columnCount = 10;
+  scan.rangeImage.setZero(64, 10);
+  scan.lidarModel = "HDL-64E";
+  scan.sensorLabel = "LIDAR";
+  try {
+    gasp::rangeScanFrom(scan);
+    FAIL() << "expected gasp::Error";
+  } catch (const gasp::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'HDL-64E' are not known"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(gasp::rangeScanFrom(mrpt::obs::CObservationRotatingScan{}), gasp::Error);  // empty
+}
+
+TEST(RangeScan, ATwoDimensionalScanIsOneRowCounterClockwise) {
+  mrpt::obs::CObservation2DRangeScan laser;
+  laser.aperture = static_cast<float>(M_PI);
+  laser.rightToLeft = true;
+  laser.maxRange = 10.0f;
+  laser.resizeScan(181);
+  for (std::size_t i = 0; i < 181; ++i) {
+    laser.setScanRange(i, 2.0f);
+    laser.setScanRangeValidity(i, true);
+  }
+  const gasp::RangeScan r = gasp::rangeScanFrom(laser);
+  ASSERT_EQ(r.range_m.rows, 1);
+  ASSERT_EQ(r.range_m.cols, 181);
+  // From the right (-90 deg) to the left, 2 m away in the plane.
+  EXPECT_NEAR(r.azimuth_rad.front(), -M_PI / 2, 1e-6);  // MRPT keeps the aperture as a float
+  const auto points = r.points();
+  ASSERT_EQ(points.size(), 181u);
+  EXPECT_NEAR(points.front().y(), -2.0, 0.01);
+  EXPECT_NEAR(points[90].x(), 2.0, 0.02);
+  EXPECT_NEAR(points.front().z(), 0.0, 1e-12);
+}
