@@ -1,7 +1,6 @@
 #pragma once
-/// \file range_scan.h A rotating LiDAR's sweep as a range image with its projection: one row per
-/// laser, ordered by elevation, one column per azimuth step, and each cell's ray in the sensor
-/// frame. The first step of GASP on range observations (issue 49).
+/// \file range_scan.h MRPT's range observations as a RangeScan (gasp/core/range_scan.h): the
+/// first step of GASP on range observations (issue 49).
 ///
 /// MRPT 2.5's CObservationRotatingScan stores the ranges, the first column's azimuth, the span and
 /// the model's name, but not the lasers' elevations: they come from the model
@@ -11,12 +10,7 @@
 ///   is read as that many columns;
 /// - a Velodyne's azimuth turns clockwise seen from above (as the sensor spins), a 2D scan's (and
 ///   the ray's here) counter-clockwise about the sensor's z from its x axis.
-#include <opencv2/core.hpp>
-
-#include <string>
-#include <vector>
-
-#include "gasp/core/pose.h"
+#include "gasp/core/range_scan.h"
 
 namespace mrpt::obs {
 class CObservation;
@@ -24,34 +18,6 @@ class CObservationRotatingScan;
 }  // namespace mrpt::obs
 
 namespace gasp {
-
-struct RangeScan {
-  double timestamp = 0.0;  ///< [s] of the sweep's start
-  std::string model;       ///< MRPT's lidarModel
-  /// CV_32FC1 [m], rows = lasers from the lowest elevation up, columns = azimuth steps in the
-  /// order the sweep took them; 0 = no return (or outside the sensor's range).
-  cv::Mat range_m;
-  std::vector<double> elevation_rad;  ///< per row
-  std::vector<double> azimuth_rad;    ///< per column, counter-clockwise about z from the sensor's x
-  std::vector<int> laser_of_row;      ///< the observation's row (laser id) of each row
-  /// CV_32FC3: each return's own unit ray in the sensor frame where the sensor's calibration
-  /// gives it (a Velodyne's packets: MRPT's calibrated point cloud); empty, or zero at a cell:
-  /// the row's elevation and the column's azimuth.
-  cv::Mat ray;
-  double sweep_duration_s = 0.0;
-  Isometry3 T_robot_sensor = Isometry3::Identity();
-
-  /// The unit ray of a cell in the sensor frame.
-  Eigen::Vector3d direction(int row, int col) const;
-  /// The returns as points in the sensor frame, row by row.
-  std::vector<Eigen::Vector3d> points() const;
-  std::size_t returnCount() const { return static_cast<std::size_t>(cv::countNonZero(range_m)); }
-};
-
-/// The lasers' elevations [deg] of a LiDAR by MRPT's lidarModel name, in laser-id order (the
-/// observation's rows): VLP-16 and HDL-32E (their manuals' tables), and 2D scans ("2D_SCAN_*":
-/// one row at 0). Empty for any other model.
-std::vector<double> laserElevationsDeg(const std::string& lidar_model, int rows);
 
 /// The scan as a range image with its projection. Throws gasp::Error naming the model for one
 /// whose elevations are not known, or when they do not match its rows, and for an empty scan.
