@@ -22,53 +22,66 @@ struct PreparedObject {
   bool always = false;
 };
 
-/// Casts the rows [row_begin, row_end) of `out` (allocated) from the camera pose T_world_camera.
-void renderRows(const Scene& scene, const CameraIntrinsics& K, const Isometry3& T_world_camera, int frame_index,
-                int row_begin, int row_end, RenderedFrame& out) {
-  const Isometry3 T_camera_world = T_world_camera.inverse();
+/// The objects visible at frame_index, prepared for rays from the sensor pose T_world_sensor.
+std::vector<PreparedObject> prepareObjects(const Scene& scene, const Isometry3& T_world_sensor, int frame_index) {
+  const Isometry3 T_sensor_world = T_world_sensor.inverse();
   std::vector<PreparedObject> prepared;
   for (const auto& obj : scene.objects) {
     if (!obj.visibleAt(frame_index)) continue;
     PreparedObject p;
     p.object = &obj;
-    const Isometry3 T_object_camera = obj.T_world_object.inverse() * T_world_camera;
-    p.R_object_camera = T_object_camera.linear();
-    p.t_object_camera = T_object_camera.translation();
+    const Isometry3 T_object_sensor = obj.T_world_object.inverse() * T_world_sensor;
+    p.R_object_camera = T_object_sensor.linear();
+    p.t_object_camera = T_object_sensor.translation();
     p.R_camera_object = p.R_object_camera.transpose();
-    p.centre_camera = T_camera_world * obj.T_world_object.translation();
+    p.centre_camera = T_sensor_world * obj.T_world_object.translation();
     const double r = boundingRadius(obj.shape);
     p.always = !std::isfinite(r);
     p.radius_sq = r * r;
     prepared.push_back(p);
   }
+  return prepared;
+}
 
+/// The nearest hit along the ray t * d (sensor frame, from its origin; t in units of |d|):
+/// its t, the hit and its object; false when the ray hits nothing.
+bool nearestHit(const std::vector<PreparedObject>& prepared, const Eigen::Vector3d& d, double& best_t, RayHit& best_hit,
+                const PreparedObject*& best_obj) {
   constexpr double kTMin = 1e-6;
+  const double dd = d.squaredNorm();
+  best_t = std::numeric_limits<double>::infinity();
+  best_obj = nullptr;
+  for (const auto& p : prepared) {
+    if (!p.always) {  // bounding-sphere early out
+      const double q = p.centre_camera.dot(d);
+      const double disc = q * q - dd * (p.centre_camera.squaredNorm() - p.radius_sq);
+      if (disc < 0.0) continue;
+      if ((q - std::sqrt(disc)) / dd >= best_t) continue;
+    }
+    RayHit hit;
+    if (intersect(p.object->shape, p.t_object_camera, p.R_object_camera * d, kTMin, hit) && hit.t < best_t) {
+      best_t = hit.t;
+      best_hit = hit;
+      best_obj = &p;
+    }
+  }
+  return best_obj != nullptr;
+}
+
+/// Casts the rows [row_begin, row_end) of `out` (allocated) from the camera pose T_world_camera.
+void renderRows(const Scene& scene, const CameraIntrinsics& K, const Isometry3& T_world_camera, int frame_index,
+                int row_begin, int row_end, RenderedFrame& out) {
+  const std::vector<PreparedObject> prepared = prepareObjects(scene, T_world_camera, frame_index);
   for (int v = row_begin; v < row_end; ++v) {
     auto* depth_row = out.depth.ptr<float>(v);
     auto* id_row = out.surface_id.ptr<std::uint16_t>(v);
     auto* normal_row = out.normal.ptr<cv::Vec3f>(v);
     for (int u = 0; u < K.width; ++u) {
       const Eigen::Vector3d d_camera((u - K.cx) / K.fx, (v - K.cy) / K.fy, 1.0);
-      const double dd = d_camera.squaredNorm();
-      double best_t = std::numeric_limits<double>::infinity();
+      double best_t = 0.0;
       RayHit best_hit;
       const PreparedObject* best_obj = nullptr;
-      for (const auto& p : prepared) {
-        if (!p.always) {  // bounding-sphere early out
-          const double q = p.centre_camera.dot(d_camera);
-          const double disc = q * q - dd * (p.centre_camera.squaredNorm() - p.radius_sq);
-          if (disc < 0.0) continue;
-          if ((q - std::sqrt(disc)) / dd >= best_t) continue;
-        }
-        RayHit hit;
-        if (intersect(p.object->shape, p.t_object_camera, p.R_object_camera * d_camera, kTMin, hit) &&
-            hit.t < best_t) {
-          best_t = hit.t;
-          best_hit = hit;
-          best_obj = &p;
-        }
-      }
-      if (!best_obj) continue;
+      if (!nearestHit(prepared, d_camera, best_t, best_hit, best_obj)) continue;
       Eigen::Vector3d n = best_obj->R_camera_object * best_hit.normal;
       if (n.dot(d_camera) > 0.0) n = -n;  // face the camera (rectangles are two-sided)
       depth_row[u] = static_cast<float>(best_t);
@@ -88,6 +101,27 @@ RenderedFrame emptyFrame(const CameraIntrinsics& K) {
 }
 
 }  // namespace
+
+RenderedScan renderRangeScan(const Scene& scene, const RangeScan& layout, const Isometry3& T_world_sensor,
+                             int frame_index) {
+  const int rows = static_cast<int>(layout.elevation_rad.size()), cols = static_cast<int>(layout.azimuth_rad.size());
+  if (rows == 0 || cols == 0) throw Error("renderRangeScan: the layout has no rows or no columns");
+  const std::vector<PreparedObject> prepared = prepareObjects(scene, T_world_sensor, frame_index);
+  RenderedScan out;
+  out.range = cv::Mat::zeros(rows, cols, CV_32FC1);
+  out.surface_id = cv::Mat::zeros(rows, cols, CV_16UC1);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      const Eigen::Vector3d d = layout.direction(r, c);  // unit: t is the range
+      double t = 0.0;
+      RayHit hit;
+      const PreparedObject* obj = nullptr;
+      if (!nearestHit(prepared, d, t, hit, obj)) continue;
+      out.range.at<float>(r, c) = static_cast<float>(t);
+      out.surface_id.at<std::uint16_t>(r, c) = obj->object->surfaceId(hit.face);
+    }
+  return out;
+}
 
 RenderedFrame renderFrame(const Scene& scene, const CameraIntrinsics& K,
                           const Isometry3& T_world_camera, int frame_index) {

@@ -6,6 +6,7 @@
 
 #include "gasp/core/camera_intrinsics.h"
 #include "gasp/core/pose.h"
+#include "gasp/core/range_scan.h"
 #include "gasp/sim/scene.h"
 
 namespace gasp::sim {
@@ -33,5 +34,17 @@ RenderedFrame renderFrame(const Scene& scene, const CameraIntrinsics& intrinsics
 RenderedFrame renderRollingShutterFrame(const Scene& scene, const CameraIntrinsics& intrinsics,
                                         const std::function<Isometry3(int)>& T_world_camera_of_row,
                                         int frame_index = 0);
+
+/// Ground truth of a LiDAR sweep: for each cell the nearest surface along its ray.
+struct RenderedScan {
+  cv::Mat range;       ///< CV_32FC1 true range [m]; 0 where the ray hits nothing
+  cv::Mat surface_id;  ///< CV_16UC1 surface id of the hit; 0 where the ray hits nothing
+};
+
+/// Casts the ray of every cell of `layout` (its elevations and azimuths, RangeScan::direction();
+/// its ranges are not used) from the sensor pose T_world_sensor, the whole sweep from that one
+/// pose. Throws gasp::Error for a layout without rows or columns.
+RenderedScan renderRangeScan(const Scene& scene, const RangeScan& layout, const Isometry3& T_world_sensor,
+                             int frame_index = 0);
 
 }  // namespace gasp::sim

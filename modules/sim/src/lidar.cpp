@@ -1,0 +1,69 @@
+#include "gasp/sim/lidar.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+#include "gasp/core/error.h"
+#include "gasp/sim/renderer.h"
+
+namespace gasp::sim {
+
+LidarSensor lidarSensor(int lasers) {
+  LidarSensor s;
+  if (lasers == 16) {
+    s.model = "VLP-16";
+  } else if (lasers == 32) {
+    s.model = "HDL-32E";
+  } else if (lasers == 64) {
+    s.model = "SIM-64";
+    for (int i = 0; i < 64; ++i) s.elevation_deg.push_back(-24.9 + 26.9 * i / 63.0);
+    return s;
+  } else {
+    throw Error("lidar: " + std::to_string(lasers) + " lasers; the simulated sensors have 16, 32 or 64");
+  }
+  s.elevation_deg = laserElevationsDeg(s.model, lasers);
+  return s;
+}
+
+RangeScan simulateLidarScan(const Scene& scene, const LidarSensor& sensor, const Isometry3& T_world_sensor,
+                            std::uint64_t seed, int frame_index) {
+  if (sensor.elevation_deg.empty()) throw Error("lidar '" + sensor.model + "': no lasers");
+  if (!(sensor.azimuth_step_deg > 0.0 && sensor.azimuth_step_deg <= 360.0))
+    throw Error("lidar '" + sensor.model + "': azimuth_step_deg must be in (0, 360]");
+  if (!(sensor.min_range_m >= 0.0 && sensor.max_range_m > sensor.min_range_m) || !(sensor.range_sigma_m >= 0.0) ||
+      !(sensor.dropout >= 0.0 && sensor.dropout < 1.0) || !(sensor.sweep_s > 0.0))
+    throw Error("lidar '" + sensor.model + "': ranges, noise, dropout or sweep out of their domain");
+  RangeScan scan;
+  scan.model = sensor.model;
+  scan.sweep_duration_s = sensor.sweep_s;
+  const int rows = static_cast<int>(sensor.elevation_deg.size());
+  const int cols = static_cast<int>(std::lround(360.0 / sensor.azimuth_step_deg));
+  scan.laser_of_row.resize(static_cast<std::size_t>(rows));
+  std::iota(scan.laser_of_row.begin(), scan.laser_of_row.end(), 0);
+  std::stable_sort(scan.laser_of_row.begin(), scan.laser_of_row.end(), [&](int a, int b) {
+    return sensor.elevation_deg[static_cast<std::size_t>(a)] < sensor.elevation_deg[static_cast<std::size_t>(b)];
+  });
+  for (const int laser : scan.laser_of_row)
+    scan.elevation_rad.push_back(sensor.elevation_deg[static_cast<std::size_t>(laser)] * M_PI / 180.0);
+  for (int c = 0; c < cols; ++c) scan.azimuth_rad.push_back(-c * sensor.azimuth_step_deg * M_PI / 180.0);
+  const RenderedScan truth = renderRangeScan(scene, scan, T_world_sensor, frame_index);
+  // The noise: the same for the same (seed, frame), whatever else was simulated.
+  std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ULL + static_cast<std::uint64_t>(frame_index));
+  std::normal_distribution<double> noise(0.0, sensor.range_sigma_m);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  scan.range_m = cv::Mat::zeros(rows, cols, CV_32FC1);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      const double t = truth.range.at<float>(r, c);
+      const double e = sensor.range_sigma_m > 0.0 ? noise(rng) : 0.0;
+      const bool lost = uniform(rng) < sensor.dropout;
+      if (!(t > 0.0) || lost) continue;
+      const double d = t + e;
+      if (d >= sensor.min_range_m && d <= sensor.max_range_m) scan.range_m.at<float>(r, c) = static_cast<float>(d);
+    }
+  return scan;
+}
+
+}  // namespace gasp::sim
