@@ -1,6 +1,9 @@
 #include "gasp/core/range_scan.h"
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <utility>
 
 namespace gasp {
 
@@ -29,6 +32,20 @@ std::vector<Eigen::Vector3d> RangeScan::points() const {
     for (int c = 0; c < range_m.cols; ++c)
       if (const float d = range_m.at<float>(r, c); d > 0.0f) out.push_back(static_cast<double>(d) * direction(r, c));
   return out;
+}
+
+void RangeScan::setLayout(const std::vector<double>& elevation_deg_by_laser, std::vector<double> azimuths_rad) {
+  const std::size_t rows = elevation_deg_by_laser.size();
+  laser_of_row.resize(rows);
+  std::iota(laser_of_row.begin(), laser_of_row.end(), 0);
+  std::stable_sort(laser_of_row.begin(), laser_of_row.end(), [&](int a, int b) {
+    return elevation_deg_by_laser[static_cast<std::size_t>(a)] < elevation_deg_by_laser[static_cast<std::size_t>(b)];
+  });
+  elevation_rad.clear();
+  for (const int laser : laser_of_row) elevation_rad.push_back(elevation_deg_by_laser[static_cast<std::size_t>(laser)] * M_PI / 180.0);
+  azimuth_rad = std::move(azimuths_rad);
+  range_m = cv::Mat::zeros(static_cast<int>(rows), static_cast<int>(azimuth_rad.size()), CV_32FC1);
+  ray.release();
 }
 
 }  // namespace gasp

@@ -5,7 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <utility>
 
 #include "gasp/core/error.h"
 #include "gasp/rawlog/observation_conversion.h"
@@ -43,16 +43,11 @@ RangeScan rangeScanFrom(const mrpt::obs::CObservationRotatingScan& scan) {
   out.model = scan.lidarModel;
   out.sweep_duration_s = scan.sweepDuration;
   out.T_robot_sensor = fromCPose3D(scan.sensorPose);
-  out.laser_of_row.resize(static_cast<std::size_t>(rows));
-  std::iota(out.laser_of_row.begin(), out.laser_of_row.end(), 0);
-  std::stable_sort(out.laser_of_row.begin(), out.laser_of_row.end(),
-                   [&](int a, int b) { return elevations[static_cast<std::size_t>(a)] < elevations[static_cast<std::size_t>(b)]; });
-  for (const int laser : out.laser_of_row) out.elevation_rad.push_back(elevations[static_cast<std::size_t>(laser)] * M_PI / 180.0);
   // Clockwise for a Velodyne (its azimuth follows the spin), counter-clockwise for a 2D scan.
   const double sign = isVelodyne(scan.lidarModel) ? -1.0 : 1.0;
-  for (int c = 0; c < cols; ++c)
-    out.azimuth_rad.push_back(sign * (scan.startAzimuth + scan.azimuthSpan * c / cols));
-  out.range_m = cv::Mat::zeros(rows, cols, CV_32FC1);
+  std::vector<double> azimuths;
+  for (int c = 0; c < cols; ++c) azimuths.push_back(sign * (scan.startAzimuth + scan.azimuthSpan * c / cols));
+  out.setLayout(elevations, std::move(azimuths));
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c) {
       const double d = scan.rangeImage(out.laser_of_row[static_cast<std::size_t>(r)], c) * scan.rangeResolution;

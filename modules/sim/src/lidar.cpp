@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <utility>
 #include <random>
 
 #include "gasp/core/error.h"
@@ -40,20 +40,14 @@ RangeScan simulateLidarScan(const Scene& scene, const LidarSensor& sensor, const
   scan.sweep_duration_s = sensor.sweep_s;
   const int rows = static_cast<int>(sensor.elevation_deg.size());
   const int cols = static_cast<int>(std::lround(360.0 / sensor.azimuth_step_deg));
-  scan.laser_of_row.resize(static_cast<std::size_t>(rows));
-  std::iota(scan.laser_of_row.begin(), scan.laser_of_row.end(), 0);
-  std::stable_sort(scan.laser_of_row.begin(), scan.laser_of_row.end(), [&](int a, int b) {
-    return sensor.elevation_deg[static_cast<std::size_t>(a)] < sensor.elevation_deg[static_cast<std::size_t>(b)];
-  });
-  for (const int laser : scan.laser_of_row)
-    scan.elevation_rad.push_back(sensor.elevation_deg[static_cast<std::size_t>(laser)] * M_PI / 180.0);
-  for (int c = 0; c < cols; ++c) scan.azimuth_rad.push_back(-c * sensor.azimuth_step_deg * M_PI / 180.0);
+  std::vector<double> azimuths;
+  for (int c = 0; c < cols; ++c) azimuths.push_back(-c * sensor.azimuth_step_deg * M_PI / 180.0);
+  scan.setLayout(sensor.elevation_deg, std::move(azimuths));
   const RenderedScan truth = renderRangeScan(scene, scan, T_world_sensor, frame_index);
   // The noise: the same for the same (seed, frame), whatever else was simulated.
   std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ULL + static_cast<std::uint64_t>(frame_index));
   std::normal_distribution<double> noise(0.0, sensor.range_sigma_m);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  scan.range_m = cv::Mat::zeros(rows, cols, CV_32FC1);
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c) {
       const double t = truth.range.at<float>(r, c);

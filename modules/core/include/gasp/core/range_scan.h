@@ -32,6 +32,9 @@ struct RangeScan {
   /// The returns as points in the sensor frame, row by row.
   std::vector<Eigen::Vector3d> points() const;
   std::size_t returnCount() const { return static_cast<std::size_t>(cv::countNonZero(range_m)); }
+  /// Sets the rows from the lasers' elevations [deg] in laser-id order (sorted, lowest first,
+  /// laser_of_row), the columns' azimuths, and an empty range image of that size.
+  void setLayout(const std::vector<double>& elevation_deg_by_laser, std::vector<double> azimuths_rad);
 };
 
 /// The lasers' elevations [deg] of a LiDAR by MRPT's lidarModel name, in laser-id order (the
