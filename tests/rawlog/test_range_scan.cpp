@@ -16,6 +16,8 @@
 
 #include "gasp/core/error.h"
 #include "gasp/rawlog/range_scan.h"
+#include "gasp/sim/lidar.h"
+#include "gasp/sim/scene.h"
 
 namespace {
 
@@ -140,4 +142,39 @@ TEST(RangeScan, ATwoDimensionalScanIsOneRowCounterClockwise) {
   EXPECT_NEAR(points.front().y(), -2.0, 0.01);
   EXPECT_NEAR(points[90].x(), 2.0, 0.02);
   EXPECT_NEAR(points.front().z(), 0.0, 1e-12);
+}
+
+TEST(RangeScan, ASimulatedSweepWrittenAsMrptsRotatingScanReadsBack) {
+  // Each simulated sensor: its sweep as MRPT's observation and back, the same rows, columns and
+  // rays, the ranges within half the 2 mm unit.
+  for (const int lasers : {16, 32, 64}) {
+    gasp::sim::LidarSensor sensor = gasp::sim::lidarSensor(lasers);
+    gasp::Isometry3 T = gasp::Isometry3::Identity();
+    T.translation() = Eigen::Vector3d(0.5, 0.0, 1.0);
+    gasp::RangeScan scan = gasp::sim::simulateLidarScan(gasp::sim::makeScene("room"), sensor, T, 3, 0);
+    scan.timestamp = 1000.25;
+    scan.T_robot_sensor.translation() = Eigen::Vector3d(0.1, 0.0, 0.9);
+    const mrpt::obs::CObservationRotatingScan mrpt_scan = gasp::toRotatingScan(scan, "LIDAR");
+    EXPECT_EQ(mrpt_scan.lidarModel, sensor.model);
+    const gasp::RangeScan back = gasp::rangeScanFrom(mrpt_scan);
+    ASSERT_EQ(back.range_m.size(), scan.range_m.size()) << lasers;
+    EXPECT_EQ(back.laser_of_row, scan.laser_of_row);
+    EXPECT_NEAR(back.timestamp, 1000.25, 1e-6);
+    EXPECT_TRUE(back.T_robot_sensor.isApprox(scan.T_robot_sensor, 1e-6));
+    for (int r = 0; r < scan.range_m.rows; r += 5)
+      for (int c = 0; c < scan.range_m.cols; c += 7) {
+        EXPECT_LT(back.direction(r, c).dot(scan.direction(r, c)), 1.0 + 1e-12);
+        EXPECT_GT(back.direction(r, c).dot(scan.direction(r, c)), 1.0 - 1e-9) << lasers << ": " << r << ", " << c;
+        EXPECT_NEAR(back.range_m.at<float>(r, c), scan.range_m.at<float>(r, c), 0.001 + 1e-6) << r << ", " << c;
+      }
+    EXPECT_EQ(back.returnCount(), scan.returnCount());
+  }
+  gasp::RangeScan with_rays;
+  with_rays.model = "VLP-16";
+  with_rays.setLayout(gasp::laserElevationsDeg("VLP-16", 16), {0.0, -0.01});
+  with_rays.ray = cv::Mat::zeros(16, 2, CV_32FC3);
+  EXPECT_THROW(gasp::toRotatingScan(with_rays, "X"), gasp::Error);
+  with_rays.ray.release();
+  with_rays.model = "UNKNOWN";
+  EXPECT_THROW(gasp::toRotatingScan(with_rays, "X"), gasp::Error);
 }

@@ -13,8 +13,17 @@ std::vector<double> laserElevationsDeg(const std::string& lidar_model, int rows)
     return {-30.67, -9.33, -29.33, -8.00, -28.00, -6.67, -26.67, -5.33, -25.33, -4.00, -24.00,
             -2.67,  -22.67, -1.33, -21.33, 0.00,  -20.00, 1.33,  -18.67, 2.67,  -17.33, 4.00,
             -16.00, 5.33,  -14.67, 6.67,  -13.33, 8.00,  -12.00, 9.33,  -10.67, 10.67};
+  if (lidar_model == "SIM-64") {
+    std::vector<double> even;
+    for (int i = 0; i < 64; ++i) even.push_back(-24.9 + 26.9 * i / 63.0);
+    return even;
+  }
   if (lidar_model.rfind("2D_SCAN_", 0) == 0 && rows == 1) return {0.0};
   return {};
+}
+
+bool turnsClockwise(const std::string& lidar_model) {
+  return lidar_model == "VLP-16" || lidar_model == "HDL-32E" || lidar_model == "SIM-64";
 }
 
 Eigen::Vector3d RangeScan::direction(int row, int col) const {

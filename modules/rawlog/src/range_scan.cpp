@@ -12,12 +12,6 @@
 
 namespace gasp {
 
-namespace {
-
-bool isVelodyne(const std::string& model) { return model == "VLP-16" || model == "HDL-32E"; }
-
-}  // namespace
-
 RangeScan rangeScanFrom(const mrpt::obs::CObservationRotatingScan& scan) {
   const int rows = scan.rowCount, cols_allocated = scan.columnCount;
   if (rows == 0 || cols_allocated == 0 || scan.rangeImage.rows() != rows || scan.rangeImage.cols() != cols_allocated)
@@ -44,7 +38,7 @@ RangeScan rangeScanFrom(const mrpt::obs::CObservationRotatingScan& scan) {
   out.sweep_duration_s = scan.sweepDuration;
   out.T_robot_sensor = fromCPose3D(scan.sensorPose);
   // Clockwise for a Velodyne (its azimuth follows the spin), counter-clockwise for a 2D scan.
-  const double sign = isVelodyne(scan.lidarModel) ? -1.0 : 1.0;
+  const double sign = turnsClockwise(scan.lidarModel) ? -1.0 : 1.0;
   std::vector<double> azimuths;
   for (int c = 0; c < cols; ++c) azimuths.push_back(sign * (scan.startAzimuth + scan.azimuthSpan * c / cols));
   out.setLayout(elevations, std::move(azimuths));
@@ -115,6 +109,41 @@ RangeScan rangeScanFrom(const mrpt::obs::CObservation& observation) {
     mrpt::obs::CObservationVelodyneScan packets = *velodyne;  // generatePointCloud() is not const
     packets.generatePointCloud(filler);
   }
+  return out;
+}
+
+mrpt::obs::CObservationRotatingScan toRotatingScan(const RangeScan& scan, const std::string& sensor_label) {
+  const int rows = scan.range_m.rows, cols = scan.range_m.cols;
+  if (rows == 0 || cols < 2 || scan.range_m.type() != CV_32FC1 || scan.laser_of_row.size() != static_cast<std::size_t>(rows) ||
+      scan.azimuth_rad.size() != static_cast<std::size_t>(cols))
+    throw Error("range scan '" + sensor_label + "': no layout to write (rows, columns, laser order)");
+  if (!scan.ray.empty())
+    throw Error("range scan '" + sensor_label + "': its per-return rays cannot be stored in MRPT 2.5's CObservationRotatingScan");
+  if (laserElevationsDeg(scan.model, rows).size() != static_cast<std::size_t>(rows))
+    throw Error("range scan '" + sensor_label + "': model '" + scan.model + "' is not one whose elevations a reader knows");
+  mrpt::obs::CObservationRotatingScan out;
+  out.sensorLabel = sensor_label;
+  out.timestamp = mrpt::Clock::fromDouble(scan.timestamp);
+  out.lidarModel = scan.model;
+  out.sensorPose = toCPose3D(scan.T_robot_sensor);
+  out.sweepDuration = scan.sweep_duration_s;
+  out.rowCount = static_cast<uint16_t>(rows);
+  out.columnCount = static_cast<uint16_t>(cols);
+  out.rangeResolution = kRotatingScanResolutionM;
+  out.minRange = 0.0;
+  out.maxRange = 65535 * kRotatingScanResolutionM;
+  // The inverse of rangeScanFrom()'s columns: azimuth = sign (start + span c / cols).
+  const double sign = turnsClockwise(scan.model) ? -1.0 : 1.0;
+  out.startAzimuth = sign * scan.azimuth_rad.front();
+  out.azimuthSpan = sign * (scan.azimuth_rad[1] - scan.azimuth_rad[0]) * cols;
+  out.rangeImage.setZero(rows, cols);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      const double d = scan.range_m.at<float>(r, c);
+      if (d > 0.0)
+        out.rangeImage(scan.laser_of_row[static_cast<std::size_t>(r)], c) =
+            static_cast<uint16_t>(std::min(65535.0, std::round(d / kRotatingScanResolutionM)));
+    }
   return out;
 }
 

@@ -18,8 +18,6 @@ LidarSensor lidarSensor(int lasers) {
     s.model = "HDL-32E";
   } else if (lasers == 64) {
     s.model = "SIM-64";
-    for (int i = 0; i < 64; ++i) s.elevation_deg.push_back(-24.9 + 26.9 * i / 63.0);
-    return s;
   } else {
     throw Error("lidar: " + std::to_string(lasers) + " lasers; the simulated sensors have 16, 32 or 64");
   }

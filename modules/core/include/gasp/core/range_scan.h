@@ -38,8 +38,13 @@ struct RangeScan {
 };
 
 /// The lasers' elevations [deg] of a LiDAR by MRPT's lidarModel name, in laser-id order (the
-/// observation's rows): VLP-16 and HDL-32E (their manuals' tables), and 2D scans ("2D_SCAN_*":
-/// one row at 0). Empty for any other model.
+/// observation's rows): VLP-16 and HDL-32E (their manuals' tables), SIM-64 (the simulator's 64
+/// lasers, evenly over -24.9..+2 deg, an HDL-64E's field) and 2D scans ("2D_SCAN_*": one row at
+/// 0). Empty for any other model.
 std::vector<double> laserElevationsDeg(const std::string& lidar_model, int rows);
+
+/// Whether the model's azimuth turns clockwise seen from above, as a spinning Velodyne's does
+/// (VLP-16, HDL-32E, SIM-64); a 2D scan's turns counter-clockwise.
+bool turnsClockwise(const std::string& lidar_model);
 
 }  // namespace gasp

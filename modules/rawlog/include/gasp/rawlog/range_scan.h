@@ -12,10 +12,9 @@
 ///   the ray's here) counter-clockwise about the sensor's z from its x axis.
 #include "gasp/core/range_scan.h"
 
-namespace mrpt::obs {
-class CObservation;
-class CObservationRotatingScan;
-}  // namespace mrpt::obs
+#include <mrpt/obs/CObservationRotatingScan.h>
+
+#include <string>
 
 namespace gasp {
 
@@ -28,5 +27,14 @@ RangeScan rangeScanFrom(const mrpt::obs::CObservationRotatingScan& scan);
 /// cell of its laser and nearest column, with its own ray (`ray`): the image reproduces them
 /// exactly, where uniform columns are off by up to a quarter of a degree.
 RangeScan rangeScanFrom(const mrpt::obs::CObservation& observation);
+
+/// The range unit of the rotating scans GASP writes [m]: 2 mm, as MRPT's Velodyne conversion.
+inline constexpr double kRotatingScanResolutionM = 0.002;
+
+/// `scan` as MRPT 2.5's CObservationRotatingScan (rows in laser-id order, ranges in
+/// kRotatingScanResolutionM units, the model's name for its elevations), which rangeScanFrom()
+/// reads back. Throws gasp::Error for a scan without a layout, with per-return rays (MRPT 2.5 has
+/// no place for them), or of a model whose elevations a reader would not know.
+mrpt::obs::CObservationRotatingScan toRotatingScan(const RangeScan& scan, const std::string& sensor_label);
 
 }  // namespace gasp
