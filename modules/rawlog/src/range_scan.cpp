@@ -19,7 +19,7 @@ RangeScan rangeScanFrom(const mrpt::obs::CObservationRotatingScan& scan) {
   const std::vector<double> elevations = laserElevationsDeg(scan.lidarModel, rows);
   if (elevations.empty())
     throw Error("rotating scan '" + scan.sensorLabel + "': the lasers' elevations of lidarModel '" + scan.lidarModel +
-                "' are not known (VLP-16, HDL-32E and 2D scans are)");
+                "' are not known (VLP-16, HDL-32E, SIM-64 and 2D scans are)");
   if (static_cast<int>(elevations.size()) != rows)
     throw Error("rotating scan '" + scan.sensorLabel + "': lidarModel '" + scan.lidarModel + "' has " +
                 std::to_string(elevations.size()) + " lasers, the scan " + std::to_string(rows) + " rows");
@@ -103,6 +103,8 @@ RangeScan rangeScanFrom(const mrpt::obs::CObservation& observation) {
   RangeScan out = rangeScanFrom(converted);
   if (const auto* velodyne = dynamic_cast<const mrpt::obs::CObservationVelodyneScan*>(&observation)) {
     // The layout of the conversion, the returns and rays of MRPT's calibrated points.
+    if (!(converted.azimuthSpan > 0.0))
+      throw Error("Velodyne scan '" + velodyne->sensorLabel + "': its sweep spans no azimuth (too few packets)");
     out.range_m.setTo(0.0f);
     out.ray = cv::Mat::zeros(out.range_m.size(), CV_32FC3);
     CellFiller filler(out, converted.startAzimuth, converted.azimuthSpan);
