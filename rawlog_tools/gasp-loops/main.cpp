@@ -328,7 +328,7 @@ int main(int argc, char** argv) {
         return T;
       };
       // Optimise, drop the closure the optimised graph contradicts most, again until none is.
-      std::size_t dropped = 0;
+      // Returns the optimised poses and how many closures were dropped.
       const auto close = [&](const std::vector<gasp::PoseConstraint>& steps) {
         std::vector<gasp::PoseConstraint> loops = closures;
         std::vector<gasp::Isometry3> T = compose(steps);
@@ -339,9 +339,8 @@ int main(int argc, char** argv) {
           const auto worst = gasp::mostContradictedClosure(T, loops, params.loop.gate_chi2);
           if (!worst) break;
           loops.erase(loops.begin() + static_cast<std::ptrdiff_t>(worst->edge));
-          ++dropped;
         }
-        return T;
+        return std::pair{T, closures.size() - loops.size()};
       };
       const auto trajectoryOf = [&](const std::vector<gasp::Isometry3>& T) {
         gasp::Trajectory t;
@@ -358,10 +357,9 @@ int main(int argc, char** argv) {
         return gasp::eval::computeAte(reference, trajectoryOf(T)).translation.rmse;
       };
       const double ate_chain = ate(T_chain), ate_bent = ate(T_bent);
-      const double ate_closed_chain = ate(close(chain));
-      const std::size_t dropped_undrifted = dropped;
-      dropped = 0;
-      const double ate_closed_bent = ate(close(bent));
+      const auto [T_closed_chain, dropped_undrifted] = close(chain);
+      const auto [T_closed_bent, dropped] = close(bent);
+      const double ate_closed_chain = ate(T_closed_chain), ate_closed_bent = ate(T_closed_bent);
       std::printf("odometry_chain_ate_rmse_m: %.4f (with the drift: %.4f)\n", ate_chain, ate_bent);
       std::printf("closed_ate_rmse_m: %.4f (with the drift: %.4f); %zu loop edges at >= %d inliers, %zu (with the "
                   "drift: %zu) dropped as contradicted\n",
