@@ -41,7 +41,7 @@ mrpt::maps::CSimpleMap keyframeSimpleMap(const std::vector<RgbdFrame>& keyframes
 }
 
 RgbdFrame withViewDepth(RgbdFrame frame, const DepthView& view) {
-  const CameraIntrinsics& K = view.intrinsics;
+  const CameraIntrinsics& K = view.projection.pinhole();
   if (view.depth_m.type() != CV_32FC1 || view.depth_m.cols != K.width || view.depth_m.rows != K.height)
     throw Error("keyframe map: the view's depth is not a CV_32FC1 image of its intrinsics' size (" +
                 std::to_string(K.width) + "x" + std::to_string(K.height) + ")");

@@ -53,7 +53,7 @@ void writeView(mrpt::serialization::CArchive& out, const SuperpixelMapView& v) {
   const Eigen::Matrix<double, 3, 4> T = v.T_map_camera.matrix().topRows<3>();
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 4; ++c) out << T(r, c);
-  const CameraIntrinsics& k = v.view.intrinsics;
+  const CameraIntrinsics& k = v.view.projection.pinhole();
   out << static_cast<std::int32_t>(k.width) << static_cast<std::int32_t>(k.height) << k.fx << k.fy << k.cx << k.cy;
   for (double d : k.distortion) out << d;
   // Depth [m], row-major.
@@ -100,7 +100,7 @@ SuperpixelMapView readView(mrpt::serialization::CArchive& in) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 4; ++c) in >> T(r, c);
   v.T_map_camera.matrix() = T;
-  CameraIntrinsics& k = v.view.intrinsics;
+  CameraIntrinsics k;
   std::int32_t w, h;
   in >> w >> h >> k.fx >> k.fy >> k.cx >> k.cy;
   for (double& d : k.distortion) in >> d;
@@ -109,6 +109,7 @@ SuperpixelMapView readView(mrpt::serialization::CArchive& in) {
     THROW_EXCEPTION_FMT("image size %dx%d out of range", w, h);
   k.width = w;
   k.height = h;
+  v.view.projection = k;
   const std::size_t pixels = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
   v.view.depth_m.create(h, w, CV_32FC1);
   readExactly(in, v.view.depth_m.ptr<float>(0), pixels, "depth image");

@@ -34,7 +34,7 @@ std::vector<Rgb8> patchColours(const RgbdFrame& frame, const DepthView& view) {
   std::vector<Eigen::Vector3d> sum(n, Eigen::Vector3d::Zero());
   std::vector<int> count(n, 0);
   const Isometry3 T_rgb_depth = frame.T_depth_rgb.inverse();
-  const CameraIntrinsics& k = view.intrinsics;  // the view's (undistorted) depth, as its labels
+  const CameraIntrinsics& k = view.projection.pinhole();  // the view's (undistorted) depth, as its labels
   for (int v = 0; v < seg.labels.rows; v += 2) {
     const int* label = seg.labels.ptr<int>(v);
     const float* depth = view.depth_m.ptr<float>(v);
@@ -104,7 +104,7 @@ void appendMapPatches(const SuperpixelMapView& view, int view_index, std::vector
 }
 
 void checkConsistency(const SuperpixelMapView& v) {
-  const CameraIntrinsics& k = v.view.intrinsics;
+  const CameraIntrinsics& k = v.view.projection.pinhole();
   k.validate();
   const cv::Mat& depth = v.view.depth_m;
   const SuperpixelSegmentation& seg = v.view.segmentation;

@@ -224,7 +224,7 @@ int main(int argc, char** argv) {
                 s.comparisons, s.comparisons_full, s.cut_early, s.gated_out, s.not_mutual);
     if (T_b_a_true) {
       const auto q = gasp::evaluateAssociations(r.association.associations, pva->segmentation, pvb->segmentation,
-                                                pvb->depth_m, pvb->intrinsics, *T_b_a_true);
+                                                pvb->depth_m, pvb->projection.pinhole(), *T_b_a_true);
       std::printf("correct: %d\nwith_true_partner: %d\nprecision: %.3f\ndensity: %.3f\n", q.correct,
                   q.with_true_partner, q.precision(), q.density());
     } else {
@@ -240,8 +240,8 @@ int main(int argc, char** argv) {
     gasp::AssociationPictureOptions picture_options;
     picture_options.legend = gasp::associationLegend(picture_free ? "free" : "verified", drawn.size(), drawn_correct);
     if (!picture_free && !r.pose.success) picture_options.legend += " (no pose: --free draws the free ones)";
-    const cv::Mat picture = gasp::drawAssociations(pva->depth_m, pva->segmentation, pva->intrinsics, pvb->depth_m,
-                                                   pvb->segmentation, pvb->intrinsics, drawn, drawn_correct,
+    const cv::Mat picture = gasp::drawAssociations(pva->depth_m, pva->segmentation, pva->projection.pinhole(), pvb->depth_m,
+                                                   pvb->segmentation, pvb->projection.pinhole(), drawn, drawn_correct,
                                                    picture_options);
     gasp::writeImage(outputs->at("--out"), picture, "picture");
     std::printf("picture: %s\npicture_legend: %s\n", out_path.c_str(), picture_options.legend.c_str());
@@ -300,7 +300,7 @@ int main(int argc, char** argv) {
     std::printf("slide_scan: %s\n", r.slide.summary().c_str());
     std::printf("verified_associations: %zu\n", r.verified.size());
     if (T_b_a_true) {
-      const auto q = gasp::evaluateAssociations(r.verified, pva->segmentation, pvb->segmentation, pvb->depth_m, pvb->intrinsics, *T_b_a_true);
+      const auto q = gasp::evaluateAssociations(r.verified, pva->segmentation, pvb->segmentation, pvb->depth_m, pvb->projection.pinhole(), *T_b_a_true);
       std::printf("verified_precision: %.3f\nverified_density: %.3f\n", q.precision(), q.density());
     }
     if (T_b_a_true) {

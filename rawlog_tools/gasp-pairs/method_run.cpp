@@ -71,7 +71,7 @@ MethodRun runGasp(const std::string& method, std::size_t i, std::size_t j, Frame
     // iteration limit as converged) that passes the same visibility check; otherwise GASP's
     // pose stands (said in the reason). No test of which pose is better.
     const auto t1 = Clock::now();
-    const auto g = baselines::polishPose(va.view.depth_m, vb.view.depth_m, va.view.intrinsics, r.pose.T_target_source);
+    const auto g = baselines::polishPose(va.view.depth_m, vb.view.depth_m, va.view.projection.pinhole(), r.pose.T_target_source);
     if (!g.success) {
       run.reason = "GICP: " + g.reason + "; GASP's pose kept";
     } else {
@@ -92,11 +92,11 @@ MethodRun runGasp(const std::string& method, std::size_t i, std::size_t j, Frame
   if (T_gt) {
     const auto& sa = pva->segmentation;
     const auto& sb = pvb->segmentation;
-    run.free_quality = evaluateAssociations(r.association.associations, sa, sb, pvb->depth_m, pvb->intrinsics, *T_gt);
-    run.verified_quality = evaluateAssociations(r.verified, sa, sb, pvb->depth_m, pvb->intrinsics, *T_gt);
+    run.free_quality = evaluateAssociations(r.association.associations, sa, sb, pvb->depth_m, pvb->projection.pinhole(), *T_gt);
+    run.verified_quality = evaluateAssociations(r.verified, sa, sb, pvb->depth_m, pvb->projection.pinhole(), *T_gt);
     if (T_ref_icp)
       run.verified_quality_polished =
-          evaluateAssociations(r.verified, sa, sb, pvb->depth_m, pvb->intrinsics, *T_ref_icp);
+          evaluateAssociations(r.verified, sa, sb, pvb->depth_m, pvb->projection.pinhole(), *T_ref_icp);
     run.agreement_truth = depthAgreement(va.view, vb.view, *T_gt, 4);
     if (r.pose.success) run.agreement_estimate = depthAgreement(va.view, vb.view, run.T_target_source, 4);
     if (r.pose.success && method != "gasp-gicp") {  // the information is of GASP's pose
@@ -122,8 +122,8 @@ MethodRun runGasp(const std::string& method, std::size_t i, std::size_t j, Frame
                                         pvb->segmentation.patches[static_cast<std::size_t>(a.b)], *T_gt));
     AssociationPictureOptions options;
     options.legend = associationLegend(setup.picture_free ? "free" : "verified", drawn.size(), correct);
-    picture->image = drawAssociations(pva->depth_m, pva->segmentation, pva->intrinsics, pvb->depth_m,
-                                      pvb->segmentation, pvb->intrinsics, drawn, correct, options);
+    picture->image = drawAssociations(pva->depth_m, pva->segmentation, pva->projection.pinhole(), pvb->depth_m,
+                                      pvb->segmentation, pvb->projection.pinhole(), drawn, correct, options);
     picture->shown = drawn.size();
     picture->correct = static_cast<std::size_t>(std::count(correct.begin(), correct.end(), 1));
   }
@@ -138,10 +138,10 @@ MethodRun runGicp(std::size_t i, std::size_t j, FrameCache& cache, const MethodS
                   const std::optional<Isometry3>& T_gt) {
   MethodRun run;
   DepthView va, vb;  // the check reads only depth and intrinsics
-  va.depth_m = cache.rgbd(i).depth_m, va.intrinsics = cache.rgbd(i).intrinsics;
-  vb.depth_m = cache.rgbd(j).depth_m, vb.intrinsics = cache.rgbd(j).intrinsics;
+  va.depth_m = cache.rgbd(i).depth_m, va.projection = cache.rgbd(i).intrinsics;
+  vb.depth_m = cache.rgbd(j).depth_m, vb.projection = cache.rgbd(j).intrinsics;
   const auto t0 = Clock::now();
-  const auto g = baselines::polishPose(va.depth_m, vb.depth_m, va.intrinsics, Isometry3::Identity());
+  const auto g = baselines::polishPose(va.depth_m, vb.depth_m, va.projection.pinhole(), Isometry3::Identity());
   const double icp_ms = msSince(t0);
   run.T_target_source = g.T_target_source;
   if (!g.success) {
@@ -239,7 +239,7 @@ std::optional<Isometry3> polishWithGicp([[maybe_unused]] FrameCache& cache, [[ma
 #ifdef GASP_HAVE_BASELINES
   const auto& va = cache.gaspView(i, params).view;
   const auto& vb = cache.gaspView(j, params).view;
-  const auto r = baselines::polishPose(va.depth_m, vb.depth_m, va.intrinsics, T_init);
+  const auto r = baselines::polishPose(va.depth_m, vb.depth_m, va.projection.pinhole(), T_init);
   if (r.success) return r.T_target_source;
 #endif
   return std::nullopt;

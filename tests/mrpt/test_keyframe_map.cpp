@@ -47,11 +47,13 @@ RgbdFrame recordedFrame() {
 /// The view the odometry registered: pinhole intrinsics, deskewed depth (a ramp and one hole).
 DepthView registeredView() {
   DepthView v;
-  v.intrinsics.width = 8;
-  v.intrinsics.height = 6;
-  v.intrinsics.fx = v.intrinsics.fy = 7.2;
-  v.intrinsics.cx = 3.4;
-  v.intrinsics.cy = 2.6;
+  CameraIntrinsics k;
+  k.width = 8;
+  k.height = 6;
+  k.fx = k.fy = 7.2;
+  k.cx = 3.4;
+  k.cy = 2.6;
+  v.projection = k;
   v.depth_m = cv::Mat(6, 8, CV_32FC1);
   for (int r = 0; r < 6; ++r)
     for (int c = 0; c < 8; ++c) v.depth_m.at<float>(r, c) = 1.4f + 0.01234f * static_cast<float>(r * 8 + c);
@@ -172,7 +174,9 @@ TEST(KeyframeMap, AFrameWithoutRawDepthGetsNone) {
 
 TEST(KeyframeMap, AViewWhoseDepthDisagreesWithItsIntrinsicsIsAnError) {
   DepthView wrong_size = registeredView();
-  wrong_size.intrinsics.width = 9;
+  CameraIntrinsics k = wrong_size.projection.pinhole();
+  k.width = 9;
+  wrong_size.projection = k;
   EXPECT_THROW(withViewDepth(recordedFrame(), wrong_size), Error);
   DepthView wrong_type = registeredView();
   wrong_type.depth_m.convertTo(wrong_type.depth_m, CV_64FC1);

@@ -113,7 +113,7 @@ TEST(SuperpixelMap, TestsRgbdRawlogFromMrptInserts) {
   EXPECT_LT(n, 5000u);
   EXPECT_GT(map.views()[0].view.segmentation.stats.coverage(), 0.5);
   const auto& view = map.views()[0];
-  EXPECT_EQ(view.view.intrinsics.fx, scan.cameraParams.fx());  // the range camera's own intrinsics
+  EXPECT_EQ(view.view.projection.pinhole().fx, scan.cameraParams.fx());  // the range camera's own intrinsics
   ASSERT_EQ(view.patch_rgb.size(), n);
   // Colours come from the intensity image: not all the same.
   std::set<Rgb8> distinct(view.patch_rgb.begin(), view.patch_rgb.end());
@@ -146,7 +146,7 @@ TEST(SuperpixelMap, SerializationRoundTripOfARealFrame) {
     EXPECT_EQ(a.view.superpixels.target_patch_area_m2, 0.005);
     EXPECT_EQ(b.view.superpixels.target_patch_area_m2, 0.005);
     EXPECT_TRUE(a.T_map_camera.isApprox(b.T_map_camera, 0.0));
-    EXPECT_EQ(a.view.intrinsics, b.view.intrinsics);
+    EXPECT_EQ(a.view.projection.pinhole(), b.view.projection.pinhole());
     EXPECT_EQ(cv::norm(a.view.depth_m, b.view.depth_m, cv::NORM_INF), 0.0);
     EXPECT_EQ(cv::countNonZero(a.view.segmentation.labels != b.view.segmentation.labels), 0);
     ASSERT_EQ(a.view.segmentation.patches.size(), b.view.segmentation.patches.size());
@@ -543,7 +543,7 @@ TEST(SuperpixelMapView, ColoursOfADistortedRegisteredFrameComeFromTheSamePixels)
     for (int u = 0; u < k.width; ++u)
       f.rgb.at<cv::Vec3b>(v, u) = cv::Vec3b(0, static_cast<std::uint8_t>(v / 2.5), static_cast<std::uint8_t>(u / 2.5));
   const SuperpixelMapView view = makeMapView(f, Isometry3::Identity(), SuperpixelParams{});
-  for (double c : view.view.intrinsics.distortion) EXPECT_EQ(c, 0.0);
+  for (double c : view.view.projection.pinhole().distortion) EXPECT_EQ(c, 0.0);
   const auto& seg = view.view.segmentation;
   ASSERT_EQ(view.patch_rgb.size(), seg.patches.size());
   // Expected: the mean over each patch's pixels (every 2nd, as sampled) of the resampled image;

@@ -28,18 +28,18 @@ namespace {
 /// x in [-0.3, 0.2], y in [-0.25, 0.3], seen by a camera at `offset` (world = camera + offset).
 DepthView slabView(const Eigen::Vector3d& offset) {
   DepthView v;
-  v.intrinsics = CameraIntrinsics::rosDefault();
+  v.projection = CameraIntrinsics::rosDefault();
   v.depth_m = cv::Mat(480, 640, CV_32FC1);
   for (int r = 0; r < 480; ++r)
     for (int c = 0; c < 640; ++c) {
-      const Eigen::Vector3d ray((c - v.intrinsics.cx) / v.intrinsics.fx, (r - v.intrinsics.cy) / v.intrinsics.fy, 1.0);
+      const Eigen::Vector3d ray = v.projection.ray(c, r);
       // Slab plane at world z 1.6: camera z = 1.6 - offset.z.
       const double zs = 1.6 - offset.z();
       const Eigen::Vector3d ps = ray * zs + offset;
       const bool on_slab = ps.x() >= -0.3 && ps.x() <= 0.2 && ps.y() >= -0.25 && ps.y() <= 0.3;
       v.depth_m.at<float>(r, c) = static_cast<float>(on_slab ? zs : 2.0 - offset.z());
     }
-  v.segmentation = segmentDepthSuperpixels(v.depth_m, v.intrinsics);
+  v.segmentation = segmentDepthSuperpixels(v.depth_m, v.projection);
   return v;
 }
 
@@ -125,7 +125,7 @@ namespace {
 /// 1.6 m in front of a plane at 2 m: its outline runs along both image diagonals.
 DepthView diamondView(double cu, double cv, double r) {
   DepthView v;
-  v.intrinsics = CameraIntrinsics::rosDefault();
+  v.projection = CameraIntrinsics::rosDefault();
   v.depth_m = cv::Mat(480, 640, CV_32FC1);
   for (int row = 0; row < 480; ++row)
     for (int c = 0; c < 640; ++c)
@@ -143,7 +143,7 @@ TEST(EdgeTerms, SamplingDoesNotDependOnTheEdgeDirection) {
   const double r = 100.0;
   const double perimeter = 4.0 * r * std::sqrt(2.0);
   DepthView square;
-  square.intrinsics = CameraIntrinsics::rosDefault();
+  square.projection = CameraIntrinsics::rosDefault();
   square.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(2.0f));
   const int side = static_cast<int>(std::lround(perimeter / 4.0));
   square.depth_m(cv::Rect(200, 100, side, side)).setTo(1.6f);
@@ -160,7 +160,7 @@ TEST(EdgeTerms, BadInputGivesNoTermsOrAClearError) {
   EdgeTermParams p;
   // All-invalid depth: no edge points, no targets, no terms.
   DepthView empty;
-  empty.intrinsics = CameraIntrinsics::rosDefault();
+  empty.projection = CameraIntrinsics::rosDefault();
   empty.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
   EXPECT_TRUE(findEdgePoints(empty, p).points.empty());
   const EdgeTargets none(empty, p);

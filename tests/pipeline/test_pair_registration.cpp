@@ -64,7 +64,7 @@ TEST_P(SyntheticPair, RecoversTheTruePose) {
   // definition: precision >= 0.95 and density >= 0.5 (issue 4's target for synthetic pairs;
   // measured 0.996-1.000 and 0.81-0.87 on the room pairs).
   const AssociationQuality q =
-      evaluateAssociations(r.verified, p.a.segmentation, p.b.segmentation, p.b.depth_m, p.b.intrinsics, p.T_b_a);
+      evaluateAssociations(r.verified, p.a.segmentation, p.b.segmentation, p.b.depth_m, p.b.projection.pinhole(), p.T_b_a);
   std::printf("%s: %zu associations, %zu verified, verified precision %.3f, density %.3f, support %d, one-way %d\n",
               c.what, r.association.associations.size(), r.verified.size(), q.precision(), q.density(),
               r.guided_support, int(r.used_one_way));
@@ -368,7 +368,7 @@ TEST(FinerScaleRetry, FindsThePoseWhenThePatchesAreTooLargeForTheOverlap) {
   }
   EXPECT_GE(static_cast<std::size_t>(max_a), a.segmentation.patches.size());
   const AssociationQuality q =
-      evaluateAssociations(r.verified, va->segmentation, vb->segmentation, vb->depth_m, vb->intrinsics, T_b_a);
+      evaluateAssociations(r.verified, va->segmentation, vb->segmentation, vb->depth_m, vb->projection.pinhole(), T_b_a);
   EXPECT_GE(q.precision(), 0.9);
 }
 

@@ -21,7 +21,7 @@ namespace {
 /// segmentation: the parts under test only read labels, patch normals and depth).
 DepthView wallView(double z = 2.0) {
   DepthView v;
-  v.intrinsics = CameraIntrinsics::rosDefault();
+  v.projection = CameraIntrinsics::rosDefault();
   v.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(static_cast<float>(z)));
   v.segmentation.labels = cv::Mat(480, 640, CV_32S);
   for (int r = 0; r < 480; ++r)
@@ -30,7 +30,7 @@ DepthView wallView(double z = 2.0) {
     SurfacePatch p;
     p.id = id;
     const double u = (id % 8) * 80 + 39.5, vv = (id / 8) * 80 + 39.5;
-    p.centroid = v.intrinsics.unproject(u, vv, z);
+    p.centroid = v.projection.unproject(u, vv, z);
     p.normal = Eigen::Vector3d(0, 0, -1);
     p.area_m2 = 0.09;
     v.segmentation.patches.push_back(p);
@@ -197,8 +197,8 @@ TEST(DepthViewUndistortion, ADistortedCameraGivesAPinholeView) {
   cv::Mat depth(k.height, k.width, CV_32FC1, cv::Scalar(2.0f));
   depth(cv::Rect(0, 0, 40, 40)).setTo(1.0f);  // a corner object: moves under undistortion
   const DepthView v = makeDepthView(depth, k);
-  for (double c : v.intrinsics.distortion) EXPECT_EQ(c, 0.0);
-  EXPECT_EQ(v.intrinsics.fx, k.fx);
+  for (double c : v.projection.pinhole().distortion) EXPECT_EQ(c, 0.0);
+  EXPECT_EQ(v.projection.pinhole().fx, k.fx);
   const cv::Mat expected = Undistortion(k).applyToDepth(depth);
   EXPECT_EQ(cv::norm(v.depth_m, expected, cv::NORM_INF), 0.0);
   EXPECT_GT(cv::norm(v.depth_m, depth, cv::NORM_INF), 0.0);

@@ -58,9 +58,9 @@ BaselineResult registerDescribed(const RgbdImage& source, const RgbdImage& targe
   // The same free-space check as GASP's: it reads only depth and intrinsics.
   DepthView s, t;
   s.depth_m = source.depth_m;
-  s.intrinsics = source.intrinsics;
+  s.projection = source.intrinsics;
   t.depth_m = target.depth_m;
-  t.intrinsics = target.intrinsics;
+  t.projection = target.intrinsics;
   r.visibility = checkVisibility(s, t, r.pose.T_target_source, params.visibility);
   r.timings.check_ms = msSince(t0);
   if (!r.visibility.passed) {

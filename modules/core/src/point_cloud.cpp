@@ -42,4 +42,27 @@ OrganizedPointCloud backProject(const cv::Mat& depth_m, const CameraIntrinsics& 
   return cloud;
 }
 
+OrganizedPointCloud backProject(const cv::Mat& depth_m, const ViewProjection& projection) {
+  if (projection.isPinhole()) return backProject(depth_m, projection.pinhole());
+  const int w = projection.width(), h = projection.height();
+  if (depth_m.type() != CV_32FC1)
+    throw Error("backProject: a range image must be CV_32FC1 in metres, got type " + std::to_string(depth_m.type()));
+  if (depth_m.cols != w || depth_m.rows != h)
+    throw Error("backProject: the range image is " + std::to_string(depth_m.cols) + "x" + std::to_string(depth_m.rows) +
+                " but its grid is " + std::to_string(w) + "x" + std::to_string(h));
+  OrganizedPointCloud cloud;
+  cloud.width = w;
+  cloud.height = h;
+  cloud.range_depth = true;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  cloud.points.assign(static_cast<std::size_t>(w) * h, Eigen::Vector3f(nan, nan, nan));
+  for (int v = 0; v < h; ++v) {
+    const float* row = depth_m.ptr<float>(v);
+    for (int u = 0; u < w; ++u)
+      if (isValidDepth(row[u]))
+        cloud.points[static_cast<std::size_t>(v) * w + u] = (row[u] * projection.ray(u, v)).cast<float>();
+  }
+  return cloud;
+}
+
 }  // namespace gasp

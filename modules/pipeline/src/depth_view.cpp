@@ -11,8 +11,20 @@ namespace gasp {
 
 DepthView makeDepthView(const cv::Mat& depth_m, const CameraIntrinsics& intrinsics, const SuperpixelParams& params) {
   DepthView v;
-  std::tie(v.depth_m, v.intrinsics) = pinholeDepth(depth_m, intrinsics);
-  v.segmentation = segmentDepthSuperpixels(v.depth_m, v.intrinsics, params);
+  CameraIntrinsics pinhole;
+  std::tie(v.depth_m, pinhole) = pinholeDepth(depth_m, intrinsics);
+  v.projection = pinhole;
+  v.segmentation = segmentDepthSuperpixels(v.depth_m, v.projection, params);
+  v.superpixels = params;
+  return v;
+}
+
+DepthView makeDepthView(const cv::Mat& depth_m, const ViewProjection& projection, const SuperpixelParams& params) {
+  if (projection.isPinhole()) return makeDepthView(depth_m, projection.pinhole(), params);
+  DepthView v;
+  v.depth_m = depth_m;
+  v.projection = projection;
+  v.segmentation = segmentDepthSuperpixels(v.depth_m, v.projection, params);
   v.superpixels = params;
   return v;
 }

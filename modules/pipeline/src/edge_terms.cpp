@@ -74,7 +74,7 @@ EdgePoints checkerboardEdgePixels(const DepthView& view, const EdgeTermParams& p
                deeper(u - 2, v) || deeper(u, v + 2) || deeper(u, v - 2);
       }
       if (edge) {
-        e.points.push_back(view.intrinsics.unproject(u, v, z));
+        e.points.push_back(view.projection.unproject(u, v, z));
         e.pixels.emplace_back(u, v);
       }
     }

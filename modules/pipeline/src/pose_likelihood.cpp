@@ -18,13 +18,13 @@ class SampleTerm {
   std::optional<double> operator()(const Eigen::Vector3d& point, const Isometry3& T_to_from) const {
     const Eigen::Vector3d q = T_to_from * point;
     double uf = 0, vf = 0;
-    if (!to_.intrinsics.project(q, uf, vf)) return std::nullopt;
+    if (!to_.projection.project(q, uf, vf)) return std::nullopt;
     const int ut = static_cast<int>(std::lround(uf)), vt = static_cast<int>(std::lround(vf));
     if (ut < 0 || vt < 0 || ut >= to_.depth_m.cols || vt >= to_.depth_m.rows) return std::nullopt;
     const float zt = to_.depth_m.at<float>(vt, ut);
     if (!isValidDepth(zt)) return std::nullopt;
     const double sigma = p_.sigma_m + p_.sigma_per_m2 * zt * zt;
-    const double e = (q.z() - zt) / sigma;
+    const double e = (to_.projection.depth(q) - zt) / sigma;
     return std::log1p(scale_ / sigma * std::exp(-0.5 * e * e));
   }
 
@@ -49,7 +49,7 @@ void oneWay(const DepthView& from, const DepthView& to, const Isometry3& T_to_fr
       const int label = labels.at<int>(v, u);
       const float z0 = d.at<float>(v, u);
       if (label < 0 || static_cast<std::size_t>(label) >= n || !isValidDepth(z0)) continue;
-      const Eigen::Vector3d point = from.intrinsics.unproject(u, v, z0);
+      const Eigen::Vector3d point = from.projection.unproject(u, v, z0);
       const auto la = term(point, T_to_from_a), lb = term(point, T_to_from_b);
       if (!la || !lb) continue;
       const std::size_t k = static_cast<std::size_t>(label);

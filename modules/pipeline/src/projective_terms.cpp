@@ -21,7 +21,7 @@ namespace {
 /// off the image or on no patch.
 bool patchUnder(const DepthView& target, const Eigen::Vector3d& p_t, int& ut, int& vt, int& label) {
   double uf = 0, vf = 0;
-  if (!target.intrinsics.project(p_t, uf, vf)) return false;
+  if (!target.projection.project(p_t, uf, vf)) return false;
   ut = static_cast<int>(std::lround(uf)), vt = static_cast<int>(std::lround(vf));
   const cv::Mat& lt = target.segmentation.labels;
   if (ut < 0 || vt < 0 || ut >= lt.cols || vt >= lt.rows) return false;
@@ -47,13 +47,13 @@ std::vector<PointToPlane> projectiveTerms(const DepthView& source, const DepthVi
       if (la < 0) continue;
       const float z = source.depth_m.at<float>(v, u);
       if (!isValidDepth(z)) continue;
-      const Eigen::Vector3d p_s = source.intrinsics.unproject(u, v, z);
+      const Eigen::Vector3d p_s = source.projection.unproject(u, v, z);
       const Eigen::Vector3d p_t = T_target_source * p_s;
       int ut = 0, vt = 0, lb = -1;
       if (!patchUnder(target, p_t, ut, vt, lb)) continue;
       const float zt = target.depth_m.at<float>(vt, ut);
       if (!isValidDepth(zt)) continue;
-      const Eigen::Vector3d q = target.intrinsics.unproject(ut, vt, zt);
+      const Eigen::Vector3d q = target.projection.unproject(ut, vt, zt);
       if ((q - p_t).squaredNorm() > max_d2) continue;
       const Eigen::Vector3d& n_t = target.segmentation.patches[static_cast<std::size_t>(lb)].normal;
       const Eigen::Vector3d n_s = R * source.segmentation.patches[static_cast<std::size_t>(la)].normal;

@@ -21,7 +21,7 @@ int edgePointsInView(const EdgePoints& source, const DepthView& target, const Is
   const cv::Mat& d = target.depth_m;
   for (const Eigen::Vector3d& p : source.points) {
     double u = 0, v = 0;
-    if (!target.intrinsics.project(T_target_source * p, u, v)) continue;
+    if (!target.projection.project(T_target_source * p, u, v)) continue;
     const int iu = static_cast<int>(std::lround(u)), iv = static_cast<int>(std::lround(v));
     if (iu < 0 || iv < 0 || iu >= d.cols || iv >= d.rows) continue;
     n += isValidDepth(d.at<float>(iv, iu)) ? 1 : 0;

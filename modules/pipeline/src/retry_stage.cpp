@@ -67,7 +67,7 @@ bool finerScaleRetryApplies(const PairResult& r, const DepthView& source, const 
 DepthView finerScaleView(const DepthView& view, double area_factor) {
   SuperpixelParams sp = view.superpixels;
   sp.target_patch_area_m2 *= area_factor;
-  return makeDepthView(view.depth_m, view.intrinsics, sp);
+  return makeDepthView(view.depth_m, view.projection, sp);
 }
 
 std::string finerScaleReason(double area_factor, const std::string& reason) {

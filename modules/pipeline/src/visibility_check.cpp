@@ -52,16 +52,17 @@ Counts countOneWay(const DepthView& from, const DepthView& to, const Isometry3& 
     for (int u = 0; u < d.cols; u += p.pixel_step) {
       const float z0 = d.at<float>(v, u);
       if (!isValidDepth(z0)) continue;
-      const Eigen::Vector3d q = T_to_from * from.intrinsics.unproject(u, v, z0);
+      const Eigen::Vector3d q = T_to_from * from.projection.unproject(u, v, z0);
       double uf = 0, vf = 0;
-      if (!to.intrinsics.project(q, uf, vf)) continue;
+      if (!to.projection.project(q, uf, vf)) continue;
       const int ut = static_cast<int>(std::lround(uf)), vt = static_cast<int>(std::lround(vf));
       if (ut < 0 || vt < 0 || ut >= to.depth_m.cols || vt >= to.depth_m.rows) continue;
       const float zt = to.depth_m.at<float>(vt, ut);
       if (!isValidDepth(zt)) continue;
       const double gate = p.gate_m + p.gate_per_m2 * zt * zt;
-      if (std::abs(q.z() - zt) <= gate) ++c.consistent;
-      else if (q.z() > zt) ++c.occluded;
+      const double zq = to.projection.depth(q);
+      if (std::abs(zq - zt) <= gate) ++c.consistent;
+      else if (zq > zt) ++c.occluded;
       else {
         ++c.violations;
         if (regions) grid.at<std::uint8_t>(v / p.pixel_step, u / p.pixel_step) = 1;

@@ -72,7 +72,7 @@ Regions indexRegions(const int* region, int w, int h, int num_regions) {
 /// A / A_t. An accepted seed marks the pixels of its region it covers (within d_min, searched over
 /// its projected reach), so a candidate is tested by one look-up.
 void seedRegion(int r, const int* first, int n, int K, const int* region, const Eigen::Vector3f* point,
-                const Eigen::Vector3f* normal, int w, int h, const CameraIntrinsics& k, const SuperpixelParams& p,
+                const Eigen::Vector3f* normal, int w, int h, const ViewProjection& k, const SuperpixelParams& p,
                 std::vector<Cluster>& clusters, std::vector<int>& covered) {
   std::vector<int> cand;
   const int step = std::max(1, p.kmeans.seed_sampling_step_px);
@@ -91,7 +91,7 @@ void seedRegion(int r, const int* first, int n, int K, const int* region, const 
     const Eigen::Vector3f& q = point[i];
     clusters.push_back({q, normal[i], r});
     const int u = i % w, v = i / w;
-    const float reach = static_cast<float>(k.fx) * d_min / std::max(q.z() - d_min, 0.05f);
+    const float reach = static_cast<float>(k.pixelsPerRadian()) * d_min / std::max(k.depth(q) - d_min, 0.05f);
     const int u0 = std::max(0, static_cast<int>(u - reach)), u1 = std::min(w - 1, static_cast<int>(u + reach));
     const int v0 = std::max(0, static_cast<int>(v - reach)), v1 = std::min(h - 1, static_cast<int>(v + reach));
     for (int y = v0; y <= v1; ++y)
@@ -159,7 +159,7 @@ GASP_AVX2_CLONE void assignRow(const Lattice& lat, std::size_t row, int u0, int 
 /// where none does); windows are kWindowRadii patch radii around the projected centres, cut to
 /// the regions' bounding boxes.
 void assignLattice(const Lattice& lat, const std::vector<Cluster>& clusters, const std::vector<Box>& boxes,
-                   const CameraIntrinsics& k, float radius, float w_n, std::vector<float>& best,
+                   const ViewProjection& k, float radius, float w_n, std::vector<float>& best,
                    std::vector<int>& assign) {
   const int s = lat.step;
   best.assign(lat.region.size(), std::numeric_limits<float>::infinity());
@@ -169,7 +169,7 @@ void assignLattice(const Lattice& lat, const std::vector<Cluster>& clusters, con
     const Cluster& cl = clusters[static_cast<std::size_t>(c)];
     double uc = 0, vc = 0;
     if (!k.project(cl.centre.cast<double>(), uc, vc)) continue;
-    const int win = std::min(200, static_cast<int>(std::ceil(kWindowRadii * radius * k.fx / cl.centre.z())));
+    const int win = std::min(200, static_cast<int>(std::ceil(kWindowRadii * radius * k.pixelsPerRadian() / k.depth(cl.centre))));
     const Box& b = boxes[static_cast<std::size_t>(cl.region)];
     // Image window -> lattice columns and rows inside it.
     const int u0 = std::max(b.u0, static_cast<int>(uc) - win), v0 = std::max(b.v0, static_cast<int>(vc) - win);
@@ -221,7 +221,7 @@ void updateCentres(const Lattice& lat, const std::vector<int>& assign, std::vect
 
 AreaPatches splitIntoAreaPatches(const cv::Mat& region_labels, int num_regions,
                                  const OrganizedPointCloud& cloud, const SurfaceNormals& normals,
-                                 const CameraIntrinsics& k, const SuperpixelParams& p) {
+                                 const ViewProjection& k, const SuperpixelParams& p) {
   const int w = cloud.width, h = cloud.height;
   const std::size_t n_px = static_cast<std::size_t>(w) * h;
   const float min_cos = static_cast<float>(std::cos(p.max_incidence_deg * M_PI / 180.0));

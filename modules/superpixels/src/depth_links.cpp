@@ -27,7 +27,11 @@ DepthLinks::DepthLinks(const OrganizedPointCloud& cloud, const SuperpixelParams&
   const int w = width_, h = height_;
   // Depths as one flat array, NaN where invalid (backProject sets all three coordinates NaN).
   std::vector<float> z(static_cast<std::size_t>(w) * h);
-  for (std::size_t i = 0; i < z.size(); ++i) z[i] = cloud.points[i].z();
+  if (cloud.range_depth) {
+    for (std::size_t i = 0; i < z.size(); ++i) z[i] = cloud.points[i].norm();
+  } else {
+    for (std::size_t i = 0; i < z.size(); ++i) z[i] = cloud.points[i].z();
+  }
   std::size_t count = 0;
   for (std::size_t i = 0; i < z.size(); ++i) {
     const bool ok = std::abs(z[i]) <= std::numeric_limits<float>::max();  // finite: false for NaN, inf

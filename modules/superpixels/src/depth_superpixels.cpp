@@ -60,21 +60,24 @@ void validate(const SuperpixelParams& p) {
   require(p.borders.step_smoothness >= 0 && std::isfinite(p.borders.step_smoothness), "step_smoothness must be >= 0");
 }
 
-SuperpixelSegmentation segmentDepthSuperpixels(const cv::Mat& depth_m, const CameraIntrinsics& k,
+SuperpixelSegmentation segmentDepthSuperpixels(const cv::Mat& depth_m, const ViewProjection& k,
                                                const SuperpixelParams& p) {
   validate(p);
+  if (!k.isPinhole() && p.processing_step_px != 1)
+    throw Error("superpixel parameters: a range image is segmented with processing_step_px = 1 (its cells are "
+                "already binned to the rows' pitch, see makeRangeView), got " + std::to_string(p.processing_step_px));
   StageTimer timer;
   SuperpixelSegmentation seg;
   const OrganizedPointCloud cloud = backProject(depth_m, k);  // checks type and size
   const DepthLinks links(cloud, p);
   seg.stats.valid_pixels = links.validCount();
   const bool subsampled = p.processing_step_px > 1;
-  const detail::CoarseGrid grid = subsampled ? detail::makeCoarseGrid(cloud, k, p) : detail::CoarseGrid{};
+  const detail::CoarseGrid grid = subsampled ? detail::makeCoarseGrid(cloud, k.pinhole(), p) : detail::CoarseGrid{};
   seg.timings.cloud_ms = timer.lap();
 
   // On the grid (or at full resolution with processing_step_px = 1).
   const OrganizedPointCloud& gc = subsampled ? grid.cloud : cloud;
-  const CameraIntrinsics& gk = subsampled ? grid.intrinsics : k;
+  const ViewProjection gk = subsampled ? ViewProjection(grid.intrinsics) : k;
   const SuperpixelParams& gp = subsampled ? grid.params : p;
   const std::optional<DepthLinks> grid_links = subsampled ? std::optional<DepthLinks>(std::in_place, gc, gp) : std::nullopt;
   const DepthLinks& gl = subsampled ? *grid_links : links;
@@ -94,7 +97,7 @@ SuperpixelSegmentation segmentDepthSuperpixels(const cv::Mat& depth_m, const Cam
   detail::PixelNormals normal_of{grid_normals};
   detail::FullResolutionLabels full;
   if (subsampled) {
-    full = detail::refineToFullResolution(patches.labels, count, grid, normals, cloud, links, k, p);
+    full = detail::refineToFullResolution(patches.labels, count, grid, normals, cloud, links, k.pinhole(), p);
     seg.labels = full.labels;
     count = full.count;
     normal_of.cell = full.normal_cell.data();

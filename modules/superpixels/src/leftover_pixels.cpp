@@ -10,7 +10,7 @@ namespace gasp::detail {
 // There are few leftover pixels and small patches: this works on their pixels, scanning the image
 // only when there are small patches.
 void settleLeftoverPixels(int* L, int count, std::vector<PlaneModel>& models, const OrganizedPointCloud& cloud,
-                          const DepthLinks& links, const PixelNormals& N, const CameraIntrinsics& k,
+                          const DepthLinks& links, const PixelNormals& N, const ViewProjection& k,
                           const SuperpixelParams& p, float min_cos, const std::vector<int>& unlabelled) {
   const int n_px = cloud.width * cloud.height;
   const int old_count = count;

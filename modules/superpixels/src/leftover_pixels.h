@@ -2,7 +2,7 @@
 // The last step of the full-resolution labels (full_resolution.h): pixels no patch took.
 #include <vector>
 
-#include "gasp/core/camera_intrinsics.h"
+#include "gasp/core/view_projection.h"
 #include "gasp/core/point_cloud.h"
 #include "gasp/superpixels/depth_links.h"
 #include "gasp/superpixels/superpixel_params.h"
@@ -16,7 +16,7 @@ namespace gasp::detail {
 /// least min_patch_pixels) or are dropped as noise. models (one per label, pixel counts current)
 /// gains the groups' models; merged labels stay unused.
 void settleLeftoverPixels(int* L, int count, std::vector<PlaneModel>& models, const OrganizedPointCloud& cloud,
-                          const DepthLinks& links, const PixelNormals& normals, const CameraIntrinsics& k,
+                          const DepthLinks& links, const PixelNormals& normals, const ViewProjection& k,
                           const SuperpixelParams& p, float min_cos, const std::vector<int>& unlabelled);
 
 }  // namespace gasp::detail

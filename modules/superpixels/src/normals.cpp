@@ -78,7 +78,7 @@ SurfaceNormals estimateNormals(const OrganizedPointCloud& cloud, const DepthLink
       if (d[u] < 1.0f) continue;
       const std::size_t i = static_cast<std::size_t>(v) * w + u;
       const Eigen::Vector3f& q = cloud.points[i];
-      int r = static_cast<int>(px_per_m * q.z() + 0.5);
+      int r = static_cast<int>(px_per_m * cloud.depth(q) + 0.5);
       r = std::clamp(r, p.surfaces.normal_min_radius_px, p.surfaces.normal_max_radius_px);
       r = std::min({r, static_cast<int>(d[u]) - 1, u, v, w - 1 - u, h - 1 - v});  // stay inside
       if (r < p.surfaces.normal_min_radius_px) continue;

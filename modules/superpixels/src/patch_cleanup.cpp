@@ -103,7 +103,7 @@ void mergeSmallPatches(cv::Mat& labels, int count, std::vector<PlaneModel> model
 /// small groups as they are, larger ones split by the area k-means on a crop around them.
 /// Returns the new patch count.
 int splitLeftovers(cv::Mat& labels, int count, const OrganizedPointCloud& cloud, const DepthLinks& links,
-                   const SurfaceNormals& normals, const CameraIntrinsics& k, const SuperpixelParams& p, float min_cos) {
+                   const SurfaceNormals& normals, const ViewProjection& k, const SuperpixelParams& p, float min_cos) {
   const int w = cloud.width, n_px = w * cloud.height;
   int* L = labels.ptr<int>(0);
   const auto* pixel_normals = reinterpret_cast<const Eigen::Vector3f*>(normals.normals.ptr<float>(0));
@@ -135,15 +135,14 @@ int splitLeftovers(cv::Mat& labels, int count, const OrganizedPointCloud& cloud,
     // The k-means on the group's bounding box: the cloud, normals and intrinsics cut to it.
     const cv::Rect box(u0, v0, u1 - u0 + 1, v1 - v0 + 1);
     OrganizedPointCloud crop;
-    crop.width = box.width, crop.height = box.height;
+    crop.width = box.width, crop.height = box.height, crop.range_depth = cloud.range_depth;
     crop.points.reserve(static_cast<std::size_t>(box.area()));
     for (int v = v0; v <= v1; ++v)
       crop.points.insert(crop.points.end(), cloud.points.begin() + v * w + u0, cloud.points.begin() + v * w + u1 + 1);
     SurfaceNormals cn;
     cn.normals = normals.normals(box).clone(), cn.crease = normals.crease(box).clone();
     cn.radius = normals.radius(box).clone(), cn.smoothed = normals.smoothed(box).clone();
-    CameraIntrinsics kc = k;
-    kc.width = box.width, kc.height = box.height, kc.cx -= u0, kc.cy -= v0;
+    const ViewProjection kc = k.cropped(u0, v0, box.width, box.height);
     cv::Mat region(box.size(), CV_32S, cv::Scalar(-1));
     for (const int i : group) region.at<int>(i / w - v0, i % w - u0) = 0;
     AreaPatches parts = splitIntoAreaPatches(region, 1, crop, cn, kc, p);
@@ -162,7 +161,7 @@ int splitLeftovers(cv::Mat& labels, int count, const OrganizedPointCloud& cloud,
 }  // namespace
 
 int cleanUpPatches(cv::Mat& labels, const OrganizedPointCloud& cloud, const DepthLinks& links,
-                   const SurfaceNormals& normals, const CameraIntrinsics& k, const SuperpixelParams& p) {
+                   const SurfaceNormals& normals, const ViewProjection& k, const SuperpixelParams& p) {
   const float min_cos = static_cast<float>(std::cos(p.max_incidence_deg * M_PI / 180.0));
   const std::size_t n_px = labels.total();
   int* L = labels.ptr<int>(0);

@@ -14,7 +14,7 @@ namespace gasp {
 namespace detail {
 
 void recordPatches(SuperpixelSegmentation& seg, int label_bound, const OrganizedPointCloud& cloud,
-                   const DepthLinks& links, const PixelNormals& normal_of, const CameraIntrinsics& k,
+                   const DepthLinks& links, const PixelNormals& normal_of, const ViewProjection& k,
                    const SuperpixelParams& p, bool relabel, const float* cell_area_factor) {
   const int w = cloud.width, h = cloud.height;
   const PixelArea pixel_area(k, static_cast<float>(std::cos(p.max_incidence_deg * M_PI / 180.0)));
@@ -129,7 +129,7 @@ void recordPatches(SuperpixelSegmentation& seg, int label_bound, const Organized
 }  // namespace detail
 
 void computePatchRecords(SuperpixelSegmentation& seg, int count, const OrganizedPointCloud& cloud,
-                         const DepthLinks& links, const cv::Mat& normals, const CameraIntrinsics& k,
+                         const DepthLinks& links, const cv::Mat& normals, const ViewProjection& k,
                          const SuperpixelParams& p) {
   const detail::PixelNormals normal_of{reinterpret_cast<const Eigen::Vector3f*>(normals.ptr<float>(0))};
   detail::recordPatches(seg, count, cloud, links, normal_of, k, p, false);

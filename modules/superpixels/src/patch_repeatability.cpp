@@ -8,9 +8,9 @@
 namespace gasp {
 
 RepeatabilityResult measureRepeatability(const SuperpixelSegmentation& a, const SuperpixelSegmentation& b,
-                                         const cv::Mat& depth_b, const CameraIntrinsics& k,
+                                         const cv::Mat& depth_b, const ViewProjection& k,
                                          const Isometry3& T_b_a, const RepeatabilityParams& p) {
-  if (depth_b.type() != CV_32FC1 || depth_b.cols != k.width || depth_b.rows != k.height)
+  if (depth_b.type() != CV_32FC1 || depth_b.cols != k.width() || depth_b.rows != k.height())
     throw Error("measureRepeatability: depth_b must be CV_32FC1 of the intrinsics' size");
   const double min_cos = std::cos(p.max_normal_angle_deg * M_PI / 180.0);
   RepeatabilityResult r;
@@ -21,9 +21,10 @@ RepeatabilityResult measureRepeatability(const SuperpixelSegmentation& a, const 
     double u = 0, v = 0;
     if (!k.project(c, u, v)) continue;
     const int ui = static_cast<int>(std::floor(u + 0.5)), vi = static_cast<int>(std::floor(v + 0.5));
-    if (ui < 0 || vi < 0 || ui >= k.width || vi >= k.height) continue;
+    if (ui < 0 || vi < 0 || ui >= k.width() || vi >= k.height()) continue;
     const float z = depth_b.at<float>(vi, ui);
-    if (!isValidDepth(z) || std::abs(z - c.z()) > p.visibility_tolerance_m + p.visibility_tolerance_rel * c.z())
+    const double zc = k.depth(c);
+    if (!isValidDepth(z) || std::abs(z - zc) > p.visibility_tolerance_m + p.visibility_tolerance_rel * zc)
       continue;
     if (n.dot(c) >= 0.0) continue;  // seen from behind
     ++r.in_overlap;

@@ -9,7 +9,7 @@
 namespace gasp::detail {
 
 std::vector<PlaneModel> planeModels(const int* L, std::size_t n_px, int count, const Eigen::Vector3f* points,
-                                    const Eigen::Vector3f* normals, const CameraIntrinsics& k, float min_cos,
+                                    const Eigen::Vector3f* normals, const ViewProjection& k, float min_cos,
                                     bool with_area) {
   std::vector<PlaneModel> m(static_cast<std::size_t>(count));
   struct Sum {
@@ -59,7 +59,7 @@ std::vector<PlaneModel> planeModels(const int* L, std::size_t n_px, int count, c
 }
 
 int growPatches(int* L, const DepthLinks& links, const Eigen::Vector3f* points, const PixelNormals& normals,
-                std::vector<PlaneModel>& models, const GrowthLimits& lim, const CameraIntrinsics& k, float min_cos,
+                std::vector<PlaneModel>& models, const GrowthLimits& lim, const ViewProjection& k, float min_cos,
                 const std::vector<int>* unlabelled) {
   const int n_px = links.width() * links.height();
   const bool area_limit = std::isfinite(lim.max_area);

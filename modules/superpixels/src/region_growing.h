@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "gasp/core/camera_intrinsics.h"
+#include "gasp/core/view_projection.h"
 #include "gasp/superpixels/depth_links.h"
 
 namespace gasp::detail {
@@ -20,7 +20,7 @@ struct PlaneModel {
 /// the camera from the centroid when no pixel has one), area (a second pass; left 0 when
 /// with_area is false). normals: zero where a pixel has none.
 std::vector<PlaneModel> planeModels(const int* L, std::size_t n_px, int count, const Eigen::Vector3f* points,
-                                    const Eigen::Vector3f* normals, const CameraIntrinsics& k, float min_cos,
+                                    const Eigen::Vector3f* normals, const ViewProjection& k, float min_cos,
                                     bool with_area = true);
 
 /// The normal of a pixel: normals[i], or, with `cell` given, normals[cell[i]] (zero where
@@ -46,7 +46,7 @@ struct GrowthLimits {
 /// with an area limit) are updated. Returns the number of pixels labelled. unlabelled: when given,
 /// the only unlabelled pixels there are (saves scanning the image for them).
 int growPatches(int* L, const DepthLinks& links, const Eigen::Vector3f* points, const PixelNormals& normals,
-                std::vector<PlaneModel>& models, const GrowthLimits& limits, const CameraIntrinsics& k,
+                std::vector<PlaneModel>& models, const GrowthLimits& limits, const ViewProjection& k,
                 float min_cos, const std::vector<int>* unlabelled = nullptr);
 
 }  // namespace gasp::detail

@@ -1,19 +1,23 @@
 #pragma once
-/// \file depth_view.h One depth view ready for association: the depth image, its intrinsics and
-/// its depth-superpixel decomposition (paper III-A).
+/// \file depth_view.h One depth view ready for association: the depth image, its projection (a
+/// pinhole camera's intrinsics or a range image's grid) and its depth-superpixel decomposition
+/// (paper III-A).
 #include <opencv2/core.hpp>
 
 #include <utility>
 
 #include "gasp/core/camera_intrinsics.h"
+#include "gasp/core/view_projection.h"
 #include "gasp/superpixels/superpixel_params.h"
 #include "gasp/superpixels/surface_patch.h"
 
 namespace gasp {
 
 struct DepthView {
-  cv::Mat depth_m;  ///< CV_32FC1 [m], 0 or NaN = no data; pinhole (undistorted, see makeDepthView)
-  CameraIntrinsics intrinsics;  ///< pinhole: no distortion coefficients
+  /// CV_32FC1 [m], 0 or NaN = no data: a pinhole camera's depth z (undistorted, see
+  /// makeDepthView) or a range image's range along each cell's ray (makeRangeView).
+  cv::Mat depth_m;
+  ViewProjection projection;  ///< a pinhole without distortion coefficients, or a spherical grid
   SuperpixelSegmentation segmentation;
   /// The parameters `segmentation` was made with (makeDepthView sets them). The finer-scale retry
   /// of registerViews() segments the view again with these at a smaller target area.
@@ -27,6 +31,8 @@ struct DepthView {
 /// are already resampled, MRPT observations with plumb_bob coefficients are resampled here.
 DepthView makeDepthView(const cv::Mat& depth_m, const CameraIntrinsics& intrinsics,
                         const SuperpixelParams& params = {});
+/// The same with any projection: a pinhole as above, a spherical grid's image segmented as it is.
+DepthView makeDepthView(const cv::Mat& depth_m, const ViewProjection& projection, const SuperpixelParams& params = {});
 
 /// Two views segmented concurrently (one TBB task each; the segmentation of one frame is
 /// single-threaded): the front-end's first stage on 2 threads. Same results as two

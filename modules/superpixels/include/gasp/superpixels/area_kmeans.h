@@ -7,7 +7,7 @@
 /// (as SLIC does), which keeps an iteration linear in the pixel count.
 #include <opencv2/core.hpp>
 
-#include "gasp/core/camera_intrinsics.h"
+#include "gasp/core/view_projection.h"
 #include "gasp/core/point_cloud.h"
 #include "gasp/superpixels/normals.h"
 
@@ -21,6 +21,6 @@ struct AreaPatches {
 /// region_labels: CV_32S ids 0..num_regions-1 (-1 = none). Deterministic for params.seed.
 AreaPatches splitIntoAreaPatches(const cv::Mat& region_labels, int num_regions,
                                  const OrganizedPointCloud& cloud, const SurfaceNormals& normals,
-                                 const CameraIntrinsics& intrinsics, const SuperpixelParams& params);
+                                 const ViewProjection& intrinsics, const SuperpixelParams& params);
 
 }  // namespace gasp

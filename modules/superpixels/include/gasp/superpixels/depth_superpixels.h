@@ -6,7 +6,7 @@
 /// at once on two threads).
 #include <opencv2/core.hpp>
 
-#include "gasp/core/camera_intrinsics.h"
+#include "gasp/core/view_projection.h"
 #include "gasp/core/point_cloud.h"
 #include "gasp/superpixels/depth_links.h"
 #include "gasp/superpixels/superpixel_params.h"
@@ -14,11 +14,13 @@
 
 namespace gasp {
 
-/// Decomposes a depth image [m] (CV_32FC1; 0 or NaN = no data) into surface patches in the camera
-/// frame. Throws gasp::Error for a wrong image type, a size that differs from the intrinsics', or
-/// invalid parameters. An image without valid depth gives an empty, valid result.
+/// Decomposes a depth image [m] (CV_32FC1; 0 or NaN = no data) into surface patches in the sensor
+/// frame. The projection is a pinhole's intrinsics or a range image's grid (its image holds
+/// ranges; segmented at processing_step_px = 1 only). Throws gasp::Error for a wrong image type, a
+/// size that differs from the projection's, or invalid parameters. An image without valid depth
+/// gives an empty, valid result.
 SuperpixelSegmentation segmentDepthSuperpixels(const cv::Mat& depth_m,
-                                               const CameraIntrinsics& intrinsics,
+                                               const ViewProjection& projection,
                                                const SuperpixelParams& params = {});
 
 /// Throws gasp::Error naming the first parameter out of its range.
@@ -28,6 +30,6 @@ void validate(const SuperpixelParams& params);
 /// normals (CV_32FC3, zero where none).
 void computePatchRecords(SuperpixelSegmentation& seg, int num_patches, const OrganizedPointCloud& cloud,
                          const DepthLinks& links, const cv::Mat& normals,
-                         const CameraIntrinsics& intrinsics, const SuperpixelParams& params);
+                         const ViewProjection& projection, const SuperpixelParams& params);
 
 }  // namespace gasp

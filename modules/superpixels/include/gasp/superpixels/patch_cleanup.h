@@ -12,7 +12,7 @@
 /// The pixels that end in no patch are counted as dropped noise.
 #include <opencv2/core.hpp>
 
-#include "gasp/core/camera_intrinsics.h"
+#include "gasp/core/view_projection.h"
 #include "gasp/core/point_cloud.h"
 #include "gasp/superpixels/normals.h"
 
@@ -21,7 +21,7 @@ namespace gasp {
 /// Cleans `labels` (CV_32S, -1 = none) in place and relabels patches 0..n-1 in raster order;
 /// returns n.
 int cleanUpPatches(cv::Mat& labels, const OrganizedPointCloud& cloud, const DepthLinks& links,
-                   const SurfaceNormals& normals, const CameraIntrinsics& intrinsics,
+                   const SurfaceNormals& normals, const ViewProjection& intrinsics,
                    const SuperpixelParams& params);
 
 }  // namespace gasp

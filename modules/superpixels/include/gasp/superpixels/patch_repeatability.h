@@ -10,7 +10,7 @@
 /// normal within max_normal_angle_deg of the mapped normal.
 #include <opencv2/core.hpp>
 
-#include "gasp/core/camera_intrinsics.h"
+#include "gasp/core/view_projection.h"
 #include "gasp/core/pose.h"
 #include "gasp/superpixels/surface_patch.h"
 
@@ -31,7 +31,7 @@ struct RepeatabilityResult {
 
 /// depth_b: B's depth image [m] (CV_32FC1) with intrinsics_b; T_b_a maps A's camera frame to B's.
 RepeatabilityResult measureRepeatability(const SuperpixelSegmentation& a, const SuperpixelSegmentation& b,
-                                         const cv::Mat& depth_b, const CameraIntrinsics& intrinsics_b,
+                                         const cv::Mat& depth_b, const ViewProjection& intrinsics_b,
                                          const Isometry3& T_b_a, const RepeatabilityParams& params = {});
 
 }  // namespace gasp
