@@ -106,4 +106,34 @@ SuperpixelParams lidarSuperpixelParams() {
   return p;
 }
 
+PairParams lidarPairParams() {
+  PairParams p;
+  p.segment = lidarSuperpixelParams();
+  const double k = std::sqrt(p.segment.target_patch_area_m2 / SuperpixelParams{}.target_patch_area_m2);
+  // Centroid comparisons: with the patch radius.
+  p.associate.feature_sets.ordering.e_r_m *= k;
+  p.associate.match.r_dev_m *= k;
+  auto& ransac = p.hypothesise.pose.ransac;
+  ransac.inlier.distance_m *= k;
+  ransac.edge_tolerance_m *= k;
+  ransac.min_triangle_height_m *= k;
+  p.hypothesise.guided.gates.max_distance_m *= k;
+  for (double& gate : p.refine.dense.gates_m) gate *= k;
+  p.refine.pixels.max_distance_m *= k;
+  // Point comparisons: with the range noise.
+  const double sigma = kLidarRangeSigmaM;
+  for (auto* solver : {&p.hypothesise.pose.refinement, &p.refine.solver}) {
+    solver->noise_sigma_m = sigma;
+    solver->loss_scale_m = 2.5 * sigma;
+  }
+  p.certify.visibility.gate_m = 5.0 * sigma;
+  p.certify.visibility.gate_per_m2 = 0.0;
+  // Every cell.
+  p.refine.pixels.pixel_step = 1;
+  p.certify.visibility.pixel_step = 1;
+  p.refine.edges.enabled = false;
+  p.refine.slide_scan.enabled = false;
+  return p;
+}
+
 }  // namespace gasp

@@ -10,6 +10,7 @@
 #include "gasp/core/range_scan.h"
 #include "gasp/core/view_projection.h"
 #include "gasp/pipeline/depth_view.h"
+#include "gasp/pipeline/pair_registration.h"
 #include "gasp/superpixels/superpixel_params.h"
 
 namespace gasp {
@@ -30,5 +31,16 @@ DepthView makeRangeView(const RangeScan& scan, const SuperpixelParams& params);
 /// of 0.25 m^2 (a 16-laser sensor's rows are 35 cm apart at 10 m), windows and minimum sizes in
 /// binned cells, and range noise that does not grow with the square of the range.
 SuperpixelParams lidarSuperpixelParams();
+
+/// Range noise of the LiDAR the defaults are for (1 sigma) [m]: the simulator's, a VLP-16's.
+constexpr double kLidarRangeSigmaM = 0.02;
+
+/// The pair pipeline's defaults for LiDAR views, from the camera's by two rules: lengths that
+/// compare patch centroids (association, RANSAC, guided verification, the dense rounds' gates)
+/// grow with the patch radius, sqrt(0.25 / 0.004) = 7.9 times; lengths that compare points (the
+/// solvers' noise and loss scale, the free-space gate) follow the range noise, which does not
+/// grow with the range. Every cell is sampled (a binned sweep has fewer cells than the camera's
+/// sampled pixels), and the edge terms and the slide scan are off (docs/lidar.md).
+PairParams lidarPairParams();
 
 }  // namespace gasp
