@@ -74,6 +74,11 @@ class ViewProjection {
   /// Pixels per radian of view angle (a pinhole's fx; a spherical grid's columns per radian):
   /// how many pixels an object of size s at depth d spans, s / d times this.
   double pixelsPerRadian() const;
+  /// Half a pixel's diagonal as a view angle [rad]: how far a point's direction can be from the
+  /// centre of the pixel it projects to (a camera's 0.08 deg at fx 525; a 16-laser sweep's binned
+  /// cell, 1.4 deg). A surface seen at incidence i spans depth * this / cos(i) across it, and
+  /// changes depth by depth * this * tan(i).
+  double halfPixelDiagonalRad() const { return 0.5 * std::sqrt(2.0) / pixelsPerRadian(); }
   /// The area [m^2] a pixel sees at point p on a surface facing it: z^2 / (fx fy) for a pinhole,
   /// |p|^2 cos(elevation) * azimuth step * row pitch for a spherical grid.
   float frontalArea(const Eigen::Vector3f& p) const {
