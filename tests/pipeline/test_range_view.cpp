@@ -99,7 +99,8 @@ struct LidarMotion {
 class SimulatedLidarPair : public ::testing::TestWithParam<LidarMotion> {};
 
 // Two sweeps of the furnished room, the second moved and turned about the vertical axis, are
-// registered with no prior within 5 cm / 0.5 deg (the bound; exact truth).
+// registered with no prior (registerRangeScans: the binned views, then the returns) within 5 cm /
+// 0.5 deg (the bound; exact truth).
 TEST_P(SimulatedLidarPair, RegistersWithoutAPrior) {
   const LidarMotion m = GetParam();
   const gasp::sim::Scene room = gasp::sim::makeScene("room");
@@ -109,15 +110,34 @@ TEST_P(SimulatedLidarPair, RegistersWithoutAPrior) {
   Isometry3 T_world_b = T_world_a;
   T_world_b.translation() += Eigen::Vector3d(m.forward_m, 0.2 * m.forward_m, 0.0);
   T_world_b.linear() = Eigen::AngleAxisd(m.yaw_deg * kDeg, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const gasp::PairParams params = gasp::lidarPairParams();
-  const gasp::DepthView a = gasp::makeRangeView(gasp::sim::simulateLidarScan(room, sensor, T_world_a, 1, 0), params.segment);
-  const gasp::DepthView b = gasp::makeRangeView(gasp::sim::simulateLidarScan(room, sensor, T_world_b, 1, 1), params.segment);
-  EXPECT_GT(a.segmentation.patches.size(), 50u);
-  const gasp::PairResult r = gasp::registerViews(a, b, params);
+  const RangeScan a = gasp::sim::simulateLidarScan(room, sensor, T_world_a, 1, 0);
+  const RangeScan b = gasp::sim::simulateLidarScan(room, sensor, T_world_b, 1, 1);
+  const gasp::RangePairResult rr = gasp::registerRangeScans(a, b, gasp::lidarPairParams());
+  const gasp::PairResult& r = rr.pair;
   ASSERT_TRUE(r.pose.success) << r.pose.reason;
+  EXPECT_TRUE(rr.returns_refined) << rr.returns_reason;
   const Isometry3 error = (T_world_b.inverse() * T_world_a).inverse() * r.pose.T_target_source;
   EXPECT_LT(error.translation().norm(), 0.05);
   EXPECT_LT(angleDeg(error), 0.5);
+}
+
+TEST(RangeView, TheReturnsRefinementSaysWhyItFindsNoTerms) {
+  const gasp::sim::Scene room = gasp::sim::makeScene("room");
+  Isometry3 T = Isometry3::Identity();
+  T.translation() = Eigen::Vector3d(0.6, 0.0, 1.0);
+  const RangeScan s = gasp::sim::simulateLidarScan(room, gasp::sim::lidarSensor(16), T);
+  // From the truth it stays there; 5 m off, no return lies within any gate of another.
+  const gasp::RegistrationResult near = gasp::refineOnReturns(s, s, Isometry3::Identity());
+  ASSERT_TRUE(near.success) << near.reason;
+  EXPECT_LT(near.T_target_source.translation().norm(), 5e-3);  // the returns are 2 cm noisy
+  Isometry3 far = Isometry3::Identity();
+  far.translation() = Eigen::Vector3d(0.0, 0.0, 5.0);
+  const gasp::RegistrationResult none = gasp::refineOnReturns(s, s, far);
+  EXPECT_FALSE(none.success);
+  EXPECT_NE(none.reason.find("point-to-plane terms"), std::string::npos) << none.reason;
+  gasp::ReturnsRefineParams bad;
+  bad.gates_m.clear();
+  EXPECT_THROW(gasp::refineOnReturns(s, s, Isometry3::Identity(), bad), gasp::Error);
 }
 
 INSTANTIATE_TEST_SUITE_P(Sweeps, SimulatedLidarPair,

@@ -5,6 +5,8 @@
 #include <numeric>
 #include <utility>
 
+#include "gasp/core/error.h"
+
 namespace gasp {
 
 std::vector<double> laserElevationsDeg(const std::string& lidar_model, int rows) {
@@ -53,8 +55,44 @@ void RangeScan::setLayout(const std::vector<double>& elevation_deg_by_laser, std
   elevation_rad.clear();
   for (const int laser : laser_of_row) elevation_rad.push_back(elevation_deg_by_laser[static_cast<std::size_t>(laser)] * M_PI / 180.0);
   azimuth_rad = std::move(azimuths_rad);
-  range_m = cv::Mat::zeros(static_cast<int>(rows), static_cast<int>(azimuth_rad.size()), CV_32FC1);
+  range_m = cv::Mat(static_cast<int>(rows), static_cast<int>(azimuth_rad.size()), CV_32FC1, cv::Scalar(0.0f));  // a new buffer
   ray.release();
+}
+
+RangeScan movedScan(const RangeScan& scan, const Isometry3& T_new_old) {
+  const int rows = scan.range_m.rows, cols = scan.range_m.cols;
+  if (cols < 2 || rows < 1 || scan.azimuth_rad.size() != static_cast<std::size_t>(cols) ||
+      scan.elevation_rad.size() != static_cast<std::size_t>(rows))
+    throw Error("movedScan: the scan needs two columns or more, with an elevation per row and an azimuth per column");
+  RangeScan out = scan;
+  // New buffers: assigning zeros() to the copied headers would write into the input's images.
+  out.range_m = cv::Mat(rows, cols, CV_32FC1, cv::Scalar(0.0f));
+  out.ray = cv::Mat(rows, cols, CV_32FC3, cv::Scalar(0.0f, 0.0f, 0.0f));
+  const double step = std::remainder(scan.azimuth_rad[1] - scan.azimuth_rad[0], 2.0 * M_PI);
+  const std::vector<double>& E = scan.elevation_rad;
+  const double half_pitch = rows > 1 ? 0.5 * (E.back() - E.front()) / (rows - 1) : 0.5 * std::abs(step);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      const float d = scan.range_m.at<float>(r, c);
+      if (!(d > 0.0f)) continue;
+      const Eigen::Vector3d q = T_new_old * (static_cast<double>(d) * scan.direction(r, c));
+      const double range = q.norm();
+      if (!(range > 0.0)) continue;
+      const double el = std::atan2(q.z(), std::hypot(q.x(), q.y()));
+      if (el < E.front() - half_pitch || el > E.back() + half_pitch) continue;
+      const auto above = std::lower_bound(E.begin(), E.end(), el);
+      int row = static_cast<int>(above - E.begin());
+      if (row == rows || (row > 0 && el - E[static_cast<std::size_t>(row - 1)] < E[static_cast<std::size_t>(row)] - el)) --row;
+      const long col = std::lround(std::remainder(std::atan2(q.y(), q.x()) - scan.azimuth_rad[0], 2.0 * M_PI) / step);
+      const long col_wrapped = col < 0 ? col + std::lround(2.0 * M_PI / std::abs(step)) : col;
+      if (col_wrapped < 0 || col_wrapped >= cols) continue;
+      float& cell = out.range_m.at<float>(row, static_cast<int>(col_wrapped));
+      if (cell > 0.0f && cell <= range) continue;
+      cell = static_cast<float>(range);
+      const Eigen::Vector3f u = (q / range).cast<float>();
+      out.ray.at<cv::Vec3f>(row, static_cast<int>(col_wrapped)) = cv::Vec3f(u.x(), u.y(), u.z());
+    }
+  return out;
 }
 
 }  // namespace gasp

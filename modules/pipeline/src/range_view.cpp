@@ -5,7 +5,12 @@
 #include <limits>
 #include <string>
 
+#include <Eigen/Eigenvalues>
+
+#include <chrono>
+
 #include "gasp/core/error.h"
+#include "gasp/pipeline/model_error.h"
 #include "gasp/superpixels/depth_superpixels.h"
 
 namespace gasp {
@@ -88,9 +93,9 @@ DepthView makeRangeView(const RangeScan& scan, const SuperpixelParams& params) {
   return makeDepthView(range, projection, params);
 }
 
-SuperpixelParams lidarSuperpixelParams() {
+SuperpixelParams lidarSuperpixelParams(double patch_area_m2) {
   SuperpixelParams p;
-  p.target_patch_area_m2 = 0.25;
+  p.target_patch_area_m2 = patch_area_m2;
   p.processing_step_px = 1;
   p.surfaces.discontinuity_abs_m = 0.1;
   p.surfaces.discontinuity_rel = 0.03;
@@ -106,9 +111,9 @@ SuperpixelParams lidarSuperpixelParams() {
   return p;
 }
 
-PairParams lidarPairParams() {
+PairParams lidarPairParams(double patch_area_m2) {
   PairParams p;
-  p.segment = lidarSuperpixelParams();
+  p.segment = lidarSuperpixelParams(patch_area_m2);
   const double k = std::sqrt(p.segment.target_patch_area_m2 / SuperpixelParams{}.target_patch_area_m2);
   // Centroid comparisons: with the patch radius.
   p.associate.feature_sets.ordering.e_r_m *= k;
@@ -134,6 +139,181 @@ PairParams lidarPairParams() {
   p.refine.edges.enabled = false;
   p.refine.slide_scan.enabled = false;
   return p;
+}
+
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// A sweep's returns as points with normals, and the look-up of the return a point falls on.
+class ReturnSurface {
+ public:
+  ReturnSurface(const RangeScan& scan, const ReturnsRefineParams& p) : scan_(scan) {
+    rows_ = scan.range_m.rows, cols_ = scan.range_m.cols;
+    step_ = cols_ > 1 ? std::remainder(scan.azimuth_rad[1] - scan.azimuth_rad[0], 2.0 * M_PI) : 2.0 * M_PI;
+    const std::vector<double>& E = scan.elevation_rad;
+    pitch_ = rows_ > 1 ? (E.back() - E.front()) / (rows_ - 1) : std::abs(step_);
+    half_cell_rad_ = 0.5 * std::hypot(pitch_, step_);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    point_.assign(static_cast<std::size_t>(rows_) * cols_, Eigen::Vector3d::Constant(nan));
+    normal_.assign(point_.size(), Eigen::Vector3d::Zero());
+    for (int r = 0; r < rows_; ++r)
+      for (int c = 0; c < cols_; ++c)
+        if (const float d = scan.range_m.at<float>(r, c); d > 0.0f && std::isfinite(d))
+          point_[index(r, c)] = static_cast<double>(d) * scan.direction(r, c);
+    for (int r = 0; r < rows_; ++r)
+      for (int c = 0; c < cols_; ++c) normal_[index(r, c)] = fitNormal(r, c, p);
+  }
+
+  /// The return with a normal nearest in direction to `q` (sensor frame): in the row of the
+  /// nearest elevation, the nearest column within `reach` columns (a sweep may leave every other
+  /// column empty, a dual-return VLP-16's does). Its cell index, or -1.
+  int lookUp(const Eigen::Vector3d& q, int reach) const {
+    const double horizontal = std::hypot(q.x(), q.y());
+    if (!(horizontal > 0.0)) return -1;
+    const std::vector<double>& E = scan_.elevation_rad;
+    const double el = std::atan2(q.z(), horizontal);
+    if (el < E.front() - 0.5 * pitch_ || el > E.back() + 0.5 * pitch_) return -1;
+    const auto above = std::lower_bound(E.begin(), E.end(), el);
+    int row = static_cast<int>(above - E.begin());
+    if (row == rows_ || (row > 0 && el - E[static_cast<std::size_t>(row - 1)] < E[static_cast<std::size_t>(row)] - el)) --row;
+    const double c = std::remainder(std::atan2(q.y(), q.x()) - scan_.azimuth_rad[0], 2.0 * M_PI) / step_;
+    const double turn = 2.0 * M_PI / std::abs(step_);
+    const long nearest = std::lround(c < -0.5 ? c + turn : c);
+    for (int k = 0; k <= reach; ++k)
+      for (const long col : {nearest - k, nearest + k}) {
+        if (col < 0 || col >= cols_) continue;
+        const std::size_t i = index(row, static_cast<int>(col));
+        if (!normal_[i].isZero()) return static_cast<int>(i);
+        if (k == 0) break;
+      }
+    return -1;
+  }
+  const Eigen::Vector3d& point(int i) const { return point_[static_cast<std::size_t>(i)]; }
+  const Eigen::Vector3d& normal(int i) const { return normal_[static_cast<std::size_t>(i)]; }
+  double halfCellRad() const { return half_cell_rad_; }
+
+ private:
+  std::size_t index(int r, int c) const { return static_cast<std::size_t>(r) * cols_ + c; }
+
+  /// The plane of the returns around (r, c) on the same surface (ranges within 5 % + 0.1 m of the
+  /// centre's), over at least two rows; zero when there is none or it is not flat.
+  Eigen::Vector3d fitNormal(int r, int c, const ReturnsRefineParams& p) const {
+    const Eigen::Vector3d& centre = point_[index(r, c)];
+    if (!centre.allFinite()) return Eigen::Vector3d::Zero();
+    const double range = centre.norm(), reach = 0.1 + 0.05 * range;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+    int n = 0, rows_used = 0;
+    for (int rr = std::max(0, r - 1); rr <= std::min(rows_ - 1, r + 1); ++rr) {
+      bool used = false;
+      for (int cc = std::max(0, c - p.normal_half_width); cc <= std::min(cols_ - 1, c + p.normal_half_width); ++cc) {
+        const Eigen::Vector3d& q = point_[index(rr, cc)];
+        if (!q.allFinite() || std::abs(q.norm() - range) > reach) continue;
+        sum += q, outer += q * q.transpose(), ++n, used = true;
+      }
+      rows_used += used ? 1 : 0;
+    }
+    if (n < 5 || rows_used < 2) return Eigen::Vector3d::Zero();
+    const Eigen::Vector3d mean = sum / n;
+    const Eigen::Matrix3d cov = outer / n - mean * mean.transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    const Eigen::Vector3d lambda = eig.eigenvalues().cwiseMax(0.0);
+    if (!(lambda(1) > 0.0) || std::sqrt(lambda(0) / lambda(1)) > p.max_flatness) return Eigen::Vector3d::Zero();
+    Eigen::Vector3d normal = eig.eigenvectors().col(0);
+    return normal.dot(centre) > 0.0 ? -normal : normal;
+  }
+
+  const RangeScan& scan_;
+  int rows_ = 0, cols_ = 0;
+  double step_ = 0.0, pitch_ = 0.0, half_cell_rad_ = 0.0;
+  std::vector<Eigen::Vector3d> point_, normal_;
+};
+
+}  // namespace
+
+RegistrationResult refineOnReturns(const RangeScan& source, const RangeScan& target, const Isometry3& T_target_source,
+                                   const ReturnsRefineParams& p) {
+  RegistrationResult result;
+  result.T_target_source = T_target_source;
+  if (p.gates_m.empty() || p.column_step < 1 || p.max_rounds < 1)
+    throw Error("ReturnsRefineParams: gates_m must not be empty, column_step and max_rounds must be >= 1");
+  if (target.range_m.cols < 2 || target.azimuth_rad.size() != static_cast<std::size_t>(target.range_m.cols) ||
+      target.elevation_rad.size() != static_cast<std::size_t>(target.range_m.rows)) {
+    result.reason = "returns refinement: the target sweep has no range image";
+    return result;
+  }
+  const ReturnSurface surface(target, p);
+  std::vector<Eigen::Vector3d> points;
+  for (int r = 0; r < source.range_m.rows; ++r)
+    for (int c = 0; c < source.range_m.cols; c += p.column_step)
+      if (const float d = source.range_m.at<float>(r, c); d > 0.0f && std::isfinite(d))
+        points.push_back(static_cast<double>(d) * source.direction(r, c));
+  const double min_cos = std::cos(p.max_incidence_deg * M_PI / 180.0);
+  Isometry3 T = T_target_source;
+  for (int round = 0; round < p.max_rounds; ++round) {
+    const double gate = p.gates_m[std::min(static_cast<std::size_t>(round), p.gates_m.size() - 1)];
+    std::vector<PointToPlane> terms;
+    for (const Eigen::Vector3d& ps : points) {
+      const Eigen::Vector3d pt = T * ps;
+      const int i = surface.lookUp(pt, p.look_up_columns);
+      if (i < 0) continue;
+      const Eigen::Vector3d& n = surface.normal(i);
+      const Eigen::Vector3d& q = surface.point(i);
+      const double range = q.norm();
+      const double cos_i = std::abs(n.dot(q)) / range;
+      if (cos_i < min_cos || std::abs(n.dot(pt - q)) > gate) continue;
+      // In the plane, the point can be a cell's footprint away from the return it fell on.
+      if ((pt - q).norm() > gate + range * surface.halfCellRad() / cos_i) continue;
+      terms.push_back(PointToPlane{ps, q, n, 1.0});
+    }
+    if (terms.size() < 6) {
+      result.reason = "returns refinement: " + std::to_string(terms.size()) + " point-to-plane terms in round " +
+                      std::to_string(round + 1) + " (at least 6 needed)";
+      result.success = false;
+      return result;
+    }
+    RegistrationResult next = refinePose({}, T, p.solver, terms);
+    if (!next.success && !next.degenerate) {
+      result.reason = "returns refinement: " + next.reason;
+      result.success = false;
+      return result;
+    }
+    double moved2 = 0.0;
+    for (const Eigen::Vector3d& ps : points) moved2 += (next.T_target_source * ps - T * ps).squaredNorm();
+    T = next.T_target_source;
+    result = next;
+    const bool last_gate = round + 1 >= static_cast<int>(p.gates_m.size());
+    if (last_gate && std::sqrt(moved2 / static_cast<double>(points.size())) < p.converged_m) break;
+  }
+  return result;
+}
+
+RangePairResult registerRangeScans(const RangeScan& source, const RangeScan& target, const PairParams& params) {
+  RangePairResult out;
+  auto t0 = std::chrono::steady_clock::now();
+  const DepthView a = makeRangeView(source, params.segment), b = makeRangeView(target, params.segment);
+  out.segmentation_ms = msSince(t0);
+  out.pair = registerViews(a, b, params);
+  if (!out.pair.pose.success) return out;
+  t0 = std::chrono::steady_clock::now();
+  ReturnsRefineParams rp;
+  rp.solver = params.refine.solver;
+  rp.max_incidence_deg = params.segment.max_incidence_deg;
+  const RegistrationResult refined = refineOnReturns(source, target, out.pair.pose.T_target_source, rp);
+  out.returns_ms = msSince(t0);
+  if (!refined.success) {
+    out.returns_reason = refined.reason;
+    return out;
+  }
+  out.returns_refined = true;
+  out.pair.pose.T_target_source = refined.T_target_source;
+  out.pair.pose.information = refined.information;
+  out.pair.pose.information_eigenvalues = refined.information_eigenvalues;
+  out.pair.edge_information = informationWithModelError(refined.information, params.certify.model_error);
+  return out;
 }
 
 }  // namespace gasp

@@ -37,6 +37,14 @@ struct RangeScan {
   void setLayout(const std::vector<double>& elevation_deg_by_laser, std::vector<double> azimuths_rad);
 };
 
+/// The same returns seen by the sensor moved by T_new_old (a point p becomes T_new_old p): each
+/// put in the cell of its new direction (the row of the nearest elevation, the column of the
+/// nearest azimuth; azimuths evenly spaced) with its own ray, the nearer where two share a cell;
+/// returns beyond half a pitch from the end rows or outside the columns are lost. A real sweep
+/// against itself under a known motion (tests, benchmarks). Throws gasp::Error for fewer than two
+/// columns.
+RangeScan movedScan(const RangeScan& scan, const Isometry3& T_new_old);
+
 /// The lasers' elevations [deg] of a LiDAR by MRPT's lidarModel name, in laser-id order (the
 /// observation's rows): VLP-16 and HDL-32E (their manuals' tables), SIM-64 (the simulator's 64
 /// lasers, evenly over -24.9..+2 deg, an HDL-64E's field) and 2D scans ("2D_SCAN_*": one row at

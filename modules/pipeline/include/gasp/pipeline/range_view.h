@@ -11,7 +11,11 @@
 #include "gasp/core/view_projection.h"
 #include "gasp/pipeline/depth_view.h"
 #include "gasp/pipeline/pair_registration.h"
+#include "gasp/registration/refinement.h"
 #include "gasp/superpixels/superpixel_params.h"
+
+#include <string>
+#include <vector>
 
 namespace gasp {
 
@@ -30,7 +34,7 @@ DepthView makeRangeView(const RangeScan& scan, const SuperpixelParams& params);
 /// The segmentation's defaults for a rotating LiDAR (the params file's `lidar_segment`): patches
 /// of 0.25 m^2 (a 16-laser sensor's rows are 35 cm apart at 10 m), windows and minimum sizes in
 /// binned cells, and range noise that does not grow with the square of the range.
-SuperpixelParams lidarSuperpixelParams();
+SuperpixelParams lidarSuperpixelParams(double patch_area_m2 = 0.5);
 
 /// Range noise of the LiDAR the defaults are for (1 sigma) [m]: the simulator's, a VLP-16's.
 constexpr double kLidarRangeSigmaM = 0.02;
@@ -41,6 +45,40 @@ constexpr double kLidarRangeSigmaM = 0.02;
 /// solvers' noise and loss scale, the free-space gate) follow the range noise, which does not
 /// grow with the range. Every cell is sampled (a binned sweep has fewer cells than the camera's
 /// sampled pixels), and the edge terms and the slide scan are off (docs/lidar.md).
-PairParams lidarPairParams();
+PairParams lidarPairParams(double patch_area_m2 = 0.5);
+
+/// The last step for two sweeps: point-to-plane rounds on the returns themselves, not the binned
+/// cells. A binned cell is the mean of different returns in each view (the bins fall elsewhere on
+/// the scene when the sensor turns), so terms between cells leave a bias of a few tenths of a
+/// degree; a return has its own place on the other sweep's surface.
+struct ReturnsRefineParams {
+  std::vector<double> gates_m = {0.3, 0.15, 0.08};  ///< round r's gate on the point-to-plane distance [m]
+  int column_step = 1;            ///< every n-th column of the source sweep
+  int look_up_columns = 2;        ///< a point takes the nearest return with a normal within this many columns
+  int max_rounds = 10;            ///< rounds in all (the last gate repeats until converged)
+  double converged_m = 0.0005;    ///< RMS displacement of the source returns that ends the rounds [m]
+  /// A return's normal: a plane fitted to the 3 x (2 half_width + 1) returns around it, kept when
+  /// its thinnest spread is below max_flatness of the next (a surface, not an edge or foliage).
+  int normal_half_width = 3;
+  double max_flatness = 0.3;
+  double max_incidence_deg = 80.0;  ///< returns seen beyond it give no term
+  RefinementParams solver;          ///< loss, noise and degeneracy test (lidarPairParams' refine solver)
+};
+
+/// Refines T_target_source between the two sweeps (point-to-plane, target normals from the target
+/// sweep's returns). success false, with a reason, when fewer than 6 terms remain or a solve fails.
+RegistrationResult refineOnReturns(const RangeScan& source, const RangeScan& target, const Isometry3& T_target_source,
+                                   const ReturnsRefineParams& params = {});
+
+/// Two sweeps registered with no prior: each made a view (makeRangeView), registerViews(), then,
+/// when a full pose is claimed, refineOnReturns() from it (its pose and information replace the
+/// views'; when it fails the views' pose stays and its reason is kept in `returns_reason`).
+struct RangePairResult {
+  PairResult pair;
+  bool returns_refined = false;
+  std::string returns_reason;
+  double segmentation_ms = 0.0, returns_ms = 0.0;  ///< both views' segmentation; the returns' rounds
+};
+RangePairResult registerRangeScans(const RangeScan& source, const RangeScan& target, const PairParams& params);
 
 }  // namespace gasp
