@@ -74,20 +74,18 @@ TEST(SlamParams, InvalidValuesAreNamed) {
     }
     return std::string("(no error)");
   };
-  gasp::SlamParams p;
-  EXPECT_EQ(message(p), "(no error)");
-  p.loop.search_radius_m = -1;
-  EXPECT_NE(message(p).find("search_radius_m"), std::string::npos);
-  p = {};
-  p.loop.gate_chi2 = std::nan("");
-  EXPECT_NE(message(p).find("gate_chi2"), std::string::npos);
-  p = {};
-  p.loop.min_keyframe_gap = 0;
-  EXPECT_NE(message(p).find("min_keyframe_gap"), std::string::npos);
-  p = {};
-  p.odometry.keyframe_angle_deg = 0;
-  EXPECT_NE(message(p).find("keyframe_angle_deg"), std::string::npos);
-  p = {};
-  p.graph.max_iterations = 0;
-  EXPECT_NE(message(p).find("max_iterations"), std::string::npos);
+  // One change to the defaults at a time, each on a fresh copy.
+  const auto with = [&](auto change) {
+    gasp::SlamParams p;
+    change(p);
+    return message(p);
+  };
+  EXPECT_EQ(with([](gasp::SlamParams&) {}), "(no error)");
+  EXPECT_NE(with([](gasp::SlamParams& p) { p.loop.search_radius_m = -1; }).find("search_radius_m"), std::string::npos);
+  EXPECT_NE(with([](gasp::SlamParams& p) { p.loop.gate_chi2 = std::nan(""); }).find("gate_chi2"), std::string::npos);
+  EXPECT_NE(with([](gasp::SlamParams& p) { p.loop.min_keyframe_gap = 0; }).find("min_keyframe_gap"), std::string::npos);
+  EXPECT_NE(with([](gasp::SlamParams& p) { p.odometry.keyframe_angle_deg = 0; }).find("keyframe_angle_deg"),
+            std::string::npos);
+  EXPECT_NE(with([](gasp::SlamParams& p) { p.graph.max_iterations = 0; }).find("max_iterations"), std::string::npos);
+  EXPECT_NE(with([](gasp::SlamParams& p) { p.lidar.patch_area_m2 = 0; }).find("patch_area_m2"), std::string::npos);
 }

@@ -137,6 +137,7 @@ void refineFields(P& p, F&& f) {  // dense rounds (dense_rounds.h), pixel and ed
   f("projective_pixel_step", d.pixels.pixel_step);
   f("projective_max_distance_m", d.pixels.max_distance_m);
   f("projective_max_normal_angle_deg", d.pixels.max_normal_angle_deg);
+  f("projective_pixel_footprint", d.pixels.pixel_footprint);
   f("edge_terms", d.edges.enabled);
   f("edge_min_jump_m", d.edges.terms.min_jump_m);
   f("edge_jump_per_m2", d.edges.terms.jump_per_m2);
@@ -170,6 +171,7 @@ void certifyFields(P& p, F&& f) {  // the views' degeneracy, dense support, free
   f("visibility_pixel_step", c.visibility.pixel_step);
   f("visibility_gate_m", c.visibility.gate_m);
   f("visibility_gate_per_m2", c.visibility.gate_per_m2);
+  f("visibility_pixel_spread", c.visibility.pixel_spread);
   f("visibility_max_violation_ratio", c.visibility.max_violation_ratio);
   f("visibility_max_occluded_ratio", c.visibility.max_occluded_ratio);
   f("visibility_max_two_way_violation_ratio", c.visibility.max_two_way_violation_ratio);
@@ -239,6 +241,18 @@ void loopClosureFields(P& p, F&& f) {
 }
 
 /// The pose-graph optimiser (pose_graph_optimizer.h).
+template <class P, class F>
+void lidarFields(P& p, F&& f) {  // range_view.h: a rotating LiDAR's sweeps
+  f("patch_area_m2", p.patch_area_m2);
+  f("range_sigma_m", p.range_sigma_m);
+  f("returns_column_step", p.returns_column_step);
+  f("returns_look_up_columns", p.returns_look_up_columns);
+  f("returns_max_rounds", p.returns_max_rounds);
+  f("returns_converged_m", p.returns_converged_m);
+  f("returns_normal_half_width", p.returns_normal_half_width);
+  f("returns_max_flatness", p.returns_max_flatness);
+}
+
 template <class P, class F>
 void poseGraphFields(P& p, F&& f) {
   f("max_iterations", p.max_iterations);

@@ -30,6 +30,7 @@ void sectionFields(const std::string& section, P& p, F&& f) {
   else if (section == "odometry") odometryFields(p.odometry, f);
   else if (section == "loop_closure") loopClosureFields(p.loop, f);
   else if (section == "pose_graph") poseGraphFields(p.graph, f);
+  else if (section == "lidar") lidarFields(p.lidar, f);
 }
 
 /// The shortest text of `v` that reads back to the same double (a file people read: 0.1, not
@@ -201,7 +202,7 @@ bool setValue(SlamParams& p, const std::string& section, const std::string& key,
 
 const std::vector<std::string>& paramsSections() {
   static const std::vector<std::string> sections{"segment", "associate",    "hypothesise", "refine",    "certify",
-                                                 "retry",   "odometry",     "loop_closure", "pose_graph"};
+                                                 "retry",   "odometry",     "loop_closure", "pose_graph", "lidar"};
   return sections;
 }
 

@@ -41,7 +41,7 @@ std::vector<PointToPlane> projectiveTerms(const DepthView& source, const DepthVi
   const double cos_max = std::cos(p.max_normal_angle_deg * M_PI / 180.0);
   // The gate widens by the target pixel's footprint on its surface (the sampled pixel's point can
   // be that far from where the source point lands): depth * half a pixel's diagonal / cos(incidence).
-  const double half_pixel = target.projection.halfPixelDiagonalRad();
+  const double half_pixel = p.pixel_footprint ? target.projection.halfPixelDiagonalRad() : 0.0;
   const double min_cos = std::cos(target.superpixels.max_incidence_deg * M_PI / 180.0);
   const Eigen::Matrix3d R = T_target_source.linear();
   for (int v = 0; v < ls.rows; v += p.pixel_step)

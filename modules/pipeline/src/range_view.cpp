@@ -6,6 +6,7 @@
 #include <string>
 
 #include <Eigen/Eigenvalues>
+#include <tbb/parallel_invoke.h>
 
 #include <chrono>
 
@@ -93,11 +94,46 @@ DepthView makeRangeView(const RangeScan& scan, const SuperpixelParams& params) {
   return makeDepthView(range, projection, params);
 }
 
-SuperpixelParams lidarSuperpixelParams(double patch_area_m2) {
+void validate(const LidarParams& p) {
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw Error(std::string("lidar parameters: ") + what);
+  };
+  require(p.patch_area_m2 > 0 && std::isfinite(p.patch_area_m2), "patch_area_m2 must be > 0 and finite");
+  require(p.range_sigma_m > 0 && std::isfinite(p.range_sigma_m), "range_sigma_m must be > 0 and finite");
+  validate(returnsRefineParams(p));
+}
+
+void validate(const ReturnsRefineParams& r) {
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw Error(std::string("lidar parameters: ") + what);
+  };
+  require(!r.gates_m.empty(), "the returns' gates must not be empty");
+  for (const double g : r.gates_m) require(g > 0 && std::isfinite(g), "the returns' gates must be > 0 and finite");
+  require(r.column_step >= 1 && r.look_up_columns >= 0 && r.max_rounds >= 1,
+          "returns_column_step and returns_max_rounds must be >= 1, returns_look_up_columns >= 0");
+  require(r.converged_m >= 0 && std::isfinite(r.converged_m), "returns_converged_m must be >= 0 and finite");
+  require(r.normal_half_width >= 1 && r.max_flatness > 0 && r.max_flatness <= 1,
+          "returns_normal_half_width must be >= 1 and returns_max_flatness in (0, 1]");
+}
+
+ReturnsRefineParams returnsRefineParams(const LidarParams& p) {
+  ReturnsRefineParams r;
+  r.gates_m = {15.0 * p.range_sigma_m, 7.5 * p.range_sigma_m, 4.0 * p.range_sigma_m};
+  r.column_step = p.returns_column_step;
+  r.look_up_columns = p.returns_look_up_columns;
+  r.max_rounds = p.returns_max_rounds;
+  r.converged_m = p.returns_converged_m;
+  r.normal_half_width = p.returns_normal_half_width;
+  r.max_flatness = p.returns_max_flatness;
+  return r;
+}
+
+SuperpixelParams lidarSuperpixelParams(const LidarParams& lidar) {
+  validate(lidar);
   SuperpixelParams p;
-  p.target_patch_area_m2 = patch_area_m2;
+  p.target_patch_area_m2 = lidar.patch_area_m2;
   p.processing_step_px = 1;
-  p.surfaces.discontinuity_abs_m = 0.1;
+  p.surfaces.discontinuity_abs_m = 5.0 * lidar.range_sigma_m;
   p.surfaces.discontinuity_rel = 0.03;
   p.surfaces.normal_window_px_per_m = 0.1;
   p.surfaces.normal_min_radius_px = 1;
@@ -111,9 +147,9 @@ SuperpixelParams lidarSuperpixelParams(double patch_area_m2) {
   return p;
 }
 
-PairParams lidarPairParams(double patch_area_m2) {
+PairParams lidarPairParams(const LidarParams& lidar) {
   PairParams p;
-  p.segment = lidarSuperpixelParams(patch_area_m2);
+  p.segment = lidarSuperpixelParams(lidar);
   const double k = std::sqrt(p.segment.target_patch_area_m2 / SuperpixelParams{}.target_patch_area_m2);
   // Centroid comparisons: with the patch radius.
   p.associate.feature_sets.ordering.e_r_m *= k;
@@ -126,13 +162,16 @@ PairParams lidarPairParams(double patch_area_m2) {
   for (double& gate : p.refine.dense.gates_m) gate *= k;
   p.refine.pixels.max_distance_m *= k;
   // Point comparisons: with the range noise.
-  const double sigma = kLidarRangeSigmaM;
+  const double sigma = lidar.range_sigma_m;
   for (auto* solver : {&p.hypothesise.pose.refinement, &p.refine.solver}) {
     solver->noise_sigma_m = sigma;
     solver->loss_scale_m = 2.5 * sigma;
   }
   p.certify.visibility.gate_m = 5.0 * sigma;
   p.certify.visibility.gate_per_m2 = 0.0;
+  // A binned cell is 0.4-2 deg wide: gates widen by its spread on the surface.
+  p.certify.visibility.pixel_spread = true;
+  p.refine.pixels.pixel_footprint = true;
   // Every cell.
   p.refine.pixels.pixel_step = 1;
   p.certify.visibility.pixel_step = 1;
@@ -235,11 +274,10 @@ class ReturnSurface {
 }  // namespace
 
 RegistrationResult refineOnReturns(const RangeScan& source, const RangeScan& target, const Isometry3& T_target_source,
-                                   const ReturnsRefineParams& p) {
+                                   const ReturnsRefineParams& p, const RefinementParams& solver, double max_incidence_deg) {
   RegistrationResult result;
   result.T_target_source = T_target_source;
-  if (p.gates_m.empty() || p.column_step < 1 || p.max_rounds < 1)
-    throw Error("ReturnsRefineParams: gates_m must not be empty, column_step and max_rounds must be >= 1");
+  validate(p);
   if (target.range_m.cols < 2 || target.azimuth_rad.size() != static_cast<std::size_t>(target.range_m.cols) ||
       target.elevation_rad.size() != static_cast<std::size_t>(target.range_m.rows)) {
     result.reason = "returns refinement: the target sweep has no range image";
@@ -251,7 +289,7 @@ RegistrationResult refineOnReturns(const RangeScan& source, const RangeScan& tar
     for (int c = 0; c < source.range_m.cols; c += p.column_step)
       if (const float d = source.range_m.at<float>(r, c); d > 0.0f && std::isfinite(d))
         points.push_back(static_cast<double>(d) * source.direction(r, c));
-  const double min_cos = std::cos(p.max_incidence_deg * M_PI / 180.0);
+  const double min_cos = std::cos(max_incidence_deg * M_PI / 180.0);
   Isometry3 T = T_target_source;
   for (int round = 0; round < p.max_rounds; ++round) {
     const double gate = p.gates_m[std::min(static_cast<std::size_t>(round), p.gates_m.size() - 1)];
@@ -275,7 +313,7 @@ RegistrationResult refineOnReturns(const RangeScan& source, const RangeScan& tar
       result.success = false;
       return result;
     }
-    RegistrationResult next = refinePose({}, T, p.solver, terms);
+    RegistrationResult next = refinePose({}, T, solver, terms);
     if (!next.success && !next.degenerate) {
       result.reason = "returns refinement: " + next.reason;
       result.success = false;
@@ -291,18 +329,18 @@ RegistrationResult refineOnReturns(const RangeScan& source, const RangeScan& tar
   return result;
 }
 
-RangePairResult registerRangeScans(const RangeScan& source, const RangeScan& target, const PairParams& params) {
+RangePairResult registerRangeScans(const RangeScan& source, const RangeScan& target, const PairParams& params,
+                                   const ReturnsRefineParams& returns) {
   RangePairResult out;
   auto t0 = std::chrono::steady_clock::now();
-  const DepthView a = makeRangeView(source, params.segment), b = makeRangeView(target, params.segment);
+  DepthView a, b;  // one TBB task each, as makeDepthViews()
+  tbb::parallel_invoke([&] { a = makeRangeView(source, params.segment); }, [&] { b = makeRangeView(target, params.segment); });
   out.segmentation_ms = msSince(t0);
   out.pair = registerViews(a, b, params);
   if (!out.pair.pose.success) return out;
   t0 = std::chrono::steady_clock::now();
-  ReturnsRefineParams rp;
-  rp.solver = params.refine.solver;
-  rp.max_incidence_deg = params.segment.max_incidence_deg;
-  const RegistrationResult refined = refineOnReturns(source, target, out.pair.pose.T_target_source, rp);
+  const RegistrationResult refined = refineOnReturns(source, target, out.pair.pose.T_target_source, returns,
+                                                     params.refine.solver, params.segment.max_incidence_deg);
   out.returns_ms = msSince(t0);
   if (!refined.success) {
     out.returns_reason = refined.reason;

@@ -86,7 +86,7 @@ Counts countOneWay(const DepthView& from, const DepthView& to, const Isometry3& 
       const float zt = to.depth_m.at<float>(vt, ut);
       if (!isValidDepth(zt)) continue;
       const double zq = to.projection.depth(q);
-      const double gate = p.gate_m + p.gate_per_m2 * zt * zt + slope.spread(to, ut, vt, q, zt);
+      const double gate = p.gate_m + p.gate_per_m2 * zt * zt + (p.pixel_spread ? slope.spread(to, ut, vt, q, zt) : 0.0);
       if (std::abs(zq - zt) <= gate) ++c.consistent;
       else if (zq > zt) ++c.occluded;
       else {

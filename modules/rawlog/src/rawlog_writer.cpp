@@ -15,6 +15,7 @@
 #include "gasp/core/output_file.h"
 #include "gasp/rawlog/gz_output_stream.h"
 #include "gasp/rawlog/observation_conversion.h"
+#include "gasp/rawlog/range_scan.h"
 
 namespace gasp {
 
@@ -82,6 +83,16 @@ void RawlogWriter::write(const RgbdFrame& frame) {
     }
   }
 
+  append(obs);
+}
+
+void RawlogWriter::write(const RangeScan& sweep, const std::string& sensor_label) {
+  if (!impl_ || !impl_->stream) throw Error("rawlog '" + path_ + "': writer already closed");
+  if (impl_->file->committed()) throw Error("rawlog '" + path_ + "': writer already closed");
+  append(std::make_shared<mrpt::obs::CObservationRotatingScan>(toRotatingScan(sweep, sensor_label)));
+}
+
+void RawlogWriter::append(const std::shared_ptr<mrpt::obs::CObservation>& obs) {
   try {
     auto ar = mrpt::serialization::archiveFrom(*impl_->stream);
     if (options_.format == RawlogFormat::ActionsSensoryFrames) {

@@ -58,4 +58,14 @@ RangeScan simulateLidarScan(const Scene& scene, const LidarSensor& sensor, const
   return scan;
 }
 
+Isometry3 lidarPoseOfCamera(const Isometry3& T_world_camera) {
+  Eigen::Matrix3d R_camera_lidar;
+  R_camera_lidar.col(0) = Eigen::Vector3d(0, 0, 1);   // ahead: the optical axis
+  R_camera_lidar.col(1) = Eigen::Vector3d(-1, 0, 0);  // left: against the image's x
+  R_camera_lidar.col(2) = Eigen::Vector3d(0, -1, 0);  // up: against the image's y
+  Isometry3 T_camera_lidar = Isometry3::Identity();
+  T_camera_lidar.linear() = R_camera_lidar;
+  return T_world_camera * T_camera_lidar;
+}
+
 }  // namespace gasp::sim

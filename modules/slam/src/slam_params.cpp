@@ -23,6 +23,7 @@ void validate(const SlamParams& p) {
   validate(p.odometry);
   validate(p.loop);
   validate(p.graph);
+  validate(p.lidar);
 }
 
 }  // namespace gasp

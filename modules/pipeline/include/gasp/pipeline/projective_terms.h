@@ -17,6 +17,10 @@ struct ProjectiveTermParams {
   /// at a fraction of the time (docs/pipeline.md).
   int pixel_step = 8;
   double max_distance_m = 0.05;    ///< gate on |T p_source - q_target| [m] (> 0)
+  /// Widen the gate by the target pixel's footprint on its surface (depth x half a pixel diagonal
+  /// / cos(incidence)): for coarse pixels, a LiDAR's binned cells (lidarPairParams). Off for a
+  /// camera, whose dense rounds were measured without.
+  bool pixel_footprint = false;
   double max_normal_angle_deg = 20.0;  ///< gate on the angle between the two patch normals [deg]
 };
 

@@ -28,24 +28,8 @@ int rangeBinColumns(const RangeScan& scan);
 std::pair<cv::Mat, ViewProjection> binRangeScan(const RangeScan& scan, const SmoothSurfaceParams& link);
 
 /// The segmented view of a sweep (sensor frame: MRPT's LiDAR frame, x ahead, z up). `params`
-/// must have processing_step_px = 1 (lidarSuperpixelParams() is a LiDAR's defaults).
+/// must have processing_step_px = 1 (lidarSuperpixelParams() are a LiDAR's).
 DepthView makeRangeView(const RangeScan& scan, const SuperpixelParams& params);
-
-/// The segmentation's defaults for a rotating LiDAR (the params file's `lidar_segment`): patches
-/// of 0.25 m^2 (a 16-laser sensor's rows are 35 cm apart at 10 m), windows and minimum sizes in
-/// binned cells, and range noise that does not grow with the square of the range.
-SuperpixelParams lidarSuperpixelParams(double patch_area_m2 = 0.5);
-
-/// Range noise of the LiDAR the defaults are for (1 sigma) [m]: the simulator's, a VLP-16's.
-constexpr double kLidarRangeSigmaM = 0.02;
-
-/// The pair pipeline's defaults for LiDAR views, from the camera's by two rules: lengths that
-/// compare patch centroids (association, RANSAC, guided verification, the dense rounds' gates)
-/// grow with the patch radius, sqrt(0.25 / 0.004) = 7.9 times; lengths that compare points (the
-/// solvers' noise and loss scale, the free-space gate) follow the range noise, which does not
-/// grow with the range. Every cell is sampled (a binned sweep has fewer cells than the camera's
-/// sampled pixels), and the edge terms and the slide scan are off (docs/lidar.md).
-PairParams lidarPairParams(double patch_area_m2 = 0.5);
 
 /// The last step for two sweeps: point-to-plane rounds on the returns themselves, not the binned
 /// cells. A binned cell is the mean of different returns in each view (the bins fall elsewhere on
@@ -53,22 +37,60 @@ PairParams lidarPairParams(double patch_area_m2 = 0.5);
 /// degree; a return has its own place on the other sweep's surface.
 struct ReturnsRefineParams {
   std::vector<double> gates_m = {0.3, 0.15, 0.08};  ///< round r's gate on the point-to-plane distance [m]
-  int column_step = 1;            ///< every n-th column of the source sweep
-  int look_up_columns = 2;        ///< a point takes the nearest return with a normal within this many columns
-  int max_rounds = 10;            ///< rounds in all (the last gate repeats until converged)
-  double converged_m = 0.0005;    ///< RMS displacement of the source returns that ends the rounds [m]
+  int column_step = 1;          ///< every n-th column of the source sweep
+  int look_up_columns = 2;      ///< a point takes the nearest return with a normal within this many columns
+  int max_rounds = 10;          ///< rounds in all (the last gate repeats until converged)
+  double converged_m = 0.0005;  ///< RMS displacement of the source returns that ends the rounds [m]
   /// A return's normal: a plane fitted to the 3 x (2 half_width + 1) returns around it, kept when
   /// its thinnest spread is below max_flatness of the next (a surface, not an edge or foliage).
   int normal_half_width = 3;
   double max_flatness = 0.3;
-  double max_incidence_deg = 80.0;  ///< returns seen beyond it give no term
-  RefinementParams solver;          ///< loss, noise and degeneracy test (lidarPairParams' refine solver)
 };
 
+/// A rotating LiDAR's own parameters (the params file's section `lidar`, docs/lidar.md): the
+/// pair pipeline's values for its sweeps follow from them and the camera's defaults
+/// (lidarPairParams), and so do the returns' rounds (returnsRefineParams).
+struct LidarParams {
+  /// Target patch area [m^2]: about 5 binned cells of a 16-laser sensor at 10 m, 60 at 2.5 m.
+  double patch_area_m2 = 0.5;
+  double range_sigma_m = 0.02;  ///< range noise (1 sigma) [m]: the simulator's, a VLP-16's
+  /// The returns' rounds (ReturnsRefineParams): their gates are 15, 7.5 and 4 range_sigma_m.
+  int returns_column_step = 1;
+  int returns_look_up_columns = 2;
+  int returns_max_rounds = 10;
+  double returns_converged_m = 0.0005;
+  int returns_normal_half_width = 3;
+  double returns_max_flatness = 0.3;
+};
+
+/// Throws gasp::Error naming the first parameter out of its range.
+void validate(const LidarParams& params);
+void validate(const ReturnsRefineParams& params);
+
+/// The returns' rounds of `params`: gates of 15, 7.5 and 4 range_sigma_m (0.3, 0.15, 0.08 m at
+/// 2 cm), the other settings as given.
+ReturnsRefineParams returnsRefineParams(const LidarParams& params = {});
+
+/// The segmentation for binned sweeps: patches of params.patch_area_m2, at full resolution of the
+/// binned image, windows and minimum sizes in binned cells, discontinuities from the range noise
+/// (it does not grow with the square of the range).
+SuperpixelParams lidarSuperpixelParams(const LidarParams& params = {});
+
+/// The pair pipeline's values for LiDAR views, from the camera's defaults by two rules: lengths
+/// that compare patch centroids (association, RANSAC, guided verification, the dense rounds'
+/// gates) grow with the patch radius, sqrt(patch_area_m2 / 0.004); lengths that compare points
+/// (the solvers' noise and loss scale, the free-space gate) follow the range noise. Every cell is
+/// sampled (a binned sweep has fewer cells than a camera's sampled pixels), and the edge terms and
+/// the slide scan are off (docs/lidar.md).
+PairParams lidarPairParams(const LidarParams& params = {});
+
 /// Refines T_target_source between the two sweeps (point-to-plane, target normals from the target
-/// sweep's returns). success false, with a reason, when fewer than 6 terms remain or a solve fails.
+/// sweep's returns; `solver`: loss, noise and degeneracy test; returns seen beyond
+/// max_incidence_deg give no term). success false, with a reason, when fewer than 6 terms remain
+/// or a solve fails. Throws gasp::Error for invalid params.
 RegistrationResult refineOnReturns(const RangeScan& source, const RangeScan& target, const Isometry3& T_target_source,
-                                   const ReturnsRefineParams& params = {});
+                                   const ReturnsRefineParams& params = {}, const RefinementParams& solver = {},
+                                   double max_incidence_deg = 80.0);
 
 /// Two sweeps registered with no prior: each made a view (makeRangeView), registerViews(), then,
 /// when a full pose is claimed, refineOnReturns() from it (its pose and information replace the
@@ -79,6 +101,9 @@ struct RangePairResult {
   std::string returns_reason;
   double segmentation_ms = 0.0, returns_ms = 0.0;  ///< both views' segmentation; the returns' rounds
 };
-RangePairResult registerRangeScans(const RangeScan& source, const RangeScan& target, const PairParams& params);
+/// `returns`: the rounds' own settings; their solver and incidence limit are the pair's
+/// (params.refine.solver, params.segment.max_incidence_deg).
+RangePairResult registerRangeScans(const RangeScan& source, const RangeScan& target, const PairParams& params,
+                                   const ReturnsRefineParams& returns = {});
 
 }  // namespace gasp

@@ -38,6 +38,10 @@ struct VisibilityCheckParams {
   int pixel_step = 8;              ///< sample every N-th pixel in u and v (>= 1)
   double gate_m = 0.03;            ///< constant part of the gate [m]
   double gate_per_m2 = 0.02;       ///< depth-squared part of the gate [1/m]
+  /// Widen the gate by the depth change of the target pixel's surface across half a pixel
+  /// diagonal (depth x angle x tan(incidence), the pixel's patch normal): for coarse pixels, a
+  /// LiDAR's binned cells (lidarPairParams). Off for a camera, whose checks were measured without.
+  bool pixel_spread = false;
   double max_violation_ratio = 0.15;  ///< in [0, 1] (see above)
   double max_occluded_ratio = 0.5;   ///< in [0, 1]; 1 = no limit
   double max_two_way_violation_ratio = 0.05;  ///< in [0, 1]; 1 = no limit (see above)

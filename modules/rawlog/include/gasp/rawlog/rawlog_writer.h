@@ -1,11 +1,17 @@
 #pragma once
-/// \file rawlog_writer.h Writes RGB-D frames as an MRPT rawlog of CObservation3DRangeScan.
+/// \file rawlog_writer.h Writes RGB-D frames as an MRPT rawlog of CObservation3DRangeScan, and
+/// LiDAR sweeps as CObservationRotatingScan.
 #include <cstddef>
 #include <memory>
 #include <string>
 
 #include "gasp/rawlog/rawlog_format.h"
+#include "gasp/core/range_scan.h"
 #include "gasp/rawlog/rgbd_frame.h"
+
+namespace mrpt::obs {
+class CObservation;
+}
 
 namespace gasp {
 
@@ -39,6 +45,9 @@ class RawlogWriter {
 
   /// Converts the frame (observationFromFrame()) and appends it. Throws gasp::Error.
   void write(const RgbdFrame& frame);
+  /// Appends a sweep as MRPT 2.5's CObservationRotatingScan (toRotatingScan(), range_scan.h; its
+  /// ranges inline, whatever external_storage says). Throws gasp::Error.
+  void write(const RangeScan& sweep, const std::string& sensor_label);
   /// Ends the stream, checks every write, and renames the file to path() (also done by the
   /// destructor, unless an exception is unwinding, where errors cannot be reported: call it).
   /// Throws gasp::Error naming the file when a write or the rename failed; no-op once closed.
@@ -58,6 +67,7 @@ class RawlogWriter {
   int uncaught_at_construction_ = 0;  ///< std::uncaught_exceptions() then
   RawlogWriterOptions options_;
   std::size_t frames_written_ = 0;
+  void append(const std::shared_ptr<mrpt::obs::CObservation>& observation);
   std::unique_ptr<Impl> impl_;
 };
 

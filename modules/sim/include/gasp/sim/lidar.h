@@ -27,6 +27,10 @@ struct LidarSensor {
 /// HDL-64E's field); 0.2 deg azimuth step. Throws gasp::Error for another count.
 LidarSensor lidarSensor(int lasers);
 
+/// The LiDAR's pose on a camera's path: its x along the camera's optical axis (z), its y along the
+/// image's left (-x), its z up the image (-y); the same origin.
+Isometry3 lidarPoseOfCamera(const Isometry3& T_world_camera);
+
 /// One sweep of `sensor` at T_world_sensor (the sensor's x ahead, z up; the sweep turns clockwise
 /// from x, as a Velodyne's), with its noise: deterministic in (seed, frame_index). Rows by
 /// elevation, as RangeScan orders them. Throws gasp::Error for a sensor without lasers, a step

@@ -4,6 +4,7 @@
 #include <cstddef>
 
 #include "gasp/odometry/odometry_params.h"
+#include "gasp/pipeline/range_view.h"
 #include "gasp/slam/pose_graph_optimizer.h"
 
 namespace gasp {
@@ -60,6 +61,7 @@ struct SlamParams {
   OdometryParams odometry;
   LoopClosureParams loop;
   PoseGraphSettings graph;
+  LidarParams lidar;  ///< for rotating-LiDAR sweeps (range_view.h): their pair values follow from these
 };
 
 /// Throws gasp::Error naming the first invalid parameter (including the odometry's).

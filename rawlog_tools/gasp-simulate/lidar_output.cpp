@@ -1,0 +1,39 @@
+#include "lidar_output.h"
+
+#include <filesystem>
+
+#include "gasp/core/error.h"
+#include "gasp/core/tum_trajectory.h"
+#include "gasp/rawlog/rawlog_writer.h"
+
+namespace gasp::tools {
+
+LidarSequenceSummary writeLidarSequence(const sim::SimulationOptions& options, const sim::LidarSensor& sensor,
+                                        const std::string& out_dir) {
+  const sim::Simulation simulation(options);
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (ec) throw Error("cannot create the folder '" + out_dir + "': " + ec.message());
+  LidarSequenceSummary summary;
+  summary.rawlog = out_dir + "/lidar.rawlog";
+  summary.groundtruth = out_dir + "/lidar_groundtruth.txt";
+  RawlogWriter writer(summary.rawlog);
+  Trajectory truth;
+  double returns = 0.0;
+  for (int i = 0; i < simulation.size(); ++i) {
+    const StampedPose& pose = simulation.path().poses[static_cast<std::size_t>(i)];
+    const Isometry3 T_world_lidar = sim::lidarPoseOfCamera(pose.T_world_camera);
+    RangeScan sweep = sim::simulateLidarScan(simulation.scene(), sensor, T_world_lidar, options.seed, i);
+    sweep.timestamp = pose.timestamp;
+    returns += static_cast<double>(sweep.returnCount());
+    writer.write(sweep, "LIDAR");
+    truth.push_back({pose.timestamp, T_world_lidar});
+  }
+  writer.close();
+  writeTumTrajectory(summary.groundtruth, truth, "# ground truth of the simulated LiDAR (T_world_lidar), gasp-simulate");
+  summary.sweeps = simulation.size();
+  summary.returns_per_sweep = summary.sweeps > 0 ? returns / summary.sweeps : 0.0;
+  return summary;
+}
+
+}  // namespace gasp::tools
