@@ -82,7 +82,7 @@ struct Run {
 
 Run runPair(const LidarPair& p) {
   const auto t0 = std::chrono::steady_clock::now();
-  const gasp::RangePairResult r = gasp::registerRangeScans(p.source, p.target, gasp::lidarPairParams());
+  const gasp::RangePairResult r = gasp::registerRangeScans(p.source, p.target);
   Run run;
   run.total = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   run.segmentation = r.segmentation_ms;

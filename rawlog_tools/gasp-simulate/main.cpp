@@ -92,9 +92,9 @@ int main(int argc, char** argv) {
       if (no_noise) lidar.range_sigma_m = 0.0, lidar.dropout = 0.0;
       const auto s = gasp::tools::writeLidarSequence(options, lidar, out_dir);
       std::printf("scene:       %s\n", options.scene.c_str());
-      std::printf("sweeps:      %d of %s (seed %llu, %s), %.0f returns each on average\n", s.sweeps, lidar.model.c_str(),
-                  static_cast<unsigned long long>(options.seed), no_noise ? "no noise" : "2 cm noise, 2 % dropouts",
-                  s.returns_per_sweep);
+      std::printf("sweeps:      %d of %s (seed %llu, range noise %g m, %g %% dropouts), %.0f returns each on average\n",
+                  s.sweeps, lidar.model.c_str(), static_cast<unsigned long long>(options.seed), lidar.range_sigma_m,
+                  100.0 * lidar.dropout, s.returns_per_sweep);
       std::printf("written to:  %s\n             %s\n", s.rawlog.c_str(), s.groundtruth.c_str());
       return 0;
     }

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "gasp/core/error.h"
 #include "gasp/core/point_cloud.h"
@@ -28,14 +29,16 @@ TEST(ViewProjection, APinholeIsTheIntrinsics) {
   const ViewProjection p = k;
   EXPECT_TRUE(p.isPinhole());
   EXPECT_EQ(p.width(), 640);
+  // Exactly the intrinsics' arithmetic: the camera's results do not move.
   const Eigen::Vector3d q = p.unproject(100.0, 200.0, 2.5);
-  EXPECT_TRUE(q.isApprox(k.unproject(100.0, 200.0, 2.5)));
-  EXPECT_FLOAT_EQ(static_cast<float>(p.depth(q)), 2.5f);
-  double u = 0, v = 0;
+  EXPECT_TRUE(q == k.unproject(100.0, 200.0, 2.5));
+  EXPECT_EQ(p.depth(q), q.z());
+  double u = 0, v = 0, ku = 0, kv = 0;
   ASSERT_TRUE(p.project(q, u, v));
-  EXPECT_NEAR(u, 100.0, 1e-9);
-  EXPECT_NEAR(v, 200.0, 1e-9);
-  EXPECT_FLOAT_EQ(p.frontalArea(Eigen::Vector3f(0, 0, 2)), static_cast<float>(4.0 / (k.fx * k.fy)));
+  ASSERT_TRUE(k.project(q, ku, kv));
+  EXPECT_EQ(u, ku);
+  EXPECT_EQ(v, kv);
+  EXPECT_EQ(p.frontalArea(Eigen::Vector3f(0, 0, 2)), 2.0f * 2.0f * static_cast<float>(1.0 / (k.fx * k.fy)));
   EXPECT_DOUBLE_EQ(p.pixelsPerRadian(), k.fx);
   EXPECT_THROW(p.grid(), gasp::Error);
 }
@@ -110,18 +113,45 @@ TEST(ViewProjection, BackProjectedRangesLieOnTheirRays) {
 }
 
 TEST(ViewProjection, AnInvalidGridIsRefusedWithItsReason) {
+  const auto reason = [](SphericalGrid g) {
+    try {
+      ViewProjection::spherical(std::move(g));
+    } catch (const gasp::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
   SphericalGrid g = vlp16Turn();
   std::swap(g.elevation_rad[3], g.elevation_rad[4]);
-  EXPECT_THROW(ViewProjection::spherical(g), gasp::Error);
+  EXPECT_NE(reason(g).find("strictly ascending (row 4)"), std::string::npos) << reason(g);
   g = vlp16Turn();
   g.columns = 200;  // 400 deg
-  EXPECT_THROW(ViewProjection::spherical(g), gasp::Error);
+  EXPECT_NE(reason(g).find("cover more than one turn"), std::string::npos) << reason(g);
   g = vlp16Turn();
   g.azimuth_step_rad = 0.0;
-  EXPECT_THROW(ViewProjection::spherical(g), gasp::Error);
+  EXPECT_NE(reason(g).find("non-zero"), std::string::npos) << reason(g);
   g = vlp16Turn();
   g.ray = cv::Mat::zeros(16, 10, CV_32FC3);
-  EXPECT_THROW(ViewProjection::spherical(g), gasp::Error);
+  EXPECT_NE(reason(g).find("ray table must be CV_32FC3 of 16 x 180"), std::string::npos) << reason(g);
+}
+
+TEST(ViewProjection, ATurnOfAFractionalNumberOfColumnsHasAGapAtTheSeam) {
+  // 257 cells of 1.4 deg (a binned HDL-32E sweep): 359.8 deg, the last 0.2 deg is no pixel.
+  SphericalGrid g = vlp16Turn();
+  g.azimuth_first_rad = 0.0;
+  g.azimuth_step_rad = -1.4 * kDeg;
+  g.columns = 257;
+  const ViewProjection p = ViewProjection::spherical(g);
+  const auto at = [](double azimuth_deg) {
+    return Eigen::Vector3d(std::cos(azimuth_deg * kDeg), std::sin(azimuth_deg * kDeg), 0.0);
+  };
+  double u = 0, v = 0;
+  ASSERT_TRUE(p.project(at(-1.4 * 256), u, v));  // the last column
+  EXPECT_NEAR(u, 256.0, 1e-9);
+  EXPECT_FALSE(p.project(at(-1.4 * 256.57), u, v));  // in the gap: no column within half a step
+  ASSERT_TRUE(p.project(at(0.5), u, v));             // just past column 0, on the seam's other side
+  EXPECT_NEAR(u, -0.5 / 1.4, 1e-9);
+  EXPECT_EQ(std::lround(u), 0);
 }
 
 }  // namespace

@@ -80,12 +80,16 @@ TEST(ParamsFile, WhatIsWrittenReadsBackToTheSameValues) {
   p.loop.min_keyframe_gap = 9;
   p.loop.gate_chi2 = 16.81;
   p.graph.function_tolerance = 1e-12;
+  p.lidar.patch_area_m2 = 0.7;
+  p.lidar.returns_look_up_columns = 3;
   ASSERT_FALSE(gasp::sameParams(p, defaults));
   const gasp::SlamParams back = gasp::readParamsYaml(gasp::paramsYaml(p), "changed");
   EXPECT_TRUE(gasp::sameParams(back, p)) << gasp::paramsYaml(back);
   EXPECT_EQ(back.odometry.pair.associate.lambda, 0.1 + 0.2);
   EXPECT_EQ(back.odometry.pair.refine.dense.gates_m, p.odometry.pair.refine.dense.gates_m);
   EXPECT_EQ(back.loop.min_keyframe_gap, 9u);
+  EXPECT_EQ(back.lidar.patch_area_m2, 0.7);
+  EXPECT_EQ(back.lidar.returns_look_up_columns, 3);
   EXPECT_TRUE(std::isinf(back.odometry.pair.associate.costs.transpose));
   // A file sets only what it names; the rest keeps the values it is read over.
   const gasp::SlamParams partial = gasp::readParamsYaml("associate:\n  candidates: 7\n", "partial", p);

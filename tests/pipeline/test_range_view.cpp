@@ -18,7 +18,8 @@ using gasp::RangeScan;
 
 constexpr double kDeg = M_PI / 180.0;
 
-/// One laser at elevation 0, 20 columns 0.1 deg apart counter-clockwise from azimuth 0.
+/// Two lasers 1 deg apart (10 columns a bin), `columns` columns 0.1 deg apart counter-clockwise
+/// from azimuth 0, no returns.
 RangeScan oneRow(int columns) {
   RangeScan s;
   std::vector<double> az;
@@ -40,12 +41,24 @@ TEST(RangeView, TheColumnsAreBinnedToTheRowsPitch) {
   for (const auto& [lasers, bin, cells] : {std::tuple{16, 10, 180}, std::tuple{32, 7, 257}, std::tuple{64, 2, 900}}) {
     const RangeScan s = gasp::sim::simulateLidarScan(room, gasp::sim::lidarSensor(lasers), T);
     EXPECT_EQ(gasp::rangeBinColumns(s), bin) << lasers;
-    const auto [range, projection] = gasp::binRangeScan(s, gasp::lidarSuperpixelParams().surfaces);
+    const auto [range, projection] = gasp::binRangeScan(s, gasp::lidarSuperpixelParams());
     EXPECT_EQ(range.rows, lasers);
     EXPECT_EQ(range.cols, cells);
     EXPECT_EQ(projection.width(), cells);
     EXPECT_FALSE(projection.isPinhole());
   }
+}
+
+TEST(RangeView, ASweepPastAWholeTurnKeepsOneTurnOfBins) {
+  // 1810 columns of 0.2 deg (a sweep whose packets overlap by 2 deg): 180 bins of 2 deg.
+  RangeScan s;
+  std::vector<double> az;
+  for (int c = 0; c < 1810; ++c) az.push_back(-0.2 * kDeg * c);
+  s.setLayout(gasp::laserElevationsDeg("VLP-16", 16), az);
+  s.range_m.setTo(10.0f);
+  const auto [range, projection] = gasp::binRangeScan(s, gasp::lidarSuperpixelParams());
+  EXPECT_EQ(range.cols, 180);
+  EXPECT_EQ(projection.width(), 180);
 }
 
 TEST(RangeView, ACellIsTheMeanPointOfItsBinsNearestSurface) {
@@ -58,7 +71,7 @@ TEST(RangeView, ACellIsTheMeanPointOfItsBinsNearestSurface) {
     if (r[c] > 0.0f && r[c] < 6.0f) sum += static_cast<double>(r[c]) * s.direction(1, c);
   }
   const Eigen::Vector3d mean = sum / 6.0;
-  const auto [range, projection] = gasp::binRangeScan(s, gasp::lidarSuperpixelParams().surfaces);
+  const auto [range, projection] = gasp::binRangeScan(s, gasp::lidarSuperpixelParams());
   ASSERT_EQ(range.cols, 2);
   EXPECT_NEAR(range.at<float>(1, 0), mean.norm(), 1e-5);
   EXPECT_TRUE(projection.unproject(0, 1, range.at<float>(1, 0)).isApprox(mean, 1e-6));
@@ -78,6 +91,20 @@ TEST(RangeView, AScanThatIsNoRangeImageIsRefused) {
   EXPECT_THROW(gasp::makeRangeView(s, gasp::lidarSuperpixelParams()), gasp::Error);
   s = oneRow(20);
   s.elevation_rad = {0.0, -0.01};  // descending
+  EXPECT_THROW(gasp::makeRangeView(s, gasp::lidarSuperpixelParams()), gasp::Error);
+  s = oneRow(20);
+  s.azimuth_rad[5] = std::nan("");  // not a number past the first two columns
+  EXPECT_THROW(gasp::makeRangeView(s, gasp::lidarSuperpixelParams()), gasp::Error);
+  s = oneRow(20);
+  s.azimuth_rad[1] = s.azimuth_rad[0];  // no step
+  EXPECT_THROW(gasp::makeRangeView(s, gasp::lidarSuperpixelParams()), gasp::Error);
+  s = oneRow(20);
+  s.ray = cv::Mat::zeros(2, 19, CV_32FC3);  // a ray table of another size
+  EXPECT_THROW(gasp::makeRangeView(s, gasp::lidarSuperpixelParams()), gasp::Error);
+  EXPECT_THROW(gasp::movedScan(s, Isometry3::Identity()), gasp::Error);
+  EXPECT_THROW(gasp::refineOnReturns(oneRow(20), s, Isometry3::Identity()), gasp::Error);
+  s = oneRow(20);
+  s.range_m.convertTo(s.range_m, CV_64F);  // ranges of another type
   EXPECT_THROW(gasp::makeRangeView(s, gasp::lidarSuperpixelParams()), gasp::Error);
   // A range image is segmented at full resolution only: its cells are binned already.
   gasp::SuperpixelParams coarse = gasp::lidarSuperpixelParams();
@@ -112,7 +139,7 @@ TEST_P(SimulatedLidarPair, RegistersWithoutAPrior) {
   T_world_b.linear() = Eigen::AngleAxisd(m.yaw_deg * kDeg, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   const RangeScan a = gasp::sim::simulateLidarScan(room, sensor, T_world_a, 1, 0);
   const RangeScan b = gasp::sim::simulateLidarScan(room, sensor, T_world_b, 1, 1);
-  const gasp::RangePairResult rr = gasp::registerRangeScans(a, b, gasp::lidarPairParams());
+  const gasp::RangePairResult rr = gasp::registerRangeScans(a, b);
   const gasp::PairResult& r = rr.pair;
   ASSERT_TRUE(r.pose.success) << r.pose.reason;
   EXPECT_TRUE(rr.returns_refined) << rr.returns_reason;
@@ -126,10 +153,15 @@ TEST(RangeView, TheReturnsRefinementSaysWhyItFindsNoTerms) {
   Isometry3 T = Isometry3::Identity();
   T.translation() = Eigen::Vector3d(0.6, 0.0, 1.0);
   const RangeScan s = gasp::sim::simulateLidarScan(room, gasp::sim::lidarSensor(16), T);
-  // From the truth it stays there; 5 m off, no return lies within any gate of another.
-  const gasp::RegistrationResult near = gasp::refineOnReturns(s, s, Isometry3::Identity());
+  // From 10 cm and 2 deg off it comes back to the truth; 5 m off, no return lies within any gate
+  // of another.
+  Isometry3 off = Isometry3::Identity();
+  off.linear() = Eigen::AngleAxisd(2.0 * kDeg, Eigen::Vector3d(0.3, 0.2, 1.0).normalized()).toRotationMatrix();
+  off.translation() = Eigen::Vector3d(0.06, -0.05, 0.06);
+  const gasp::RegistrationResult near = gasp::refineOnReturns(s, s, off);
   ASSERT_TRUE(near.success) << near.reason;
   EXPECT_LT(near.T_target_source.translation().norm(), 5e-3);  // the returns are 2 cm noisy
+  EXPECT_LT(angleDeg(near.T_target_source), 0.05);
   Isometry3 far = Isometry3::Identity();
   far.translation() = Eigen::Vector3d(0.0, 0.0, 5.0);
   const gasp::RegistrationResult none = gasp::refineOnReturns(s, s, far);

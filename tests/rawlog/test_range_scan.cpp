@@ -207,7 +207,7 @@ bool registersToItselfMoved(const gasp::RangeScan& scan, const RealMotion& m) {
       const double az = std::remainder(moved.azimuth_rad[static_cast<std::size_t>(c)], 2 * M_PI) * 180 / M_PI;
       if (az >= m.cut_from_deg && az < m.cut_to_deg) moved.range_m.col(c).setTo(0.0f);
     }
-  const gasp::RangePairResult r = gasp::registerRangeScans(scan, moved, gasp::lidarPairParams());
+  const gasp::RangePairResult r = gasp::registerRangeScans(scan, moved);
   if (!r.pair.pose.success) {
     std::printf("%s: no estimate (%s)\n", m.name, r.pair.pose.reason.c_str());
     return false;
@@ -236,6 +236,13 @@ const RealMotion kRealMotions[] = {
     {"a half turn with half of the moved sweep cut away", 0.2, 0.0, 0.0, 180.0, 0.0, -90.0, 90.0},
 };
 
+/// How many of kRealMotions give a claimed pose (each claimed one is checked).
+int claimedMotions(const gasp::RangeScan& scan) {
+  int claimed = 0;
+  for (const RealMotion& m : kRealMotions) claimed += registersToItselfMoved(scan, m) ? 1 : 0;
+  return claimed;
+}
+
 }  // namespace
 
 // Each real sample against itself under 12 known motions: every claimed pose within 2 cm / 0.2 deg
@@ -244,20 +251,14 @@ TEST(RangeScan, MrptsRealRotatingScanRegistersToItselfUnderKnownMotions) {
   if (!std::filesystem::exists(kRotating)) GTEST_SKIP() << kRotating << " not found (package mrpt-common)";
   const auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservationRotatingScan>(firstObject(kRotating));
   ASSERT_TRUE(scan);
-  const gasp::RangeScan r = gasp::rangeScanFrom(*scan);
-  int claimed = 0;
-  for (const RealMotion& m : kRealMotions) claimed += registersToItselfMoved(r, m) ? 1 : 0;
-  EXPECT_GE(claimed, 11) << "of 12 motions";
+  EXPECT_GE(claimedMotions(gasp::rangeScanFrom(*scan)), 11) << "of 12 motions";
 }
 
 TEST(RangeScan, MrptsRealVelodyneScanRegistersToItselfUnderKnownMotions) {
   if (!std::filesystem::exists(kVelodyne)) GTEST_SKIP() << kVelodyne << " not found (package mrpt-common)";
   const auto velodyne = std::dynamic_pointer_cast<mrpt::obs::CObservationVelodyneScan>(firstObject(kVelodyne));
   ASSERT_TRUE(velodyne);
-  const gasp::RangeScan r = gasp::rangeScanFrom(*velodyne);
-  int claimed = 0;
-  for (const RealMotion& m : kRealMotions) claimed += registersToItselfMoved(r, m) ? 1 : 0;
-  EXPECT_GE(claimed, 11) << "of 12 motions";
+  EXPECT_GE(claimedMotions(gasp::rangeScanFrom(*velodyne)), 11) << "of 12 motions";
 }
 
 TEST(RangeScan, AMovedScanKeepsEveryPointItCanPlace) {
@@ -304,6 +305,12 @@ TEST(RangeScan, GaspSimulateWritesALidarSequenceThatReadsBack) {
     EXPECT_EQ(scan->sensorLabel, "LIDAR");
     const gasp::RangeScan read = gasp::rangeScanFrom(*scan);
     EXPECT_NEAR(read.timestamp, truth[i].timestamp, 1e-6);
+    // The LiDAR sits at the path's camera: its x along the optical axis, its z up the image.
+    const gasp::Isometry3& T_world_camera = simulation.path().poses[i].T_world_camera;
+    const Eigen::Matrix3d R_camera_lidar = T_world_camera.linear().transpose() * truth[i].T_world_camera.linear();
+    EXPECT_LT((R_camera_lidar.col(0) - Eigen::Vector3d(0, 0, 1)).norm(), 1e-5) << R_camera_lidar;
+    EXPECT_LT((R_camera_lidar.col(2) - Eigen::Vector3d(0, -1, 0)).norm(), 1e-5) << R_camera_lidar;
+    EXPECT_LT((T_world_camera.translation() - truth[i].T_world_camera.translation()).norm(), 1e-5);
     // The simulator's own sweep at the ground-truth pose (same seed and frame): the same returns,
     // within the rawlog's 2 mm range units.
     const gasp::RangeScan made = gasp::sim::simulateLidarScan(simulation.scene(), gasp::sim::lidarSensor(16),

@@ -59,38 +59,83 @@ void RangeScan::setLayout(const std::vector<double>& elevation_deg_by_laser, std
   ray.release();
 }
 
-RangeScan movedScan(const RangeScan& scan, const Isometry3& T_new_old) {
+void validateLayout(const RangeScan& scan, const std::string& who) {
   const int rows = scan.range_m.rows, cols = scan.range_m.cols;
-  if (cols < 2 || rows < 1 || scan.azimuth_rad.size() != static_cast<std::size_t>(cols) ||
-      scan.elevation_rad.size() != static_cast<std::size_t>(rows))
-    throw Error("movedScan: the scan needs two columns or more, with an elevation per row and an azimuth per column");
+  if (scan.range_m.type() != CV_32FC1 || rows < 1 || cols < 2)
+    throw Error(who + ": the range image must be CV_32FC1 with at least one row and two columns");
+  if (scan.elevation_rad.size() != static_cast<std::size_t>(rows) || scan.azimuth_rad.size() != static_cast<std::size_t>(cols))
+    throw Error(who + ": " + std::to_string(scan.elevation_rad.size()) + " elevations and " +
+                std::to_string(scan.azimuth_rad.size()) + " azimuths for a " + std::to_string(rows) + " x " +
+                std::to_string(cols) + " range image");
+  for (std::size_t i = 0; i < scan.elevation_rad.size(); ++i)
+    if (!(std::abs(scan.elevation_rad[i]) <= M_PI / 2) || (i > 0 && !(scan.elevation_rad[i] > scan.elevation_rad[i - 1])))
+      throw Error(who + ": the elevations must be within +-90 deg and strictly ascending (row " + std::to_string(i) + ")");
+  const double step = std::remainder(scan.azimuth_rad[1] - scan.azimuth_rad[0], 2.0 * M_PI);
+  if (!(std::abs(step) > 0.0)) throw Error(who + ": the first two columns have the same azimuth (or one is not finite)");
+  for (std::size_t i = 1; i < scan.azimuth_rad.size(); ++i)
+    if (!(std::abs(std::remainder(scan.azimuth_rad[i] - scan.azimuth_rad[i - 1], 2.0 * M_PI) - step) <= 0.01 * std::abs(step)))
+      throw Error(who + ": the azimuths are not evenly spaced (column " + std::to_string(i) + ")");
+  if (!scan.ray.empty() && (scan.ray.type() != CV_32FC3 || scan.ray.rows != rows || scan.ray.cols != cols))
+    throw Error(who + ": the ray table must be CV_32FC3 of the range image's size");
+}
+
+double azimuthStep(const RangeScan& scan) {
+  return std::remainder(scan.azimuth_rad.at(1) - scan.azimuth_rad.at(0), 2.0 * M_PI);
+}
+
+double rowPitch(const RangeScan& scan) {
+  const std::vector<double>& E = scan.elevation_rad;
+  return E.size() > 1 ? (E.back() - E.front()) / static_cast<double>(E.size() - 1) : std::abs(azimuthStep(scan));
+}
+
+bool coversWholeTurn(const RangeScan& scan) {
+  const double step = std::abs(azimuthStep(scan));
+  return scan.range_m.cols * step >= 2.0 * M_PI - 0.5 * step;
+}
+
+bool nearestCell(const RangeScan& scan, const Eigen::Vector3d& direction, int& row, int& col) {
+  const double horizontal = std::hypot(direction.x(), direction.y());
+  if (!(horizontal > 0.0 || std::abs(direction.z()) > 0.0)) return false;
+  const std::vector<double>& E = scan.elevation_rad;
+  const double el = std::atan2(direction.z(), horizontal), half_pitch = 0.5 * rowPitch(scan);
+  if (!(el >= E.front() - half_pitch && el <= E.back() + half_pitch)) return false;
+  const int rows = static_cast<int>(E.size()), cols = scan.range_m.cols;
+  int r = static_cast<int>(std::lower_bound(E.begin(), E.end(), el) - E.begin());
+  if (r == rows || (r > 0 && el - E[static_cast<std::size_t>(r - 1)] < E[static_cast<std::size_t>(r)] - el)) --r;
+  const double step = azimuthStep(scan), turn = 2.0 * M_PI / std::abs(step);  // columns per turn
+  double c = std::remainder(std::atan2(direction.y(), direction.x()) - scan.azimuth_rad[0], 2.0 * M_PI) / step;
+  if (c < -0.5) c += turn;
+  long k = std::lround(c);
+  if (coversWholeTurn(scan)) {
+    k %= cols;  // the few columns past a whole number of them fold onto column 0
+  } else if (k < 0 || k >= cols) {
+    return false;
+  }
+  row = r;
+  col = static_cast<int>(k);
+  return true;
+}
+
+RangeScan movedScan(const RangeScan& scan, const Isometry3& T_new_old) {
+  validateLayout(scan, "movedScan");
+  const int rows = scan.range_m.rows, cols = scan.range_m.cols;
   RangeScan out = scan;
   // New buffers: assigning zeros() to the copied headers would write into the input's images.
   out.range_m = cv::Mat(rows, cols, CV_32FC1, cv::Scalar(0.0f));
   out.ray = cv::Mat(rows, cols, CV_32FC3, cv::Scalar(0.0f, 0.0f, 0.0f));
-  const double step = std::remainder(scan.azimuth_rad[1] - scan.azimuth_rad[0], 2.0 * M_PI);
-  const std::vector<double>& E = scan.elevation_rad;
-  const double half_pitch = rows > 1 ? 0.5 * (E.back() - E.front()) / (rows - 1) : 0.5 * std::abs(step);
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c) {
       const float d = scan.range_m.at<float>(r, c);
-      if (!(d > 0.0f)) continue;
+      if (!(d > 0.0f) || !std::isfinite(d)) continue;
       const Eigen::Vector3d q = T_new_old * (static_cast<double>(d) * scan.direction(r, c));
       const double range = q.norm();
-      if (!(range > 0.0)) continue;
-      const double el = std::atan2(q.z(), std::hypot(q.x(), q.y()));
-      if (el < E.front() - half_pitch || el > E.back() + half_pitch) continue;
-      const auto above = std::lower_bound(E.begin(), E.end(), el);
-      int row = static_cast<int>(above - E.begin());
-      if (row == rows || (row > 0 && el - E[static_cast<std::size_t>(row - 1)] < E[static_cast<std::size_t>(row)] - el)) --row;
-      const long col = std::lround(std::remainder(std::atan2(q.y(), q.x()) - scan.azimuth_rad[0], 2.0 * M_PI) / step);
-      const long col_wrapped = col < 0 ? col + std::lround(2.0 * M_PI / std::abs(step)) : col;
-      if (col_wrapped < 0 || col_wrapped >= cols) continue;
-      float& cell = out.range_m.at<float>(row, static_cast<int>(col_wrapped));
+      int row = 0, col = 0;
+      if (!(range > 0.0) || !nearestCell(out, q, row, col)) continue;
+      float& cell = out.range_m.at<float>(row, col);
       if (cell > 0.0f && cell <= range) continue;
       cell = static_cast<float>(range);
       const Eigen::Vector3f u = (q / range).cast<float>();
-      out.ray.at<cv::Vec3f>(row, static_cast<int>(col_wrapped)) = cv::Vec3f(u.x(), u.y(), u.z());
+      out.ray.at<cv::Vec3f>(row, col) = cv::Vec3f(u.x(), u.y(), u.z());
     }
   return out;
 }

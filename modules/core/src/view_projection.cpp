@@ -35,6 +35,7 @@ void SphericalGrid::validate() const {
 
 ViewProjection ViewProjection::spherical(SphericalGrid grid) {
   grid.validate();
+  if (!grid.ray.empty()) grid.ray = grid.ray.clone();  // its own table: the grid is shared and const
   ViewProjection p;
   p.area_factor_ = static_cast<float>(std::abs(grid.azimuth_step_rad) * grid.rowPitch());
   p.pinhole_.width = grid.columns;
@@ -101,6 +102,8 @@ bool ViewProjection::project(const Eigen::Vector3d& p, double& u, double& v) con
     c = std::fmod(c, turn);
     if (c < -0.5) c += turn;
     if (c >= turn - 0.5) c -= turn;  // the seam: nearest to column 0
+    // A turn of a fractional number of columns: the gap past the last column is no pixel.
+    if (c > g.columns - 0.5) return false;
   } else {
     const double turn = 2.0 * M_PI / std::abs(g.azimuth_step_rad);
     // The azimuth difference is known up to whole turns: take the one nearest the grid's middle.

@@ -240,9 +240,9 @@ void loopClosureFields(P& p, F&& f) {
   f("retrieval_candidates", p.retrieval_candidates);
 }
 
-/// The pose-graph optimiser (pose_graph_optimizer.h).
+/// A rotating LiDAR's sweeps (range_view.h).
 template <class P, class F>
-void lidarFields(P& p, F&& f) {  // range_view.h: a rotating LiDAR's sweeps
+void lidarFields(P& p, F&& f) {
   f("patch_area_m2", p.patch_area_m2);
   f("range_sigma_m", p.range_sigma_m);
   f("returns_column_step", p.returns_column_step);
@@ -253,6 +253,7 @@ void lidarFields(P& p, F&& f) {  // range_view.h: a rotating LiDAR's sweeps
   f("returns_max_flatness", p.returns_max_flatness);
 }
 
+/// The pose-graph optimiser (pose_graph_optimizer.h).
 template <class P, class F>
 void poseGraphFields(P& p, F&& f) {
   f("max_iterations", p.max_iterations);

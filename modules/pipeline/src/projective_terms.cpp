@@ -39,9 +39,11 @@ std::vector<PointToPlane> projectiveTerms(const DepthView& source, const DepthVi
   const cv::Mat& lt = target.segmentation.labels;
   if (ls.empty() || lt.empty() || !T_target_source.matrix().allFinite()) return terms;
   const double cos_max = std::cos(p.max_normal_angle_deg * M_PI / 180.0);
-  // The gate widens by the target pixel's footprint on its surface (the sampled pixel's point can
-  // be that far from where the source point lands): depth * half a pixel's diagonal / cos(incidence).
-  const double half_pixel = p.pixel_footprint ? target.projection.halfPixelDiagonalRad() : 0.0;
+  const double max_d2 = p.max_distance_m * p.max_distance_m;
+  // With pixel_footprint the gate widens by the target pixel's footprint on its surface (the
+  // sampled pixel's point can be that far from where the source point lands): depth * half a
+  // pixel's diagonal / cos(incidence).
+  const double half_pixel = target.projection.halfPixelDiagonalRad();
   const double min_cos = std::cos(target.superpixels.max_incidence_deg * M_PI / 180.0);
   const Eigen::Matrix3d R = T_target_source.linear();
   for (int v = 0; v < ls.rows; v += p.pixel_step)
@@ -58,10 +60,14 @@ std::vector<PointToPlane> projectiveTerms(const DepthView& source, const DepthVi
       if (!isValidDepth(zt)) continue;
       const Eigen::Vector3d q = target.projection.unproject(ut, vt, zt);
       const Eigen::Vector3d& n_t = target.segmentation.patches[static_cast<std::size_t>(lb)].normal;
-      const double q_len = q.norm();
-      const double cos_i = q_len > 0.0 ? std::max(std::abs(n_t.dot(q)) / q_len, min_cos) : 1.0;
-      const double gate = p.max_distance_m + zt * half_pixel / cos_i;
-      if ((q - p_t).squaredNorm() > gate * gate) continue;
+      double gate2 = max_d2;
+      if (p.pixel_footprint) {
+        const double q_len = q.norm();
+        const double cos_i = q_len > 0.0 ? std::max(std::abs(n_t.dot(q)) / q_len, min_cos) : 1.0;
+        const double gate = p.max_distance_m + zt * half_pixel / cos_i;
+        gate2 = std::isfinite(gate) ? gate * gate : max_d2;  // a NaN normal widens nothing
+      }
+      if ((q - p_t).squaredNorm() > gate2) continue;
       const Eigen::Vector3d n_s = R * source.segmentation.patches[static_cast<std::size_t>(la)].normal;
       if (n_s.dot(n_t) < cos_max) continue;
       terms.push_back(PointToPlane{p_s, q, n_t.normalized(), 1.0});

@@ -16,45 +16,21 @@
 
 namespace gasp {
 
-namespace {
-
-/// The columns' signed azimuth step, checked to be even (within a hundredth of a step).
-double evenAzimuthStep(const RangeScan& scan) {
-  const std::vector<double>& a = scan.azimuth_rad;
-  if (a.size() < 2) return 2.0 * M_PI;  // one column: a whole turn's width is never binned
-  auto wrapped = [](double d) { return std::remainder(d, 2.0 * M_PI); };
-  const double step = wrapped(a[1] - a[0]);
-  if (!(std::abs(step) > 0.0)) throw Error("range scan: the first two columns have the same azimuth");
-  for (std::size_t i = 1; i < a.size(); ++i)
-    if (std::abs(wrapped(a[i] - a[i - 1]) - step) > 0.01 * std::abs(step))
-      throw Error("range scan: the azimuths are not evenly spaced (column " + std::to_string(i) + ")");
-  return step;
-}
-
-}  // namespace
-
 int rangeBinColumns(const RangeScan& scan) {
-  if (scan.elevation_rad.size() < 2 || scan.azimuth_rad.size() < 2) return 1;
-  const double pitch = (scan.elevation_rad.back() - scan.elevation_rad.front()) / static_cast<double>(scan.elevation_rad.size() - 1);
-  const double step = std::abs(std::remainder(scan.azimuth_rad[1] - scan.azimuth_rad[0], 2.0 * M_PI));
-  if (!(step > 0.0) || !(pitch > 0.0)) return 1;
-  return std::max(1, static_cast<int>(std::lround(pitch / step)));
+  validateLayout(scan, "range scan");
+  return std::max(1, static_cast<int>(std::lround(rowPitch(scan) / std::abs(azimuthStep(scan)))));
 }
 
-std::pair<cv::Mat, ViewProjection> binRangeScan(const RangeScan& scan, const SmoothSurfaceParams& link) {
+std::pair<cv::Mat, ViewProjection> binRangeScan(const RangeScan& scan, const SuperpixelParams& params) {
+  validateLayout(scan, "range scan");
   const int rows = scan.range_m.rows, cols = scan.range_m.cols;
-  if (scan.range_m.type() != CV_32FC1 || rows < 1 || cols < 1)
-    throw Error("range scan: the range image must be CV_32FC1 with at least one row and column");
-  if (scan.elevation_rad.size() != static_cast<std::size_t>(rows) || scan.azimuth_rad.size() != static_cast<std::size_t>(cols))
-    throw Error("range scan: " + std::to_string(scan.elevation_rad.size()) + " elevations and " +
-                std::to_string(scan.azimuth_rad.size()) + " azimuths for a " + std::to_string(rows) + " x " +
-                std::to_string(cols) + " range image");
-  const double step = evenAzimuthStep(scan);
+  const double step = azimuthStep(scan);
   const int b = rangeBinColumns(scan);
-  // A whole turn keeps whole bins (the few columns past the last one would overlap column 0's
-  // azimuth); a partial sweep keeps its last, narrower bin.
-  const bool whole_turn = cols * std::abs(step) >= 2.0 * M_PI - 0.5 * std::abs(step);
-  const int bins = whole_turn ? std::max(1, cols / b) : (cols + b - 1) / b;
+  // A whole turn keeps whole bins, at most a turn of them (the columns past the last one would
+  // overlap column 0's azimuth); a partial sweep keeps its last, narrower bin.
+  const int bins = coversWholeTurn(scan)
+                       ? std::max(1, std::min(cols / b, static_cast<int>(std::floor(2.0 * M_PI / (b * std::abs(step)) + 0.5))))
+                       : (cols + b - 1) / b;
   SphericalGrid g;
   g.elevation_rad = scan.elevation_rad;
   g.azimuth_step_rad = step * b;
@@ -62,7 +38,10 @@ std::pair<cv::Mat, ViewProjection> binRangeScan(const RangeScan& scan, const Smo
   g.columns = bins;
   g.ray = cv::Mat::zeros(rows, bins, CV_32FC3);
   cv::Mat range = cv::Mat::zeros(rows, bins, CV_32FC1);
-  const float abs_m = static_cast<float>(link.discontinuity_abs_m), rel = static_cast<float>(link.discontinuity_rel);
+  // A bin's returns on its nearest surface: within the range noise, plus what a surface seen at
+  // up to max_incidence_deg spans across the bin (range x bin angle x tan(incidence)).
+  const double spread = b * std::abs(step) * std::tan(params.max_incidence_deg * M_PI / 180.0);
+  const double abs_m = params.surfaces.discontinuity_abs_m;
   for (int r = 0; r < rows; ++r) {
     const float* in = scan.range_m.ptr<float>(r);
     for (int c = 0; c < bins; ++c) {
@@ -71,17 +50,14 @@ std::pair<cv::Mat, ViewProjection> binRangeScan(const RangeScan& scan, const Smo
       for (int k = c0; k < c1; ++k)
         if (in[k] > 0.0f && std::isfinite(in[k])) nearest = std::min(nearest, in[k]);
       if (!std::isfinite(nearest)) continue;
-      const float reach = abs_m + rel * nearest * nearest;
+      const float reach = static_cast<float>(abs_m + spread * nearest);
       Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      int n = 0;
       for (int k = c0; k < c1; ++k)
-        if (in[k] > 0.0f && in[k] - nearest <= reach) sum += static_cast<double>(in[k]) * scan.direction(r, k);
+        if (in[k] > 0.0f && in[k] - nearest <= reach) sum += static_cast<double>(in[k]) * scan.direction(r, k), ++n;
       const double len = sum.norm();
       if (!(len > 0.0)) continue;
-      // The mean point: its range along its own ray (the sum's length over the count would be
-      // the same direction; only the length differs).
-      int n = 0;
-      for (int k = c0; k < c1; ++k) n += (in[k] > 0.0f && in[k] - nearest <= reach) ? 1 : 0;
-      range.at<float>(r, c) = static_cast<float>(len / n);
+      range.at<float>(r, c) = static_cast<float>(len / n);  // the mean point's range, on its own ray
       const Eigen::Vector3d u = sum / len;
       g.ray.at<cv::Vec3f>(r, c) = cv::Vec3f(static_cast<float>(u.x()), static_cast<float>(u.y()), static_cast<float>(u.z()));
     }
@@ -90,7 +66,7 @@ std::pair<cv::Mat, ViewProjection> binRangeScan(const RangeScan& scan, const Smo
 }
 
 DepthView makeRangeView(const RangeScan& scan, const SuperpixelParams& params) {
-  auto [range, projection] = binRangeScan(scan, params.surfaces);
+  auto [range, projection] = binRangeScan(scan, params);
   return makeDepthView(range, projection, params);
 }
 
@@ -109,11 +85,12 @@ void validate(const ReturnsRefineParams& r) {
   };
   require(!r.gates_m.empty(), "the returns' gates must not be empty");
   for (const double g : r.gates_m) require(g > 0 && std::isfinite(g), "the returns' gates must be > 0 and finite");
-  require(r.column_step >= 1 && r.look_up_columns >= 0 && r.max_rounds >= 1,
-          "returns_column_step and returns_max_rounds must be >= 1, returns_look_up_columns >= 0");
+  require(r.column_step >= 1 && r.max_rounds >= 1 && r.max_rounds <= 1000,
+          "returns_column_step must be >= 1 and returns_max_rounds in [1, 1000]");
+  require(r.look_up_columns >= 0 && r.look_up_columns <= 100, "returns_look_up_columns must be in [0, 100]");
   require(r.converged_m >= 0 && std::isfinite(r.converged_m), "returns_converged_m must be >= 0 and finite");
-  require(r.normal_half_width >= 1 && r.max_flatness > 0 && r.max_flatness <= 1,
-          "returns_normal_half_width must be >= 1 and returns_max_flatness in (0, 1]");
+  require(r.normal_half_width >= 1 && r.normal_half_width <= 100 && r.max_flatness > 0 && r.max_flatness <= 1,
+          "returns_normal_half_width must be in [1, 100] and returns_max_flatness in (0, 1]");
 }
 
 ReturnsRefineParams returnsRefineParams(const LidarParams& p) {
@@ -189,12 +166,10 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 /// A sweep's returns as points with normals, and the look-up of the return a point falls on.
 class ReturnSurface {
  public:
-  ReturnSurface(const RangeScan& scan, const ReturnsRefineParams& p) : scan_(scan) {
-    rows_ = scan.range_m.rows, cols_ = scan.range_m.cols;
-    step_ = cols_ > 1 ? std::remainder(scan.azimuth_rad[1] - scan.azimuth_rad[0], 2.0 * M_PI) : 2.0 * M_PI;
-    const std::vector<double>& E = scan.elevation_rad;
-    pitch_ = rows_ > 1 ? (E.back() - E.front()) / (rows_ - 1) : std::abs(step_);
-    half_cell_rad_ = 0.5 * std::hypot(pitch_, step_);
+  /// `scan` passed validateLayout().
+  ReturnSurface(const RangeScan& scan, const ReturnsRefineParams& p)
+      : scan_(scan), rows_(scan.range_m.rows), cols_(scan.range_m.cols), whole_turn_(coversWholeTurn(scan)) {
+    half_cell_rad_ = 0.5 * std::hypot(rowPitch(scan), azimuthStep(scan));
     const double nan = std::numeric_limits<double>::quiet_NaN();
     point_.assign(static_cast<std::size_t>(rows_) * cols_, Eigen::Vector3d::Constant(nan));
     normal_.assign(point_.size(), Eigen::Vector3d::Zero());
@@ -208,23 +183,17 @@ class ReturnSurface {
 
   /// The return with a normal nearest in direction to `q` (sensor frame): in the row of the
   /// nearest elevation, the nearest column within `reach` columns (a sweep may leave every other
-  /// column empty, a dual-return VLP-16's does). Its cell index, or -1.
+  /// column empty, a dual-return VLP-16's does; across the seam of a whole turn). Its cell index,
+  /// or -1.
   int lookUp(const Eigen::Vector3d& q, int reach) const {
-    const double horizontal = std::hypot(q.x(), q.y());
-    if (!(horizontal > 0.0)) return -1;
-    const std::vector<double>& E = scan_.elevation_rad;
-    const double el = std::atan2(q.z(), horizontal);
-    if (el < E.front() - 0.5 * pitch_ || el > E.back() + 0.5 * pitch_) return -1;
-    const auto above = std::lower_bound(E.begin(), E.end(), el);
-    int row = static_cast<int>(above - E.begin());
-    if (row == rows_ || (row > 0 && el - E[static_cast<std::size_t>(row - 1)] < E[static_cast<std::size_t>(row)] - el)) --row;
-    const double c = std::remainder(std::atan2(q.y(), q.x()) - scan_.azimuth_rad[0], 2.0 * M_PI) / step_;
-    const double turn = 2.0 * M_PI / std::abs(step_);
-    const long nearest = std::lround(c < -0.5 ? c + turn : c);
+    int row = 0, nearest = 0;
+    if (!nearestCell(scan_, q, row, nearest)) return -1;
     for (int k = 0; k <= reach; ++k)
-      for (const long col : {nearest - k, nearest + k}) {
+      for (const int side : {-1, 1}) {
+        int col = nearest + side * k;
+        if (whole_turn_) col = ((col % cols_) + cols_) % cols_;
         if (col < 0 || col >= cols_) continue;
-        const std::size_t i = index(row, static_cast<int>(col));
+        const std::size_t i = index(row, col);
         if (!normal_[i].isZero()) return static_cast<int>(i);
         if (k == 0) break;
       }
@@ -267,7 +236,8 @@ class ReturnSurface {
 
   const RangeScan& scan_;
   int rows_ = 0, cols_ = 0;
-  double step_ = 0.0, pitch_ = 0.0, half_cell_rad_ = 0.0;
+  bool whole_turn_ = false;
+  double half_cell_rad_ = 0.0;
   std::vector<Eigen::Vector3d> point_, normal_;
 };
 
@@ -278,11 +248,10 @@ RegistrationResult refineOnReturns(const RangeScan& source, const RangeScan& tar
   RegistrationResult result;
   result.T_target_source = T_target_source;
   validate(p);
-  if (target.range_m.cols < 2 || target.azimuth_rad.size() != static_cast<std::size_t>(target.range_m.cols) ||
-      target.elevation_rad.size() != static_cast<std::size_t>(target.range_m.rows)) {
-    result.reason = "returns refinement: the target sweep has no range image";
-    return result;
-  }
+  if (!(max_incidence_deg > 0.0 && max_incidence_deg < 90.0))
+    throw Error("returns refinement: max_incidence_deg must be in (0, 90)");
+  validateLayout(source, "returns refinement: the source sweep");
+  validateLayout(target, "returns refinement: the target sweep");
   const ReturnSurface surface(target, p);
   std::vector<Eigen::Vector3d> points;
   for (int r = 0; r < source.range_m.rows; ++r)
@@ -314,7 +283,7 @@ RegistrationResult refineOnReturns(const RangeScan& source, const RangeScan& tar
       return result;
     }
     RegistrationResult next = refinePose({}, T, solver, terms);
-    if (!next.success && !next.degenerate) {
+    if (!next.success) {  // a failed or degenerate solve: its free directions would drift on
       result.reason = "returns refinement: " + next.reason;
       result.success = false;
       return result;
@@ -352,6 +321,10 @@ RangePairResult registerRangeScans(const RangeScan& source, const RangeScan& tar
   out.pair.pose.information_eigenvalues = refined.information_eigenvalues;
   out.pair.edge_information = informationWithModelError(refined.information, params.certify.model_error);
   return out;
+}
+
+RangePairResult registerRangeScans(const RangeScan& source, const RangeScan& target, const LidarParams& lidar) {
+  return registerRangeScans(source, target, lidarPairParams(lidar), returnsRefineParams(lidar));
 }
 
 }  // namespace gasp

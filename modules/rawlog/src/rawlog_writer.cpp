@@ -60,9 +60,12 @@ RawlogWriter::~RawlogWriter() {
 RawlogWriter::RawlogWriter(RawlogWriter&&) noexcept = default;
 RawlogWriter& RawlogWriter::operator=(RawlogWriter&&) noexcept = default;
 
+void RawlogWriter::checkOpen() const {
+  if (!impl_ || !impl_->stream || impl_->file->committed()) throw Error("rawlog '" + path_ + "': writer already closed");
+}
+
 void RawlogWriter::write(const RgbdFrame& frame) {
-  if (!impl_ || !impl_->stream) throw Error("rawlog '" + path_ + "': writer already closed");
-  if (impl_->file->committed()) throw Error("rawlog '" + path_ + "': writer already closed");
+  checkOpen();
   auto obs = observationFromFrame(frame);
 
   if (options_.external_storage) {
@@ -87,8 +90,7 @@ void RawlogWriter::write(const RgbdFrame& frame) {
 }
 
 void RawlogWriter::write(const RangeScan& sweep, const std::string& sensor_label) {
-  if (!impl_ || !impl_->stream) throw Error("rawlog '" + path_ + "': writer already closed");
-  if (impl_->file->committed()) throw Error("rawlog '" + path_ + "': writer already closed");
+  checkOpen();
   append(std::make_shared<mrpt::obs::CObservationRotatingScan>(toRotatingScan(sweep, sensor_label)));
 }
 

@@ -107,6 +107,7 @@ int splitLeftovers(cv::Mat& labels, int count, const OrganizedPointCloud& cloud,
   const int w = cloud.width, n_px = w * cloud.height;
   int* L = labels.ptr<int>(0);
   const auto* pixel_normals = reinterpret_cast<const Eigen::Vector3f*>(normals.normals.ptr<float>(0));
+  const detail::PixelArea pixel_area(k, min_cos);
   std::vector<int> group, stack;
   for (int i0 = 0; i0 < n_px; ++i0) {
     if (L[i0] >= 0 || !links.valid(i0)) continue;
@@ -121,7 +122,7 @@ int splitLeftovers(cv::Mat& labels, int count, const OrganizedPointCloud& cloud,
       stack.pop_back();
       group.push_back(i);
       const Eigen::Vector3f& n = pixel_normals[i];
-      area += detail::pixelArea(cloud.points[static_cast<std::size_t>(i)], n, k, min_cos);
+      area += pixel_area(cloud.points[static_cast<std::size_t>(i)], n);
       u0 = std::min(u0, i % w), u1 = std::max(u1, i % w), v0 = std::min(v0, i / w), v1 = std::max(v1, i / w);
       links.forEachNeighbour(i, [&](int j) {
         if (L[j] == -1) L[j] = -2, stack.push_back(j);

@@ -23,9 +23,4 @@ struct PixelArea {
   }
 };
 
-inline float pixelArea(const Eigen::Vector3f& p, const Eigen::Vector3f& n, const ViewProjection& k,
-                       float min_cos) {
-  return PixelArea(k, min_cos)(p, n);
-}
-
 }  // namespace gasp::detail

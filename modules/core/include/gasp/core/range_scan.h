@@ -37,12 +37,32 @@ struct RangeScan {
   void setLayout(const std::vector<double>& elevation_deg_by_laser, std::vector<double> azimuths_rad);
 };
 
+/// Throws gasp::Error, its message starting with `who`, unless the scan is a range image GASP can
+/// use: range_m CV_32FC1 with at least one row and two columns; one finite elevation per row,
+/// strictly ascending, within +-90 deg; one finite azimuth per column, evenly spaced (within 1 %
+/// of a non-zero step, differences taken within a turn); the ray table empty or CV_32FC3 of the
+/// image's size. Columns past a whole turn (a sweep that overlaps itself) are allowed: look-ups
+/// never reach them, and binning drops them.
+void validateLayout(const RangeScan& scan, const std::string& who);
+
+/// The functions below assume validateLayout() passed.
+/// The signed azimuth step between columns (negative for a clockwise sweep) [rad].
+double azimuthStep(const RangeScan& scan);
+/// The rows' mean elevation step [rad]; a single row: |azimuthStep|.
+double rowPitch(const RangeScan& scan);
+/// True when the columns cover a whole turn (within half a step): azimuths wrap around.
+bool coversWholeTurn(const RangeScan& scan);
+/// The cell nearest a direction in the sensor frame: the row of the nearest elevation (false
+/// beyond half a pitch from the end rows), the column of the nearest azimuth (wrapped on a whole
+/// turn; false outside a partial sweep). False for the zero vector.
+bool nearestCell(const RangeScan& scan, const Eigen::Vector3d& direction, int& row, int& col);
+
 /// The same returns seen by the sensor moved by T_new_old (a point p becomes T_new_old p): each
 /// put in the cell of its new direction (the row of the nearest elevation, the column of the
 /// nearest azimuth; azimuths evenly spaced) with its own ray, the nearer where two share a cell;
 /// returns beyond half a pitch from the end rows or outside the columns are lost. A real sweep
-/// against itself under a known motion (tests, benchmarks). Throws gasp::Error for fewer than two
-/// columns.
+/// against itself under a known motion (tests, benchmarks). Throws gasp::Error for a scan that is
+/// not a range image (validateLayout).
 RangeScan movedScan(const RangeScan& scan, const Isometry3& T_new_old);
 
 /// The lasers' elevations [deg] of a LiDAR by MRPT's lidarModel name, in laser-id order (the

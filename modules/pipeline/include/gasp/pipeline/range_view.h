@@ -19,13 +19,15 @@
 
 namespace gasp {
 
-/// Columns per cell: the rows' mean pitch over the columns' step, rounded, at least 1.
+/// Columns per cell: the rows' mean pitch over the columns' step, rounded, at least 1. Throws
+/// gasp::Error for a scan that is not a range image (validateLayout, range_scan.h).
 int rangeBinColumns(const RangeScan& scan);
 
-/// The binned range image [m] (CV_32FC1, 0 = no return) and its spherical grid; `link` gives the
-/// discontinuity rule of the nearest surface. Throws gasp::Error for a scan without rows or
-/// columns, elevations that do not ascend, or azimuths that are not evenly spaced.
-std::pair<cv::Mat, ViewProjection> binRangeScan(const RangeScan& scan, const SmoothSurfaceParams& link);
+/// The binned range image [m] (CV_32FC1, 0 = no return) and its spherical grid. A bin's nearest
+/// surface: its returns within params.surfaces.discontinuity_abs_m plus what a surface seen at
+/// params.max_incidence_deg spans across the bin. Throws gasp::Error for a scan that is not a
+/// range image (validateLayout).
+std::pair<cv::Mat, ViewProjection> binRangeScan(const RangeScan& scan, const SuperpixelParams& params);
 
 /// The segmented view of a sweep (sensor frame: MRPT's LiDAR frame, x ahead, z up). `params`
 /// must have processing_step_px = 1 (lidarSuperpixelParams() are a LiDAR's).
@@ -102,8 +104,12 @@ struct RangePairResult {
   double segmentation_ms = 0.0, returns_ms = 0.0;  ///< both views' segmentation; the returns' rounds
 };
 /// `returns`: the rounds' own settings; their solver and incidence limit are the pair's
-/// (params.refine.solver, params.segment.max_incidence_deg).
+/// (params.refine.solver, params.segment.max_incidence_deg). The result's pose, information and
+/// edge information are the returns' rounds'; its other fields (inliers, visibility, timings)
+/// describe the binned views' pose.
 RangePairResult registerRangeScans(const RangeScan& source, const RangeScan& target, const PairParams& params,
-                                   const ReturnsRefineParams& returns = {});
+                                   const ReturnsRefineParams& returns);
+/// The same with a LiDAR's parameters: lidarPairParams(lidar) and returnsRefineParams(lidar).
+RangePairResult registerRangeScans(const RangeScan& source, const RangeScan& target, const LidarParams& lidar = {});
 
 }  // namespace gasp

@@ -67,6 +67,7 @@ class RawlogWriter {
   int uncaught_at_construction_ = 0;  ///< std::uncaught_exceptions() then
   RawlogWriterOptions options_;
   std::size_t frames_written_ = 0;
+  void checkOpen() const;  ///< throws when closed
   void append(const std::shared_ptr<mrpt::obs::CObservation>& observation);
   std::unique_ptr<Impl> impl_;
 };
