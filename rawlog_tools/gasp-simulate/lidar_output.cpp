@@ -30,7 +30,7 @@ LidarSequenceSummary writeLidarSequence(const sim::SimulationOptions& options, c
     truth.push_back({pose.timestamp, T_world_lidar});
   }
   writer.close();
-  writeTumTrajectory(summary.groundtruth, truth, "# ground truth of the simulated LiDAR (T_world_lidar), gasp-simulate");
+  writeTumTrajectory(summary.groundtruth, truth, "ground truth of the simulated LiDAR (T_world_lidar), gasp-simulate");
   summary.sweeps = simulation.size();
   summary.returns_per_sweep = summary.sweeps > 0 ? returns / summary.sweeps : 0.0;
   return summary;

@@ -1,0 +1,116 @@
+// Pairs of a simulated LiDAR sequence registered with no prior (registerRangeScans), scored
+// against the exact ground truth: pairs 1, 5 and 10 sweeps apart by default.
+//   build/ci/bin/gasp-simulate --sensor lidar16 --frames 60 --rate 10 --out /tmp/lidar16
+//   build/ci/bin/bench_lidar_sequence /tmp/lidar16 [--skips 1,5,10] [--threads 2]
+// A claimed pose within 5 cm / 0.5 deg of the truth is right (the bound), any other
+// claimed pose is wrong; the rest give no estimate. Prints one table row per skip.
+#include <tbb/global_control.h>
+
+#include <mrpt/obs/CObservation.h>
+#include <mrpt/obs/CObservationRotatingScan.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "gasp/core/error.h"
+#include "gasp/core/tum_trajectory.h"
+#include "gasp/pipeline/range_view.h"
+#include "gasp/rawlog/range_scan.h"
+#include "gasp/rawlog/rawlog_objects.h"
+
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+std::vector<gasp::RangeScan> readSweeps(const std::string& path) {
+  std::vector<gasp::RangeScan> sweeps;
+  gasp::RawlogObjects objects(path);
+  while (const auto object = objects.next())
+    if (const auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservationRotatingScan>(object))
+      sweeps.push_back(gasp::rangeScanFrom(*scan));
+  if (sweeps.empty()) throw gasp::Error("'" + path + "' holds no CObservationRotatingScan");
+  return sweeps;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string dir;
+  std::vector<int> skips = {1, 5, 10};
+  int threads = 2;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--skips") == 0 && i + 1 < argc) {
+      skips.clear();
+      std::stringstream list(argv[++i]);
+      for (std::string item; std::getline(list, item, ',');) skips.push_back(std::atoi(item.c_str()));
+    } else if (std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
+      threads = std::max(1, std::atoi(argv[++i]));
+    } else if (dir.empty() && argv[i][0] != '-') {
+      dir = argv[i];
+    } else {
+      std::fprintf(stderr, "usage: bench_lidar_sequence DIR [--skips 1,5,10] [--threads N]\n");
+      return 2;
+    }
+  }
+  if (dir.empty() || std::any_of(skips.begin(), skips.end(), [](int k) { return k < 1; })) {
+    std::fprintf(stderr, "usage: bench_lidar_sequence DIR [--skips 1,5,10] [--threads N] (skips >= 1)\n");
+    return 2;
+  }
+  const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  try {
+    const std::vector<gasp::RangeScan> sweeps = readSweeps(dir + "/lidar.rawlog");
+    const gasp::Trajectory truth = gasp::readTumTrajectory(dir + "/lidar_groundtruth.txt");
+    if (truth.size() != sweeps.size())
+      throw gasp::Error(dir + ": " + std::to_string(sweeps.size()) + " sweeps but " + std::to_string(truth.size()) +
+                        " ground-truth poses");
+    std::printf("%s: %zu sweeps of %s, %zu returns each on average\n\n", dir.c_str(), sweeps.size(),
+                sweeps.front().model.c_str(), [&] {
+                  std::size_t n = 0;
+                  for (const auto& s : sweeps) n += s.returnCount();
+                  return n / sweeps.size();
+                }());
+    std::printf("| Skip | Pairs | Right (5 cm, 0.5 deg) | Wrong | No estimate | Median error | Worst right | Median time [ms] |\n");
+    std::printf("|---|---|---|---|---|---|---|---|\n");
+    for (const int k : skips) {
+      int pairs = 0, right = 0, wrong = 0;
+      std::vector<double> cm, deg, ms;
+      double worst_cm = 0.0, worst_deg = 0.0;
+      for (std::size_t i = 0; i + static_cast<std::size_t>(k) < sweeps.size(); ++i) {
+        const std::size_t j = i + static_cast<std::size_t>(k);
+        const auto t0 = std::chrono::steady_clock::now();
+        const gasp::RangePairResult r = gasp::registerRangeScans(sweeps[i], sweeps[j]);
+        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        ++pairs;
+        if (!r.pair.pose.success) continue;
+        const gasp::Isometry3 T_true = truth[j].T_world_camera.inverse() * truth[i].T_world_camera;
+        const gasp::Isometry3 e = T_true.inverse() * r.pair.pose.T_target_source;
+        const double e_cm = 100.0 * e.translation().norm(), e_deg = Eigen::AngleAxisd(e.linear()).angle() * 180.0 / M_PI;
+        if (e_cm <= 5.0 && e_deg <= 0.5) {
+          ++right;
+          cm.push_back(e_cm), deg.push_back(e_deg);
+          worst_cm = std::max(worst_cm, e_cm), worst_deg = std::max(worst_deg, e_deg);
+        } else {
+          ++wrong;
+          std::printf("wrong pose: sweeps %zu -> %zu, %.2f cm, %.3f deg off\n", i, j, e_cm, e_deg);
+        }
+      }
+      std::printf("| %d | %d | %d | %d | %d | %.2f cm, %.3f deg | %.2f cm, %.3f deg | %.1f |\n", k, pairs, right, wrong,
+                  pairs - right - wrong, median(cm), median(deg), worst_cm, worst_deg, median(ms));
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
