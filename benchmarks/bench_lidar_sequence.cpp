@@ -1,7 +1,8 @@
 // Pairs of a simulated LiDAR sequence registered with no prior (registerRangeScans), scored
 // against the exact ground truth: pairs 1, 5 and 10 sweeps apart by default.
 //   build/ci/bin/gasp-simulate --sensor lidar16 --frames 60 --rate 10 --out /tmp/lidar16
-//   build/ci/bin/bench_lidar_sequence /tmp/lidar16 [--skips 1,5,10] [--threads 2]
+//   build/ci/bin/bench_lidar_sequence /tmp/lidar16 [--skips 1,5,10] [--threads 2] [--pair I,J]
+// --pair I,J: only that pair, with the pipeline's verdicts (inliers, support, certificate).
 // A claimed pose within 5 cm / 0.5 deg of the truth is right (the bound), any other
 // claimed pose is wrong; the rest give no estimate. Prints one table row per skip.
 #include <tbb/global_control.h>
@@ -49,11 +50,14 @@ int main(int argc, char** argv) {
   std::string dir;
   std::vector<int> skips = {1, 5, 10};
   int threads = 2;
+  int only_i = -1, only_j = -1;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--skips") == 0 && i + 1 < argc) {
       skips.clear();
       std::stringstream list(argv[++i]);
       for (std::string item; std::getline(list, item, ',');) skips.push_back(std::atoi(item.c_str()));
+    } else if (std::strcmp(argv[i], "--pair") == 0 && i + 1 < argc) {
+      if (std::sscanf(argv[++i], "%d,%d", &only_i, &only_j) != 2) only_i = -1;
     } else if (std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
       threads = std::max(1, std::atoi(argv[++i]));
     } else if (dir.empty() && argv[i][0] != '-') {
@@ -80,6 +84,21 @@ int main(int argc, char** argv) {
                   for (const auto& s : sweeps) n += s.returnCount();
                   return n / sweeps.size();
                 }());
+    if (only_i >= 0) {
+      if (only_i >= static_cast<int>(sweeps.size()) || only_j < 0 || only_j >= static_cast<int>(sweeps.size()))
+        throw gasp::Error("--pair: sweeps 0 to " + std::to_string(sweeps.size() - 1));
+      const auto i = static_cast<std::size_t>(only_i), j = static_cast<std::size_t>(only_j);
+      const gasp::RangePairResult r = gasp::registerRangeScans(sweeps[i], sweeps[j]);
+      const gasp::Isometry3 T_true = truth[j].T_world_camera.inverse() * truth[i].T_world_camera;
+      const gasp::Isometry3 e = T_true.inverse() * r.pair.pose.T_target_source;
+      std::printf("sweeps %zu -> %zu: success %d (%s), error %.2f cm %.3f deg\n", i, j, r.pair.pose.success,
+                  r.pair.pose.reason.c_str(), 100.0 * e.translation().norm(), Eigen::AngleAxisd(e.linear()).angle() * 180.0 / M_PI);
+      std::printf("associations %zu, inliers %d, guided support %d, dense terms %d, uniqueness log-ratio %.2f, "
+                  "visibility violations %.3f / %.3f, occluded %.3f, returns refined %d (%s)\n",
+                  r.pair.association.associations.size(), r.pair.pose.num_inliers, r.pair.guided_support, r.pair.dense_terms,
+                  r.pair.uniqueness_log_ratio, r.pair.visibility.violation_ratio, r.pair.visibility.violation_ratio_lesser, r.pair.visibility.occluded_ratio, r.returns_refined, r.returns_reason.c_str());
+      return 0;
+    }
     std::printf("| Skip | Pairs | Right (5 cm, 0.5 deg) | Wrong | No estimate | Median error | Worst right | Median time [ms] |\n");
     std::printf("|---|---|---|---|---|---|---|---|\n");
     for (const int k : skips) {
