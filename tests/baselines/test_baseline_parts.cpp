@@ -13,6 +13,8 @@
 #include "gasp/baselines/point_features.h"
 #include "gasp/baselines/sift_features.h"
 #include "gasp/core/error.h"
+#include "gasp/sim/lidar.h"
+#include "gasp/sim/scene.h"
 
 namespace gb = gasp::baselines;
 
@@ -139,4 +141,28 @@ TEST(MatchPicture, SideBySideWithColouredLines) {
   EXPECT_LT(mid[1], 100);
   EXPECT_THROW(gb::drawKeypointMatches(a, b, ma, mb, ma, {}, {}), gasp::Error);
   EXPECT_THROW(gb::drawKeypointMatches(a, b, ma, mb, ma, mb, {1, 1}), gasp::Error);
+}
+
+// FPFH + RANSAC on two simulated LiDAR sweeps of the room (registerSweepsWithBaseline): a pose
+// near the truth (RANSAC only: no refinement, so within a coarse bound), keypoints without pixels;
+// methods that need an image are refused.
+TEST(Baselines, FpfhRegistersTwoLidarSweeps) {
+  const gasp::sim::Scene room = gasp::sim::makeScene("room");
+  gasp::Isometry3 T_world_a = gasp::Isometry3::Identity();
+  T_world_a.translation() = Eigen::Vector3d(0.6, 0.0, 1.0);
+  gasp::Isometry3 T_world_b = T_world_a;
+  T_world_b.translation() += Eigen::Vector3d(0.3, 0.1, 0.0);
+  T_world_b.linear() = Eigen::AngleAxisd(20.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const gasp::sim::LidarSensor sensor = gasp::sim::lidarSensor(16);
+  const gasp::RangeScan a = gasp::sim::simulateLidarScan(room, sensor, T_world_a, 1, 0);
+  const gasp::RangeScan b = gasp::sim::simulateLidarScan(room, sensor, T_world_b, 1, 1);
+  const gb::BaselineResult r = gb::registerSweepsWithBaseline(a, b, gb::BaselineMethod::kFpfh);
+  ASSERT_TRUE(r.pose.success) << r.pose.reason;
+  ASSERT_FALSE(r.source.points.empty());
+  EXPECT_EQ(r.source.pixels.front().x, -1.0f);
+  const gasp::Isometry3 error = (T_world_b.inverse() * T_world_a).inverse() * r.pose.T_target_source;
+  EXPECT_LT(error.translation().norm(), 0.2);
+  EXPECT_LT(Eigen::AngleAxisd(error.linear()).angle() * 180.0 / M_PI, 5.0);
+  EXPECT_THROW(gb::registerSweepsWithBaseline(a, b, gb::BaselineMethod::kSift), gasp::Error);
+  EXPECT_THROW(gb::registerSweepsWithBaseline(a, b, gb::BaselineMethod::kColourShot), gasp::Error);
 }

@@ -47,7 +47,7 @@ pcl::IndicesPtr sampleKeypoints(const SurfaceCloud& s, const PointFeatureParams&
 
 template <typename Descriptor, std::size_t N>
 void collect(const SurfaceCloud& s, const pcl::Indices& keypoints, const pcl::PointCloud<Descriptor>& desc,
-             const float (Descriptor::*field)[N], const CameraIntrinsics& K, DescribedKeypoints& out) {
+             const float (Descriptor::*field)[N], const CameraIntrinsics* K, DescribedKeypoints& out) {
   std::vector<int> rows;
   for (std::size_t k = 0; k < keypoints.size(); ++k) {
     const auto& h = desc[k].*field;
@@ -70,8 +70,8 @@ void collect(const SurfaceCloud& s, const pcl::Indices& keypoints, const pcl::Po
     const Eigen::Vector3d pd(p.x, p.y, p.z);
     out.points.push_back(pd);
     out.normals.push_back(Eigen::Vector3d(n.normal_x, n.normal_y, n.normal_z).normalized());
-    double u = 0, v = 0;
-    K.project(pd, u, v);
+    double u = -1, v = -1;  // no image: (-1, -1)
+    if (K) K->project(pd, u, v);
     out.pixels.emplace_back(static_cast<float>(u), static_cast<float>(v));
   }
 }
@@ -79,7 +79,7 @@ void collect(const SurfaceCloud& s, const pcl::Indices& keypoints, const pcl::Po
 /// Runs a PCL feature estimator on the keypoints of the surface cloud and collects the result.
 template <typename Estimator, typename Descriptor, std::size_t N>
 void describe(Estimator& est, const SurfaceCloud& s, const pcl::IndicesPtr& keypoints, double radius_m,
-              const float (Descriptor::*field)[N], const CameraIntrinsics& K, DescribedKeypoints& out) {
+              const float (Descriptor::*field)[N], const CameraIntrinsics* K, DescribedKeypoints& out) {
   est.setInputCloud(s.points);
   est.setIndices(keypoints);
   est.setInputNormals(s.normals);
@@ -101,12 +101,11 @@ void validate(const PointFeatureParams& p) {
   if (!(p.shot_radius_m > p.surface.voxel_m)) throw Error("PointFeatureParams: shot_radius_m must exceed surface.voxel_m");
 }
 
-DescribedKeypoints describePointFeatures(const RgbdImage& view, PointFeatureType type, const PointFeatureParams& params) {
-  validate(params);
-  if (type == PointFeatureType::kColourShot && view.bgr.empty())
-    throw Error("colour SHOT needs the view's colour image (none given)");
-  const auto t0 = std::chrono::steady_clock::now();
-  const SurfaceCloud s = makeSurfaceCloud(view, params.surface);
+namespace {
+
+/// Keypoints and descriptors on a surface cloud; K projects them to pixels (null: none).
+DescribedKeypoints describeSurface(const SurfaceCloud& s, PointFeatureType type, const PointFeatureParams& params,
+                                   const CameraIntrinsics* K, std::chrono::steady_clock::time_point t0) {
   DescribedKeypoints out;
   out.descriptors.create(0, type == PointFeatureType::kFpfh ? 33 : type == PointFeatureType::kShot ? 352 : 1344, CV_32F);
   if (s.points->size() < 3) return out;
@@ -116,22 +115,40 @@ DescribedKeypoints describePointFeatures(const RgbdImage& view, PointFeatureType
   switch (type) {
     case PointFeatureType::kFpfh: {
       pcl::FPFHEstimationOMP<SurfacePoint, pcl::Normal, pcl::FPFHSignature33> est(threads);
-      describe(est, s, keypoints, params.fpfh_radius_m, &pcl::FPFHSignature33::histogram, view.intrinsics, out);
+      describe(est, s, keypoints, params.fpfh_radius_m, &pcl::FPFHSignature33::histogram, K, out);
       break;
     }
     case PointFeatureType::kShot: {
       pcl::SHOTEstimationOMP<SurfacePoint, pcl::Normal, pcl::SHOT352> est(threads);
-      describe(est, s, keypoints, params.shot_radius_m, &pcl::SHOT352::descriptor, view.intrinsics, out);
+      describe(est, s, keypoints, params.shot_radius_m, &pcl::SHOT352::descriptor, K, out);
       break;
     }
     case PointFeatureType::kColourShot: {
       pcl::SHOTColorEstimationOMP<SurfacePoint, pcl::Normal, pcl::SHOT1344> est(true, true, threads);
-      describe(est, s, keypoints, params.shot_radius_m, &pcl::SHOT1344::descriptor, view.intrinsics, out);
+      describe(est, s, keypoints, params.shot_radius_m, &pcl::SHOT1344::descriptor, K, out);
       break;
     }
   }
   out.describe_ms = msSince(t0);
   return out;
+}
+
+}  // namespace
+
+DescribedKeypoints describePointFeatures(const RgbdImage& view, PointFeatureType type, const PointFeatureParams& params) {
+  validate(params);
+  if (type == PointFeatureType::kColourShot && view.bgr.empty())
+    throw Error("colour SHOT needs the view's colour image (none given)");
+  const auto t0 = std::chrono::steady_clock::now();
+  return describeSurface(makeSurfaceCloud(view, params.surface), type, params, &view.intrinsics, t0);
+}
+
+DescribedKeypoints describePointFeatures(const std::vector<Eigen::Vector3f>& points, PointFeatureType type,
+                                         const PointFeatureParams& params) {
+  validate(params);
+  if (type == PointFeatureType::kColourShot) throw Error("colour SHOT needs colour; points have none");
+  const auto t0 = std::chrono::steady_clock::now();
+  return describeSurface(makeSurfaceCloud(points, params.surface), type, params, nullptr, t0);
 }
 
 }  // namespace gasp::baselines

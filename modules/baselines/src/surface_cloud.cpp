@@ -17,34 +17,10 @@ void validate(const SurfaceParams& p) {
   if (p.threads < 0) throw Error("SurfaceParams: threads must be >= 0");
 }
 
-SurfaceCloud makeSurfaceCloud(const RgbdImage& view, const SurfaceParams& params) {
-  validate(view);
-  validate(params);
-  pcl::PointCloud<SurfacePoint>::Ptr raw(new pcl::PointCloud<SurfacePoint>);
-  const auto& K = view.intrinsics;
-  raw->reserve(static_cast<std::size_t>(view.depth_m.total()));
-  for (int v = 0; v < view.depth_m.rows; ++v) {
-    const float* d = view.depth_m.ptr<float>(v);
-    const cv::Vec3b* c = view.bgr.empty() ? nullptr : view.bgr.ptr<cv::Vec3b>(v);
-    for (int u = 0; u < view.depth_m.cols; ++u) {
-      const float z = d[u];
-      if (!(z > 0) || !(z <= params.max_depth_m)) continue;  // also drops NaN
-      const Eigen::Vector3d p = K.unproject(u, v, z);
-      SurfacePoint q;
-      q.x = static_cast<float>(p.x());
-      q.y = static_cast<float>(p.y());
-      q.z = static_cast<float>(p.z());
-      if (c) {
-        q.b = c[u][0];
-        q.g = c[u][1];
-        q.r = c[u][2];
-      } else {
-        q.r = q.g = q.b = 0;
-      }
-      q.a = 255;
-      raw->push_back(q);
-    }
-  }
+namespace {
+
+/// Voxel grid, normals facing the sensor at the origin, points without a normal dropped.
+SurfaceCloud surfaceOf(const pcl::PointCloud<SurfacePoint>::Ptr& raw, const SurfaceParams& params) {
   SurfaceCloud s;
   if (raw->empty()) return s;
   pcl::VoxelGrid<SurfacePoint> grid;
@@ -74,6 +50,55 @@ SurfaceCloud makeSurfaceCloud(const RgbdImage& view, const SurfaceParams& params
   s.points = kept;
   s.tree->setInputCloud(s.points);
   return s;
+}
+
+}  // namespace
+
+SurfaceCloud makeSurfaceCloud(const std::vector<Eigen::Vector3f>& points, const SurfaceParams& params) {
+  validate(params);
+  pcl::PointCloud<SurfacePoint>::Ptr raw(new pcl::PointCloud<SurfacePoint>);
+  raw->reserve(points.size());
+  for (const Eigen::Vector3f& p : points) {
+    const float range = p.norm();
+    if (!(range > 0) || !(range <= params.max_depth_m)) continue;  // also drops NaN
+    SurfacePoint q;
+    q.x = p.x(), q.y = p.y(), q.z = p.z();
+    q.r = q.g = q.b = 0;
+    q.a = 255;
+    raw->push_back(q);
+  }
+  return surfaceOf(raw, params);
+}
+
+SurfaceCloud makeSurfaceCloud(const RgbdImage& view, const SurfaceParams& params) {
+  validate(view);
+  validate(params);
+  pcl::PointCloud<SurfacePoint>::Ptr raw(new pcl::PointCloud<SurfacePoint>);
+  const auto& K = view.intrinsics;
+  raw->reserve(static_cast<std::size_t>(view.depth_m.total()));
+  for (int v = 0; v < view.depth_m.rows; ++v) {
+    const float* d = view.depth_m.ptr<float>(v);
+    const cv::Vec3b* c = view.bgr.empty() ? nullptr : view.bgr.ptr<cv::Vec3b>(v);
+    for (int u = 0; u < view.depth_m.cols; ++u) {
+      const float z = d[u];
+      if (!(z > 0) || !(z <= params.max_depth_m)) continue;  // also drops NaN
+      const Eigen::Vector3d p = K.unproject(u, v, z);
+      SurfacePoint q;
+      q.x = static_cast<float>(p.x());
+      q.y = static_cast<float>(p.y());
+      q.z = static_cast<float>(p.z());
+      if (c) {
+        q.b = c[u][0];
+        q.g = c[u][1];
+        q.r = c[u][2];
+      } else {
+        q.r = q.g = q.b = 0;
+      }
+      q.a = 255;
+      raw->push_back(q);
+    }
+  }
+  return surfaceOf(raw, params);
 }
 
 int nearestWithNormal(const SurfaceCloud& surface, const Eigen::Vector3f& p, double max_distance_m) {

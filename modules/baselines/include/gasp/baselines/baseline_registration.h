@@ -21,7 +21,9 @@
 #include "gasp/baselines/point_features.h"
 #include "gasp/baselines/rgbd_image.h"
 #include "gasp/baselines/sift_features.h"
+#include "gasp/core/range_scan.h"
 #include "gasp/pipeline/pair_registration.h"
+#include "gasp/pipeline/range_view.h"
 #include "gasp/pipeline/visibility_check.h"
 #include "gasp/registration/register_patches.h"
 
@@ -70,5 +72,17 @@ BaselineResult registerWithBaseline(const RgbdImage& source, const RgbdImage& ta
 /// The pose stage alone (steps 2-5 above) on already described views.
 BaselineResult registerDescribed(const RgbdImage& source, const RgbdImage& target, DescribedKeypoints source_keypoints,
                                  DescribedKeypoints target_keypoints, const BaselineParams& params = {});
+
+/// The baselines' values for LiDAR sweeps: a 10 cm surface voxel, normals over 30 cm, returns up
+/// to 100 m, keypoints from 30 cm voxels, FPFH over 60 cm and SHOT over 80 cm; RANSAC, inliers and
+/// the free-space check are GASP's LiDAR values (lidarPairParams(lidar), RANSAC only).
+BaselineParams lidarBaselineParams(const LidarParams& lidar = {});
+
+/// One point-feature baseline (FPFH or SHOT) on two LiDAR sweeps, with the stages of
+/// registerWithBaseline(): keypoints and descriptors of each sweep's returns, matches, RANSAC,
+/// then the free-space check on the sweeps binned as GASP bins them. Never throws for data;
+/// throws gasp::Error for invalid parameters, a sweep that is no range image, or another method.
+BaselineResult registerSweepsWithBaseline(const RangeScan& source, const RangeScan& target, BaselineMethod method,
+                                          const BaselineParams& params = lidarBaselineParams());
 
 }  // namespace gasp::baselines

@@ -10,6 +10,10 @@
 /// (radius shot_radius_m; local reference frame over the same radius), colour SHOT 1344 (SHOT plus
 /// the CIELab colour histogram). Keypoints whose descriptor or normal is not finite (too few
 /// neighbours, an undefined reference frame) are dropped.
+#include <Eigen/Core>
+
+#include <vector>
+
 #include "gasp/baselines/described_keypoints.h"
 #include "gasp/baselines/rgbd_image.h"
 #include "gasp/baselines/surface_params.h"
@@ -32,6 +36,10 @@ void validate(const PointFeatureParams& params);
 /// Keypoints and descriptors of one view. Throws gasp::Error for an invalid view or parameters,
 /// and for colour SHOT on a view without colour. A view without valid depth gives none.
 DescribedKeypoints describePointFeatures(const RgbdImage& view, PointFeatureType type,
+                                         const PointFeatureParams& params = {});
+/// The same on points in a sensor frame (a LiDAR sweep's returns; FPFH or SHOT): keypoint pixels
+/// are (-1, -1).
+DescribedKeypoints describePointFeatures(const std::vector<Eigen::Vector3f>& points, PointFeatureType type,
                                          const PointFeatureParams& params = {});
 
 }  // namespace gasp::baselines
