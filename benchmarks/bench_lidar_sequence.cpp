@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -129,6 +130,21 @@ int main(int argc, char** argv) {
                   "visibility violations %.3f / %.3f, occluded %.3f, returns refined %d (%s)\n",
                   r.pair.association.associations.size(), r.pair.pose.num_inliers, r.pair.guided_support, r.pair.dense_terms,
                   r.pair.uniqueness_log_ratio, r.pair.visibility.violation_ratio, r.pair.visibility.violation_ratio_lesser, r.pair.visibility.occluded_ratio, r.returns_refined, r.returns_reason.c_str());
+      // The share of the source's patches that land on the target's patches at the claimed pose and
+      // were verified there.
+      const gasp::DepthView va = gasp::makeRangeView(sweeps[i], gasp::lidarSuperpixelParams());
+      const gasp::DepthView vb = gasp::makeRangeView(sweeps[j], gasp::lidarSuperpixelParams());
+      const auto [ps, pt] = gasp::viewsOf(r.pair, va, vb);
+      int overlap = 0;
+      for (const auto& patch : ps->segmentation.patches) {
+        double u = 0, v = 0;
+        if (!pt->projection.project(r.pair.pose.T_target_source * patch.centroid, u, v)) continue;
+        const int ui = static_cast<int>(std::lround(u)), vi = static_cast<int>(std::lround(v));
+        if (ui < 0 || vi < 0 || ui >= pt->segmentation.labels.cols || vi >= pt->segmentation.labels.rows) continue;
+        overlap += pt->segmentation.labels.at<int>(vi, ui) >= 0 ? 1 : 0;
+      }
+      std::printf("verified %zu of %d source patches on target patches (%zu source patches)\n", r.pair.verified.size(),
+                  overlap, ps->segmentation.patches.size());
       return 0;
     }
     std::printf("| Skip | Pairs | Right (5 cm, 0.5 deg) | Coarse (20 cm, 5 deg) | Wrong | No estimate | Median error of the right | Worst right | Median time [ms] |\n");
