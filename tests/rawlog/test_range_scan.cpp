@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -323,6 +324,16 @@ TEST(RangeScan, GaspSimulateWritesALidarSequenceThatReadsBack) {
         worst = std::max(worst, static_cast<double>(std::abs(read.range_m.at<float>(r, c) - made.range_m.at<float>(r, c))));
     EXPECT_LE(worst, 0.5 * gasp::kRotatingScanResolutionM + 1e-4);
   }
+  // Its own output is replaced by a second run; a lidar.rawlog it did not write is not.
+  const auto again = gasp::test::runProgram("gasp-simulate", "--sensor lidar16 --frames 8 --rate 10 --out " + dir);
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+  const std::string foreign = gasp::test::scratchDir() + "/recorded";
+  std::filesystem::create_directories(foreign);
+  { std::ofstream(foreign + "/lidar.rawlog") << "a recording"; }
+  const auto refused = gasp::test::runProgram("gasp-simulate", "--sensor lidar16 --frames 8 --out " + foreign);
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_TRUE(gasp::test::contains(refused.output, "that gasp-simulate did not write")) << refused.output;
+  EXPECT_EQ(std::filesystem::file_size(foreign + "/lidar.rawlog"), 11u);
   // The camera's options that do not apply, and sensors that do not exist, are refused.
   auto bad = gasp::test::runProgram("gasp-simulate", "--sensor lidar16 --depth-bias 0.05 --out " + dir + "/x");
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
