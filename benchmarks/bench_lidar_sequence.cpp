@@ -2,7 +2,9 @@
 // against the exact ground truth: pairs 1, 5 and 10 sweeps apart by default.
 //   build/ci/bin/gasp-simulate --sensor lidar16 --frames 60 --rate 10 --out /tmp/lidar16
 //   build/ci/bin/bench_lidar_sequence /tmp/lidar16 [--skips 1,5,10] [--threads 2] [--pair I,J]
-//       [--method gasp|fpfh]
+//       [--method gasp|fpfh] [--shares]
+// --shares (gasp): a line per claimed pose with the share of the source's patches that land on
+// target patches and of those verified (the lead for a rule against wrong poses).
 // --method fpfh: PCL FPFH + RANSAC on the returns (gasp::baselines, when built), the same scoring.
 // --pair I,J: only that pair, with the pipeline's verdicts (inliers, support, certificate).
 // A claimed pose within 5 cm / 0.5 deg of the truth is right (the bound), one within
@@ -52,6 +54,29 @@ std::vector<gasp::RangeScan> readSweeps(const std::string& path) {
   return sweeps;
 }
 
+/// Of the source's patches at the claimed pose: how many land on a target patch, and how many
+/// were verified (guided associations).
+struct PatchShares {
+  std::size_t source = 0, landing = 0, verified = 0;
+};
+
+PatchShares patchShares(const gasp::RangePairResult& r, const gasp::RangeScan& source, const gasp::RangeScan& target) {
+  const gasp::DepthView va = gasp::makeRangeView(source, gasp::lidarSuperpixelParams());
+  const gasp::DepthView vb = gasp::makeRangeView(target, gasp::lidarSuperpixelParams());
+  const auto [ps, pt] = gasp::viewsOf(r.pair, va, vb);
+  PatchShares s;
+  s.source = ps->segmentation.patches.size();
+  s.verified = r.pair.verified.size();
+  for (const auto& patch : ps->segmentation.patches) {
+    double u = 0, v = 0;
+    if (!pt->projection.project(r.pair.pose.T_target_source * patch.centroid, u, v)) continue;
+    const int ui = static_cast<int>(std::lround(u)), vi = static_cast<int>(std::lround(v));
+    if (ui < 0 || vi < 0 || ui >= pt->segmentation.labels.cols || vi >= pt->segmentation.labels.rows) continue;
+    s.landing += pt->segmentation.labels.at<int>(vi, ui) >= 0 ? 1 : 0;
+  }
+  return s;
+}
+
 /// The claimed pose of one pair by the method, or nullopt for no estimate.
 std::optional<gasp::Isometry3> registerPair(const gasp::RangeScan& source, const gasp::RangeScan& target,
                                             const std::string& method) {
@@ -78,6 +103,7 @@ int main(int argc, char** argv) {
   int threads = 2;
   int only_i = -1, only_j = -1;
   std::string method = "gasp";
+  bool shares = false;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--skips") == 0 && i + 1 < argc) {
       skips.clear();
@@ -89,6 +115,8 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "--method: gasp or fpfh\n");
         return 2;
       }
+    } else if (std::strcmp(argv[i], "--shares") == 0) {
+      shares = true;
     } else if (std::strcmp(argv[i], "--pair") == 0 && i + 1 < argc) {
       if (std::sscanf(argv[++i], "%d,%d", &only_i, &only_j) != 2) only_i = -1;
     } else if (std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
@@ -130,21 +158,9 @@ int main(int argc, char** argv) {
                   "visibility violations %.3f / %.3f, occluded %.3f, returns refined %d (%s)\n",
                   r.pair.association.associations.size(), r.pair.pose.num_inliers, r.pair.guided_support, r.pair.dense_terms,
                   r.pair.uniqueness_log_ratio, r.pair.visibility.violation_ratio, r.pair.visibility.violation_ratio_lesser, r.pair.visibility.occluded_ratio, r.returns_refined, r.returns_reason.c_str());
-      // The share of the source's patches that land on the target's patches at the claimed pose and
-      // were verified there.
-      const gasp::DepthView va = gasp::makeRangeView(sweeps[i], gasp::lidarSuperpixelParams());
-      const gasp::DepthView vb = gasp::makeRangeView(sweeps[j], gasp::lidarSuperpixelParams());
-      const auto [ps, pt] = gasp::viewsOf(r.pair, va, vb);
-      int overlap = 0;
-      for (const auto& patch : ps->segmentation.patches) {
-        double u = 0, v = 0;
-        if (!pt->projection.project(r.pair.pose.T_target_source * patch.centroid, u, v)) continue;
-        const int ui = static_cast<int>(std::lround(u)), vi = static_cast<int>(std::lround(v));
-        if (ui < 0 || vi < 0 || ui >= pt->segmentation.labels.cols || vi >= pt->segmentation.labels.rows) continue;
-        overlap += pt->segmentation.labels.at<int>(vi, ui) >= 0 ? 1 : 0;
-      }
-      std::printf("verified %zu of %d source patches on target patches (%zu source patches)\n", r.pair.verified.size(),
-                  overlap, ps->segmentation.patches.size());
+      const PatchShares s = patchShares(r, sweeps[i], sweeps[j]);
+      std::printf("verified %zu of %zu source patches on target patches (%zu source patches)\n", s.verified, s.landing,
+                  s.source);
       return 0;
     }
     std::printf("| Skip | Pairs | Right (5 cm, 0.5 deg) | Coarse (20 cm, 5 deg) | Wrong | No estimate | Median error of the right | Worst right | Median time [ms] |\n");
@@ -156,13 +172,24 @@ int main(int argc, char** argv) {
       for (std::size_t i = 0; i + static_cast<std::size_t>(k) < sweeps.size(); ++i) {
         const std::size_t j = i + static_cast<std::size_t>(k);
         const auto t0 = std::chrono::steady_clock::now();
-        const std::optional<gasp::Isometry3> T = registerPair(sweeps[i], sweeps[j], method);
+        std::optional<gasp::Isometry3> T;
+        std::optional<PatchShares> share;
+        if (shares && method == "gasp") {  // the pair's patch shares too
+          const gasp::RangePairResult r = gasp::registerRangeScans(sweeps[i], sweeps[j]);
+          if (r.pair.pose.success) T = r.pair.pose.T_target_source, share = patchShares(r, sweeps[i], sweeps[j]);
+        } else {
+          T = registerPair(sweeps[i], sweeps[j], method);
+        }
         ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
         ++pairs;
         if (!T) continue;
         const gasp::Isometry3 T_true = truth[j].T_world_camera.inverse() * truth[i].T_world_camera;
         const gasp::Isometry3 e = T_true.inverse() * *T;
         const double e_cm = 100.0 * e.translation().norm(), e_deg = Eigen::AngleAxisd(e.linear()).angle() * 180.0 / M_PI;
+        if (share)
+          std::printf("shares %zu %zu %s landing %zu/%zu verified %zu/%zu\n", i, j,
+                      e_cm <= 5.0 && e_deg <= 0.5 ? "right" : e_cm <= 20.0 && e_deg <= 5.0 ? "coarse" : "wrong", share->landing,
+                      share->source, share->verified, share->landing);
         if (e_cm <= 5.0 && e_deg <= 0.5) {
           ++right;
           cm.push_back(e_cm), deg.push_back(e_deg);
