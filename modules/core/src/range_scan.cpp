@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "gasp/core/error.h"
+#include "gasp/core/view_projection.h"
 
 namespace gasp {
 
@@ -83,15 +84,9 @@ double azimuthStep(const RangeScan& scan) {
   return std::remainder(scan.azimuth_rad.at(1) - scan.azimuth_rad.at(0), 2.0 * M_PI);
 }
 
-double rowPitch(const RangeScan& scan) {
-  const std::vector<double>& E = scan.elevation_rad;
-  return E.size() > 1 ? (E.back() - E.front()) / static_cast<double>(E.size() - 1) : std::abs(azimuthStep(scan));
-}
+double rowPitch(const RangeScan& scan) { return meanElevationStep(scan.elevation_rad, std::abs(azimuthStep(scan))); }
 
-bool coversWholeTurn(const RangeScan& scan) {
-  const double step = std::abs(azimuthStep(scan));
-  return scan.range_m.cols * step >= 2.0 * M_PI - 0.5 * step;
-}
+bool coversWholeTurn(const RangeScan& scan) { return coversWholeTurn(scan.range_m.cols, azimuthStep(scan)); }
 
 bool nearestCell(const RangeScan& scan, const Eigen::Vector3d& direction, int& row, int& col) {
   const double horizontal = std::hypot(direction.x(), direction.y());

@@ -7,9 +7,8 @@
 
 namespace gasp {
 
-double SphericalGrid::rowPitch() const {
-  if (elevation_rad.size() < 2) return std::abs(azimuth_step_rad);
-  return (elevation_rad.back() - elevation_rad.front()) / static_cast<double>(elevation_rad.size() - 1);
+double meanElevationStep(const std::vector<double>& E, double one_row) {
+  return E.size() > 1 ? (E.back() - E.front()) / static_cast<double>(E.size() - 1) : one_row;
 }
 
 void SphericalGrid::validate() const {

@@ -15,6 +15,14 @@
 
 namespace gasp {
 
+/// The mean step between ascending elevations [rad] (`one_row` for a single row): a range
+/// image's row pitch.
+double meanElevationStep(const std::vector<double>& elevation_rad, double one_row);
+/// True when `columns` azimuth steps of |step_rad| cover a whole turn (within half a step).
+inline bool coversWholeTurn(int columns, double step_rad) {
+  return columns * std::abs(step_rad) >= 2.0 * M_PI - 0.5 * std::abs(step_rad);
+}
+
 /// A range image's layout. Sensor frame: x forward, y left, z up (MRPT's LiDAR frame); a ray at
 /// elevation e and azimuth a is (cos e cos a, cos e sin a, sin e).
 struct SphericalGrid {
@@ -28,9 +36,9 @@ struct SphericalGrid {
 
   int rows() const { return static_cast<int>(elevation_rad.size()); }
   /// True when the columns cover a whole turn: azimuths wrap around in project().
-  bool fullTurn() const { return columns * std::abs(azimuth_step_rad) >= 2.0 * M_PI - 0.5 * std::abs(azimuth_step_rad); }
+  bool fullTurn() const { return coversWholeTurn(columns, azimuth_step_rad); }
   /// Mean elevation step between rows [rad] (the step of a one-row grid: the azimuth step).
-  double rowPitch() const;
+  double rowPitch() const { return meanElevationStep(elevation_rad, std::abs(azimuth_step_rad)); }
   /// Throws gasp::Error unless rows and columns are 1 to kMaxImageSide, elevations finite, in
   /// [-90, 90] deg and ascending, the azimuth step non-zero and the columns within one turn, and
   /// the ray table empty or CV_32FC3 of the grid's size.
