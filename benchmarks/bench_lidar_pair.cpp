@@ -86,7 +86,7 @@ Run runPair(const LidarPair& p) {
   Run run;
   run.total = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   run.segmentation = r.segmentation_ms;
-  run.returns = r.returns_ms;
+  run.returns = r.pair.timings.returns_ms;
   run.pipeline = run.total - run.segmentation - run.returns;
   run.success = r.pair.pose.success;
   if (run.success) {

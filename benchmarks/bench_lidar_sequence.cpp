@@ -4,7 +4,8 @@
 //   build/ci/bin/bench_lidar_sequence /tmp/lidar16 [--skips 1,5,10] [--threads 2] [--pair I,J]
 //       [--method gasp|fpfh] [--shares]
 // --shares (gasp): a line per claimed pose with the share of the source's patches that land on
-// target patches and of those verified (the lead for a rule against wrong poses).
+// target patches and of those verified, its inliers and its free-space test's violation ratios
+// (both ways) and occluded share (the leads for a rule against wrong poses).
 // --method fpfh: PCL FPFH + RANSAC on the returns (gasp::baselines, when built), the same scoring.
 // --pair I,J: only that pair, with the pipeline's verdicts (inliers, support, certificate).
 // A claimed pose within 5 cm / 0.5 deg of the truth is right (the bound), one within
@@ -58,6 +59,8 @@ std::vector<gasp::RangeScan> readSweeps(const std::string& path) {
 /// were verified (guided associations).
 struct PatchShares {
   std::size_t source = 0, landing = 0, verified = 0;
+  int inliers = 0;
+  double violation = 0.0, violation_lesser = 0.0, occluded = 0.0;  ///< the free-space test of the pose
 };
 
 PatchShares patchShares(const gasp::RangePairResult& r, const gasp::RangeScan& source, const gasp::RangeScan& target) {
@@ -67,6 +70,10 @@ PatchShares patchShares(const gasp::RangePairResult& r, const gasp::RangeScan& s
   PatchShares s;
   s.source = ps->segmentation.patches.size();
   s.verified = r.pair.verified.size();
+  s.inliers = r.pair.pose.num_inliers;
+  s.violation = r.pair.visibility.violation_ratio;
+  s.violation_lesser = r.pair.visibility.violation_ratio_lesser;
+  s.occluded = r.pair.visibility.occluded_ratio;
   for (const auto& patch : ps->segmentation.patches) {
     double u = 0, v = 0;
     if (!pt->projection.project(r.pair.pose.T_target_source * patch.centroid, u, v)) continue;
@@ -157,7 +164,7 @@ int main(int argc, char** argv) {
       std::printf("associations %zu, inliers %d, guided support %d, dense terms %d, uniqueness log-ratio %.2f, "
                   "visibility violations %.3f / %.3f, occluded %.3f, returns refined %d (%s)\n",
                   r.pair.association.associations.size(), r.pair.pose.num_inliers, r.pair.guided_support, r.pair.dense_terms,
-                  r.pair.uniqueness_log_ratio, r.pair.visibility.violation_ratio, r.pair.visibility.violation_ratio_lesser, r.pair.visibility.occluded_ratio, r.returns_refined, r.returns_reason.c_str());
+                  r.pair.uniqueness_log_ratio, r.pair.visibility.violation_ratio, r.pair.visibility.violation_ratio_lesser, r.pair.visibility.occluded_ratio, r.pair.returns_refined, r.pair.returns_reason.c_str());
       const PatchShares s = patchShares(r, sweeps[i], sweeps[j]);
       std::printf("verified %zu of %zu source patches on target patches (%zu source patches)\n", s.verified, s.landing,
                   s.source);
@@ -187,9 +194,10 @@ int main(int argc, char** argv) {
         const gasp::Isometry3 e = T_true.inverse() * *T;
         const double e_cm = 100.0 * e.translation().norm(), e_deg = Eigen::AngleAxisd(e.linear()).angle() * 180.0 / M_PI;
         if (share)
-          std::printf("shares %zu %zu %s landing %zu/%zu verified %zu/%zu\n", i, j,
-                      e_cm <= 5.0 && e_deg <= 0.5 ? "right" : e_cm <= 20.0 && e_deg <= 5.0 ? "coarse" : "wrong", share->landing,
-                      share->source, share->verified, share->landing);
+          std::printf("shares %zu %zu %s landing %zu/%zu verified %zu/%zu inliers %d violations %.3f/%.3f occluded %.3f\n",
+                      i, j, e_cm <= 5.0 && e_deg <= 0.5 ? "right" : e_cm <= 20.0 && e_deg <= 5.0 ? "coarse" : "wrong",
+                      share->landing, share->source, share->verified, share->landing, share->inliers, share->violation,
+                      share->violation_lesser, share->occluded);
         if (e_cm <= 5.0 && e_deg <= 0.5) {
           ++right;
           cm.push_back(e_cm), deg.push_back(e_deg);

@@ -13,7 +13,9 @@
 #include "gasp/core/stopwatch.h"
 #include "gasp/mrpt/CSuperpixelMap.h"
 #include "gasp/params/params_io.h"
+#include "gasp/pipeline/range_view.h"
 #include "gasp/rawlog/observation_conversion.h"
+#include "gasp/rawlog/range_scan.h"
 
 IMPLEMENTS_MRPT_OBJECT(CGaspAligner, mrpt::rtti::CObject, gasp)
 
@@ -42,12 +44,14 @@ void report(mrpt::optional_ref<mrpt::slam::TMetricMapAlignmentResult> out, const
 
 void CGaspAligner::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                                                 const std::string& section) {
-  readPairParams(source, section, params);
+  readPairParams(source, section, params, lidarKeys());
+  readLidarParams(source, section, lidar, pairKeys());
 }
 
 void CGaspAligner::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& target,
                                               const std::string& section) const {
   writePairParams(params, target, section);
+  writeLidarParams(lidar, target, section);
 }
 
 CGaspAligner::CGaspAligner() { setLoggerName("gasp::CGaspAligner"); }
@@ -67,7 +71,17 @@ mrpt::poses::CPose3DPDF::Ptr CGaspAligner::Align3DPDF(const mrpt::maps::CMetricM
   std::vector<const DepthView*> sources, targets;
   for (const auto& v : map2.views()) sources.push_back(&v.view);
   for (const auto& v : map1.views()) targets.push_back(&v.view);
-  const ViewSetResult set = registerViewSets(sources, targets, options.params);
+  // Depth images' views with options.params, LiDAR sweeps' with the LiDAR's values; not both.
+  std::size_t sweeps = 0;
+  for (const auto* views : {&sources, &targets})
+    for (const DepthView* v : *views) sweeps += v->returns ? 1 : 0;
+  const bool lidar = sweeps > 0;
+  if (lidar && sweeps != sources.size() + targets.size()) {
+    sources.clear(), targets.clear();
+    best.reason = "the maps hold both LiDAR sweeps' and depth images' views (" + std::to_string(sweeps) + " of " +
+                  std::to_string(map1.views().size() + map2.views().size()) + " are sweeps): one kind of view per alignment";
+  }
+  const ViewSetResult set = registerViewSets(sources, targets, lidar ? lidarPairParams(options.lidar) : options.params);
   for (const auto& note : set.notes) logFmt(mrpt::system::LVL_WARN, "%s", note.c_str());
   best.view_pairs = static_cast<int>(sources.size() * targets.size());
   std::optional<mrpt::poses::CPose3DPDFGaussian> pdf;
@@ -123,13 +137,19 @@ mrpt::poses::CPose3DPDFGaussian::Ptr CGaspAligner::alignObservations(
     const mrpt::obs::CObservation& a, const mrpt::obs::CObservation& b,
     mrpt::optional_ref<mrpt::slam::TMetricMapAlignmentResult> outInfo) {
   CSuperpixelMap map_a, map_b;
-  for (auto* m : {&map_a, &map_b}) m->creationOptions.superpixels = options.params.segment;
+  for (auto* m : {&map_a, &map_b}) {
+    m->creationOptions.superpixels = options.params.segment;
+    m->creationOptions.lidar = options.lidar;
+  }
   if (!map_a.insertObservation(a) || !map_b.insertObservation(b)) {
     const auto& bad = map_a.isEmpty() ? a : b;
     THROW_EXCEPTION_FMT("gasp::CGaspAligner: observation %s is a %s; only mrpt::obs::CObservation3DRangeScan "
-                        "(RGB-D or range-only) is supported",
+                        "(RGB-D or range-only), CObservationRotatingScan and CObservationVelodyneScan are supported",
                         map_a.isEmpty() ? "a" : "b", bad.GetRuntimeClass()->className);
   }
+  if (isSweepObservation(a) != isSweepObservation(b))
+    THROW_EXCEPTION_FMT("gasp::CGaspAligner: observation a is a %s, b a %s: both must be depth images or both LiDAR sweeps",
+                        a.GetRuntimeClass()->className, b.GetRuntimeClass()->className);
   const auto pdf = Align3DPDF(&map_a, &map_b, mrpt::poses::CPose3DPDFGaussian(), outInfo);
   return std::dynamic_pointer_cast<mrpt::poses::CPose3DPDFGaussian>(pdf);
 }

@@ -7,6 +7,7 @@
 
 #include "gasp/core/error.h"
 #include "gasp/rawlog/observation_conversion.h"
+#include "gasp/rawlog/range_scan.h"
 
 IMPLEMENTS_SERIALIZABLE(CSuperpixelMap, mrpt::maps::CMetricMap, gasp)
 
@@ -14,7 +15,7 @@ namespace gasp {
 
 void CSuperpixelMap::insertFrame(const RgbdFrame& frame, const Isometry3& T_map_robot) {
   try {
-    views_.push_back(makeMapView(frame, T_map_robot, creationOptions.superpixels));
+    views_.push_back(makeMapView(frame, T_map_robot, creationOptions.superpixels, creationOptions.lidar));
     ++content_version_;
   } catch (const Error& e) {
     THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: cannot insert observation '%s': %s", frame.sensor_label.c_str(),
@@ -25,10 +26,11 @@ void CSuperpixelMap::insertFrame(const RgbdFrame& frame, const Isometry3& T_map_
 bool CSuperpixelMap::internal_insertObservation(const mrpt::obs::CObservation& obs,
                                                 const std::optional<const mrpt::poses::CPose3D>& robotPose) {
   const auto* scan = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&obs);
-  if (!scan) return false;
+  if (!scan && !isSweepObservation(obs)) return false;
   RgbdFrame frame;
   try {
-    frame = frameFromObservation(*scan, "CObservation3DRangeScan '" + scan->sensorLabel + "'");
+    frame = scan ? frameFromObservation(*scan, "CObservation3DRangeScan '" + scan->sensorLabel + "'")
+                 : sweepFrameFromObservation(obs, std::string(obs.GetRuntimeClass()->className) + " '" + obs.sensorLabel + "'");
   } catch (const Error& e) {
     THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());
   }

@@ -12,7 +12,9 @@
 #include "gasp/params/params_io.h"
 #include "gasp/registration/partial_pose.h"
 #include "gasp/mrpt/pose_covariance.h"
+#include "gasp/pipeline/range_view.h"
 #include "gasp/rawlog/observation_conversion.h"
+#include "gasp/rawlog/range_scan.h"
 
 IMPLEMENTS_MRPT_OBJECT(ObservationMatcher_GASP, ObservationMatcher, gasp)
 
@@ -24,37 +26,68 @@ const mrpt::obs::CObservation3DRangeScan& asRangeScan(const mrpt::obs::CObservat
   const auto* scan = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&o);
   if (!scan) {
     THROW_EXCEPTION_FMT("ObservationMatcher_GASP: observation %s is a %s; only mrpt::obs::CObservation3DRangeScan "
-                        "(RGB-D or range-only) is supported",
+                        "(RGB-D or range-only), CObservationRotatingScan and CObservationVelodyneScan are supported",
                         which, o.GetRuntimeClass()->className);
   }
   return *scan;
+}
+
+/// Both observations as frames and views, and the pair's parameters for them: depth images with
+/// `camera`, two LiDAR sweeps with lidarPairParams(lidar).
+struct MatchInput {
+  RgbdFrame fa, fb;
+  DepthView va, vb;
+  PairParams pair;
+};
+
+MatchInput matchInput(const mrpt::obs::CObservation& a, const mrpt::obs::CObservation& b, const PairParams& camera,
+                      const LidarParams& lidar) {
+  MatchInput in;
+  const bool sweep_a = isSweepObservation(a), sweep_b = isSweepObservation(b);
+  if (sweep_a != sweep_b)
+    THROW_EXCEPTION_FMT("ObservationMatcher_GASP: observation %s is a LiDAR sweep (%s), %s a %s: both must be of one kind",
+                        sweep_a ? "a" : "b", (sweep_a ? a : b).GetRuntimeClass()->className, sweep_a ? "b" : "a",
+                        (sweep_a ? b : a).GetRuntimeClass()->className);
+  try {
+    if (sweep_a) {
+      in.fa = sweepFrameFromObservation(a, "observation a");
+      in.fb = sweepFrameFromObservation(b, "observation b");
+      in.pair = lidarPairParams(lidar);
+      in.va = makeRangeView(*in.fa.sweep, in.pair.segment, in.pair.returns);
+      in.vb = makeRangeView(*in.fb.sweep, in.pair.segment, in.pair.returns);
+      return in;
+    }
+    const auto& scan_a = asRangeScan(a, "a");
+    const auto& scan_b = asRangeScan(b, "b");
+    in.fa = frameFromObservation(scan_a, "observation a", ColourImage::Skip);  // depth alone
+    in.fb = frameFromObservation(scan_b, "observation b", ColourImage::Skip);
+    in.pair = camera;
+    in.va = makeDepthView(in.fa.depth_m, in.fa.depth_intrinsics, in.pair.segment);
+    in.vb = makeDepthView(in.fb.depth_m, in.fb.depth_intrinsics, in.pair.segment);
+  } catch (const Error& e) {
+    THROW_EXCEPTION_FMT("ObservationMatcher_GASP: %s", e.what());
+  }
+  return in;
 }
 
 }  // namespace
 
 void ObservationMatcher_GASP::initialize(const mrpt::containers::yaml& y) {
   PairParams p;
-  readPairParams(y, "ObservationMatcher_GASP", p);
+  LidarParams l;
+  readPairParams(y, "ObservationMatcher_GASP", p, &l);
   params = p;
+  lidar = l;
 }
 
 MatchConstraint ObservationMatcher_GASP::match(const mrpt::obs::CObservation& a, const mrpt::obs::CObservation& b,
                                                const std::optional<mrpt::poses::CPose3D>& /*initial_guess*/) const {
   const auto t0 = std::chrono::steady_clock::now();
-  const auto& scan_a = asRangeScan(a, "a");
-  const auto& scan_b = asRangeScan(b, "b");
+  const MatchInput in = matchInput(a, b, params, lidar);
+  const RgbdFrame &fa = in.fa, &fb = in.fb;
   MatchConstraint c;
-  RgbdFrame fa, fb;
-  try {
-    fa = frameFromObservation(scan_a, "observation a", ColourImage::Skip);  // depth alone
-    fb = frameFromObservation(scan_b, "observation b", ColourImage::Skip);
-  } catch (const Error& e) {
-    THROW_EXCEPTION_FMT("ObservationMatcher_GASP: %s", e.what());
-  }
-  const DepthView va = makeDepthView(fa.depth_m, fa.depth_intrinsics, params.segment);
-  const DepthView vb = makeDepthView(fb.depth_m, fb.depth_intrinsics, params.segment);
-  // b is the source, a the target: T_target_source = T_ca_cb (camera frames).
-  const PairResult r = registerViews(vb, va, params);
+  // b is the source, a the target: T_target_source = T_ca_cb (sensor frames).
+  const PairResult r = registerViews(in.vb, in.va, in.pair);
   // The finer-scale retry's patch indices refer to its own views, not to these views' patches.
   c.finer_scale = r.retry_views != nullptr;
   if (!c.finer_scale)

@@ -19,12 +19,18 @@ const std::set<std::string> kGenericKeys{"enableSaveAs3DObject", "enableObservat
 
 void CSuperpixelMap::TCreationOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                                                           const std::string& section) {
-  readSuperpixelParams(source, section, superpixels, kGenericKeys);
+  std::set<std::string> others = kGenericKeys;
+  for (const std::string& k : lidarKeys()) others.insert(k);
+  readSuperpixelParams(source, section, superpixels, others);
+  others = kGenericKeys;
+  for (const std::string& k : superpixelKeys()) others.insert(k);
+  readLidarParams(source, section, lidar, others);
 }
 
 void CSuperpixelMap::TCreationOptions::saveToConfigFile(mrpt::config::CConfigFileBase& target,
                                                         const std::string& section) const {
   writeSuperpixelParams(superpixels, target, section);
+  writeLidarParams(lidar, target, section);
 }
 
 void CSuperpixelMap::TLikelihoodOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& source,

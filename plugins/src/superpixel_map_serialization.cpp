@@ -1,4 +1,10 @@
-// CSuperpixelMap's versioned serialization. Version 1:
+// CSuperpixelMap's versioned serialization. Version 2: version 1's, each view led by its kind
+// (uint8): 0 a depth image's view as version 1 writes it (then its segmentation parameters); 1 a
+// LiDAR sweep's: timestamp, sensor label, T_map_camera (3x4), the sweep (model, timestamp, sweep
+// duration, rows, columns, elevations, azimuths, laser ids, ranges [m], the ray table or none),
+// its segmentation parameters (ini text) and the returns' normal settings. A sweep's view is made
+// again from these on reading (binning, segmentation and normals are deterministic).
+// Version 1:
 //   genericMapParams; creation, likelihood and render options as ini text (every parameter,
 //   params_io.h); view count; per view: timestamp, sensor label, T_map_camera (3x4), depth
 //   intrinsics, depth image (float [m]), label image (run-length coded), patches, adjacency, pixel
@@ -15,6 +21,7 @@
 
 #include "gasp/core/error.h"
 #include "gasp/mrpt/CSuperpixelMap.h"
+#include "gasp/pipeline/range_view.h"
 
 namespace gasp {
 
@@ -48,11 +55,24 @@ void readExactly(mrpt::serialization::CArchive& in, float* data, std::size_t n, 
   if (in.ReadBufferFixEndianness(data, n) != n * sizeof(float)) THROW_EXCEPTION_FMT("truncated %s", what);
 }
 
+void writePose(mrpt::serialization::CArchive& out, const Isometry3& T) {
+  const Eigen::Matrix<double, 3, 4> M = T.matrix().topRows<3>();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) out << M(r, c);
+}
+
+Isometry3 readPose(mrpt::serialization::CArchive& in) {
+  Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) in >> M(r, c);
+  Isometry3 T = Isometry3::Identity();
+  T.matrix() = M;
+  return T;
+}
+
 void writeView(mrpt::serialization::CArchive& out, const SuperpixelMapView& v) {
   out << v.timestamp << v.sensor_label;
-  const Eigen::Matrix<double, 3, 4> T = v.T_map_camera.matrix().topRows<3>();
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 4; ++c) out << T(r, c);
+  writePose(out, v.T_map_camera);
   const CameraIntrinsics& k = v.view.projection.pinhole();
   out << static_cast<std::int32_t>(k.width) << static_cast<std::int32_t>(k.height) << k.fx << k.fy << k.cx << k.cy;
   for (double d : k.distortion) out << d;
@@ -93,13 +113,67 @@ void writeView(mrpt::serialization::CArchive& out, const SuperpixelMapView& v) {
   for (const Rgb8& c : v.patch_rgb) out << c[0] << c[1] << c[2];
 }
 
+/// A sweep's view: what makes it again (the view's segmentation parameters are written after it).
+void writeSweepView(mrpt::serialization::CArchive& out, const SuperpixelMapView& v) {
+  out << v.timestamp << v.sensor_label;
+  writePose(out, v.T_map_camera);
+  const RangeScan& s = v.view.returns->scan();
+  out << s.model << s.timestamp << s.sweep_duration_s;
+  writePose(out, s.T_robot_sensor);
+  const int rows = s.range_m.rows, cols = s.range_m.cols;
+  out << static_cast<std::int32_t>(rows) << static_cast<std::int32_t>(cols);
+  for (double e : s.elevation_rad) out << e;
+  for (double a : s.azimuth_rad) out << a;
+  for (int l : s.laser_of_row) out << static_cast<std::int32_t>(l);
+  const cv::Mat range = s.range_m.isContinuous() ? s.range_m : s.range_m.clone();
+  out.WriteBufferFixEndianness(range.ptr<float>(0), range.total());
+  out << static_cast<std::uint8_t>(s.ray.empty() ? 0 : 1);
+  if (!s.ray.empty()) {
+    const cv::Mat ray = s.ray.isContinuous() ? s.ray : s.ray.clone();
+    out.WriteBufferFixEndianness(ray.ptr<float>(0), ray.total() * 3);
+  }
+}
+
+/// The sweep and view fields of writeSweepView(); the caller makes the view.
+SuperpixelMapView readSweepView(mrpt::serialization::CArchive& in, RangeScan& s) {
+  SuperpixelMapView v;
+  in >> v.timestamp >> v.sensor_label;
+  v.T_map_camera = readPose(in);
+  in >> s.model >> s.timestamp >> s.sweep_duration_s;
+  s.T_robot_sensor = readPose(in);
+  std::int32_t rows, cols;
+  in >> rows >> cols;
+  if (rows < 1 || cols < 2 || static_cast<std::uint32_t>(rows) > kMaxImageSide ||
+      static_cast<std::uint32_t>(cols) > kMaxImageSide ||
+      static_cast<std::uint64_t>(rows) * static_cast<std::uint64_t>(cols) > kMaxImagePixels)
+    THROW_EXCEPTION_FMT("sweep size %d rows x %d columns out of range", rows, cols);
+  s.elevation_rad.resize(static_cast<std::size_t>(rows));
+  for (double& e : s.elevation_rad) in >> e;
+  s.azimuth_rad.resize(static_cast<std::size_t>(cols));
+  for (double& a : s.azimuth_rad) in >> a;
+  s.laser_of_row.resize(static_cast<std::size_t>(rows));
+  for (int& l : s.laser_of_row) {
+    std::int32_t id;
+    in >> id;
+    l = id;
+  }
+  const std::size_t cells = static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols);
+  s.range_m.create(rows, cols, CV_32FC1);
+  readExactly(in, s.range_m.ptr<float>(0), cells, "sweep ranges");
+  std::uint8_t has_ray;
+  in >> has_ray;
+  if (has_ray > 1) THROW_EXCEPTION_FMT("sweep ray flag %u", static_cast<unsigned>(has_ray));
+  if (has_ray) {
+    s.ray.create(rows, cols, CV_32FC3);
+    readExactly(in, s.ray.ptr<float>(0), cells * 3, "sweep rays");
+  }
+  return v;
+}
+
 SuperpixelMapView readView(mrpt::serialization::CArchive& in) {
   SuperpixelMapView v;
   in >> v.timestamp >> v.sensor_label;
-  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 4; ++c) in >> T(r, c);
-  v.T_map_camera.matrix() = T;
+  v.T_map_camera = readPose(in);
   CameraIntrinsics k;
   std::int32_t w, h;
   in >> w >> h >> k.fx >> k.fy >> k.cx >> k.cy;
@@ -178,22 +252,29 @@ SuperpixelMapView readView(mrpt::serialization::CArchive& in) {
 
 }  // namespace
 
-uint8_t CSuperpixelMap::serializeGetVersion() const { return 1; }
+uint8_t CSuperpixelMap::serializeGetVersion() const { return 2; }
 
 void CSuperpixelMap::serializeTo(mrpt::serialization::CArchive& out) const {
   out << genericMapParams;
   out << optionsText(creationOptions) << optionsText(likelihoodOptions) << optionsText(renderOptions);
   out << static_cast<std::uint32_t>(views_.size());
   for (const auto& v : views_) {
-    writeView(out, v);
+    const bool sweep = v.view.returns != nullptr;
+    out << static_cast<std::uint8_t>(sweep ? 1 : 0);
+    if (sweep)
+      writeSweepView(out, v);
+    else
+      writeView(out, v);
     CSuperpixelMap::TCreationOptions segmentation;  // the view's own, as the map's creation options are written
     segmentation.superpixels = v.view.superpixels;
     out << optionsText(segmentation);
+    if (sweep)
+      out << static_cast<std::int32_t>(v.view.returns->normalHalfWidth()) << v.view.returns->maxFlatness();
   }
 }
 
 void CSuperpixelMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version) {
-  if (version > 1) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
+  if (version > 2) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
   try {
     mrpt::maps::TMapGenericParams generic;
     in >> generic;
@@ -210,15 +291,38 @@ void CSuperpixelMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t ve
     std::vector<SuperpixelMapView> views;
     for (std::uint32_t i = 0; i < num_views; ++i) {
       try {
-        views.push_back(readView(in));
-        if (version >= 1) {
+        std::uint8_t kind = 0;
+        if (version >= 2) in >> kind;
+        if (kind > 1) THROW_EXCEPTION_FMT("view kind %u (0: depth image, 1: LiDAR sweep)", static_cast<unsigned>(kind));
+        if (kind == 1) {
+          RangeScan scan;
+          SuperpixelMapView v = readSweepView(in, scan);
           std::string text;
           in >> text;
           TCreationOptions segmentation;
           optionsFromText(text, segmentation);
-          views.back().view.superpixels = segmentation.superpixels;
-        } else {  // version 0: segmented with the map's creation options
-          views.back().view.superpixels = c.superpixels;
+          ReturnsRefineParams returns;
+          std::int32_t half_width;
+          in >> half_width >> returns.max_flatness;
+          returns.normal_half_width = half_width;
+          try {  // the scan's layout and the parameters are checked here
+            v.view = makeRangeView(scan, segmentation.superpixels, returns);
+            checkConsistency(v);
+          } catch (const Error& e) {
+            THROW_EXCEPTION(e.what());
+          }
+          views.push_back(std::move(v));
+        } else {
+          views.push_back(readView(in));
+          if (version >= 1) {
+            std::string text;
+            in >> text;
+            TCreationOptions segmentation;
+            optionsFromText(text, segmentation);
+            views.back().view.superpixels = segmentation.superpixels;
+          } else {  // version 0: segmented with the map's creation options
+            views.back().view.superpixels = c.superpixels;
+          }
         }
       } catch (const std::exception& e) {
         THROW_EXCEPTION_FMT("view %u of %u: %s", i, num_views, e.what());

@@ -6,6 +6,7 @@
 
 #include "gasp/core/error.h"
 #include "gasp/core/undistortion.h"
+#include "gasp/pipeline/range_view.h"
 
 namespace gasp {
 
@@ -75,12 +76,17 @@ Rgb8 normalColour(const Eigen::Vector3d& normal) {
   return c;
 }
 
-SuperpixelMapView makeMapView(const RgbdFrame& frame, const Isometry3& T_map_robot, const SuperpixelParams& params) {
-  frame.depth_intrinsics.validate();
+SuperpixelMapView makeMapView(const RgbdFrame& frame, const Isometry3& T_map_robot, const SuperpixelParams& params,
+                              const LidarParams& lidar) {
   SuperpixelMapView v;
-  v.view = makeDepthView(frame.depth_m, frame.depth_intrinsics, params);
+  if (frame.isSweep()) {
+    v.view = makeRangeView(*frame.sweep, lidarSuperpixelParams(lidar), returnsRefineParams(lidar));
+  } else {
+    frame.depth_intrinsics.validate();
+    v.view = makeDepthView(frame.depth_m, frame.depth_intrinsics, params);
+  }
   v.T_map_camera = T_map_robot * frame.T_robot_camera;
-  if (frame.hasRgb()) v.patch_rgb = patchColours(frame, v.view);
+  if (frame.hasRgb() && !frame.isSweep()) v.patch_rgb = patchColours(frame, v.view);
   v.timestamp = frame.timestamp;
   v.sensor_label = frame.sensor_label;
   return v;
@@ -104,12 +110,15 @@ void appendMapPatches(const SuperpixelMapView& view, int view_index, std::vector
 }
 
 void checkConsistency(const SuperpixelMapView& v) {
-  const CameraIntrinsics& k = v.view.projection.pinhole();
-  k.validate();
+  const ViewProjection& k = v.view.projection;
+  if (k.isPinhole())
+    k.pinhole().validate();
+  else
+    k.grid().validate();
   const cv::Mat& depth = v.view.depth_m;
   const SuperpixelSegmentation& seg = v.view.segmentation;
-  if (depth.type() != CV_32FC1 || depth.cols != k.width || depth.rows != k.height)
-    throw Error("depth image is not " + sizeText(k.width, k.height) + " CV_32FC1");
+  if (depth.type() != CV_32FC1 || depth.cols != k.width() || depth.rows != k.height())
+    throw Error("depth image is not " + sizeText(k.width(), k.height()) + " CV_32FC1");
   if (seg.labels.type() != CV_32SC1 || seg.labels.size() != depth.size())
     throw Error("label image does not match the depth image");
   const int n = static_cast<int>(seg.patches.size());

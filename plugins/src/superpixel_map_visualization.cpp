@@ -46,7 +46,7 @@ mrpt::opengl::CPointCloudColoured::Ptr points(const std::vector<SuperpixelMapVie
   out->setPointSize(2.0f);
   for (const SuperpixelMapView& view : views) {
     const SuperpixelSegmentation& seg = view.view.segmentation;
-    const CameraIntrinsics& k = view.view.projection.pinhole();
+    const ViewProjection& k = view.view.projection;  // a camera's pinhole or a sweep's grid
     for (int r = 0; r < seg.labels.rows; r += step) {
       const int* l = seg.labels.ptr<int>(r);
       const float* z = view.view.depth_m.ptr<float>(r);

@@ -39,7 +39,10 @@ SequenceEnd forEachFrameWithViewAhead(DepthSequence& sequence, const OdometryPar
   std::deque<RgbdFrame> frames;  // read, and started in `ahead` in the same order
   const auto started = [&](std::optional<RgbdFrame> f) {
     if (!f) return false;
-    ahead.start(f->depth_m, f->depth_intrinsics);
+    if (f->isSweep())
+      ahead.start(*f->sweep);
+    else
+      ahead.start(f->depth_m, f->depth_intrinsics);
     frames.push_back(std::move(*f));
     return true;
   };

@@ -13,13 +13,20 @@
 namespace gasp::tools {
 
 /// --tum, --rawlog, --sensor, --gt (into gt_path), --first, --max-frames, --every, and for a TUM
-/// folder --intrinsics, --depth-scale, --no-undistort.
-inline void addSequenceOptions(CLI::App& app, DepthSequenceOptions& input, std::string& gt_path) {
+/// folder --intrinsics, --depth-scale, --no-undistort. `sweeps`: a rawlog's LiDAR sweeps are
+/// frames too (DepthSequenceOptions::sweeps).
+inline void addSequenceOptions(CLI::App& app, DepthSequenceOptions& input, std::string& gt_path, bool sweeps = false) {
+  input.sweeps = sweeps;
   auto* tum = app.add_option("--tum", input.tum_dir, "TUM RGB-D folder (frames in depth.txt order; its groundtruth.txt is the reference)");
-  auto* rawlog = app.add_option("--rawlog", input.rawlog_path, "an MRPT rawlog: its CObservation3DRangeScan in file order")->excludes(tum);
+  auto* rawlog = app.add_option("--rawlog", input.rawlog_path,
+                                sweeps ? "an MRPT rawlog: its CObservation3DRangeScan, or its rotating LiDAR's sweeps "
+                                         "(CObservationRotatingScan, CObservationVelodyneScan), in file order"
+                                       : "an MRPT rawlog: its CObservation3DRangeScan in file order")
+                     ->excludes(tum);
   app.add_option("--sensor", input.sensor_label, "with --rawlog: only the scans with this sensorLabel")->needs(rawlog);
   app.add_option("--gt", gt_path, "with --rawlog: a TUM trajectory of the camera (optical frame), e.g. the "
-                                  "OUT_groundtruth.txt gasp-tum2rawlog writes")->needs(rawlog);
+                                  "OUT_groundtruth.txt gasp-tum2rawlog writes, or of the LiDAR (its own frame, e.g. "
+                                  "gasp-simulate's lidar_groundtruth.txt)")->needs(rawlog);
   app.add_option("--first", input.first, "first frame used (index among the input's frames)")
       ->capture_default_str()
       ->check(atLeast(0));

@@ -1,8 +1,10 @@
 // gasp-odometry: camera odometry over a depth sequence with GASP, and its pose graph.
 //   gasp-odometry --tum DIR --out TRAJ.txt [--graph G.graph] [--frames-csv F.csv] [--params FILE] [options]
 //   gasp-odometry --rawlog FILE.rawlog [--sensor LABEL] [--gt TRAJ.txt] --out TRAJ.txt [...]
-// Each frame is registered to the current keyframe (gasp/odometry/odometry.h). Writes the
-// trajectory of the depth camera (TUM format, optical frame, the first frame at the origin), and
+// Each frame is registered to the current keyframe (gasp/odometry/odometry.h). A rawlog of a
+// rotating LiDAR's sweeps is read as such (lidarOdometryParams(), the params' lidar section). Writes
+// the trajectory of the depth camera (TUM format, optical frame, the first frame at the origin; a
+// LiDAR's own frame for sweeps), and
 // optionally the pose graph (MRPT VERTEX3 / EDGE3 lines, CNetworkOfPoses::saveToTextFile) and a
 // line per frame. Where ground truth exists it prints the ATE and the RPE over 1 s (TUM's
 // definitions, gasp/eval).
@@ -38,7 +40,7 @@ int main(int argc, char** argv) {
   gasp::SlamParams all_params;
   if (!params_options.preload(argc, argv, all_params)) return 1;
   gasp::OdometryParams& params = all_params.odometry;  // the params file's sections segment to odometry
-  gasp::tools::addSequenceOptions(app, input, gt_path);
+  gasp::tools::addSequenceOptions(app, input, gt_path, true);
   app.add_option("--out", out_path, "trajectory to write (TUM format: timestamp tx ty tz qx qy qz qw of the depth camera; required)");
   app.add_option("--graph", graph_path, "pose graph to write (MRPT VERTEX3/EDGE3 text; --rawlog: robot frames from the scans' sensorPose)");
   app.add_option("--frames-csv", frames_csv, "one line per frame: tracked, keyframe, reference, patches, inliers, times, reason");
@@ -62,15 +64,20 @@ int main(int argc, char** argv) {
     gasp::validate(params);
     gasp::tools::RunOutputs outputs({{"--out", out_path}, {"--graph", graph_path}, {"--frames-csv", frames_csv}},
                                     gasp::tools::sequenceInputs(input, gt_path));  // before the run, not after it
-    gasp::DepthOdometry odometry(params);
     gasp::DepthSequence sequence(input);
+    // A LiDAR's sweeps: the pair's values from the params' lidar section (docs/lidar.md).
+    const gasp::RgbdFrame* first = sequence.peek();
+    const bool sweeps = first && first->isSweep();
+    if (sweeps) params = gasp::lidarOdometryParams(all_params.lidar, params);
+    gasp::DepthOdometry odometry(params);
     gasp::tools::reportIntrinsics(stdout, sequence.intrinsicsSummary(), sequence.intrinsicsWarning());
     const gasp::Trajectory gt = gt_path.empty() ? sequence.groundTruth() : gasp::readTumTrajectory(gt_path);
     // Each frame is segmented while the one before it is registered (frames_ahead.h).
     const auto run_start = std::chrono::steady_clock::now();
     const gasp::tools::SequenceEnd end = gasp::tools::forEachFrameWithViewAhead(sequence, params, sequential, [&](const gasp::RgbdFrame& frame, auto segmented) {
       const gasp::OdometryFrame& f =
-          odometry.addFrame(frame.timestamp, frame.depth_m, frame.depth_intrinsics, std::move(segmented));
+          frame.isSweep() ? odometry.addFrame(frame.timestamp, *frame.sweep, std::move(segmented))
+                          : odometry.addFrame(frame.timestamp, frame.depth_m, frame.depth_intrinsics, std::move(segmented));
       if (odometry.frames().size() % 50 == 0)
         std::fprintf(stderr, "frame %zu: %zu tracked of %zu\n", f.index, odometry.trackedCount(), odometry.frames().size());
     });
@@ -79,7 +86,9 @@ int main(int argc, char** argv) {
     const auto& frames = odometry.frames();
     gasp::OutputFile& out = outputs.at("--out");
     gasp::writeTumTrajectory(out.stream(), odometry.trajectory(),
-                             gasp::tools::trajectoryHeader("depth camera trajectory by gasp-odometry", end));
+                             gasp::tools::trajectoryHeader(sweeps ? "LiDAR trajectory by gasp-odometry (the LiDAR's own frame)"
+                                                                  : "depth camera trajectory by gasp-odometry",
+                                                           end));
     out.commit();
     if (auto* f = outputs.find("--frames-csv")) {
       gasp::tools::writeFramesCsv(f->stream(), frames);

@@ -5,7 +5,8 @@
 //             [--cloud MAP.ply] [--marginals-csv M.csv] [--sessions-report R.yaml]
 //             [--params FILE] [options]
 // Writes the optimised trajectory of the depth camera (TUM format) in the world of the first
-// frame's robot frame (MRPT's sensorPose; TUM folders: the camera looking along the robot's +X),
+// frame's robot frame (MRPT's sensorPose; TUM folders: the camera looking along the robot's +X;
+// a rawlog of LiDAR sweeps: the LiDAR's, with the params' lidar section, lidarSlamParams()),
 // optionally the pose graph with its loop closures (MRPT VERTEX3 / EDGE3), the keyframes as an
 // MRPT simple map (for MRPT's observations2map; each pose with its marginal covariance in the
 // graph) and a voxel point map (PLY).
@@ -70,7 +71,7 @@ int main(int argc, char** argv) {
   gasp::tools::ParamsOptions params_options;
   gasp::SlamParams params;
   if (!params_options.preload(argc, argv, params)) return 1;
-  gasp::tools::addSequenceOptions(app, input, gt_path);
+  gasp::tools::addSequenceOptions(app, input, gt_path, true);
   std::vector<std::string> session_specs;
   std::string sessions_report;
   auto* sessions_option = app.add_option(
@@ -139,6 +140,29 @@ int main(int argc, char** argv) {
     // Every input opened before the run: a missing one is reported now, not after the others.
     std::vector<gasp::DepthSequence> sequences;
     for (const auto& session : sessions) sequences.emplace_back(session);
+    // A LiDAR's sweeps: the pair's values from the params' lidar section (docs/lidar.md); one
+    // kind of input for all sessions. A session whose first frame cannot be read is reported by
+    // its run below, as without the look ahead.
+    std::optional<bool> first_kind;
+    for (std::size_t s = 0; s < sequences.size(); ++s) {
+      const gasp::RgbdFrame* first = nullptr;
+      try {
+        first = sequences[s].peek();
+      } catch (const gasp::Error&) {
+        if (n_sessions == 1) throw;
+        continue;
+      }
+      if (!first) continue;
+      if (!first_kind) first_kind = first->isSweep();
+      if (first->isSweep() != *first_kind)
+        throw gasp::Error(sequences[s].describe() + ": " + (first->isSweep() ? "LiDAR sweeps" : "depth images") +
+                          ", an earlier session's are " + (*first_kind ? "LiDAR sweeps" : "depth images") +
+                          " (one kind of sensor per map)");
+    }
+    const bool sweeps = first_kind.value_or(false);
+    if (sweeps && map_output.wanted())
+      throw gasp::Error(sequences[0].describe() + ": LiDAR sweeps: --simplemap and --cloud take depth images only (not yet sweeps)");
+    if (sweeps) params = gasp::lidarSlamParams(params);
     std::optional<gasp::DepthSlam> slam;
     gasp::Isometry3 T_robot_camera = gasp::Isometry3::Identity();
     std::vector<gasp::RgbdFrame> keyframes;  // for --simplemap and --cloud
@@ -171,7 +195,8 @@ int main(int argc, char** argv) {
           }
           session_started = true;
           const gasp::OdometryFrame& f =
-              slam->addFrame(frame.timestamp, frame.depth_m, frame.depth_intrinsics, std::move(segmented));
+              frame.isSweep() ? slam->addFrame(frame.timestamp, *frame.sweep, std::move(segmented))
+                              : slam->addFrame(frame.timestamp, frame.depth_m, frame.depth_intrinsics, std::move(segmented));
           if (f.keyframe && keep_keyframes) {
             gasp::RgbdFrame kept = frame;
             kept.rgb.release();  // the map keeps depth only
@@ -204,12 +229,16 @@ int main(int argc, char** argv) {
     for (std::size_t s = 0; s < n_sessions; ++s) {
       gasp::OutputFile& out = outputs.at("--out", trajectory_paths[s]);
       gasp::writeTumTrajectory(out.stream(), gasp::tools::sessionTrajectory(trajectory, runs[s]),
-                               gasp::tools::trajectoryHeader("depth camera trajectory by gasp-slam (optimised)", runs[s].end));
+                               gasp::tools::trajectoryHeader(sweeps ? "LiDAR trajectory by gasp-slam (optimised)"
+                                                                      : "depth camera trajectory by gasp-slam (optimised)",
+                                                               runs[s].end));
       out.commit();
       if (odometry_out.empty()) continue;
       gasp::OutputFile& f = outputs.at("--odometry-out", odometry_paths[s]);
       gasp::writeTumTrajectory(f.stream(), gasp::tools::sessionTrajectory(odometry_trajectory, runs[s]),
-                               gasp::tools::trajectoryHeader("depth camera trajectory by gasp-slam (odometry)", runs[s].end));
+                               gasp::tools::trajectoryHeader(sweeps ? "LiDAR trajectory by gasp-slam (odometry)"
+                                                                      : "depth camera trajectory by gasp-slam (odometry)",
+                                                               runs[s].end));
       f.commit();
     }
     if (auto* f = outputs.find("--frames-csv")) {

@@ -11,7 +11,10 @@
 #include "gasp/core/tum_dataset.h"
 #include "gasp/mrpt/observation_matcher.h"
 #include "gasp/rawlog/observation_conversion.h"
+#include "gasp/rawlog/range_scan.h"
 #include "gasp/rawlog/tum_to_rawlog.h"
+#include "gasp/sim/lidar.h"
+#include "gasp/sim/scene.h"
 #include "gasp_test_data.h"
 
 using namespace gasp;
@@ -131,4 +134,45 @@ TEST(ObservationMatcher, OnePlaneGivesAPartialPoseWithItsFreeDirections) {
   Eigen::Matrix<double, 6, 1> along_normal;
   along_normal << normal, Eigen::Vector3d::Zero();
   EXPECT_GT(along_normal.dot(c.information * along_normal), 0.0);
+}
+
+// Two simulated 16-laser sweeps as MRPT's CObservationRotatingScan (toRotatingScan), mounted on a
+// robot: the matcher takes them with the LiDAR's values (the params file form's section lidar)
+// and gives the robots' relative pose within the 5 cm / 0.5 deg; a sweep against a depth
+// image is refused with both classes named.
+TEST(ObservationMatcher, TwoLidarSweepsGiveTheRobotsRelativePose) {
+  const sim::Scene room = sim::makeScene("room");
+  Isometry3 T_a = Isometry3::Identity(), T_b = Isometry3::Identity();
+  T_a.translation() = Eigen::Vector3d(0.3, -0.2, 1.0);
+  T_b.linear() = Eigen::AngleAxisd(0.6, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T_b.translation() = Eigen::Vector3d(1.1, 0.4, 1.05);
+  Isometry3 S = Isometry3::Identity();  // the LiDAR 0.8 m up on the robot, turned 90 deg
+  S.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  S.translation() = Eigen::Vector3d(0.1, 0.0, 0.8);
+  const sim::LidarSensor lidar = sim::lidarSensor(16);
+  auto a = toRotatingScan(sim::simulateLidarScan(room, lidar, T_a, 1, 0), "LIDAR");
+  auto b = toRotatingScan(sim::simulateLidarScan(room, lidar, T_b, 1, 1), "LIDAR");
+  a.setSensorPose(toCPose3D(S));
+  b.setSensorPose(toCPose3D(S));
+  const auto matcher = createObservationMatcher("gasp::ObservationMatcher_GASP",
+                                                mrpt::containers::yaml::FromText("lidar:\n  patch_area_m2: 0.5\n"));
+  const MatchConstraint c = matcher->match(a, b);
+  ASSERT_TRUE(c.success) << c.reason;
+  const Isometry3 E = (S * (T_a.inverse() * T_b) * S.inverse()).inverse() * fromCPose3D(c.T_a_b);
+  EXPECT_LT(translationNorm(E), 0.05);
+  EXPECT_LT(rotationAngle(E) * 180.0 / M_PI, 0.5);
+  EXPECT_GT(c.inliers, 5);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(c.information);
+  EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
+
+  RgbdFrame f;
+  f.depth_m = cv::Mat::zeros(480, 640, CV_32FC1);
+  const auto depth = observationFromFrame(f);
+  try {
+    matcher->match(a, *depth);
+    ADD_FAILURE() << "a sweep was matched against a depth image";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("CObservation3DRangeScan"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("one kind"), std::string::npos) << e.what();
+  }
 }

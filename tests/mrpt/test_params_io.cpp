@@ -210,7 +210,7 @@ TEST(ParamsIo, AMapKeepsItsOptionsAndEachViewItsOwnSegmentationThroughSerializat
 }
 
 TEST(ParamsIo, VersionZeroMapsStillLoadAndUnknownVersionsAreRefused) {
-  // Without views the two versions have the same layout; only the version byte after the class
+  // Without views the three versions have the same layout; only the version byte after the class
   // name differs (MRPT's object format: class name, version, data, end marker).
   CSuperpixelMap map;
   map.creationOptions.superpixels.target_patch_area_m2 = 0.006;
@@ -222,7 +222,7 @@ TEST(ParamsIo, VersionZeroMapsStillLoadAndUnknownVersionsAreRefused) {
   const auto at = std::search(bytes.begin(), bytes.end(), name.begin(), name.end());
   ASSERT_NE(at, bytes.end());
   const std::size_t version_byte = static_cast<std::size_t>(at - bytes.begin()) + name.size();
-  ASSERT_EQ(bytes[version_byte], 1);
+  ASSERT_EQ(bytes[version_byte], 2);
   auto load = [&](std::uint8_t version) {
     bytes[version_byte] = version;
     mrpt::io::CMemoryStream in;
@@ -232,7 +232,8 @@ TEST(ParamsIo, VersionZeroMapsStillLoadAndUnknownVersionsAreRefused) {
     return back;
   };
   EXPECT_EQ(load(0).creationOptions.superpixels.target_patch_area_m2, 0.006);
-  EXPECT_THROW(load(2), std::exception);
+  EXPECT_EQ(load(1).creationOptions.superpixels.target_patch_area_m2, 0.006);
+  EXPECT_THROW(load(3), std::exception);
 }
 
 // The params file every program loads (gasp/params/params_file.h) is also what the MRPT classes

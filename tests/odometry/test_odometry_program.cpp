@@ -285,3 +285,32 @@ TEST(GaspOdometryProgram, NoScoreWhenNoFrameAfterTheFirstWasTracked) {
   EXPECT_TRUE(contains(run.output, "evaluation: not possible: no frame after the first was tracked")) << run.output;
   EXPECT_FALSE(contains(run.output, "ate_rmse_m")) << run.output;
 }
+
+// A rawlog of LiDAR sweeps (gasp-simulate --sensor lidar16): gasp-odometry reads the sweeps with
+// the params' lidar section, tracks every one and scores itself against the LiDAR's truth; and
+// gasp-slam the same, refusing the map outputs it cannot write for sweeps.
+TEST(GaspOdometryProgram, ARawlogOfLidarSweepsIsTrackedAndScored) {
+  const std::string out = gasp::test::scratchDir();
+  const auto sim = runProgram("gasp-simulate", "--sensor lidar16 --frames 60 --rate 10 --out " + out + "/lidar");
+  ASSERT_EQ(sim.exit_code, 0) << sim.output;
+  const std::string input = "--rawlog " + out + "/lidar/lidar.rawlog --gt " + out + "/lidar/lidar_groundtruth.txt --max-frames 20";
+  const auto run = runProgram("gasp-odometry", input + " --out " + out + "/traj.txt --frames-csv " + out + "/frames.csv");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "frames: 20\n")) << run.output;
+  EXPECT_TRUE(contains(run.output, "tracked: 20\n")) << run.output;
+  EXPECT_EQ(gasp::readTumTrajectory(out + "/traj.txt").size(), 20u);
+  const auto pos = run.output.find("ate_rmse_m: ");
+  ASSERT_NE(pos, std::string::npos) << run.output;
+  EXPECT_LT(std::stod(run.output.substr(pos + 12)), 0.05) << run.output;
+
+  const auto slam = runProgram("gasp-slam", input + " --out " + out + "/slam.txt");
+  ASSERT_EQ(slam.exit_code, 0) << slam.output;
+  const auto slam_pos = slam.output.find("\nate_rmse_m: ");
+  ASSERT_NE(slam_pos, std::string::npos) << slam.output;
+  EXPECT_LT(std::stod(slam.output.substr(slam_pos + 13)), 0.05) << slam.output;
+  const auto no_map = runProgram("gasp-slam", input + " --out " + out + "/slam2.txt --cloud " + out + "/map.ply");
+  EXPECT_EQ(no_map.exit_code, 1) << no_map.output;
+  EXPECT_TRUE(contains(no_map.output, "--simplemap and --cloud take depth images only")) << no_map.output;
+  EXPECT_FALSE(std::filesystem::exists(out + "/map.ply"));
+  EXPECT_FALSE(std::filesystem::exists(out + "/slam2.txt"));
+}

@@ -18,7 +18,9 @@
 #include "gasp/core/error.h"
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/pipeline/range_view.h"
+#include "gasp/rawlog/depth_sequence.h"
 #include "gasp/rawlog/range_scan.h"
+#include "gasp/rawlog/rawlog_writer.h"
 #include "gasp/sim/lidar.h"
 #include "gasp/sim/scene.h"
 #include "gasp/sim/simulation.h"
@@ -214,7 +216,7 @@ bool registersToItselfMoved(const gasp::RangeScan& scan, const RealMotion& m) {
     return false;
   }
   const gasp::Isometry3 error = T.inverse() * r.pair.pose.T_target_source;
-  EXPECT_TRUE(r.returns_refined) << m.name << ": " << r.returns_reason;
+  EXPECT_TRUE(r.pair.returns_refined) << m.name << ": " << r.pair.returns_reason;
   EXPECT_LT(error.translation().norm(), 0.02) << m.name;
   EXPECT_LT(Eigen::AngleAxisd(error.linear()).angle() * 180 / M_PI, 0.2) << m.name;
   return true;
@@ -342,4 +344,51 @@ TEST(RangeScan, GaspSimulateWritesALidarSequenceThatReadsBack) {
   EXPECT_NE(bad.exit_code, 0) << bad.output;
   EXPECT_TRUE(gasp::test::contains(bad.output, "--sensor")) << bad.output;
   EXPECT_FALSE(std::filesystem::exists(dir + "/x/lidar.rawlog"));
+}
+
+// A rawlog's sweeps as a sequence (DepthSequence with `sweeps`): frames with the sweep and its
+// sensorPose, peek() then next() giving the same frame; a depth image after a sweep is an error
+// naming the scan; without `sweeps` the sweeps are skipped as before.
+TEST(RangeScan, ADepthSequenceReadsSweepsAndRefusesMixingThemWithDepthImages) {
+  const std::string dir = gasp::test::scratchDir();
+  const gasp::sim::Scene room = gasp::sim::makeScene("room");
+  gasp::Isometry3 T = gasp::Isometry3::Identity();
+  T.translation() = Eigen::Vector3d(0.5, 0.0, 1.0);
+  gasp::RangeScan sweep = gasp::sim::simulateLidarScan(room, gasp::sim::lidarSensor(16), T);
+  sweep.T_robot_sensor.translation() = Eigen::Vector3d(0.0, 0.0, 0.7);
+  sweep.timestamp = 10.0;
+  gasp::RgbdFrame depth;
+  depth.timestamp = 10.1;
+  depth.depth_m = cv::Mat::zeros(depth.depth_intrinsics.height, depth.depth_intrinsics.width, CV_32FC1);
+  {
+    gasp::RawlogWriter writer(dir + "/mixed.rawlog");
+    writer.write(sweep, "LIDAR");
+    writer.write(depth);
+    writer.close();
+  }
+  gasp::DepthSequenceOptions o;
+  o.rawlog_path = dir + "/mixed.rawlog";
+  o.sweeps = true;
+  gasp::DepthSequence sequence(o);
+  const gasp::RgbdFrame* first = sequence.peek();
+  ASSERT_NE(first, nullptr);
+  ASSERT_TRUE(first->isSweep());
+  EXPECT_EQ(first->sensor_label, "LIDAR");
+  EXPECT_NEAR(first->T_robot_camera.translation().z(), 0.7, 1e-9);
+  EXPECT_EQ(first->sweep->range_m.size(), sweep.range_m.size());
+  const auto f = sequence.next();
+  ASSERT_TRUE(f && f->isSweep());
+  EXPECT_EQ(sequence.inputIndex(), 0u);
+  try {
+    sequence.next();
+    ADD_FAILURE() << "a depth image after a sweep was read";
+  } catch (const gasp::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("a depth image, the first was a LiDAR sweep"), std::string::npos) << e.what();
+  }
+  o.sweeps = false;  // as before: the sweeps are other observations
+  gasp::DepthSequence depth_only(o);
+  const auto d = depth_only.next();
+  ASSERT_TRUE(d.has_value());
+  EXPECT_FALSE(d->isSweep());
+  EXPECT_FALSE(depth_only.next().has_value());
 }

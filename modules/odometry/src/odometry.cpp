@@ -11,6 +11,7 @@
 #include "gasp/core/stopwatch.h"
 #include "gasp/core/undistortion.h"
 #include "gasp/pipeline/pair_registration.h"
+#include "gasp/pipeline/range_view.h"
 #include "gasp/registration/partial_pose.h"
 
 namespace gasp {
@@ -122,9 +123,7 @@ bool DepthOdometry::take(PairResult r, std::size_t ref_index, OdometryFrame& f, 
   return true;
 }
 
-const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& depth_m,
-                                             const CameraIntrinsics& intrinsics,
-                                             std::optional<SegmentedDepth> segmented) {
+void DepthOdometry::checkTimestamp(double timestamp) const {
   if (!std::isfinite(timestamp)) throw Error("odometry: frame " + std::to_string(frames_.size()) + ": timestamp is not finite");
   const bool session_start = frames_.empty() || session_pending_;
   if (!session_start && !(timestamp > frames_.back().timestamp)) {
@@ -133,6 +132,25 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
                   frames_.size(), timestamp, frames_.back().timestamp);
     throw Error(buf);
   }
+}
+
+const OdometryFrame& DepthOdometry::addFrame(double timestamp, const RangeScan& sweep,
+                                             std::optional<SegmentedDepth> segmented) {
+  checkTimestamp(timestamp);
+  if (params_.rolling_shutter_readout_s != 0.0)
+    throw Error("odometry: frame " + std::to_string(frames_.size()) +
+                ": a LiDAR sweep is not deskewed for a rolling shutter (rolling_shutter_readout_s must be 0; "
+                "lidarOdometryParams() sets it)");
+  if (segmented) return addView(timestamp, std::move(segmented->view), segmented->ms, false);
+  const auto t_seg = std::chrono::steady_clock::now();
+  DepthView view = makeRangeView(sweep, params_.pair.segment, params_.pair.returns);
+  return addView(timestamp, std::move(view), msSince(t_seg), false);
+}
+
+const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& depth_m,
+                                             const CameraIntrinsics& intrinsics,
+                                             std::optional<SegmentedDepth> segmented) {
+  checkTimestamp(timestamp);
   if (depth_m.empty()) throw Error("odometry: frame " + std::to_string(frames_.size()) + ": empty depth image");
   if (depth_m.cols != intrinsics.width || depth_m.rows != intrinsics.height) {
     char buf[200];
@@ -140,28 +158,29 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
                   depth_m.cols, depth_m.rows, intrinsics.width, intrinsics.height);
     throw Error(buf);
   }
+  // Deskew with the last step's velocity, then segment.
+  const auto t_seg = std::chrono::steady_clock::now();
+  if (params_.rolling_shutter_readout_s != 0.0 && velocity_) {
+    auto [pinhole, k] = pinholeDepth(depth_m, intrinsics);
+    DepthView view = makeDepthView(deskewDepth(pinhole, k, *velocity_, params_.rolling_shutter_readout_s), k,
+                                   params_.pair.segment);
+    return addView(timestamp, std::move(view), msSince(t_seg), true);
+  }
+  if (segmented)  // made ahead (view_ahead.h): the same view, already there
+    return addView(timestamp, std::move(segmented->view), segmented->ms, false);
+  DepthView view = makeDepthView(depth_m, intrinsics, params_.pair.segment);
+  return addView(timestamp, std::move(view), msSince(t_seg), false);
+}
+
+const OdometryFrame& DepthOdometry::addView(double timestamp, DepthView view, double segmentation_ms, bool deskewed) {
+  const bool session_start = frames_.empty() || session_pending_;
   OdometryFrame f;
   f.index = frames_.size();
   f.session = session_start ? session_starts_.size() : frames_.back().session;
   f.timestamp = timestamp;
   f.reference = f.index;
-
-  // Deskew with the last step's velocity, then segment.
-  const auto t_seg = std::chrono::steady_clock::now();
-  DepthView view;
-  if (params_.rolling_shutter_readout_s != 0.0 && velocity_) {
-    auto [pinhole, k] = pinholeDepth(depth_m, intrinsics);
-    view = makeDepthView(deskewDepth(pinhole, k, *velocity_, params_.rolling_shutter_readout_s), k,
-                         params_.pair.segment);
-    f.deskewed = true;
-    f.segmentation_ms = msSince(t_seg);
-  } else if (segmented) {  // made ahead (view_ahead.h): the same view, already there
-    view = std::move(segmented->view);
-    f.segmentation_ms = segmented->ms;
-  } else {
-    view = makeDepthView(depth_m, intrinsics, params_.pair.segment);
-    f.segmentation_ms = msSince(t_seg);
-  }
+  f.deskewed = deskewed;
+  f.segmentation_ms = segmentation_ms;
   f.patches = static_cast<int>(view.segmentation.patches.size());
 
   const auto t_reg = std::chrono::steady_clock::now();

@@ -18,4 +18,16 @@ void validate(const OdometryParams& params) {
   validate(params.pair);
 }
 
+OdometryParams lidarOdometryParams(const LidarParams& lidar, const OdometryParams& base) {
+  OdometryParams p = base;
+  p.pair = lidarPairParams(lidar);
+  p.rolling_shutter_readout_s = 0.0;
+  return p;
+}
+
+OdometryParams lidarOdometryParams(const LidarParams& lidar) {
+  const OdometryParams defaults;
+  return lidarOdometryParams(lidar, defaults);
+}
+
 }  // namespace gasp

@@ -4,11 +4,12 @@
 #include <exception>
 
 #include "gasp/core/stopwatch.h"
+#include "gasp/pipeline/range_view.h"
 
 namespace gasp {
 
 ViewAhead::ViewAhead(const OdometryParams& params, bool enabled)
-    : superpixels_(params.pair.segment), enabled_(enabled && params.rolling_shutter_readout_s == 0.0) {}
+    : superpixels_(params.pair.segment), returns_(params.pair.returns), enabled_(enabled && params.rolling_shutter_readout_s == 0.0) {}
 
 ViewAhead::~ViewAhead() {
   for (auto& f : pending_)
@@ -28,6 +29,18 @@ void ViewAhead::start(const cv::Mat& depth_m, const CameraIntrinsics& intrinsics
     const auto t0 = std::chrono::steady_clock::now();
     SegmentedDepth s;
     s.view = makeDepthView(depth_m, intrinsics, superpixels);
+    s.ms = msSince(t0);
+    return s;
+  }));
+}
+
+void ViewAhead::start(const RangeScan& sweep) {
+  if (!enabled_) return;
+  // A scan makeRangeView() refuses fails here too: take() is then empty and addFrame() says why.
+  pending_.push_back(std::async(std::launch::async, [sweep, superpixels = superpixels_, returns = returns_] {
+    const auto t0 = std::chrono::steady_clock::now();
+    SegmentedDepth s;
+    s.view = makeRangeView(sweep, superpixels, returns);
     s.ms = msSince(t0);
     return s;
   }));

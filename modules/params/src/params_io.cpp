@@ -175,6 +175,39 @@ void writeSuperpixelParams(const SuperpixelParams& params, mrpt::config::CConfig
   superpixelFields(params, [&](const char* key, const auto& v) { target.write(section, key, toText(v)); });
 }
 
+void readLidarParams(const mrpt::config::CConfigFileBase& source, const std::string& section, LidarParams& params,
+                     const std::set<std::string>& other_allowed_keys) {
+  LidarParams p = params;  // unchanged when reading fails
+  loadParamsFileKey(source, section, partOf(p, [](SlamParams& all) -> LidarParams& { return all.lidar; }));
+  readSection(source, section, p, other_allowed_keys, [](auto& q, auto&& f) { lidarFields(q, f); });
+  params = p;
+}
+
+void writeLidarParams(const LidarParams& params, mrpt::config::CConfigFileBase& target, const std::string& section) {
+  writeSection(params, target, section, [](auto& p, auto&& f) { lidarFields(p, f); });
+}
+
+std::set<std::string> superpixelKeys() {
+  std::set<std::string> keys;
+  SuperpixelParams p;
+  superpixelFields(p, [&](const char* key, auto&&) { keys.insert(key); });
+  return keys;
+}
+
+std::set<std::string> pairKeys() {
+  std::set<std::string> keys;
+  PairParams p;
+  pairFields(p, [&](const char* key, auto&&) { keys.insert(key); });
+  return keys;
+}
+
+std::set<std::string> lidarKeys() {
+  std::set<std::string> keys;
+  LidarParams p;
+  lidarFields(p, [&](const char* key, auto&&) { keys.insert(key); });
+  return keys;
+}
+
 void readPairParams(const mrpt::config::CConfigFileBase& source, const std::string& section, PairParams& params,
                     const std::set<std::string>& other_allowed_keys) {
   PairParams p = params;  // unchanged when reading fails
@@ -256,7 +289,7 @@ bool paramsFileForm(const mrpt::containers::yaml& y) {
 
 }  // namespace
 
-void readPairParams(const mrpt::containers::yaml& y, const std::string& who, PairParams& params) {
+void readPairParams(const mrpt::containers::yaml& y, const std::string& who, PairParams& params, LidarParams* lidar) {
   if (paramsFileForm(y)) {
     // The params file's form: `params_file: PATH` (loaded first) and sections over it; the
     // sections a pair does not use (odometry, loop_closure, pose_graph) are read and checked too,
@@ -264,6 +297,7 @@ void readPairParams(const mrpt::containers::yaml& y, const std::string& who, Pai
     try {
       SlamParams p;
       p.odometry.pair = params;
+      if (lidar) p.lidar = *lidar;
       mrpt::containers::yaml sections = mrpt::containers::yaml::Map();
       for (const auto& [key, value] : y.asMap()) {
         const auto name = key.as<std::string>();
@@ -275,7 +309,9 @@ void readPairParams(const mrpt::containers::yaml& y, const std::string& who, Pai
           sections[name] = mrpt::containers::yaml(value);
         }
       }
-      params = readParamsNode(sections, "parameters", p).odometry.pair;
+      const SlamParams read = readParamsNode(sections, "parameters", p);
+      params = read.odometry.pair;
+      if (lidar) *lidar = read.lidar;
     } catch (const Error& e) {
       THROW_EXCEPTION_FMT("%s: %s", who.c_str(), e.what());
     }

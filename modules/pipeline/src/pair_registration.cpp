@@ -9,6 +9,7 @@
 
 #include "gasp/core/error.h"
 #include "gasp/core/stopwatch.h"
+#include "gasp/pipeline/model_error.h"
 #include "gasp/superpixels/depth_superpixels.h"
 #include "retry_policy.h"
 
@@ -21,6 +22,7 @@ void validate(const PairParams& p) {
   validate(p.refine);
   validate(p.certify);
   validate(p.retry);
+  validate(p.returns);
 }
 
 namespace {
@@ -200,6 +202,25 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
   return r;
 }
 
+/// Stage 7 in the result: when a full pose is claimed and both views carry their returns, the
+/// returns' rounds from it; their pose and information replace the cells' when they succeed.
+void refineOnTheReturns(const DepthView& source, const DepthView& target, const PairParams& p, PairResult& r) {
+  if (!r.pose.success || !source.returns || !target.returns) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  const RegistrationResult refined = refineOnReturns(*source.returns, *target.returns, r.pose.T_target_source, p.returns,
+                                                     p.refine.solver, target.superpixels.max_incidence_deg);
+  r.timings.returns_ms += msSince(t0);
+  if (!refined.success) {
+    r.returns_reason = refined.reason;
+    return;
+  }
+  r.returns_refined = true;
+  r.pose.T_target_source = refined.T_target_source;
+  r.pose.information = refined.information;
+  r.pose.information_eigenvalues = refined.information_eigenvalues;
+  r.edge_information = informationWithModelError(refined.information, p.certify.model_error);
+}
+
 /// Stage 6's finer scale for one pair: `r` is the default scale's result.
 PairResult retryAtFinerScale(const DepthView& source, const DepthView& target, const PairParams& p, PairResult r) {
   const double f = p.retry.finer_area_factor;
@@ -241,8 +262,9 @@ bool retryApplies(const PairResult& r, const DepthView& source, const DepthView&
 PairResult registerViews(const DepthView& source, const DepthView& target, const PairParams& params) {
   validate(params);
   PairResult r = registerAtScale(source, target, params, false);
-  if (!retryApplies(r, source, target, params)) return r;
-  return retryAtFinerScale(source, target, params, std::move(r));
+  if (retryApplies(r, source, target, params)) r = retryAtFinerScale(source, target, params, std::move(r));
+  refineOnTheReturns(source, target, params, r);  // a retry's views carry the same returns
+  return r;
 }
 
 PairResult trackViews(const DepthView& source, const DepthView& target, const Isometry3& T_target_source_predicted,
@@ -271,6 +293,7 @@ PairResult trackViews(const DepthView& source, const DepthView& target, const Is
   const auto t1 = std::chrono::steady_clock::now();
   record(certify(r.pose, dense.rounds.terms, free_space, dense.check, views, p.certify), r);
   r.timings.certify_ms = msSince(t1);
+  refineOnTheReturns(source, target, p, r);
   return r;
 }
 
@@ -366,6 +389,11 @@ ViewSetResult registerViewSets(const std::vector<const DepthView*>& sources,
   for (std::size_t k = 0; k < out.registrations.size(); ++k)
     if (better(out.registrations[k], out.best < 0 ? nullptr : &out.registrations[static_cast<std::size_t>(out.best)]))
       out.best = static_cast<int>(k);
+  // Stage 7 for the one to use only (a finer-scale view carries its view's returns).
+  if (out.best >= 0) {
+    ViewSetRegistration& best = out.registrations[static_cast<std::size_t>(out.best)];
+    refineOnTheReturns(*sources[best.source], *targets[best.target], params, best.result);
+  }
   return out;
 }
 

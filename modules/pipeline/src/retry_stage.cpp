@@ -67,7 +67,9 @@ bool finerScaleRetryApplies(const PairResult& r, const DepthView& source, const 
 DepthView finerScaleView(const DepthView& view, double area_factor) {
   SuperpixelParams sp = view.superpixels;
   sp.target_patch_area_m2 *= area_factor;
-  return makeDepthView(view.depth_m, view.projection, sp);
+  DepthView finer = makeDepthView(view.depth_m, view.projection, sp);
+  finer.returns = view.returns;
+  return finer;
 }
 
 std::string finerScaleReason(double area_factor, const std::string& reason) {

@@ -32,7 +32,7 @@ DepthSequence::DepthSequence(const DepthSequenceOptions& options) : options_(opt
                   std::to_string(impl_->tum->size()) + " frames");
     impl_->next_tum = options.first;
   } else {
-    impl_->rawlog.emplace(options.rawlog_path);
+    impl_->rawlog.emplace(options.rawlog_path, options.sweeps);
   }
 }
 
@@ -45,20 +45,42 @@ std::string DepthSequence::describe() const {
 }
 
 std::string DepthSequence::intrinsicsSummary() const {
-  return impl_->tum ? impl_->tum->intrinsicsSummary() : "each scan's own (cameraParams)";
+  if (impl_->tum) return impl_->tum->intrinsicsSummary();
+  return sweeps_ ? "each sweep's own (its model's laser elevations and its columns' azimuths)" : "each scan's own (cameraParams)";
 }
 
 std::string DepthSequence::intrinsicsWarning() const { return impl_->tum ? impl_->tum->intrinsicsWarning() : ""; }
 
+const RgbdFrame* DepthSequence::peek() {
+  if (!peeked_ && !peeked_end_) {
+    peeked_ = read(peeked_index_);
+    peeked_end_ = !peeked_;
+  }
+  return peeked_ ? &*peeked_ : nullptr;
+}
+
 std::optional<RgbdFrame> DepthSequence::next() {
+  if (peeked_ || peeked_end_) {
+    std::optional<RgbdFrame> out = std::move(peeked_);
+    peeked_.reset();
+    if (out) input_index_ = peeked_index_;
+    return out;  // at the end, peeked_end_ stays: every later call is the end too
+  }
+  std::size_t index = 0;
+  std::optional<RgbdFrame> out = read(index);
+  if (out) input_index_ = index;
+  return out;
+}
+
+std::optional<RgbdFrame> DepthSequence::read(std::size_t& index_out) {
   if (options_.max_frames != 0 && used_ >= options_.max_frames) return std::nullopt;  // read nothing more
   std::optional<RgbdFrame> out;
   if (impl_->tum) {
     if (impl_->next_tum < impl_->tum->size()) {
-      input_index_ = impl_->next_tum;
-      out = frameFromTum(*impl_->tum, input_index_, options_.with_rgb);
+      index_out = impl_->next_tum;
+      out = frameFromTum(*impl_->tum, index_out, options_.with_rgb);
       // No wrap-around for a huge `every`: past the end is the end.
-      impl_->next_tum = options_.every > impl_->tum->size() - input_index_ ? impl_->tum->size() : input_index_ + options_.every;
+      impl_->next_tum = options_.every > impl_->tum->size() - index_out ? impl_->tum->size() : index_out + options_.every;
     }
   } else {
     for (std::optional<RgbdFrame> f; (f = impl_->rawlog->next());) {
@@ -67,11 +89,16 @@ std::optional<RgbdFrame> DepthSequence::next() {
       if (index < options_.first || (index - options_.first) % options_.every != 0) continue;
       if (used_ == 0) {
         T_robot_camera_ = f->T_robot_camera;
+        sweeps_ = f->isSweep();
+      } else if (f->isSweep() != sweeps_) {
+        throw Error(options_.rawlog_path + ": scan " + std::to_string(index) + " ('" + f->sensor_label + "') is " +
+                    (f->isSweep() ? "a LiDAR sweep, the first was a depth image" : "a depth image, the first was a LiDAR sweep") +
+                    " (one sensor only; choose it with the sensor label)");
       } else if (!T_robot_camera_.isApprox(f->T_robot_camera, 1e-9)) {
         throw Error(options_.rawlog_path + ": scan " + std::to_string(index) +
                     " has another sensorPose than the first (one camera only; choose it with the sensor label)");
       }
-      input_index_ = index;
+      index_out = index;
       out = std::move(f);
       break;
     }

@@ -2,6 +2,8 @@
 
 #include <mrpt/obs/CObservationRotatingScan.h>
 #include <mrpt/obs/CObservationVelodyneScan.h>
+#include <mrpt/core/Clock.h>
+#include <mrpt/poses/CPose3D.h>
 
 #include <algorithm>
 #include <cmath>
@@ -112,6 +114,29 @@ RangeScan rangeScanFrom(const mrpt::obs::CObservation& observation) {
     packets.generatePointCloud(filler);
   }
   return out;
+}
+
+bool isSweepObservation(const mrpt::obs::CObservation& observation) {
+  return dynamic_cast<const mrpt::obs::CObservationRotatingScan*>(&observation) != nullptr ||
+         dynamic_cast<const mrpt::obs::CObservationVelodyneScan*>(&observation) != nullptr;
+}
+
+RgbdFrame sweepFrameFromObservation(const mrpt::obs::CObservation& observation, const std::string& what) {
+  if (!isSweepObservation(observation))
+    throw Error(what + ": a " + observation.GetRuntimeClass()->className +
+                " is not a LiDAR sweep (CObservationRotatingScan or CObservationVelodyneScan)");
+  RgbdFrame frame;
+  try {
+    frame.sweep = rangeScanFrom(observation);
+  } catch (const std::exception& e) {  // gasp::Error (no known elevations, ...) and MRPT's
+    throw Error(what + ": " + exceptionMessage(e));
+  }
+  frame.timestamp = mrpt::Clock::toDouble(observation.timestamp);
+  frame.sensor_label = observation.sensorLabel;
+  mrpt::poses::CPose3D sensor_pose;
+  observation.getSensorPose(sensor_pose);
+  frame.T_robot_camera = fromCPose3D(sensor_pose);  // not optical: the LiDAR's own frame
+  return frame;
 }
 
 mrpt::obs::CObservationRotatingScan toRotatingScan(const RangeScan& scan, const std::string& sensor_label) {

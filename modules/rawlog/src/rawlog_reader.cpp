@@ -9,6 +9,7 @@
 
 #include "gasp/core/error.h"
 #include "gasp/rawlog/observation_conversion.h"
+#include "gasp/rawlog/range_scan.h"
 #include "gasp/rawlog/rawlog_objects.h"
 #include "lazy_load_base_guard.h"
 
@@ -21,7 +22,7 @@ struct RawlogReader::Impl {
   bool at_end = false;
 };
 
-RawlogReader::RawlogReader(const std::string& path) : path_(path) {
+RawlogReader::RawlogReader(const std::string& path, bool read_sweeps) : path_(path), read_sweeps_(read_sweeps) {
   impl_ = std::make_unique<Impl>(path);  // file checks: missing, directory, empty, unreadable
   images_dir_ = findRawlogImagesDirectory(path);
 
@@ -53,6 +54,12 @@ std::optional<RgbdFrame> RawlogReader::next() {
       auto obs = impl_->pending.front();
       impl_->pending.pop_front();
       if (!obs) continue;
+      if (read_sweeps_ && isSweepObservation(*obs)) {
+        RgbdFrame frame = sweepFrameFromObservation(
+            *obs, "rawlog '" + path_ + "', sweep #" + std::to_string(scans_read_) + " ('" + obs->sensorLabel + "')");
+        ++scans_read_;
+        return frame;
+      }
       auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obs);
       if (!scan) {
         ++skipped_[rawlogClassName(*obs)];
@@ -88,7 +95,8 @@ std::optional<RgbdFrame> RawlogReader::next() {
     }
   }
   if (scans_read_ == 0)
-    throw Error("rawlog '" + path_ + "': no CObservation3DRangeScan in the file (it holds " +
+    throw Error("rawlog '" + path_ + "': no CObservation3DRangeScan" +
+                (read_sweeps_ ? ", CObservationRotatingScan or CObservationVelodyneScan" : "") + " in the file (it holds " +
                 skippedSummary() + ")");
   return std::nullopt;
 }

@@ -25,7 +25,14 @@ DepthSlam::~DepthSlam() {
 const OdometryFrame& DepthSlam::addFrame(double timestamp, const cv::Mat& depth_m, const CameraIntrinsics& intrinsics,
                                          std::optional<SegmentedDepth> segmented) {
   // Throws: nothing added.
-  const OdometryFrame& f = odometry_.addFrame(timestamp, depth_m, intrinsics, std::move(segmented));
+  return added(odometry_.addFrame(timestamp, depth_m, intrinsics, std::move(segmented)));
+}
+
+const OdometryFrame& DepthSlam::addFrame(double timestamp, const RangeScan& sweep, std::optional<SegmentedDepth> segmented) {
+  return added(odometry_.addFrame(timestamp, sweep, std::move(segmented)));  // throws: nothing added
+}
+
+const OdometryFrame& DepthSlam::added(const OdometryFrame& f) {
   const std::vector<OdometryFrame>& frames = odometry_.frames();
   if (f.tracked && f.reference != f.index) {
     const PoseConstraint& c = odometry_.constraints().back();  // the one ending in f

@@ -26,4 +26,10 @@ void validate(const SlamParams& p) {
   validate(p.lidar);
 }
 
+SlamParams lidarSlamParams(const SlamParams& params) {
+  SlamParams p = params;
+  p.odometry = lidarOdometryParams(params.lidar, params.odometry);
+  return p;
+}
+
 }  // namespace gasp

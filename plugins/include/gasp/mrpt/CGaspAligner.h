@@ -28,6 +28,7 @@
 
 #include "gasp/mrpt/pose_covariance.h"
 #include "gasp/pipeline/pair_registration.h"
+#include "gasp/pipeline/range_view.h"
 
 namespace gasp {
 
@@ -55,7 +56,10 @@ class CGaspAligner : public mrpt::slam::CMetricMapsAlignmentAlgorithm, public mr
  public:
   /// The matching keys of params_io.h (ini section of your choice).
   struct TOptions : public mrpt::config::CLoadableOptions {
-    PairParams params;
+    PairParams params;  ///< maps of depth images' views
+    /// Maps of LiDAR sweeps' views: lidarPairParams(lidar) (the same section, the params file's
+    /// lidar keys). Two maps are aligned when all their views are of one kind.
+    LidarParams lidar;
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
     void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
   };
@@ -78,7 +82,8 @@ class CGaspAligner : public mrpt::slam::CMetricMapsAlignmentAlgorithm, public mr
       mrpt::optional_ref<mrpt::slam::TMetricMapAlignmentResult> outInfo = std::nullopt) override;
 
   /// Pose of observation b's robot frame in observation a's robot frame (sensorPose honoured);
-  /// both must be CObservation3DRangeScan (others throw). Segmented with options.params.segment.
+  /// both CObservation3DRangeScan (segmented with options.params.segment), or both LiDAR sweeps
+  /// (CObservationRotatingScan, CObservationVelodyneScan: options.lidar); others throw.
   /// nullptr = no estimate.
   mrpt::poses::CPose3DPDFGaussian::Ptr alignObservations(
       const mrpt::obs::CObservation& a, const mrpt::obs::CObservation& b,

@@ -35,7 +35,10 @@ class CSuperpixelMap : public mrpt::maps::CMetricMap {
  public:
   /// Segmentation of inserted observations (ini section ..._creationOpts).
   struct TCreationOptions : public mrpt::config::CLoadableOptions {
-    SuperpixelParams superpixels;
+    SuperpixelParams superpixels;  ///< depth images
+    /// LiDAR sweeps (CObservationRotatingScan, CObservationVelodyneScan): lidarSuperpixelParams()
+    /// and the returns' normals of these; the same section, the params file's lidar keys.
+    LidarParams lidar;
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
     void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
   };
@@ -111,9 +114,11 @@ class CSuperpixelMap : public mrpt::maps::CMetricMap {
     views_.clear();
     ++content_version_;
   }
-  /// CObservation3DRangeScan: inserted (true). Other observation types: false, as every MRPT map
+  /// CObservation3DRangeScan, and a LiDAR's CObservationRotatingScan or CObservationVelodyneScan
+  /// (creationOptions.lidar): inserted (true). Other observation types: false, as every MRPT map
   /// does for what it cannot use (CMultiMetricMap offers each observation to every map). A scan
-  /// without range image or with inconsistent intrinsics throws.
+  /// without range image or with inconsistent intrinsics, or a sweep of a model whose elevations
+  /// GASP does not know, throws.
   bool internal_insertObservation(const mrpt::obs::CObservation& obs,
                                   const std::optional<const mrpt::poses::CPose3D>& robotPose) override;
   /// log-likelihood of a CObservation3DRangeScan taken from `takenFrom`: its patches are

@@ -1,7 +1,8 @@
 #pragma once
 /// \file superpixel_map_view.h One observation inside a gasp::CSuperpixelMap: its depth view
-/// (depth image, depth intrinsics, patches in the camera frame), where its depth camera was in the
-/// map, and the patches' colours from the intensity image (when there was one).
+/// (depth image, depth intrinsics, patches in the camera frame; or a LiDAR sweep's binned view
+/// with its returns, in the LiDAR's frame), where its sensor was in the map, and the patches'
+/// colours from the intensity image (when there was one).
 #include <Eigen/Core>
 
 #include <array>
@@ -11,6 +12,7 @@
 
 #include "gasp/core/pose.h"
 #include "gasp/pipeline/depth_view.h"
+#include "gasp/pipeline/range_view.h"
 #include "gasp/rawlog/rgbd_frame.h"
 
 namespace gasp {
@@ -37,10 +39,13 @@ struct MapPatch {
   int view = -1, patch = -1;  ///< where it comes from
 };
 
-/// Segments a frame (makeDepthView()) and places it in the map: T_map_camera =
-/// T_map_robot * frame.T_robot_camera. Colours come from frame.rgb through the intensity camera's
-/// own intrinsics and T_depth_rgb. Throws gasp::Error for bad images or parameters.
-SuperpixelMapView makeMapView(const RgbdFrame& frame, const Isometry3& T_map_robot, const SuperpixelParams& params);
+/// Segments a frame (makeDepthView() with `params`; a LiDAR sweep: makeRangeView() with
+/// lidarSuperpixelParams(lidar) and its returns, range_view.h) and places it in the map:
+/// T_map_camera = T_map_robot * frame.T_robot_camera. Colours come from frame.rgb through the
+/// intensity camera's own intrinsics and T_depth_rgb (a sweep has none: its patches take their
+/// normals' colours). Throws gasp::Error for bad images, scans or parameters.
+SuperpixelMapView makeMapView(const RgbdFrame& frame, const Isometry3& T_map_robot, const SuperpixelParams& params,
+                              const LidarParams& lidar = {});
 
 /// A colour for a patch without one: its normal in the camera frame mapped to RGB.
 Rgb8 normalColour(const Eigen::Vector3d& normal);

@@ -25,6 +25,7 @@
 
 #include "gasp/core/camera_intrinsics.h"
 #include "gasp/core/pose.h"
+#include "gasp/core/range_scan.h"
 #include "gasp/core/rolling_shutter.h"
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/odometry/odometry_params.h"
@@ -87,6 +88,14 @@ class DepthOdometry {
   /// segmented here).
   const OdometryFrame& addFrame(double timestamp, const cv::Mat& depth_m, const CameraIntrinsics& intrinsics,
                                 std::optional<SegmentedDepth> segmented = std::nullopt);
+  /// Adds the next frame as a rotating LiDAR's sweep (range_view.h: binned, segmented with
+  /// params.pair.segment, its returns kept for the pairs' last stage with params.pair.returns;
+  /// lidarOdometryParams() are a LiDAR's). Poses are the sensor's (MRPT's LiDAR frame, x ahead,
+  /// z up). A sweep is not deskewed: throws gasp::Error when rolling_shutter_readout_s is not 0,
+  /// for a scan that is not a range image, and for timestamps as above. `segmented`: its view
+  /// made ahead (ViewAhead::start(const RangeScan&)).
+  const OdometryFrame& addFrame(double timestamp, const RangeScan& sweep,
+                                std::optional<SegmentedDepth> segmented = std::nullopt);
 
   /// Starts a new session (another recording, with no known relation to the frames before): the
   /// next frame with patches is its origin, at T_world_first, as the first frame is the first
@@ -126,6 +135,10 @@ class DepthOdometry {
   bool track(const DepthView& view, const DepthView& ref, std::size_t ref_index, OdometryFrame& f,
              const char* attempt, const PairParams& pair, const std::optional<Isometry3>& T_ref_predicted = std::nullopt,
              bool* visibility_refused = nullptr, const std::optional<Isometry3>& T_ref_motion = std::nullopt);
+  /// Throws gasp::Error for a timestamp addFrame() refuses.
+  void checkTimestamp(double timestamp) const;
+  /// addFrame() once the frame's view is made.
+  const OdometryFrame& addView(double timestamp, DepthView view, double segmentation_ms, bool deskewed);
   /// track() with the registration `r` (T_ref_frame) already made.
   bool take(PairResult r, std::size_t ref_index, OdometryFrame& f, const char* attempt,
             const std::optional<Isometry3>& T_ref_predicted = std::nullopt, bool* visibility_refused = nullptr,

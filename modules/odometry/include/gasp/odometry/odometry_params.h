@@ -3,6 +3,7 @@
 /// and units.
 #include "gasp/odometry/scene_change.h"
 #include "gasp/pipeline/pair_registration.h"
+#include "gasp/pipeline/range_view.h"
 
 namespace gasp {
 
@@ -42,5 +43,12 @@ struct OdometryParams {
 
 /// Throws gasp::Error naming the first invalid parameter (including the pair's).
 void validate(const OdometryParams& params);
+
+/// The odometry for a rotating LiDAR's sweeps: `base`'s keyframe, motion and scene-change limits,
+/// the pair's values of lidarPairParams(lidar), and no rolling-shutter deskew (a sweep is not a
+/// camera's image). Throws gasp::Error for invalid LiDAR parameters.
+OdometryParams lidarOdometryParams(const LidarParams& lidar, const OdometryParams& base);
+/// With the default odometry limits.
+OdometryParams lidarOdometryParams(const LidarParams& lidar = {});
 
 }  // namespace gasp

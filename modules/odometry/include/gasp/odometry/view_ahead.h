@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "gasp/core/camera_intrinsics.h"
+#include "gasp/core/range_scan.h"
 #include "gasp/odometry/odometry_params.h"
 #include "gasp/pipeline/depth_view.h"
 
@@ -38,6 +39,9 @@ class ViewAhead {
   /// Starts segmenting `depth_m` (shared, not copied: the caller leaves it unchanged until its
   /// take()) on a thread of its own; the caller bounds how many run at once (frames_ahead.h).
   void start(const cv::Mat& depth_m, const CameraIntrinsics& intrinsics);
+  /// The same for a LiDAR sweep (makeRangeView() with params.pair.segment and params.pair.returns;
+  /// the scan is copied, its range image shared).
+  void start(const RangeScan& sweep);
   /// The view of the oldest start() not yet taken, waiting for it; empty when none is pending,
   /// when the odometry deskews, when that depth was not segmented (addFrame() would refuse it) or
   /// when the segmentation failed (addFrame() then segments the frame itself and reports the
@@ -46,6 +50,7 @@ class ViewAhead {
 
  private:
   SuperpixelParams superpixels_;
+  ReturnsRefineParams returns_;
   bool enabled_ = false;
   std::deque<std::future<SegmentedDepth>> pending_;  ///< oldest first; invalid: not segmented
 };

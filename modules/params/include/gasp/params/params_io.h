@@ -34,8 +34,21 @@ void readPairParams(const mrpt::config::CConfigFileBase& source, const std::stri
                     const std::set<std::string>& other_allowed_keys = {});
 /// The YAML form takes either the flat keys or the params file's form: its sections (segment to
 /// retry used, the others checked) and `params_file: PATH`, a params file loaded first.
-void readPairParams(const mrpt::containers::yaml& source, const std::string& who, PairParams& params);
+/// `lidar` (when given): the params file form's section `lidar` goes there too (unchanged by the
+/// flat keys).
+void readPairParams(const mrpt::containers::yaml& source, const std::string& who, PairParams& params,
+                    LidarParams* lidar = nullptr);
 void writePairParams(const PairParams& params, mrpt::config::CConfigFileBase& target, const std::string& section);
+
+/// A rotating LiDAR's values (LidarParams): the keys of the params file's section lidar.
+void readLidarParams(const mrpt::config::CConfigFileBase& source, const std::string& section, LidarParams& params,
+                     const std::set<std::string>& other_allowed_keys = {});
+void writeLidarParams(const LidarParams& params, mrpt::config::CConfigFileBase& target, const std::string& section);
+
+/// The keys each table reads, for a section that holds several (as other_allowed_keys).
+std::set<std::string> superpixelKeys();
+std::set<std::string> pairKeys();
+std::set<std::string> lidarKeys();
 
 /// The odometry (a decider's section): PairParams' keys and those of the params file's section
 /// odometry.

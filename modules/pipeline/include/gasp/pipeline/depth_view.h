@@ -4,6 +4,7 @@
 /// (paper III-A).
 #include <opencv2/core.hpp>
 
+#include <memory>
 #include <utility>
 
 #include "gasp/core/camera_intrinsics.h"
@@ -12,6 +13,8 @@
 #include "gasp/superpixels/surface_patch.h"
 
 namespace gasp {
+
+class SweepReturns;  // returns_stage.h
 
 struct DepthView {
   /// CV_32FC1 [m], 0 or NaN = no data: a pinhole camera's depth z (undistorted, see
@@ -22,6 +25,9 @@ struct DepthView {
   /// The parameters `segmentation` was made with (makeDepthView sets them). The finer-scale retry
   /// of registerViews() segments the view again with these at a smaller target area.
   SuperpixelParams superpixels;
+  /// A LiDAR view's sweep (makeRangeView): its returns with their normals, on which the pair's
+  /// last stage refines the pose (returns_stage.h); null for a camera's view. Shared, immutable.
+  std::shared_ptr<const SweepReturns> returns;
 };
 
 /// Segments `depth_m` (see segmentDepthSuperpixels(); throws gasp::Error for a wrong image type

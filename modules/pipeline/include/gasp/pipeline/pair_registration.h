@@ -11,6 +11,8 @@
 ///   5. certify      observability, dense support, free space; the information (certify_stage.h)
 ///   6. retry        one-way partners, then a finer scale, when the chain gives no estimate
 ///                   (retry_stage.h)
+///   7. returns      LiDAR views: point-to-plane rounds on the sweeps' own returns from a
+///                   claimed pose (returns_stage.h)
 /// The result is what a SLAM system consumes: T_target_source with its information matrix, or
 /// no estimate with the reason (too few associations, no consensus, degenerate geometry,
 /// contradicted free space).
@@ -26,6 +28,7 @@
 #include "gasp/pipeline/hypothesise_stage.h"
 #include "gasp/pipeline/refine_stage.h"
 #include "gasp/pipeline/retry_stage.h"
+#include "gasp/pipeline/returns_stage.h"
 
 namespace gasp {
 
@@ -40,6 +43,8 @@ struct PairParams {
   RefineParams refine;
   CertifyParams certify;
   RetryParams retry;
+  /// Stage 7: runs only when both views carry their sweep's returns (DepthView::returns).
+  ReturnsRefineParams returns;
 };
 
 /// Throws gasp::Error naming the stage and the first invalid parameter.
@@ -51,13 +56,15 @@ struct PairTimings {
   double guided_ms = 0;    ///< guided verification (association under the pose hypotheses)
   double certify_ms = 0;   ///< the certificate: its free-space test, and the uniqueness test (the alternative's refinement included)
   double retry_segmentation_ms = 0;  ///< the finer-scale retry's segmentation of both views (0: no retry)
+  double returns_ms = 0;   ///< stage 7, the returns' rounds (LiDAR views)
   double total() const {
-    return association_ms + ransac_ms + refine_ms + dense_ms + guided_ms + certify_ms + retry_segmentation_ms;
+    return association_ms + ransac_ms + refine_ms + dense_ms + guided_ms + certify_ms + retry_segmentation_ms +
+           returns_ms;
   }
   /// Adds another attempt's stage times (all but retry_segmentation_ms).
   void addStages(const PairTimings& o) {
     association_ms += o.association_ms, ransac_ms += o.ransac_ms, refine_ms += o.refine_ms;
-    dense_ms += o.dense_ms, guided_ms += o.guided_ms, certify_ms += o.certify_ms;
+    dense_ms += o.dense_ms, guided_ms += o.guided_ms, certify_ms += o.certify_ms, returns_ms += o.returns_ms;
   }
 };
 
@@ -124,6 +131,12 @@ struct PairResult {
   /// the views passed in; when the retry found nothing either, the result is the default scale's
   /// with both reasons. viewsOf() picks the right pair.
   std::shared_ptr<const std::pair<DepthView, DepthView>> retry_views;
+  /// Stage 7 (LiDAR views): the returns' rounds refined the claimed pose, whose pose.T_target_source,
+  /// pose.information and edge_information are then theirs (the other fields -- inliers,
+  /// visibility, dense terms -- describe the cells' pose). When they ran and failed, the cells'
+  /// pose stays and returns_reason says why.
+  bool returns_refined = false;
+  std::string returns_reason;
 };
 
 /// The source and target views whose patches r's indices (association, used, verified) refer to:

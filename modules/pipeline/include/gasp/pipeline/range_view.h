@@ -11,7 +11,7 @@
 #include "gasp/core/view_projection.h"
 #include "gasp/pipeline/depth_view.h"
 #include "gasp/pipeline/pair_registration.h"
-#include "gasp/registration/refinement.h"
+#include "gasp/pipeline/returns_stage.h"
 #include "gasp/superpixels/superpixel_params.h"
 
 #include <string>
@@ -29,29 +29,14 @@ int rangeBinColumns(const RangeScan& scan);
 /// range image (validateLayout).
 std::pair<cv::Mat, ViewProjection> binRangeScan(const RangeScan& scan, const SuperpixelParams& params);
 
-/// The segmented view of a sweep (sensor frame: MRPT's LiDAR frame, x ahead, z up). `params`
-/// must have processing_step_px = 1 (lidarSuperpixelParams() are a LiDAR's).
-DepthView makeRangeView(const RangeScan& scan, const SuperpixelParams& params);
-
-/// The last step for two sweeps: point-to-plane rounds on the returns themselves, not the binned
-/// cells. A binned cell is the mean of different returns in each view (the bins fall elsewhere on
-/// the scene when the sensor turns), so terms between cells leave a bias of a few tenths of a
-/// degree; a return has its own place on the other sweep's surface.
-struct ReturnsRefineParams {
-  std::vector<double> gates_m = {0.3, 0.15, 0.08};  ///< round r's gate on the point-to-plane distance [m]
-  int column_step = 1;          ///< every n-th column of the source sweep
-  int look_up_columns = 2;      ///< a point takes the nearest return with a normal within this many columns
-  int max_rounds = 10;          ///< rounds in all (the last gate repeats until converged)
-  double converged_m = 0.0005;  ///< RMS displacement of the source returns that ends the rounds [m]
-  /// A return's normal: a plane fitted to the 3 x (2 half_width + 1) returns around it, kept when
-  /// its thinnest spread is below max_flatness of the next (a surface, not an edge or foliage).
-  int normal_half_width = 3;
-  double max_flatness = 0.3;
-};
+/// The segmented view of a sweep (sensor frame: MRPT's LiDAR frame, x ahead, z up), carrying its
+/// returns with their normals (`returns`' settings) for the pair's last stage (returns_stage.h).
+/// `params` must have processing_step_px = 1 (lidarSuperpixelParams() are a LiDAR's).
+DepthView makeRangeView(const RangeScan& scan, const SuperpixelParams& params, const ReturnsRefineParams& returns = {});
 
 /// A rotating LiDAR's own parameters (the params file's section `lidar`, docs/lidar.md): the
 /// pair pipeline's values for its sweeps follow from them and the camera's defaults
-/// (lidarPairParams), and so do the returns' rounds (returnsRefineParams).
+/// (lidarPairParams), and so do the returns' rounds (returnsRefineParams, returns_stage.h).
 struct LidarParams {
   /// Target patch area [m^2]: about 5 binned cells of a 16-laser sensor at 10 m, 60 at 2.5 m.
   double patch_area_m2 = 0.5;
@@ -67,7 +52,6 @@ struct LidarParams {
 
 /// Throws gasp::Error naming the first parameter out of its range.
 void validate(const LidarParams& params);
-void validate(const ReturnsRefineParams& params);
 
 /// The returns' rounds of `params`: gates of 15, 7.5 and 4 range_sigma_m (0.3, 0.15, 0.08 m at
 /// 2 cm), the other settings as given.
@@ -82,34 +66,19 @@ SuperpixelParams lidarSuperpixelParams(const LidarParams& params = {});
 /// that compare patch centroids (association, RANSAC, guided verification, the dense rounds'
 /// gates) grow with the patch radius, sqrt(patch_area_m2 / 0.004); lengths that compare points
 /// (the solvers' noise and loss scale, the free-space gate) follow the range noise. Every cell is
-/// sampled (a binned sweep has fewer cells than a camera's sampled pixels), and the edge terms and
-/// the slide scan are off (docs/lidar.md).
+/// sampled (a binned sweep has fewer cells than a camera's sampled pixels), the edge terms and
+/// the slide scan are off (docs/lidar.md), and the returns' rounds are returnsRefineParams(lidar).
 PairParams lidarPairParams(const LidarParams& params = {});
 
-/// Refines T_target_source between the two sweeps (point-to-plane, target normals from the target
-/// sweep's returns; `solver`: loss, noise and degeneracy test; returns seen beyond
-/// max_incidence_deg give no term). success false, with a reason, when fewer than 6 terms remain
-/// or a solve fails. Throws gasp::Error for invalid params.
-RegistrationResult refineOnReturns(const RangeScan& source, const RangeScan& target, const Isometry3& T_target_source,
-                                   const ReturnsRefineParams& params = {}, const RefinementParams& solver = {},
-                                   double max_incidence_deg = 80.0);
-
-/// Two sweeps registered with no prior: each made a view (makeRangeView), registerViews(), then,
-/// when a full pose is claimed, refineOnReturns() from it (its pose and information replace the
-/// views'; when it fails the views' pose stays and its reason is kept in `returns_reason`).
+/// Two sweeps registered with no prior: each made a view (makeRangeView, concurrently), then
+/// registerViews(), whose last stage refines a claimed pose on the returns (returns_stage.h).
 struct RangePairResult {
   PairResult pair;
-  bool returns_refined = false;
-  std::string returns_reason;
-  double segmentation_ms = 0.0, returns_ms = 0.0;  ///< both views' segmentation; the returns' rounds
+  double segmentation_ms = 0.0;  ///< both views' binning, segmentation and returns' normals
 };
-/// `returns`: the rounds' own settings; their solver and incidence limit are the pair's
-/// (params.refine.solver, params.segment.max_incidence_deg). The result's pose, information and
-/// edge information are the returns' rounds'; its other fields (inliers, visibility, timings)
-/// describe the binned views' pose.
-RangePairResult registerRangeScans(const RangeScan& source, const RangeScan& target, const PairParams& params,
-                                   const ReturnsRefineParams& returns);
-/// The same with a LiDAR's parameters: lidarPairParams(lidar) and returnsRefineParams(lidar).
+/// Throws gasp::Error for invalid params or a scan that is not a range image.
+RangePairResult registerRangeScans(const RangeScan& source, const RangeScan& target, const PairParams& params);
+/// The same with a LiDAR's parameters: lidarPairParams(lidar).
 RangePairResult registerRangeScans(const RangeScan& source, const RangeScan& target, const LidarParams& lidar = {});
 
 }  // namespace gasp

@@ -15,6 +15,9 @@ namespace gasp {
 struct DepthSequenceOptions {
   std::string tum_dir;       ///< a TUM folder (frames in depth.txt order) ...
   std::string rawlog_path;   ///< ... or an MRPT rawlog (its CObservation3DRangeScan in file order)
+  /// rawlog: its rotating LiDARs' sweeps are frames too (RgbdFrame::sweep); one kind of frame per
+  /// sequence (choose the sensor with sensor_label when a rawlog holds both).
+  bool sweeps = false;
   std::string sensor_label;  ///< rawlog: only the scans with this sensorLabel (empty: all)
   std::size_t first = 0;     ///< index of the first frame used, among the input's frames
   std::size_t every = 1;     ///< use every N-th frame
@@ -39,8 +42,12 @@ class DepthSequence {
 
   /// The next frame used, or nullopt at the end. Throws gasp::Error for a corrupt frame, a rawlog
   /// scan whose sensorPose differs from the first used (one camera only: choose it with
-  /// sensor_label), and, at the end, when no frame at all was used.
+  /// sensor_label) or of another kind (a sweep after depth images or the other way), and, at the
+  /// end, when no frame at all was used.
   std::optional<RgbdFrame> next();
+  /// The frame the next next() returns, read ahead (same errors), or null at the end: what the
+  /// sequence holds (depth images or sweeps) before the programs choose their parameters.
+  const RgbdFrame* peek();
 
   /// Index among the input's frames (counting only the chosen sensor's scans) of the frame the
   /// last next() returned.
@@ -48,13 +55,14 @@ class DepthSequence {
   std::size_t framesUsed() const { return used_; }
   /// The TUM folder's ground truth (empty for a rawlog or a folder without one).
   const Trajectory& groundTruth() const { return ground_truth_; }
-  /// Rawlog: the depth camera's pose on the robot (sensorPose) shared by every frame used
+  /// Rawlog: the depth camera's (or the LiDAR's) pose on the robot (sensorPose) shared by every frame used
   /// (identity until the first). TUM folder: the identity (gasp-odometry's graphs stay in
   /// optical frames), although each frame carries mrptCameraFromOptical() as T_robot_camera.
   const Isometry3& robotCamera() const { return T_robot_camera_; }
   /// "TUM folder DIR" or "rawlog FILE".
   std::string describe() const;
-  /// TUM folder: TumDataset::intrinsicsSummary(); rawlog: each scan's own (its cameraParams).
+  /// TUM folder: TumDataset::intrinsicsSummary(); rawlog: each scan's own (its cameraParams, or
+  /// a sweep's model).
   std::string intrinsicsSummary() const;
   /// TUM folder: TumDataset::intrinsicsWarning(); rawlog: "".
   std::string intrinsicsWarning() const;
@@ -67,6 +75,12 @@ class DepthSequence {
   Isometry3 T_robot_camera_ = Isometry3::Identity();
   std::size_t input_index_ = 0;
   std::size_t used_ = 0;
+  bool sweeps_ = false;  ///< the first frame used is a sweep
+  /// The next frame used and its input index, or nullopt at the end (next() without the peek).
+  std::optional<RgbdFrame> read(std::size_t& index);
+  std::optional<RgbdFrame> peeked_;  ///< peek()'s frame, which next() returns
+  std::size_t peeked_index_ = 0;
+  bool peeked_end_ = false;  ///< peek() met the end
 };
 
 }  // namespace gasp

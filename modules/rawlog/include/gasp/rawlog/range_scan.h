@@ -11,6 +11,7 @@
 /// - a Velodyne's azimuth turns clockwise seen from above (as the sensor spins), a 2D scan's (and
 ///   the ray's here) counter-clockwise about the sensor's z from its x axis.
 #include "gasp/core/range_scan.h"
+#include "gasp/rawlog/rgbd_frame.h"
 
 #include <mrpt/obs/CObservationRotatingScan.h>
 
@@ -27,6 +28,14 @@ RangeScan rangeScanFrom(const mrpt::obs::CObservationRotatingScan& scan);
 /// cell of its laser and nearest column, with its own ray (`ray`): the image reproduces them
 /// exactly, where uniform columns are off by up to a quarter of a degree.
 RangeScan rangeScanFrom(const mrpt::obs::CObservation& observation);
+
+/// Whether GASP reads `observation` as a rotating LiDAR's sweep: a CObservationRotatingScan or a
+/// CObservationVelodyneScan (2D scans convert too, but one row is no surface).
+bool isSweepObservation(const mrpt::obs::CObservation& observation);
+/// The sweep as a frame (RgbdFrame::sweep; its timestamp, sensor label, and its sensorPose as
+/// T_robot_camera, the LiDAR's own frame). Throws gasp::Error starting with `what` for a sweep
+/// rangeScanFrom() refuses or an observation that is not one.
+RgbdFrame sweepFrameFromObservation(const mrpt::obs::CObservation& observation, const std::string& what);
 
 /// The range unit of the rotating scans GASP writes [m]: 2 mm, as MRPT's Velodyne conversion.
 inline constexpr double kRotatingScanResolutionM = 0.002;

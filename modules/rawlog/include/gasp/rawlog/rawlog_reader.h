@@ -1,5 +1,6 @@
 #pragma once
-/// \file rawlog_reader.h Reads the RGB-D (CObservation3DRangeScan) observations of an MRPT rawlog.
+/// \file rawlog_reader.h Reads the RGB-D (CObservation3DRangeScan) observations and the rotating
+/// LiDARs' sweeps (CObservationRotatingScan, CObservationVelodyneScan) of an MRPT rawlog.
 #include <cstddef>
 #include <map>
 #include <memory>
@@ -13,7 +14,8 @@
 namespace gasp {
 
 /// Streams the CObservation3DRangeScan observations of a rawlog in file order, converted to
-/// RgbdFrame (see frameFromObservation()). Reads format #1 (actions / sensory frames) and #2
+/// RgbdFrame (see frameFromObservation()), and, when asked, its LiDAR sweeps as frames with `sweep`
+/// set (rangeScanFrom(), range_scan.h; the observation's sensorPose as T_robot_camera). Reads format #1 (actions / sensory frames) and #2
 /// (observations), gzip-compressed or plain. Other observation types and actions are skipped and
 /// counted. Externally stored range images and intensity images are resolved against
 /// findRawlogImagesDirectory(path) ("<name>_Images" beside the rawlog), whatever the working
@@ -21,17 +23,18 @@ namespace gasp {
 ///
 /// Errors (gasp::Error, naming the file): those of RawlogObjects (missing or empty file, not a
 /// rawlog, a truncated or corrupt stream, a class no loaded library registers); a rawlog without
-/// any CObservation3DRangeScan (reported by next() at the end, listing the types found); a scan
-/// without range image.
+/// any CObservation3DRangeScan or sweep (reported by next() at the end, listing the types found); a
+/// scan without range image; a sweep GASP cannot read (a model whose elevations it does not know).
 class RawlogReader {
  public:
   /// Opens the rawlog and reads its first object (so that empty or garbage files fail here).
-  explicit RawlogReader(const std::string& path);
+  /// `read_sweeps`: return LiDAR sweeps too (else they are skipped and counted as other types).
+  explicit RawlogReader(const std::string& path, bool read_sweeps = false);
   ~RawlogReader();
   RawlogReader(RawlogReader&&) noexcept;
   RawlogReader& operator=(RawlogReader&&) noexcept;
 
-  /// The next 3D range scan as a frame, or nullopt at the end of the file.
+  /// The next 3D range scan or sweep as a frame, or nullopt at the end of the file.
   std::optional<RgbdFrame> next();
 
   const std::string& path() const { return path_; }
@@ -39,7 +42,7 @@ class RawlogReader {
   const std::string& imagesDirectory() const { return images_dir_; }
   /// The layout seen so far (decided by the first object).
   RawlogFormat format() const { return format_; }
-  /// Number of 3D range scans returned so far.
+  /// Number of 3D range scans and sweeps returned so far.
   std::size_t scansRead() const { return scans_read_; }
   /// Class names and counts of the other objects met so far (observations of other types,
   /// CActionCollection, ...).
@@ -51,6 +54,7 @@ class RawlogReader {
   struct Impl;
   std::string path_;
   std::string images_dir_;
+  bool read_sweeps_ = false;
   RawlogFormat format_ = RawlogFormat::Observations;
   std::size_t scans_read_ = 0;
   std::map<std::string, std::size_t> skipped_;

@@ -2,15 +2,19 @@
 /// \file rgbd_frame.h One RGB-D frame as GASP sees it: depth [m], raw depth, rgb, intrinsics and
 /// the camera's poses. MRPT-free; observation_conversion.h converts to and from MRPT.
 #include <opencv2/core.hpp>
+
+#include <optional>
 #include <string>
 
 #include "gasp/core/camera_intrinsics.h"
 #include "gasp/core/pose.h"
+#include "gasp/core/range_scan.h"
 
 namespace gasp {
 
 /// A depth image with its optional rgb image. All camera frames are optical (x right, y down,
-/// z forward), as everywhere in GASP.
+/// z forward), as everywhere in GASP. Or a rotating LiDAR's sweep (`sweep` set, no images): its
+/// frame is MRPT's LiDAR frame (x ahead, z up).
 struct RgbdFrame {
   double timestamp = 0.0;  ///< acquisition time [s] (UNIX epoch for TUM data)
 
@@ -28,12 +32,17 @@ struct RgbdFrame {
   /// they coincide (TUM registered depth).
   Isometry3 T_depth_rgb = Isometry3::Identity();
   /// Pose of the depth camera's optical frame on the robot (MRPT's sensorPose, re-expressed for
-  /// the optical frame): p_robot = T_robot_camera * p_camera.
+  /// the optical frame): p_robot = T_robot_camera * p_camera. For a sweep: the LiDAR's sensorPose
+  /// as it is (p_robot = T_robot_camera * p_lidar).
   Isometry3 T_robot_camera = Isometry3::Identity();
 
   std::string sensor_label = "RGBD";  ///< MRPT sensorLabel
 
+  /// A rotating LiDAR's sweep (range_scan.h's rangeScanFrom()) instead of a depth image.
+  std::optional<RangeScan> sweep;
+
   bool hasRgb() const { return !rgb.empty(); }
+  bool isSweep() const { return sweep.has_value(); }
   bool hasRawDepth() const { return !depth_raw.empty() && depth_units_per_metre > 0.0; }
 };
 

@@ -59,6 +59,11 @@ class DepthSlam {
   /// background: starts or queues the search, and takes a search that has ended).
   const OdometryFrame& addFrame(double timestamp, const cv::Mat& depth_m, const CameraIntrinsics& intrinsics,
                                 std::optional<SegmentedDepth> segmented = std::nullopt);
+  /// The same for a rotating LiDAR's sweep (DepthOdometry::addFrame(double, const RangeScan&, ...);
+  /// lidarSlamParams() are a LiDAR's). Its keyframes keep their returns for the loop closures'
+  /// registrations.
+  const OdometryFrame& addFrame(double timestamp, const RangeScan& sweep,
+                                std::optional<SegmentedDepth> segmented = std::nullopt);
   /// Starts a new session (DepthOdometry::startSession()): its frames are tracked on their own,
   /// from T_world_first, and its keyframes searched for loops like any others, so relocalisation
   /// (agreeing votes, relocalisation.h) joins it to the sessions before when they share places,
@@ -104,6 +109,8 @@ class DepthSlam {
     bool taken = false;           ///< phase 1 took a constraint
     std::future<std::vector<LoopRegistration>> registered;
   };
+  /// The graph's side of a frame the odometry added: its pose, and when it is a keyframe its loop search.
+  const OdometryFrame& added(const OdometryFrame& f);
   /// The graph as the loop search of keyframe k sees it: keyframes up to k.
   LoopSearchGraph graphFor(std::size_t k);
   /// The loop search of a new keyframe in place, then the optimisation when it took any.

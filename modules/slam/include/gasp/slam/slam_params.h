@@ -68,4 +68,9 @@ struct SlamParams {
 void validate(const LoopClosureParams& params);
 void validate(const SlamParams& params);
 
+/// The parameters for a rotating LiDAR's sweeps: `params` with its odometry's pair values those of
+/// its `lidar` section (lidarOdometryParams(params.lidar, params.odometry)); the loop closer's and
+/// the graph's as given. Throws gasp::Error for invalid LiDAR parameters.
+SlamParams lidarSlamParams(const SlamParams& params);
+
 }  // namespace gasp

@@ -1,0 +1,94 @@
+#pragma once
+/// \file returns_stage.h Stage 7, for LiDAR views: point-to-plane rounds on the sweeps' own
+/// returns from the claimed pose.
+///
+/// A LiDAR view is segmented on binned cells (range_view.h). A binned cell is the mean of
+/// different returns in each view (the bins fall elsewhere on the scene when the sensor turns),
+/// so terms between cells leave a bias of a few tenths of a degree; a return has its own place on
+/// the other sweep's surface. When both views carry their returns (DepthView::returns) and a full
+/// pose is claimed, registerViews() and trackViews() end with these rounds; their pose and
+/// information replace the cells' (PairResult::returns_refined), or, when they fail, the cells'
+/// pose stays and PairResult::returns_reason says why.
+#include <Eigen/Core>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "gasp/core/pose.h"
+#include "gasp/core/range_scan.h"
+#include "gasp/registration/refinement.h"
+
+namespace gasp {
+
+struct ReturnsRefineParams {
+  /// Round r's gate on the point-to-plane distance [m], the last for the rounds after the third.
+  /// (A fixed array: a std::vector here, in every PairParams, sets off GCC 12's false
+  /// -Wmaybe-uninitialized in the callers that copy one.)
+  std::array<double, 3> gates_m = {0.3, 0.15, 0.08};
+  int column_step = 1;          ///< every n-th column of the source sweep
+  int look_up_columns = 2;      ///< a point takes the nearest return with a normal within this many columns
+  int max_rounds = 10;          ///< rounds in all (the last gate repeats until converged)
+  double converged_m = 0.0005;  ///< RMS displacement of the source returns that ends the rounds [m]
+  /// A return's normal: a plane fitted to the 3 x (2 half_width + 1) returns around it, kept when
+  /// its thinnest spread is below max_flatness of the next (a surface, not an edge or foliage).
+  int normal_half_width = 3;
+  double max_flatness = 0.3;
+};
+
+/// Throws gasp::Error naming the first parameter out of its range.
+void validate(const ReturnsRefineParams& params);
+
+/// A sweep's returns as a view keeps them for stage 7: each return's point in the sensor frame
+/// and, where the returns around it lie on one flat surface, its normal (computed once, when the
+/// view is made, so that a keyframe's serve every frame registered to it).
+class SweepReturns {
+ public:
+  /// Throws gasp::Error for a scan that is not a range image (validateLayout) or invalid params.
+  SweepReturns(const RangeScan& scan, const ReturnsRefineParams& params);
+
+  const RangeScan& scan() const { return scan_; }
+  int rows() const { return rows_; }
+  int cols() const { return cols_; }
+  /// The return of cell (row, col) [m, sensor frame]; NaN where there is none.
+  const Eigen::Vector3d& point(int row, int col) const { return point_[index(row, col)]; }
+  /// The return with a normal nearest in direction to `q` (sensor frame): in the row of the
+  /// nearest elevation, the nearest column within `reach` columns (a sweep may leave every other
+  /// column empty, a dual-return VLP-16's does; across the seam of a whole turn). Its index for
+  /// point(i) and normal(i), or -1.
+  int lookUp(const Eigen::Vector3d& q, int reach) const;
+  const Eigen::Vector3d& point(int i) const { return point_[static_cast<std::size_t>(i)]; }
+  const Eigen::Vector3d& normal(int i) const { return normal_[static_cast<std::size_t>(i)]; }
+  /// Half the diagonal of a cell [rad]: how far in angle a point can lie from the return it fell on.
+  double halfCellRad() const { return half_cell_rad_; }
+  /// The normal half-width and flatness the normals were fitted with.
+  int normalHalfWidth() const { return normal_half_width_; }
+  double maxFlatness() const { return max_flatness_; }
+
+ private:
+  std::size_t index(int r, int c) const { return static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(c); }
+  Eigen::Vector3d fitNormal(int r, int c) const;
+
+  RangeScan scan_;
+  int rows_ = 0, cols_ = 0;
+  bool whole_turn_ = false;
+  double half_cell_rad_ = 0.0;
+  int normal_half_width_ = 3;
+  double max_flatness_ = 0.3;
+  std::vector<Eigen::Vector3d> point_, normal_;
+};
+
+/// Refines T_target_source between the two sweeps (point-to-plane, the target's normals;
+/// `solver`: loss, noise and degeneracy test; returns seen beyond max_incidence_deg give no term).
+/// The target's normals are those it was made with (params' normal settings are not used again).
+/// success false, with a reason, when fewer than 6 terms remain or a solve fails. Throws
+/// gasp::Error for invalid params.
+RegistrationResult refineOnReturns(const SweepReturns& source, const SweepReturns& target, const Isometry3& T_target_source,
+                                   const ReturnsRefineParams& params = {}, const RefinementParams& solver = {},
+                                   double max_incidence_deg = 80.0);
+/// The same on two scans (their returns made with `params`).
+RegistrationResult refineOnReturns(const RangeScan& source, const RangeScan& target, const Isometry3& T_target_source,
+                                   const ReturnsRefineParams& params = {}, const RefinementParams& solver = {},
+                                   double max_incidence_deg = 80.0);
+
+}  // namespace gasp

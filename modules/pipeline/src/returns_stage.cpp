@@ -1,0 +1,148 @@
+#include "gasp/pipeline/returns_stage.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "gasp/core/error.h"
+
+namespace gasp {
+
+void validate(const ReturnsRefineParams& r) {
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw Error(std::string("lidar parameters: ") + what);
+  };
+  for (const double g : r.gates_m) require(g > 0 && std::isfinite(g), "the returns' gates must be > 0 and finite");
+  require(r.column_step >= 1 && r.max_rounds >= 1 && r.max_rounds <= 1000,
+          "returns_column_step must be >= 1 and returns_max_rounds in [1, 1000]");
+  require(r.look_up_columns >= 0 && r.look_up_columns <= 100, "returns_look_up_columns must be in [0, 100]");
+  require(r.converged_m >= 0 && std::isfinite(r.converged_m), "returns_converged_m must be >= 0 and finite");
+  require(r.normal_half_width >= 1 && r.normal_half_width <= 100 && r.max_flatness > 0 && r.max_flatness <= 1,
+          "returns_normal_half_width must be in [1, 100] and returns_max_flatness in (0, 1]");
+}
+
+SweepReturns::SweepReturns(const RangeScan& scan, const ReturnsRefineParams& p)
+    : scan_(scan), normal_half_width_(p.normal_half_width), max_flatness_(p.max_flatness) {
+  validate(p);
+  validateLayout(scan_, "sweep returns");
+  rows_ = scan_.range_m.rows;
+  cols_ = scan_.range_m.cols;
+  whole_turn_ = coversWholeTurn(scan_);
+  half_cell_rad_ = 0.5 * std::hypot(rowPitch(scan_), azimuthStep(scan_));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  point_.assign(static_cast<std::size_t>(rows_) * static_cast<std::size_t>(cols_), Eigen::Vector3d::Constant(nan));
+  normal_.assign(point_.size(), Eigen::Vector3d::Zero());
+  for (int r = 0; r < rows_; ++r)
+    for (int c = 0; c < cols_; ++c)
+      if (const float d = scan_.range_m.at<float>(r, c); d > 0.0f && std::isfinite(d))
+        point_[index(r, c)] = static_cast<double>(d) * scan_.direction(r, c);
+  for (int r = 0; r < rows_; ++r)
+    for (int c = 0; c < cols_; ++c) normal_[index(r, c)] = fitNormal(r, c);
+}
+
+int SweepReturns::lookUp(const Eigen::Vector3d& q, int reach) const {
+  int row = 0, nearest = 0;
+  if (!nearestCell(scan_, q, row, nearest)) return -1;
+  for (int k = 0; k <= reach; ++k)
+    for (const int side : {-1, 1}) {
+      int col = nearest + side * k;
+      if (whole_turn_) col = ((col % cols_) + cols_) % cols_;
+      if (col < 0 || col >= cols_) continue;
+      const std::size_t i = index(row, col);
+      if (!normal_[i].isZero()) return static_cast<int>(i);
+      if (k == 0) break;
+    }
+  return -1;
+}
+
+/// The plane of the returns around (r, c) on the same surface (ranges within 5 % + 0.1 m of the
+/// centre's), over at least two rows; zero when there is none or it is not flat.
+Eigen::Vector3d SweepReturns::fitNormal(int r, int c) const {
+  const Eigen::Vector3d& centre = point_[index(r, c)];
+  if (!centre.allFinite()) return Eigen::Vector3d::Zero();
+  const double range = centre.norm(), reach = 0.1 + 0.05 * range;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+  int n = 0, rows_used = 0;
+  for (int rr = std::max(0, r - 1); rr <= std::min(rows_ - 1, r + 1); ++rr) {
+    bool used = false;
+    for (int cc = std::max(0, c - normal_half_width_); cc <= std::min(cols_ - 1, c + normal_half_width_); ++cc) {
+      const Eigen::Vector3d& q = point_[index(rr, cc)];
+      if (!q.allFinite() || std::abs(q.norm() - range) > reach) continue;
+      sum += q, outer += q * q.transpose(), ++n, used = true;
+    }
+    rows_used += used ? 1 : 0;
+  }
+  if (n < 5 || rows_used < 2) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d mean = sum / n;
+  const Eigen::Matrix3d cov = outer / n - mean * mean.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  const Eigen::Vector3d lambda = eig.eigenvalues().cwiseMax(0.0);
+  if (!(lambda(1) > 0.0) || std::sqrt(lambda(0) / lambda(1)) > max_flatness_) return Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = eig.eigenvectors().col(0);
+  return normal.dot(centre) > 0.0 ? -normal : normal;
+}
+
+RegistrationResult refineOnReturns(const SweepReturns& source, const SweepReturns& target, const Isometry3& T_target_source,
+                                   const ReturnsRefineParams& p, const RefinementParams& solver, double max_incidence_deg) {
+  RegistrationResult result;
+  result.T_target_source = T_target_source;
+  validate(p);
+  if (!(max_incidence_deg > 0.0 && max_incidence_deg < 90.0))
+    throw Error("returns refinement: max_incidence_deg must be in (0, 90)");
+  std::vector<Eigen::Vector3d> points;
+  for (int r = 0; r < source.rows(); ++r)
+    for (int c = 0; c < source.cols(); c += p.column_step)
+      if (const Eigen::Vector3d& q = source.point(r, c); q.allFinite()) points.push_back(q);
+  const double min_cos = std::cos(max_incidence_deg * M_PI / 180.0);
+  Isometry3 T = T_target_source;
+  for (int round = 0; round < p.max_rounds; ++round) {
+    const double gate = p.gates_m[std::min(static_cast<std::size_t>(round), p.gates_m.size() - 1)];
+    std::vector<PointToPlane> terms;
+    for (const Eigen::Vector3d& ps : points) {
+      const Eigen::Vector3d pt = T * ps;
+      const int i = target.lookUp(pt, p.look_up_columns);
+      if (i < 0) continue;
+      const Eigen::Vector3d& n = target.normal(i);
+      const Eigen::Vector3d& q = target.point(i);
+      const double range = q.norm();
+      const double cos_i = std::abs(n.dot(q)) / range;
+      if (cos_i < min_cos || std::abs(n.dot(pt - q)) > gate) continue;
+      // In the plane, the point can be a cell's footprint away from the return it fell on.
+      if ((pt - q).norm() > gate + range * target.halfCellRad() / cos_i) continue;
+      terms.push_back(PointToPlane{ps, q, n, 1.0});
+    }
+    if (terms.size() < 6) {
+      result.reason = "returns refinement: " + std::to_string(terms.size()) + " point-to-plane terms in round " +
+                      std::to_string(round + 1) + " (at least 6 needed)";
+      result.success = false;
+      return result;
+    }
+    RegistrationResult next = refinePose({}, T, solver, terms);
+    if (!next.success) {  // a failed or degenerate solve: its free directions would drift on
+      result.reason = "returns refinement: " + next.reason;
+      result.success = false;
+      return result;
+    }
+    double moved2 = 0.0;
+    for (const Eigen::Vector3d& ps : points) moved2 += (next.T_target_source * ps - T * ps).squaredNorm();
+    T = next.T_target_source;
+    result = next;
+    const bool last_gate = round + 1 >= static_cast<int>(p.gates_m.size());
+    if (last_gate && std::sqrt(moved2 / static_cast<double>(points.size())) < p.converged_m) break;
+  }
+  return result;
+}
+
+RegistrationResult refineOnReturns(const RangeScan& source, const RangeScan& target, const Isometry3& T_target_source,
+                                   const ReturnsRefineParams& params, const RefinementParams& solver,
+                                   double max_incidence_deg) {
+  validate(params);
+  return refineOnReturns(SweepReturns(source, params), SweepReturns(target, params), T_target_source, params, solver,
+                         max_incidence_deg);
+}
+
+}  // namespace gasp
