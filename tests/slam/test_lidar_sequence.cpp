@@ -48,6 +48,24 @@ const Sweeps& roomSweeps() {
   return s;
 }
 
+/// A 16-laser LiDAR along the street's walk at 10 Hz (gasp-simulate --scene street --sensor
+/// lidar16 --frames 120 --rate 10), its first `count` sweeps: along the street at up to 4.5 m/s.
+Sweeps streetSweeps(int count) {
+  gasp::sim::CameraPathOptions o;
+  o.frames = 120;
+  o.rate_hz = 10.0;
+  const gasp::sim::Scene street = gasp::sim::makeScene("street");
+  const gasp::sim::CameraPath path = gasp::sim::makeWalkPath(street.walk, o);
+  const gasp::sim::LidarSensor lidar = gasp::sim::lidarSensor(16);
+  Sweeps out;
+  for (int i = 0; i < count; ++i) {
+    const Isometry3 T = gasp::sim::lidarPoseOfCamera(path.poses[static_cast<std::size_t>(i)].T_world_camera);
+    out.scans.push_back(gasp::sim::simulateLidarScan(street, lidar, T, 1, i));
+    out.truth.push_back({path.poses[static_cast<std::size_t>(i)].timestamp, T});
+  }
+  return out;
+}
+
 /// Every constraint within the bound for a pair (5 cm, 0.5 deg) of the truth: no wrong pose.
 void expectRightConstraints(const std::vector<gasp::PoseConstraint>& constraints, const gasp::Trajectory& truth) {
   for (const gasp::PoseConstraint& c : constraints) {
@@ -126,4 +144,19 @@ TEST(LidarSlam, MapsTheRoomPathOnSweepsWithRightLoopClosures) {
   std::printf("lidar16 room, 60 sweeps: %zu loop closures of %zu attempts, ATE odometry %.4f m, SLAM %.4f m\n",
               slam.loopClosures().size(), slam.attempts().size(), odometry_ate, slam_ate);
   EXPECT_LT(slam_ate, 0.05);
+}
+
+// The outdoor street (facades, ground, street lights, cars): every sweep of the first 40 tracked,
+// every constraint right, with a car's speed limit (the walk's straight runs at 4.5 m/s).
+TEST(LidarOdometry, TracksTheStreetWithRightConstraints) {
+  const Sweeps s = streetSweeps(40);
+  gasp::OdometryParams p = gasp::lidarOdometryParams();
+  p.max_speed_mps = 15.0;
+  gasp::DepthOdometry odometry(p, s.truth.front().T_world_camera);
+  for (std::size_t i = 0; i < s.scans.size(); ++i) odometry.addFrame(s.truth[i].timestamp, s.scans[i]);
+  expectRightConstraints(odometry.constraints(), s.truth);
+  EXPECT_EQ(odometry.trackedCount(), s.scans.size());
+  const auto ate = gasp::eval::computeAte(s.truth, odometry.trajectory());
+  std::printf("lidar16 street, 40 sweeps at 10 Hz: tracked %zu, ATE %.4f m\n", odometry.trackedCount(),
+              ate.translation.rmse);
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 #include <tuple>
+#include <utility>
 
 #include "gasp/core/error.h"
 #include "gasp/sim/scene.h"
@@ -314,11 +315,70 @@ Scene twoRoomsScene() {
   return s;
 }
 
+/// An outdoor street for a rotating LiDAR (issue 49): the ground, building facades of different
+/// heights, depths and setbacks on both sides with gaps between them, parked cars, street lights
+/// every 10 m (a repeated structure), trees and a bus shelter; walked along 34 m at a car-roof
+/// LiDAR's height, through a U-turn across the street, and 16 m back on the other side.
+Scene streetScene() {
+  Scene s;
+  s.name = "street";
+  s.description = "an outdoor street: facades, ground, street lights, trees and cars, walked 34 m, a U-turn, 16 m back";
+  s.add("ground", Rectangle{35.0, 20.0}, placeAt(20.0, 0.0, 0.0));
+  // Buildings: (x from, x to, depth, height, setback from the street's edge at |y| = 8).
+  struct Building {
+    double x0, x1, depth, height, setback;
+  };
+  const Building north[] = {{-4, 7, 8, 12, 0.0}, {9, 17, 6, 7, 1.5}, {17, 26, 10, 15, 0.0}, {29, 37, 7, 9, 0.8},
+                            {37, 46, 9, 11, 0.0}};
+  const Building south[] = {{-6, 4, 7, 8, 0.5}, {4, 15, 9, 13, 0.0}, {18, 24, 6, 6, 2.0}, {24, 33, 8, 10, 0.0},
+                            {35, 45, 7, 14, 1.0}};
+  int n = 0;
+  for (const auto* side : {north, south}) {
+    const double sign = side == north ? 1.0 : -1.0;
+    for (int k = 0; k < 5; ++k) {
+      const Building& b = side[k];
+      const double y = sign * (8.0 + b.setback + 0.5 * b.depth);
+      s.add("building" + std::to_string(n++), box(0.5 * (b.x1 - b.x0), 0.5 * b.depth, 0.5 * b.height),
+            placeAt(0.5 * (b.x0 + b.x1), y, 0.5 * b.height));
+    }
+  }
+  // Street lights every 10 m on both sidewalks, staggered by 5 m.
+  for (int k = 0; k < 5; ++k) {
+    s.add("light_n" + std::to_string(k), Cylinder{0.09, 3.0}, placeAt(10.0 * k, 6.5, 3.0));
+    s.add("light_s" + std::to_string(k), Cylinder{0.09, 3.0}, placeAt(5.0 + 10.0 * k, -6.5, 3.0));
+  }
+  // Parked cars (a body and a cabin), trees (a trunk and a crown), a bus shelter, a kiosk.
+  const std::pair<double, double> cars[] = {{3.0, 4.6}, {12.5, 4.6}, {27.0, 4.6}, {8.0, -4.6}, {21.0, -4.6}, {34.0, -4.6}};
+  n = 0;
+  for (const auto& [x, y] : cars) {
+    s.add("car" + std::to_string(n) + "_body", box(2.2, 0.9, 0.45), placeAt(x, y, 0.6));
+    s.add("car" + std::to_string(n++) + "_cabin", box(1.2, 0.8, 0.35), placeAt(x - 0.3, y, 1.4));
+  }
+  const std::pair<double, double> trees[] = {{6.0, -6.8}, {19.0, 6.8}, {31.0, -6.8}, {40.0, 6.8}};
+  n = 0;
+  for (const auto& [x, y] : trees) {
+    s.add("tree" + std::to_string(n) + "_trunk", Cylinder{0.18, 1.5}, placeAt(x, y, 1.5));
+    s.add("tree" + std::to_string(n++) + "_crown", Sphere{1.6}, placeAt(x, y, 4.2));
+  }
+  s.add("shelter_roof", box(2.0, 0.8, 0.05), placeAt(15.0, -6.6, 2.5));
+  s.add("shelter_back", box(2.0, 0.04, 1.2), placeAt(15.0, -7.35, 1.3));
+  s.add("kiosk", box(1.2, 1.0, 1.3), placeAt(24.0, 7.0, 1.3, 15.0));
+  // The walk, at 1.8 m, looking ahead level.
+  s.walk = {
+      {{2.0, -1.5, 1.8}, {12.0, -1.5, 1.8}, "street_east"},
+      {{36.0, -1.5, 1.8}, {46.0, -1.5, 1.8}, "u_turn"},
+      {{39.0, 0.0, 1.8}, {39.0, 10.0, 1.8}, "u_turn_end"},
+      {{36.0, 1.5, 1.8}, {26.0, 1.5, 1.8}, "street_west"},
+      {{20.0, 1.5, 1.8}, {10.0, 1.5, 1.8}, ""},
+  };
+  return s;
+}
+
 }  // namespace
 
 std::vector<std::string> sceneNames() {
   return {"room",    "repeated", "sparse",  "plane",     "corridor",      "floor_0",
-          "floor_1", "floor_3",  "floor_6", "wall_door", "corridor_walk", "table_top", "two_rooms"};
+          "floor_1", "floor_3",  "floor_6", "wall_door", "corridor_walk", "table_top", "two_rooms", "street"};
 }
 
 Scene makeScene(const std::string& name) {
@@ -333,6 +393,7 @@ Scene makeScene(const std::string& name) {
   if (name == "corridor_walk") return corridorWalkScene();
   if (name == "table_top") return tableTopScene();
   if (name == "two_rooms") return twoRoomsScene();
+  if (name == "street") return streetScene();
   std::string valid;
   for (const auto& n : sceneNames()) valid += (valid.empty() ? "" : ", ") + n;
   throw Error("unknown scene '" + name + "'; valid scenes: " + valid);

@@ -65,8 +65,8 @@ struct Scene {
 
 /// Names makeScene() accepts: room (the default), repeated, sparse, plane, corridor, and the
 /// plane-dominated scenes seen by a hand-held camera: floor_0, floor_1, floor_3, floor_6 (a floor
-/// with that many low objects), wall_door, corridor_walk, table_top; and two_rooms, walked
-/// through (a long loop).
+/// with that many low objects), wall_door, corridor_walk, table_top; two_rooms, walked through (a
+/// long loop); and street, an outdoor street walked along at a LiDAR's height.
 std::vector<std::string> sceneNames();
 
 /// The default scene's name ("room").
