@@ -44,8 +44,12 @@ void report(mrpt::optional_ref<mrpt::slam::TMetricMapAlignmentResult> out, const
 
 void CGaspAligner::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                                                 const std::string& section) {
-  readPairParams(source, section, params, lidarKeys());
-  readLidarParams(source, section, lidar, pairKeys());
+  PairParams p = params;  // both read, or neither changed
+  LidarParams l = lidar;
+  readPairParams(source, section, p, lidarKeys());
+  readLidarParams(source, section, l, pairKeys());
+  params = p;
+  lidar = l;
 }
 
 void CGaspAligner::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& target,

@@ -48,24 +48,26 @@ MatchInput matchInput(const mrpt::obs::CObservation& a, const mrpt::obs::CObserv
     THROW_EXCEPTION_FMT("ObservationMatcher_GASP: observation %s is a LiDAR sweep (%s), %s a %s: both must be of one kind",
                         sweep_a ? "a" : "b", (sweep_a ? a : b).GetRuntimeClass()->className, sweep_a ? "b" : "a",
                         (sweep_a ? b : a).GetRuntimeClass()->className);
+  // The observations' conversion errors as MRPT's; the views' (gasp::Error) as they are.
   try {
     if (sweep_a) {
       in.fa = sweepFrameFromObservation(a, "observation a");
       in.fb = sweepFrameFromObservation(b, "observation b");
-      in.pair = lidarPairParams(lidar);
-      in.va = makeRangeView(*in.fa.sweep, in.pair.segment, in.pair.returns);
-      in.vb = makeRangeView(*in.fb.sweep, in.pair.segment, in.pair.returns);
-      return in;
+    } else {
+      in.fa = frameFromObservation(asRangeScan(a, "a"), "observation a", ColourImage::Skip);  // depth alone
+      in.fb = frameFromObservation(asRangeScan(b, "b"), "observation b", ColourImage::Skip);
     }
-    const auto& scan_a = asRangeScan(a, "a");
-    const auto& scan_b = asRangeScan(b, "b");
-    in.fa = frameFromObservation(scan_a, "observation a", ColourImage::Skip);  // depth alone
-    in.fb = frameFromObservation(scan_b, "observation b", ColourImage::Skip);
+  } catch (const Error& e) {
+    THROW_EXCEPTION_FMT("ObservationMatcher_GASP: %s", e.what());
+  }
+  if (sweep_a) {
+    in.pair = lidarPairParams(lidar);
+    in.va = makeRangeView(*in.fa.sweep, in.pair.segment, in.pair.returns);
+    in.vb = makeRangeView(*in.fb.sweep, in.pair.segment, in.pair.returns);
+  } else {
     in.pair = camera;
     in.va = makeDepthView(in.fa.depth_m, in.fa.depth_intrinsics, in.pair.segment);
     in.vb = makeDepthView(in.fb.depth_m, in.fb.depth_intrinsics, in.pair.segment);
-  } catch (const Error& e) {
-    THROW_EXCEPTION_FMT("ObservationMatcher_GASP: %s", e.what());
   }
   return in;
 }

@@ -19,12 +19,16 @@ const std::set<std::string> kGenericKeys{"enableSaveAs3DObject", "enableObservat
 
 void CSuperpixelMap::TCreationOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                                                           const std::string& section) {
+  SuperpixelParams s = superpixels;  // both read, or neither changed
+  LidarParams l = lidar;
   std::set<std::string> others = kGenericKeys;
   for (const std::string& k : lidarKeys()) others.insert(k);
-  readSuperpixelParams(source, section, superpixels, others);
+  readSuperpixelParams(source, section, s, others);
   others = kGenericKeys;
   for (const std::string& k : superpixelKeys()) others.insert(k);
-  readLidarParams(source, section, lidar, others);
+  readLidarParams(source, section, l, others);
+  superpixels = s;
+  lidar = l;
 }
 
 void CSuperpixelMap::TCreationOptions::saveToConfigFile(mrpt::config::CConfigFileBase& target,

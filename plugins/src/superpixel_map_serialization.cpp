@@ -29,6 +29,9 @@ namespace {
 
 constexpr std::uint32_t kMaxImageSide = 16384;
 constexpr std::uint64_t kMaxImagePixels = 4096ull * 4096ull;
+// A stored sweep: 256 lasers, a column every 0.01 deg (a view is made again from it on reading).
+constexpr int kMaxSweepRows = 256;
+constexpr int kMaxSweepColumns = 36000;
 
 template <class Options>
 std::string optionsText(const Options& o) {
@@ -124,6 +127,7 @@ void writeSweepView(mrpt::serialization::CArchive& out, const SuperpixelMapView&
   out << static_cast<std::int32_t>(rows) << static_cast<std::int32_t>(cols);
   for (double e : s.elevation_rad) out << e;
   for (double a : s.azimuth_rad) out << a;
+  out << static_cast<std::uint32_t>(s.laser_of_row.size());  // 0 or one per row
   for (int l : s.laser_of_row) out << static_cast<std::int32_t>(l);
   const cv::Mat range = s.range_m.isContinuous() ? s.range_m : s.range_m.clone();
   out.WriteBufferFixEndianness(range.ptr<float>(0), range.total());
@@ -143,15 +147,18 @@ SuperpixelMapView readSweepView(mrpt::serialization::CArchive& in, RangeScan& s)
   s.T_robot_sensor = readPose(in);
   std::int32_t rows, cols;
   in >> rows >> cols;
-  if (rows < 1 || cols < 2 || static_cast<std::uint32_t>(rows) > kMaxImageSide ||
-      static_cast<std::uint32_t>(cols) > kMaxImageSide ||
-      static_cast<std::uint64_t>(rows) * static_cast<std::uint64_t>(cols) > kMaxImagePixels)
-    THROW_EXCEPTION_FMT("sweep size %d rows x %d columns out of range", rows, cols);
+  if (rows < 1 || cols < 2 || rows > kMaxSweepRows || cols > kMaxSweepColumns)
+    THROW_EXCEPTION_FMT("sweep size %d rows x %d columns out of range (at most %d x %d)", rows, cols, kMaxSweepRows,
+                        kMaxSweepColumns);
   s.elevation_rad.resize(static_cast<std::size_t>(rows));
   for (double& e : s.elevation_rad) in >> e;
   s.azimuth_rad.resize(static_cast<std::size_t>(cols));
   for (double& a : s.azimuth_rad) in >> a;
-  s.laser_of_row.resize(static_cast<std::size_t>(rows));
+  std::uint32_t laser_ids;
+  in >> laser_ids;
+  if (laser_ids != 0 && laser_ids != static_cast<std::uint32_t>(rows))
+    THROW_EXCEPTION_FMT("%u laser ids for %d rows", laser_ids, rows);
+  s.laser_of_row.resize(laser_ids);
   for (int& l : s.laser_of_row) {
     std::int32_t id;
     in >> id;
@@ -304,6 +311,8 @@ void CSuperpixelMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t ve
           ReturnsRefineParams returns;
           std::int32_t half_width;
           in >> half_width >> returns.max_flatness;
+          if (half_width < 1 || half_width > 20)  // a stored view's, within what makeRangeView fits quickly
+            THROW_EXCEPTION_FMT("the returns' normal half width %d out of range [1, 20]", half_width);
           returns.normal_half_width = half_width;
           try {  // the scan's layout and the parameters are checked here
             v.view = makeRangeView(scan, segmentation.superpixels, returns);

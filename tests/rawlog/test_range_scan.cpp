@@ -391,4 +391,31 @@ TEST(RangeScan, ADepthSequenceReadsSweepsAndRefusesMixingThemWithDepthImages) {
   ASSERT_TRUE(d.has_value());
   EXPECT_FALSE(d->isSweep());
   EXPECT_FALSE(depth_only.next().has_value());
+  o.sweeps = true;  // the LiDAR by its label: the depth image is another sensor's
+  o.sensor_label = "LIDAR";
+  gasp::DepthSequence lidar_only(o);
+  ASSERT_TRUE(lidar_only.next().has_value());
+  EXPECT_FALSE(lidar_only.next().has_value());
+
+  // A rawlog that starts with a depth image reads its depth images, with or without sweeps asked
+  // for, its sweeps skipped and not counted (--first and --every count depth images).
+  {
+    gasp::RawlogWriter writer(dir + "/camera_first.rawlog");
+    writer.write(depth);
+    writer.write(sweep, "LIDAR");
+    depth.timestamp = 10.2;
+    writer.write(depth);
+    writer.close();
+  }
+  gasp::DepthSequenceOptions c;
+  c.rawlog_path = dir + "/camera_first.rawlog";
+  c.sweeps = true;
+  c.first = 1;
+  gasp::DepthSequence camera(c);
+  const auto second = camera.next();
+  ASSERT_TRUE(second.has_value());
+  EXPECT_FALSE(second->isSweep());
+  EXPECT_EQ(camera.inputIndex(), 1u);
+  EXPECT_NEAR(second->timestamp, 10.2, 1e-6);
+  EXPECT_FALSE(camera.next().has_value());
 }

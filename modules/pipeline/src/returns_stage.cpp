@@ -28,6 +28,9 @@ SweepReturns::SweepReturns(const RangeScan& scan, const ReturnsRefineParams& p)
     : scan_(scan), normal_half_width_(p.normal_half_width), max_flatness_(p.max_flatness) {
   validate(p);
   validateLayout(scan_, "sweep returns");
+  // Its own copy of the images: a driver may reuse its buffers for the next sweep.
+  scan_.range_m = scan.range_m.clone();
+  if (!scan.ray.empty()) scan_.ray = scan.ray.clone();
   rows_ = scan_.range_m.rows;
   cols_ = scan_.range_m.cols;
   whole_turn_ = coversWholeTurn(scan_);

@@ -32,7 +32,7 @@ DepthSequence::DepthSequence(const DepthSequenceOptions& options) : options_(opt
                   std::to_string(impl_->tum->size()) + " frames");
     impl_->next_tum = options.first;
   } else {
-    impl_->rawlog.emplace(options.rawlog_path, options.sweeps);
+    impl_->rawlog.emplace(options.rawlog_path, options.sweeps, options.sensor_label);
   }
 }
 
@@ -52,14 +52,25 @@ std::string DepthSequence::intrinsicsSummary() const {
 std::string DepthSequence::intrinsicsWarning() const { return impl_->tum ? impl_->tum->intrinsicsWarning() : ""; }
 
 const RgbdFrame* DepthSequence::peek() {
+  if (peek_error_) throw Error(*peek_error_);
   if (!peeked_ && !peeked_end_) {
-    peeked_ = read(peeked_index_);
+    try {
+      peeked_ = read(peeked_index_);
+    } catch (const Error& e) {
+      peek_error_ = e.what();  // the frame is gone from the input: next() says so again
+      throw;
+    }
     peeked_end_ = !peeked_;
   }
   return peeked_ ? &*peeked_ : nullptr;
 }
 
 std::optional<RgbdFrame> DepthSequence::next() {
+  if (peek_error_) {
+    const std::string error = *peek_error_;
+    peek_error_.reset();  // said once more; the input goes on after it, as without the peek
+    throw Error(error);
+  }
   if (peeked_ || peeked_end_) {
     std::optional<RgbdFrame> out = std::move(peeked_);
     peeked_.reset();
@@ -85,15 +96,23 @@ std::optional<RgbdFrame> DepthSequence::read(std::size_t& index_out) {
   } else {
     for (std::optional<RgbdFrame> f; (f = impl_->rawlog->next());) {
       if (!options_.sensor_label.empty() && f->sensor_label != options_.sensor_label) continue;
+      // The sequence's kind is its first scan's. Without a sensor label, a rawlog that starts with
+      // depth images reads them as it always did (its sweeps are skipped, not counted); one that
+      // starts with sweeps and holds depth images too must name its sensor.
+      if (!kind_decided_) {
+        sweeps_ = f->isSweep();
+        kind_decided_ = true;
+      } else if (f->isSweep() != sweeps_) {
+        if (!sweeps_ && options_.sensor_label.empty()) continue;
+        throw Error(options_.rawlog_path + ": scan " + std::to_string(impl_->scans_seen) + " ('" + f->sensor_label +
+                    "') is " +
+                    (f->isSweep() ? "a LiDAR sweep, the first was a depth image" : "a depth image, the first was a LiDAR sweep") +
+                    " (one sensor only; choose it with the sensor label)");
+      }
       const std::size_t index = impl_->scans_seen++;
       if (index < options_.first || (index - options_.first) % options_.every != 0) continue;
       if (used_ == 0) {
         T_robot_camera_ = f->T_robot_camera;
-        sweeps_ = f->isSweep();
-      } else if (f->isSweep() != sweeps_) {
-        throw Error(options_.rawlog_path + ": scan " + std::to_string(index) + " ('" + f->sensor_label + "') is " +
-                    (f->isSweep() ? "a LiDAR sweep, the first was a depth image" : "a depth image, the first was a LiDAR sweep") +
-                    " (one sensor only; choose it with the sensor label)");
       } else if (!T_robot_camera_.isApprox(f->T_robot_camera, 1e-9)) {
         throw Error(options_.rawlog_path + ": scan " + std::to_string(index) +
                     " has another sensorPose than the first (one camera only; choose it with the sensor label)");

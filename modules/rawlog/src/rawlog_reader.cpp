@@ -5,6 +5,7 @@
 #include <mrpt/obs/CSensoryFrame.h>
 
 #include <deque>
+#include <utility>
 #include <exception>
 
 #include "gasp/core/error.h"
@@ -22,7 +23,8 @@ struct RawlogReader::Impl {
   bool at_end = false;
 };
 
-RawlogReader::RawlogReader(const std::string& path, bool read_sweeps) : path_(path), read_sweeps_(read_sweeps) {
+RawlogReader::RawlogReader(const std::string& path, bool read_sweeps, std::string sweep_label)
+    : path_(path), read_sweeps_(read_sweeps), sweep_label_(std::move(sweep_label)) {
   impl_ = std::make_unique<Impl>(path);  // file checks: missing, directory, empty, unreadable
   images_dir_ = findRawlogImagesDirectory(path);
 
@@ -54,7 +56,7 @@ std::optional<RgbdFrame> RawlogReader::next() {
       auto obs = impl_->pending.front();
       impl_->pending.pop_front();
       if (!obs) continue;
-      if (read_sweeps_ && isSweepObservation(*obs)) {
+      if (read_sweeps_ && isSweepObservation(*obs) && (sweep_label_.empty() || obs->sensorLabel == sweep_label_)) {
         RgbdFrame frame = sweepFrameFromObservation(
             *obs, "rawlog '" + path_ + "', sweep #" + std::to_string(scans_read_) + " ('" + obs->sensorLabel + "')");
         ++scans_read_;

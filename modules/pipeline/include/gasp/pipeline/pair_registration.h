@@ -154,7 +154,8 @@ PairResult registerViews(const DepthView& source, const DepthView& target);
 /// The tracking path of a sequence (odometry.h): registers `source` to `target` from a predicted
 /// pose with the cheap stages only -- the view check, the refine stage's dense rounds started at
 /// T_target_source_predicted (no association, RANSAC or patch inliers; no finer-scale retry) and
-/// the certificate. Association is what makes GASP independent of a start; given a good one the
+/// the certificate; for LiDAR views, then the returns' rounds on a claimed pose (stage 7, which
+/// costs about as much as the dense rounds: every return of the source). Association is what makes GASP independent of a start; given a good one the
 /// dense rounds alone reach the same pose, and the certificate says when they did not (a caller
 /// then runs registerViews()). The result's association, correspondences and verified sets are
 /// empty. The dense rounds are anchored by the patch pairs RANSAC would count as inliers at the
@@ -190,7 +191,8 @@ struct ViewSetResult {
   /// Views whose finer-scale segmentation failed ("source view 2: ..."); their pairs are not retried.
   std::vector<std::string> notes;
 };
-/// Throws gasp::Error for invalid parameters or a null view pointer; never for data.
+/// Stage 7 (LiDAR views) runs on the registration chosen as `best` only. Throws gasp::Error for
+/// invalid parameters or a null view pointer; never for data.
 ViewSetResult registerViewSets(const std::vector<const DepthView*>& sources,
                                const std::vector<const DepthView*>& targets, const PairParams& params = {});
 

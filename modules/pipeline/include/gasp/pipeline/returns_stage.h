@@ -45,6 +45,8 @@ void validate(const ReturnsRefineParams& params);
 class SweepReturns {
  public:
   /// Throws gasp::Error for a scan that is not a range image (validateLayout) or invalid params.
+  /// Keeps its own copy of the scan's images. Memory: 52 bytes per cell (the copy, a point and a
+  /// normal), about 1.5 MB for a 16-laser sweep of 1800 columns, 6 MB for 64 lasers.
   SweepReturns(const RangeScan& scan, const ReturnsRefineParams& params);
 
   const RangeScan& scan() const { return scan_; }

@@ -15,8 +15,10 @@ namespace gasp {
 struct DepthSequenceOptions {
   std::string tum_dir;       ///< a TUM folder (frames in depth.txt order) ...
   std::string rawlog_path;   ///< ... or an MRPT rawlog (its CObservation3DRangeScan in file order)
-  /// rawlog: its rotating LiDARs' sweeps are frames too (RgbdFrame::sweep); one kind of frame per
-  /// sequence (choose the sensor with sensor_label when a rawlog holds both).
+  /// rawlog: its rotating LiDARs' sweeps are frames too (RgbdFrame::sweep). One kind of frame per
+  /// sequence, its first scan's: without sensor_label, a rawlog that starts with depth images reads
+  /// those (its sweeps skipped, as without this), and one that starts with sweeps and holds depth
+  /// images too is an error asking for the label.
   bool sweeps = false;
   std::string sensor_label;  ///< rawlog: only the scans with this sensorLabel (empty: all)
   std::size_t first = 0;     ///< index of the first frame used, among the input's frames
@@ -46,7 +48,9 @@ class DepthSequence {
   /// end, when no frame at all was used.
   std::optional<RgbdFrame> next();
   /// The frame the next next() returns, read ahead (same errors), or null at the end: what the
-  /// sequence holds (depth images or sweeps) before the programs choose their parameters.
+  /// sequence holds (depth images or sweeps) before the programs choose their parameters. When it
+  /// throws, the next next() throws the same error (the frame is not skipped silently), then the
+  /// input goes on as it would have after that error. framesUsed() counts a peeked frame.
   const RgbdFrame* peek();
 
   /// Index among the input's frames (counting only the chosen sensor's scans) of the frame the
@@ -75,12 +79,14 @@ class DepthSequence {
   Isometry3 T_robot_camera_ = Isometry3::Identity();
   std::size_t input_index_ = 0;
   std::size_t used_ = 0;
-  bool sweeps_ = false;  ///< the first frame used is a sweep
+  bool sweeps_ = false;  ///< the sequence's frames are sweeps (its first scan was one)
   /// The next frame used and its input index, or nullopt at the end (next() without the peek).
   std::optional<RgbdFrame> read(std::size_t& index);
   std::optional<RgbdFrame> peeked_;  ///< peek()'s frame, which next() returns
   std::size_t peeked_index_ = 0;
   bool peeked_end_ = false;  ///< peek() met the end
+  std::optional<std::string> peek_error_;  ///< peek()'s error, which the next next() throws again
+  bool kind_decided_ = false;  ///< the first scan (of the chosen sensor) was seen: sweeps_ holds its kind
 };
 
 }  // namespace gasp

@@ -28,8 +28,9 @@ namespace gasp {
 class RawlogReader {
  public:
   /// Opens the rawlog and reads its first object (so that empty or garbage files fail here).
-  /// `read_sweeps`: return LiDAR sweeps too (else they are skipped and counted as other types).
-  explicit RawlogReader(const std::string& path, bool read_sweeps = false);
+  /// `read_sweeps`: return LiDAR sweeps too (else they are skipped and counted as other types);
+  /// `sweep_label` (when not empty): only the sweeps of that sensor (the others are not converted).
+  explicit RawlogReader(const std::string& path, bool read_sweeps = false, std::string sweep_label = {});
   ~RawlogReader();
   RawlogReader(RawlogReader&&) noexcept;
   RawlogReader& operator=(RawlogReader&&) noexcept;
@@ -55,6 +56,7 @@ class RawlogReader {
   std::string path_;
   std::string images_dir_;
   bool read_sweeps_ = false;
+  std::string sweep_label_;
   RawlogFormat format_ = RawlogFormat::Observations;
   std::size_t scans_read_ = 0;
   std::map<std::string, std::size_t> skipped_;

@@ -21,7 +21,8 @@
 /// others where they share places (sessionLinks() says by how many constraints).
 ///
 /// Memory: every keyframe's segmented view is kept (about 2.5 MB at 640x480: the depth, the
-/// labels and the patches) so that it can be registered again later.
+/// labels and the patches) so that it can be registered again later; a LiDAR keyframe's also keeps
+/// its returns with their normals (returns_stage.h: 1.5 MB for 16 lasers, 6 MB for 64).
 #include <opencv2/core.hpp>
 
 #include <cstddef>
