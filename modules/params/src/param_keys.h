@@ -180,6 +180,7 @@ void certifyFields(P& p, F&& f) {  // the views' degeneracy, dense support, free
   f("model_error_t_m", c.model_error.sigma_t_m);
   f("model_error_r_deg", c.model_error.sigma_r_deg);
   f("min_likelihood_ratio", c.min_likelihood_ratio);
+  f("symmetry_test", c.symmetry_test);
 }
 
 template <class P, class F>

@@ -1,8 +1,10 @@
 #include "gasp/pipeline/pair_registration.h"
 
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
 #include <chrono>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <optional>
@@ -10,6 +12,7 @@
 #include "gasp/core/error.h"
 #include "gasp/core/stopwatch.h"
 #include "gasp/pipeline/model_error.h"
+#include "gasp/pipeline/symmetric_turns.h"
 #include "gasp/superpixels/depth_superpixels.h"
 #include "retry_policy.h"
 
@@ -143,6 +146,51 @@ void testUniqueness(const DepthView& source, const DepthView& target, const Asso
   }
 }
 
+/// The certificate's symmetry test (CertifyParams::symmetry_test): the claimed full pose in `r`
+/// against each of its symmetric turns refined by the dense rounds (anchored, as the tracking path,
+/// by the patch pairs RANSAC would count as inliers there); the first turn that explains the views
+/// better refuses it.
+void testSymmetries(const DepthView& source, const DepthView& target, const PairParams& p,
+                    const RefineParams& refine_params, const FreeSpaceTest& free_space, const ViewsCertificate& views,
+                    PairResult& r) {
+  const auto t0 = std::chrono::steady_clock::now();
+  ProjectiveTermParams pairs;
+  pairs.max_distance_m = p.hypothesise.pose.ransac.inlier.distance_m;
+  pairs.max_normal_angle_deg = p.hypothesise.pose.ransac.inlier.normal_angle_deg;
+  // The turns refined and compared concurrently (one TBB task each), then taken in their order.
+  const std::vector<SymmetricTurn> turns = symmetricTurns(source, target, r.pose.T_target_source);
+  std::vector<Uniqueness> compared(turns.size());
+  tbb::parallel_for(std::size_t{0}, turns.size(), [&](std::size_t k) {
+    RegistrationResult start;
+    start.success = true;
+    start.T_target_source = turns[k].T_target_source;
+    const Refinement alternative =
+        refine(source, target, start, projectivePatchPairs(source, target, start.T_target_source, pairs), refine_params,
+               free_space, views.target_plane ? &*views.target_plane : nullptr);
+    RegistrationResult a = alternative.pose;
+    if (!a.T_target_source.matrix().allFinite()) return;
+    a.success = true;  // compared whether its own certificate would claim it or not
+    a.partial = false;
+    compared[k] =
+        compareAlternative(source, target, r.pose, a, 2.0 * p.hypothesise.pose.ransac.inlier.distance_m, p.certify);
+  });
+  for (std::size_t k = 0; k < turns.size(); ++k) {
+    const SymmetricTurn& turn = turns[k];
+    const Uniqueness& u = compared[k];
+    if (!u.tested || !(u.log_ratio < 0.0)) continue;
+    char reason[240];
+    std::snprintf(reason, sizeof reason,
+                  "symmetry: the pose turned %d deg about the target's axis (%.2f, %.2f, %.2f) explains the views "
+                  "better (log-likelihood ratio %.1f)",
+                  turn.degrees, turn.axis.x(), turn.axis.y(), turn.axis.z(), u.log_ratio);
+    Certificate refusal;
+    refusal.reason = reason;
+    record(refusal, r);
+    break;
+  }
+  r.timings.certify_ms += msSince(t0);
+}
+
 /// Stages 2-5 on the views as segmented. `finer`: the views of the finer-scale retry (mutual
 /// associations only; its poses face the fallback limit).
 PairResult registerAtScale(const DepthView& source, const DepthView& target, const PairParams& p, bool finer) {
@@ -188,6 +236,8 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
   if (r.pose.estimated() && dense && h.verified && h.pose.alternative_T_target_source &&
       p.certify.min_likelihood_ratio > 0.0)
     testUniqueness(source, target, a, h, p, refine_params, free_space, views, r);
+  if (r.pose.success && dense && p.certify.symmetry_test && p.certify.min_likelihood_ratio > 0.0)
+    testSymmetries(source, target, p, refine_params, free_space, views, r);
   if (r.plane_hypothesis && !r.pose.estimated())
     r.pose.reason = no_hypothesis + "; from the views' dominant planes: " + r.pose.reason;
   if (!r.pose.success || !p.hypothesise.guided.enabled) return r;

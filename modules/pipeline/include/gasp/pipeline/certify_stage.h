@@ -62,6 +62,11 @@ struct CertifyParams {
   /// Uniqueness (above): the likelihood ratio a claimed pose needs over a distinct alternative;
   /// 1000 is about two patches' worth of surface explained (pose_likelihood.h). 0 = not tested.
   double min_likelihood_ratio = 1000.0;
+  /// Symmetry: a claimed full pose is not claimed (no estimate) when one of its symmetric turns
+  /// (symmetric_turns.h), refined by the dense rounds, explains the views better (a higher
+  /// likelihood, pose_likelihood.h) -- a box-shaped scene turned onto itself. Off for a camera; on
+  /// in the LiDAR's values (lidarPairParams()).
+  bool symmetry_test = false;
 };
 
 /// Throws gasp::Error naming the first invalid parameter.
