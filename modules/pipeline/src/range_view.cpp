@@ -142,8 +142,6 @@ PairParams lidarPairParams(const LidarParams& lidar) {
   p.refine.edges.enabled = false;
   p.refine.slide_scan.enabled = false;
   p.returns = returnsRefineParams(lidar);
-  // A sweep sees all around: a box-shaped scene's symmetric turns are alternatives to test.
-  p.certify.symmetry_test = true;
   return p;
 }
 

@@ -64,8 +64,9 @@ struct CertifyParams {
   double min_likelihood_ratio = 1000.0;
   /// Symmetry: a claimed full pose is not claimed (no estimate) when one of its symmetric turns
   /// (symmetric_turns.h), refined by the dense rounds, explains the views better (a higher
-  /// likelihood, pose_likelihood.h) -- a box-shaped scene turned onto itself. Off for a camera; on
-  /// in the LiDAR's values (lidarPairParams()).
+  /// likelihood, pose_likelihood.h) -- a box-shaped scene turned onto itself. Off by default: on
+  /// LiDAR sweeps it removes the simulated room's quarter-turn poses but refuses many right ones on
+  /// a street (docs/lidar.md "The symmetry test").
   bool symmetry_test = false;
 };
 
