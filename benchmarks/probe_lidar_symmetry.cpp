@@ -8,16 +8,14 @@
 //   build/ci/bin/probe_lidar_symmetry DIR I J [I J ...]   (DIR: gasp-simulate --sensor lidarNN's folder)
 // Prints each alternative's error against the truth and the likelihood comparison.
 #include <mrpt/obs/CObservationRotatingScan.h>
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <cstdio>
-#include <map>
-#include <tuple>
 #include <cstdlib>
 #include <string>
 #include <vector>
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/pipeline/range_view.h"
+#include "gasp/pipeline/symmetric_turns.h"
 #include "gasp/rawlog/range_scan.h"
 #include "gasp/rawlog/rawlog_objects.h"
 
@@ -50,45 +48,8 @@ int main(int argc, char** argv) {
     const Isometry3 e0 = T_true.inverse() * r.pose.T_target_source;
     std::printf("pair %d -> %d: claimed %d, %.1f cm %.2f deg off\n", i, j, r.pose.success, 100 * e0.translation().norm(), deg(e0));
     if (!r.pose.success) continue;
-    Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
-    for (const auto& q : vt.segmentation.patches) S += q.area_m2 * q.normal * q.normal.transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(S);
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    double w = 0;
-    for (const auto& q : vs.segmentation.patches) c += q.area_m2 * (r.pose.T_target_source * q.centroid), w += q.area_m2;
-    c /= w;
-    for (int ax = 0; ax < 3; ++ax)
-      for (int k = 1; k <= 3; ++k) {
-        Isometry3 turn = Isometry3::Identity();
-        turn.linear() = Eigen::AngleAxisd(k * M_PI / 2, eig.eigenvectors().col(ax)).toRotationMatrix();
-        turn.translation() = c - turn.linear() * c;
-        Isometry3 start = turn * r.pose.T_target_source;
-        // The translation by votes along each principal axis: patches facing along it in both
-        // views, the offset of their planes along it, in 5 cm bins; the fullest bin's mean.
-        {
-          const Eigen::Matrix3d Rr = start.linear();
-          Eigen::Vector3d t = Eigen::Vector3d::Zero();
-          for (int b2 = 0; b2 < 3; ++b2) {
-            const Eigen::Vector3d axis = eig.eigenvectors().col(b2);
-            std::map<int, std::pair<int, double>> votes;
-            for (const auto& qs : vs.segmentation.patches) {
-              const Eigen::Vector3d ns = Rr * qs.normal;
-              if (std::abs(ns.dot(axis)) < std::cos(10.0 * M_PI / 180)) continue;
-              for (const auto& qt : vt.segmentation.patches) {
-                if (ns.dot(qt.normal) < std::cos(10.0 * M_PI / 180)) continue;
-                const double d = axis.dot(qt.centroid - Rr * qs.centroid);
-                auto& v = votes[int(std::floor(d / 0.05))];
-                v.first++, v.second += d;
-              }
-            }
-            int best = 0;
-            double along = axis.dot(start.translation());
-            for (const auto& [key, v] : votes)
-              if (v.first > best) best = v.first, along = v.second / v.first;
-            t += along * axis;
-          }
-          start.translation() = t;
-        }
+    for (const gasp::SymmetricTurn& turn : gasp::symmetricTurns(vs, vt, r.pose.T_target_source)) {
+        const Isometry3& start = turn.T_target_source;
         const gasp::PairResult t = gasp::trackViews(vs, vt, start, p);
         const Isometry3 e = T_true.inverse() * t.pose.T_target_source;
         const Isometry3 es = T_true.inverse() * start;
@@ -101,18 +62,18 @@ int main(int argc, char** argv) {
           gasp::RegistrationResult st;
           st.success = true, st.T_target_source = start;
           const gasp::Uniqueness u2 = gasp::compareAlternative(vs, vt, r.pose, st, 2.0 * p.hypothesise.pose.ransac.inlier.distance_m, p.certify);
-          std::printf("  axis %d turn %d: unclaimed alternative %.1f cm %.2f deg off truth: tested %d log-ratio %.1f se %.1f take %d refused %d; its start: tested %d log-ratio %.1f se %.1f\n",
-                      ax, k * 90, 100 * ea.translation().norm(), deg(ea), u.tested, u.log_ratio, u.standard_error, u.take_alternative, u.refused,
+          std::printf("  turn %d: unclaimed alternative %.1f cm %.2f deg off truth: tested %d log-ratio %.1f se %.1f take %d refused %d; its start: tested %d log-ratio %.1f se %.1f\n",
+                      turn.degrees, 100 * ea.translation().norm(), deg(ea), u.tested, u.log_ratio, u.standard_error, u.take_alternative, u.refused,
                       u2.tested, u2.log_ratio, u2.standard_error);
         }
         if (!t.pose.success) {
-          std::printf("  axis %d turn %d: start %.0f cm %.1f deg off; not claimed (%s)\n", ax, k * 90,
+          std::printf("  turn %d: start %.0f cm %.1f deg off; not claimed (%s)\n", turn.degrees,
                       100 * es.translation().norm(), deg(es), t.pose.reason.substr(0, 60).c_str());
           continue;
         }
         const gasp::Uniqueness u = gasp::compareAlternative(vs, vt, r.pose, t.pose, 2.0 * p.hypothesise.pose.ransac.inlier.distance_m, p.certify);
-        std::printf("  axis %d turn %d: claimed, %.1f cm %.2f deg off truth; tested %d log-ratio(claimed - alt) %.1f se %.1f take_alt %d refused %d\n",
-                    ax, k * 90, 100 * e.translation().norm(), deg(e), u.tested, u.log_ratio, u.standard_error, u.take_alternative, u.refused);
+        std::printf("  turn %d: claimed, %.1f cm %.2f deg off truth; tested %d log-ratio(claimed - alt) %.1f se %.1f take_alt %d refused %d\n",
+                    turn.degrees, 100 * e.translation().norm(), deg(e), u.tested, u.log_ratio, u.standard_error, u.take_alternative, u.refused);
       }
   }
 }

@@ -146,6 +146,15 @@ void testUniqueness(const DepthView& source, const DepthView& target, const Asso
   }
 }
 
+/// The patch pairs RANSAC would count as inliers at a pose: the dense rounds' anchors when no
+/// RANSAC ran (the tracking path, the symmetry test's turns).
+ProjectiveTermParams inlierPairParams(const PairParams& p) {
+  ProjectiveTermParams pairs;
+  pairs.max_distance_m = p.hypothesise.pose.ransac.inlier.distance_m;
+  pairs.max_normal_angle_deg = p.hypothesise.pose.ransac.inlier.normal_angle_deg;
+  return pairs;
+}
+
 /// The certificate's symmetry test (CertifyParams::symmetry_test): the claimed full pose in `r`
 /// against each of its symmetric turns refined by the dense rounds (anchored, as the tracking path,
 /// by the patch pairs RANSAC would count as inliers there); the first turn that explains the views
@@ -154,9 +163,7 @@ void testSymmetries(const DepthView& source, const DepthView& target, const Pair
                     const RefineParams& refine_params, const FreeSpaceTest& free_space, const ViewsCertificate& views,
                     PairResult& r) {
   const auto t0 = std::chrono::steady_clock::now();
-  ProjectiveTermParams pairs;
-  pairs.max_distance_m = p.hypothesise.pose.ransac.inlier.distance_m;
-  pairs.max_normal_angle_deg = p.hypothesise.pose.ransac.inlier.normal_angle_deg;
+  const ProjectiveTermParams pairs = inlierPairParams(p);
   // The turns refined and compared concurrently (one TBB task each), then taken in their order.
   const std::vector<SymmetricTurn> turns = symmetricTurns(source, target, r.pose.T_target_source);
   std::vector<Uniqueness> compared(turns.size());
@@ -333,9 +340,7 @@ PairResult trackViews(const DepthView& source, const DepthView& target, const Is
   const FreeSpaceTest free_space = freeSpaceTest(source, target, p.certify, false);
   const auto t0 = std::chrono::steady_clock::now();
   // The patch pairs RANSAC would count as inliers at the prediction stand in for its inliers.
-  ProjectiveTermParams pairs;
-  pairs.max_distance_m = p.hypothesise.pose.ransac.inlier.distance_m;
-  pairs.max_normal_angle_deg = p.hypothesise.pose.ransac.inlier.normal_angle_deg;
+  const ProjectiveTermParams pairs = inlierPairParams(p);
   const Refinement dense = refine(source, target, start, projectivePatchPairs(source, target, start.T_target_source, pairs),
                                   refineParamsOf(p), free_space, views.target_plane ? &*views.target_plane : nullptr,
                                   target_edges);
