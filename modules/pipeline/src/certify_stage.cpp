@@ -153,7 +153,10 @@ Uniqueness compareAlternative(const DepthView& source, const DepthView& target, 
   const Isometry3 nearest = chosen.partial ? withPrediction(chosen, alternative.T_target_source) : chosen.T_target_source;
   u.distance_m = rmsDisplacement(nearest, alternative.T_target_source, pointSpread(centroids));
   if (!(u.distance_m > distinct_m)) return u;
-  const LikelihoodRatio lr = logLikelihoodRatio(source, target, chosen.T_target_source, alternative.T_target_source);
+  PoseLikelihoodParams likelihood;  // the free-space test's samples (every cell of a LiDAR's view)
+  likelihood.pixel_step = params.visibility.pixel_step;
+  const LikelihoodRatio lr =
+      logLikelihoodRatio(source, target, chosen.T_target_source, alternative.T_target_source, likelihood);
   if (lr.patches == 0) return u;  // no sample lands under both poses: nothing to compare
   u.tested = true;
   u.log_ratio = lr.log_ratio;

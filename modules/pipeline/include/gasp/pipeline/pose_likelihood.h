@@ -32,7 +32,9 @@ namespace gasp {
 
 /// The noise model above: sigma(z) = 5 mm + 2.5 mm/m^2 z^2 (half the depth-agreement gate of
 /// visibility_check.h, the Kinect's noise at 1-3 m with room for the model error), w = 0.5,
-/// range 1 m, every 8th pixel, a dead band of one nat per patch.
+/// range 1 m, every 8th pixel, a dead band of one nat per patch. The certificate
+/// (compareAlternative()) samples the free-space test's pixels instead (VisibilityCheckParams::
+/// pixel_step: every cell of a LiDAR's binned view, whose 16 rows every 8th would cut to two).
 struct PoseLikelihoodParams {
   int pixel_step = 8;
   double sigma_m = 0.005;
