@@ -49,9 +49,9 @@ std::vector<gasp::RangeScan> readSweeps(const std::string& path) {
   std::vector<gasp::RangeScan> sweeps;
   gasp::RawlogObjects objects(path);
   while (const auto object = objects.next())
-    if (const auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservationRotatingScan>(object))
-      sweeps.push_back(gasp::rangeScanFrom(*scan));
-  if (sweeps.empty()) throw gasp::Error("'" + path + "' holds no CObservationRotatingScan");
+    if (const auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservation>(object); obs && gasp::isSweepObservation(*obs))
+      sweeps.push_back(gasp::rangeScanFrom(*obs));
+  if (sweeps.empty()) throw gasp::Error("'" + path + "' holds no LiDAR sweep (rotating scan, Velodyne scan or point cloud)");
   return sweeps;
 }
 

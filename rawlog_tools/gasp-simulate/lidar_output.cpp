@@ -29,7 +29,7 @@ void refuseForeignRawlog(const std::string& rawlog, const std::string& groundtru
 }  // namespace
 
 LidarSequenceSummary writeLidarSequence(const sim::SimulationOptions& options, const sim::LidarSensor& sensor,
-                                        const std::string& out_dir) {
+                                        const std::string& out_dir, bool as_point_clouds) {
   const sim::Simulation simulation(options);
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
@@ -47,7 +47,10 @@ LidarSequenceSummary writeLidarSequence(const sim::SimulationOptions& options, c
     RangeScan sweep = sim::simulateLidarScan(simulation.scene(), sensor, T_world_lidar, options.seed, i);
     sweep.timestamp = pose.timestamp;
     returns += static_cast<double>(sweep.returnCount());
-    writer.write(sweep, "LIDAR");
+    if (as_point_clouds)
+      writer.writePointCloud(sweep, "LIDAR");
+    else
+      writer.write(sweep, "LIDAR");
     truth.push_back({pose.timestamp, T_world_lidar});
   }
   writer.close();

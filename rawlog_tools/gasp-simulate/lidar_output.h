@@ -14,12 +14,12 @@ struct LidarSequenceSummary {
   std::string rawlog, groundtruth;
 };
 
-/// Writes OUT/lidar.rawlog (one CObservationRotatingScan a frame, sensor label "LIDAR", rawlog
-/// format #2) and OUT/lidar_groundtruth.txt (TUM trajectory of the LiDAR's frame, T_world_lidar: x
+/// Writes OUT/lidar.rawlog (one CObservationRotatingScan a frame, or with `as_point_clouds` one
+/// CObservationPointCloud, sensor label "LIDAR", rawlog format #2) and OUT/lidar_groundtruth.txt (TUM trajectory of the LiDAR's frame, T_world_lidar: x
 /// along the path's camera axis, z up its image), each whole or not at all; the camera sequence's
 /// files are other names, so both can share a folder. The LiDAR's own noise only (options.noise
 /// is the camera's and not used). Throws gasp::Error.
 LidarSequenceSummary writeLidarSequence(const sim::SimulationOptions& options, const sim::LidarSensor& sensor,
-                                        const std::string& out_dir);
+                                        const std::string& out_dir, bool as_point_clouds = false);
 
 }  // namespace gasp::tools

@@ -140,6 +140,29 @@ TEST(ObservationMatcher, OnePlaneGivesAPartialPoseWithItsFreeDirections) {
 // robot: the matcher takes them with the LiDAR's values (the params file form's section lidar)
 // and gives the robots' relative pose within the 5 cm / 0.5 deg; a sweep against a depth
 // image is refused with both classes named.
+// The same for sweeps given as point clouds (CObservationPointCloud): their layout is found from
+// the points (rangeScanFrom()); 32 lasers, as the aligner's point-cloud test.
+TEST(ObservationMatcher, TwoPointCloudSweepsGiveTheRobotsRelativePose) {
+  const sim::Scene room = sim::makeScene("room");
+  Isometry3 T_a = Isometry3::Identity(), T_b = Isometry3::Identity();
+  T_a.translation() = Eigen::Vector3d(0.3, -0.2, 1.0);
+  T_b.linear() = Eigen::AngleAxisd(0.6, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T_b.translation() = Eigen::Vector3d(1.1, 0.4, 1.05);
+  Isometry3 S = Isometry3::Identity();  // the LiDAR 0.8 m up on the robot
+  S.translation() = Eigen::Vector3d(0.1, 0.0, 0.8);
+  const sim::LidarSensor lidar = sim::lidarSensor(32);
+  auto a = toPointCloud(sim::simulateLidarScan(room, lidar, T_a, 1, 0), "CLOUD");
+  auto b = toPointCloud(sim::simulateLidarScan(room, lidar, T_b, 1, 1), "CLOUD");
+  a.setSensorPose(toCPose3D(S));
+  b.setSensorPose(toCPose3D(S));
+  const auto matcher = createObservationMatcher("gasp::ObservationMatcher_GASP");
+  const MatchConstraint c = matcher->match(a, b);
+  ASSERT_TRUE(c.success) << c.reason;
+  const Isometry3 E = (S * (T_a.inverse() * T_b) * S.inverse()).inverse() * fromCPose3D(c.T_a_b);
+  EXPECT_LT(translationNorm(E), 0.05);
+  EXPECT_LT(rotationAngle(E) * 180.0 / M_PI, 0.5);
+}
+
 TEST(ObservationMatcher, TwoLidarSweepsGiveTheRobotsRelativePose) {
   const sim::Scene room = sim::makeScene("room");
   Isometry3 T_a = Isometry3::Identity(), T_b = Isometry3::Identity();

@@ -111,6 +111,29 @@ bool nearestCell(const RangeScan& scan, const Eigen::Vector3d& direction, int& r
   return true;
 }
 
+namespace {
+
+/// A point (sensor frame) into the cell nearest its direction with its own ray, unless the cell
+/// holds a nearer one (out.ray allocated).
+void placeReturn(RangeScan& out, const Eigen::Vector3d& q) {
+  const double range = q.norm();
+  int row = 0, col = 0;
+  if (!(range > 0.0) || !std::isfinite(range) || !nearestCell(out, q, row, col)) return;
+  float& cell = out.range_m.at<float>(row, col);
+  if (cell > 0.0f && cell <= range) return;
+  cell = static_cast<float>(range);
+  const Eigen::Vector3f u = (q / range).cast<float>();
+  out.ray.at<cv::Vec3f>(row, col) = cv::Vec3f(u.x(), u.y(), u.z());
+}
+
+double median(std::vector<double> v) {
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+}  // namespace
+
 RangeScan movedScan(const RangeScan& scan, const Isometry3& T_new_old) {
   validateLayout(scan, "movedScan");
   const int rows = scan.range_m.rows, cols = scan.range_m.cols;
@@ -122,16 +145,76 @@ RangeScan movedScan(const RangeScan& scan, const Isometry3& T_new_old) {
     for (int c = 0; c < cols; ++c) {
       const float d = scan.range_m.at<float>(r, c);
       if (!(d > 0.0f) || !std::isfinite(d)) continue;
-      const Eigen::Vector3d q = T_new_old * (static_cast<double>(d) * scan.direction(r, c));
-      const double range = q.norm();
-      int row = 0, col = 0;
-      if (!(range > 0.0) || !nearestCell(out, q, row, col)) continue;
-      float& cell = out.range_m.at<float>(row, col);
-      if (cell > 0.0f && cell <= range) continue;
-      cell = static_cast<float>(range);
-      const Eigen::Vector3f u = (q / range).cast<float>();
-      out.ray.at<cv::Vec3f>(row, col) = cv::Vec3f(u.x(), u.y(), u.z());
+      placeReturn(out, T_new_old * (static_cast<double>(d) * scan.direction(r, c)));
     }
+  return out;
+}
+
+RangeScan rangeScanFromPoints(const std::vector<Eigen::Vector3d>& points_sensor, const std::string& who) {
+  std::vector<double> elevation, azimuth;
+  for (const Eigen::Vector3d& p : points_sensor)
+    if (p.allFinite() && p.norm() > 0.0) {
+      elevation.push_back(std::atan2(p.z(), std::hypot(p.x(), p.y())));
+      azimuth.push_back(std::atan2(p.y(), p.x()));
+    }
+  if (elevation.size() < 2) throw Error(who + ": " + std::to_string(elevation.size()) + " points: not a LiDAR's sweep");
+  // The rings: the clusters of the sorted elevations.
+  std::vector<double> sorted = elevation;
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<std::vector<double>> clusters(1);
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    if (i > 0 && sorted[i] - sorted[i - 1] > kMinRingGapDeg * M_PI / 180.0) clusters.emplace_back();
+    clusters.back().push_back(sorted[i]);
+  }
+  const double least = 0.1 * static_cast<double>(sorted.size()) / static_cast<double>(clusters.size());
+  std::vector<double> rings_deg, widths_deg;  // a ring's median, and its middle 90 %'s spread
+  for (const auto& c : clusters)
+    if (static_cast<double>(c.size()) >= least) {
+      rings_deg.push_back(median(c) * 180.0 / M_PI);
+      widths_deg.push_back((c[c.size() * 95 / 100] - c[c.size() * 5 / 100]) * 180.0 / M_PI);
+    }
+  if (rings_deg.size() < 2 || rings_deg.size() > static_cast<std::size_t>(kMaxPointCloudRows))
+    throw Error(who + ": the points lie on " + std::to_string(rings_deg.size()) +
+                " rings of elevation (2 to " + std::to_string(kMaxPointCloudRows) +
+                " expected): not a rotating LiDAR's sweep");
+  for (std::size_t r = 0; r < rings_deg.size(); ++r) {
+    const double spacing = std::min(r > 0 ? rings_deg[r] - rings_deg[r - 1] : 180.0,
+                                    r + 1 < rings_deg.size() ? rings_deg[r + 1] - rings_deg[r] : 180.0);
+    if (!(widths_deg[r] < 0.5 * spacing))
+      throw Error(who + ": the elevations around " + std::to_string(rings_deg[r]) + " deg spread over " +
+                  std::to_string(widths_deg[r]) + " deg, more than half the " + std::to_string(spacing) +
+                  " deg to the next ring: not a rotating LiDAR's rings");
+  }
+  // The azimuth step: per ring (the points nearest its elevation), the median gap between
+  // consecutive azimuths; the median over the rings.
+  std::vector<std::vector<double>> azimuths(rings_deg.size());
+  for (std::size_t i = 0; i < elevation.size(); ++i) {
+    const double e = elevation[i] * 180.0 / M_PI;
+    std::size_t r = static_cast<std::size_t>(std::lower_bound(rings_deg.begin(), rings_deg.end(), e) - rings_deg.begin());
+    if (r == rings_deg.size() || (r > 0 && e - rings_deg[r - 1] < rings_deg[r] - e)) --r;
+    azimuths[r].push_back(azimuth[i]);
+  }
+  std::vector<double> steps;
+  for (auto& a : azimuths) {
+    std::sort(a.begin(), a.end());
+    std::vector<double> gaps;
+    for (std::size_t i = 1; i < a.size(); ++i)
+      if (a[i] - a[i - 1] > 1e-9) gaps.push_back(a[i] - a[i - 1]);
+    if (!gaps.empty()) steps.push_back(median(gaps));
+  }
+  const double step = steps.empty() ? 0.0 : median(steps);
+  if (!(step >= kMinPointCloudColumnDeg * M_PI / 180.0))
+    throw Error(who + ": the points' azimuths lie closer than " + std::to_string(kMinPointCloudColumnDeg) +
+                " deg apart: not a rotating LiDAR's sweep");
+  const int cols = std::max(2, static_cast<int>(std::lround(2.0 * M_PI / step)));
+  std::vector<double> columns;
+  for (int c = 0; c < cols; ++c) columns.push_back(2.0 * M_PI * c / cols);
+  RangeScan out;
+  out.model = kPointCloudModel;
+  out.setLayout(rings_deg, std::move(columns));
+  out.ray = cv::Mat(out.range_m.rows, cols, CV_32FC3, cv::Scalar(0.0f, 0.0f, 0.0f));
+  for (const Eigen::Vector3d& p : points_sensor)
+    if (p.allFinite()) placeReturn(out, p);
   return out;
 }
 

@@ -1,5 +1,8 @@
 #include "gasp/rawlog/range_scan.h"
 
+#include <mrpt/maps/CPointsMap.h>
+#include <mrpt/maps/CSimplePointsMap.h>
+#include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/obs/CObservationRotatingScan.h>
 #include <mrpt/obs/CObservationVelodyneScan.h>
 #include <mrpt/core/Clock.h>
@@ -98,10 +101,26 @@ class CellFiller final : public mrpt::obs::CObservationVelodyneScan::PointCloudS
 RangeScan rangeScanFrom(const mrpt::obs::CObservation& observation) {
   if (const auto* rotating = dynamic_cast<const mrpt::obs::CObservationRotatingScan*>(&observation))
     return rangeScanFrom(*rotating);
+  // MRPT 2.5.8's fromGeneric() throws "not implemented" for point clouds: their layout is found here.
+  if (const auto* cloud = dynamic_cast<const mrpt::obs::CObservationPointCloud*>(&observation)) {
+    const std::string who = "point cloud '" + cloud->sensorLabel + "'";
+    if (!cloud->pointcloud) throw Error(who + ": holds no points map");
+    const auto& xs = cloud->pointcloud->getPointsBufferRef_x();
+    const auto& ys = cloud->pointcloud->getPointsBufferRef_y();
+    const auto& zs = cloud->pointcloud->getPointsBufferRef_z();
+    std::vector<Eigen::Vector3d> points;
+    points.reserve(xs.size());
+    for (std::size_t i = 0; i < xs.size() && i < ys.size() && i < zs.size(); ++i) points.emplace_back(xs[i], ys[i], zs[i]);
+    RangeScan out = rangeScanFromPoints(points, who);
+    out.timestamp = mrpt::Clock::toDouble(cloud->timestamp);
+    out.T_robot_sensor = fromCPose3D(cloud->sensorPose);
+    return out;
+  }
   mrpt::obs::CObservationRotatingScan converted;
   if (!converted.fromGeneric(observation))
     throw Error(std::string("observation '") + observation.sensorLabel + "' of class " +
-                observation.GetRuntimeClass()->className + ": not a range scan GASP reads (rotating, Velodyne or 2D)");
+                observation.GetRuntimeClass()->className +
+                ": not a range scan GASP reads (rotating, Velodyne, point cloud or 2D)");
   RangeScan out = rangeScanFrom(converted);
   if (const auto* velodyne = dynamic_cast<const mrpt::obs::CObservationVelodyneScan*>(&observation)) {
     // The layout of the conversion, the returns and rays of MRPT's calibrated points.
@@ -118,13 +137,14 @@ RangeScan rangeScanFrom(const mrpt::obs::CObservation& observation) {
 
 bool isSweepObservation(const mrpt::obs::CObservation& observation) {
   return dynamic_cast<const mrpt::obs::CObservationRotatingScan*>(&observation) != nullptr ||
-         dynamic_cast<const mrpt::obs::CObservationVelodyneScan*>(&observation) != nullptr;
+         dynamic_cast<const mrpt::obs::CObservationVelodyneScan*>(&observation) != nullptr ||
+         dynamic_cast<const mrpt::obs::CObservationPointCloud*>(&observation) != nullptr;
 }
 
 RgbdFrame sweepFrameFromObservation(const mrpt::obs::CObservation& observation, const std::string& what) {
   if (!isSweepObservation(observation))
     throw Error(what + ": a " + observation.GetRuntimeClass()->className +
-                " is not a LiDAR sweep (CObservationRotatingScan or CObservationVelodyneScan)");
+                " is not a LiDAR sweep (CObservationRotatingScan, CObservationVelodyneScan or CObservationPointCloud)");
   RgbdFrame frame;
   try {
     frame.sweep = rangeScanFrom(observation);
@@ -171,6 +191,21 @@ mrpt::obs::CObservationRotatingScan toRotatingScan(const RangeScan& scan, const 
         out.rangeImage(scan.laser_of_row[static_cast<std::size_t>(r)], c) =
             static_cast<uint16_t>(std::min(65535.0, std::round(d / kRotatingScanResolutionM)));
     }
+  return out;
+}
+
+mrpt::obs::CObservationPointCloud toPointCloud(const RangeScan& scan, const std::string& sensor_label) {
+  validateLayout(scan, "point cloud '" + sensor_label + "'");
+  mrpt::obs::CObservationPointCloud out;
+  out.sensorLabel = sensor_label;
+  out.timestamp = mrpt::Clock::fromDouble(scan.timestamp);
+  out.sensorPose = toCPose3D(scan.T_robot_sensor);
+  auto map = mrpt::maps::CSimplePointsMap::Create();
+  const std::vector<Eigen::Vector3d> points = scan.points();
+  map->reserve(points.size());
+  for (const Eigen::Vector3d& p : points)
+    map->insertPointFast(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()));
+  out.pointcloud = map;
   return out;
 }
 

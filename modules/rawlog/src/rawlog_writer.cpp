@@ -94,6 +94,11 @@ void RawlogWriter::write(const RangeScan& sweep, const std::string& sensor_label
   append(std::make_shared<mrpt::obs::CObservationRotatingScan>(toRotatingScan(sweep, sensor_label)));
 }
 
+void RawlogWriter::writePointCloud(const RangeScan& sweep, const std::string& sensor_label) {
+  checkOpen();
+  append(std::make_shared<mrpt::obs::CObservationPointCloud>(toPointCloud(sweep, sensor_label)));
+}
+
 void RawlogWriter::append(const std::shared_ptr<mrpt::obs::CObservation>& obs) {
   try {
     auto ar = mrpt::serialization::archiveFrom(*impl_->stream);

@@ -65,6 +65,30 @@ bool nearestCell(const RangeScan& scan, const Eigen::Vector3d& direction, int& r
 /// not a range image (validateLayout).
 RangeScan movedScan(const RangeScan& scan, const Isometry3& T_new_old);
 
+/// The model name of a scan made from a point cloud (rangeScanFromPoints()).
+inline constexpr const char* kPointCloudModel = "POINT-CLOUD";
+
+/// One sweep of a rotating LiDAR given as points without their layout (a point cloud, in the
+/// sensor frame) as a range scan:
+/// - rows: the rings, the clusters of the points' elevations: sorted, a new ring starts at a gap
+///   of more than kMinRingGapDeg, and a cluster holding less than a tenth of the mean cluster's
+///   points is a stray elevation (a laser's offset from the sensor's centre, seen at close range),
+///   not a ring. A row's elevation is its ring's median; the middle 90 % of a ring's elevations
+///   must span less than half the distance to the nearest other ring.
+/// - columns: a whole turn counter-clockwise from azimuth 0, at the median over the rings of the
+///   median gap between a ring's consecutive azimuths.
+/// - each point in the cell nearest its direction, with its own ray (the nearer where two share a
+///   cell), as movedScan().
+/// model is kPointCloudModel; timestamp, duration and T_robot_sensor are left to the caller.
+/// Throws gasp::Error starting with `who` for fewer than two rings, more than kMaxPointCloudRows,
+/// rings wider than that, or columns finer than kMinPointCloudColumnDeg (not a rotating LiDAR's
+/// sweep).
+RangeScan rangeScanFromPoints(const std::vector<Eigen::Vector3d>& points_sensor, const std::string& who);
+/// Rotating LiDARs' rings lie at least this far apart (a 128-laser's densest, 0.125 deg).
+inline constexpr double kMinRingGapDeg = 0.1;
+inline constexpr int kMaxPointCloudRows = 256;
+inline constexpr double kMinPointCloudColumnDeg = 0.01;
+
 /// The lasers' elevations [deg] of a LiDAR by MRPT's lidarModel name, in laser-id order (the
 /// observation's rows): VLP-16 and HDL-32E (their manuals' tables), SIM-64 (the simulator's 64
 /// lasers, evenly over -24.9..+2 deg, an HDL-64E's field) and 2D scans ("2D_SCAN_*": one row at

@@ -13,6 +13,7 @@
 #include "gasp/core/range_scan.h"
 #include "gasp/rawlog/rgbd_frame.h"
 
+#include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/obs/CObservationRotatingScan.h>
 
 #include <string>
@@ -23,14 +24,20 @@ namespace gasp {
 /// whose elevations are not known, or when they do not match its rows, and for an empty scan.
 RangeScan rangeScanFrom(const mrpt::obs::CObservationRotatingScan& scan);
 /// Any observation CObservationRotatingScan::fromGeneric() converts (CObservationVelodyneScan,
-/// CObservation2DRangeScan), or a rotating scan itself; gasp::Error naming the class otherwise.
+/// CObservation2DRangeScan), a rotating scan itself, or a CObservationPointCloud of one sweep;
+/// gasp::Error naming the class otherwise.
 /// A Velodyne scan's returns are MRPT's calibrated points (generatePointCloud()), each in the
 /// cell of its laser and nearest column, with its own ray (`ray`): the image reproduces them
 /// exactly, where uniform columns are off by up to a quarter of a degree.
+/// A point cloud (its points in the sensor frame, as MRPT keeps them) gets the layout its points
+/// show (rangeScanFromPoints(): rings by elevation, columns at its azimuth step), each point with
+/// its own ray; MRPT 2.5.8's fromGeneric() does not convert point clouds. gasp::Error naming the
+/// observation when its points do not lie on rings (not one sweep of a rotating LiDAR).
 RangeScan rangeScanFrom(const mrpt::obs::CObservation& observation);
 
-/// Whether GASP reads `observation` as a rotating LiDAR's sweep: a CObservationRotatingScan or a
-/// CObservationVelodyneScan (2D scans convert too, but one row is no surface).
+/// Whether GASP reads `observation` as a rotating LiDAR's sweep: a CObservationRotatingScan, a
+/// CObservationVelodyneScan or a CObservationPointCloud (2D scans convert too, but one row is no
+/// surface).
 bool isSweepObservation(const mrpt::obs::CObservation& observation);
 /// The sweep as a frame (RgbdFrame::sweep; its timestamp, sensor label, and its sensorPose as
 /// T_robot_camera, the LiDAR's own frame). Throws gasp::Error starting with `what` for a sweep
@@ -45,5 +52,11 @@ inline constexpr double kRotatingScanResolutionM = 0.002;
 /// reads back. Throws gasp::Error for a scan without a layout, with per-return rays (MRPT 2.5 has
 /// no place for them), or of a model whose elevations a reader would not know.
 mrpt::obs::CObservationRotatingScan toRotatingScan(const RangeScan& scan, const std::string& sensor_label);
+
+/// `scan`'s returns as MRPT's CObservationPointCloud (a CSimplePointsMap in the sensor frame, the
+/// scan's timestamp and T_robot_sensor as sensorPose): how many drivers hand a sweep over, without
+/// its layout. rangeScanFrom() finds the layout again. Throws gasp::Error for a scan without a
+/// layout (validateLayout).
+mrpt::obs::CObservationPointCloud toPointCloud(const RangeScan& scan, const std::string& sensor_label);
 
 }  // namespace gasp

@@ -48,6 +48,8 @@ class RawlogWriter {
   /// Appends a sweep as MRPT 2.5's CObservationRotatingScan (toRotatingScan(), range_scan.h; its
   /// ranges inline, whatever external_storage says). Throws gasp::Error.
   void write(const RangeScan& sweep, const std::string& sensor_label);
+  /// Appends a sweep as a CObservationPointCloud (toPointCloud(), range_scan.h). Throws gasp::Error.
+  void writePointCloud(const RangeScan& sweep, const std::string& sensor_label);
   /// Ends the stream, checks every write, and renames the file to path() (also done by the
   /// destructor, unless an exception is unwinding, where errors cannot be reported: call it).
   /// Throws gasp::Error naming the file when a write or the rename failed; no-op once closed.

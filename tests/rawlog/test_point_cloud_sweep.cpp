@@ -1,0 +1,222 @@
+// A rotating LiDAR's sweep given as a point cloud (mrpt::obs::CObservationPointCloud): its rings
+// and columns found from the points (gasp/core/range_scan.h rangeScanFromPoints(), the rawlog's
+// rangeScanFrom()), on the simulator's sweeps and on MRPT's real VLP-16 sample.
+#include <gtest/gtest.h>
+
+#include <mrpt/core/Clock.h>
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/maps/CSimplePointsMap.h>
+#include <mrpt/obs/CObservationPointCloud.h>
+#include <mrpt/obs/CObservationVelodyneScan.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "gasp/core/error.h"
+#include "gasp/core/range_scan.h"
+#include "gasp/pipeline/range_view.h"
+#include "gasp/rawlog/depth_sequence.h"
+#include "gasp/rawlog/observation_conversion.h"
+#include "gasp/rawlog/range_scan.h"
+#include "gasp/sim/lidar.h"
+#include "gasp/sim/scene.h"
+#include "gasp_test_data.h"
+#include "program_run.h"
+
+namespace {
+
+constexpr const char* kVelodyne = "/usr/share/mrpt/datasets/test_velodyne_VLP16.rawlog";
+
+/// Raw points as a point cloud (the bad inputs below).
+mrpt::obs::CObservationPointCloud cloudOf(const std::vector<Eigen::Vector3d>& points, const std::string& label) {
+  mrpt::obs::CObservationPointCloud cloud;
+  cloud.sensorLabel = label;
+  auto map = mrpt::maps::CSimplePointsMap::Create();
+  for (const Eigen::Vector3d& p : points)
+    map->insertPoint(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()));
+  cloud.pointcloud = map;
+  return cloud;
+}
+
+/// The largest distance from one of `a`'s points to the nearest of `b`'s (the first `n` of a).
+double worstNearest(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b, std::size_t n) {
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.size() && i < n; ++i) {
+    double nearest = 1e18;
+    for (const Eigen::Vector3d& q : b) nearest = std::min(nearest, (a[i] - q).squaredNorm());
+    worst = std::max(worst, nearest);
+  }
+  return std::sqrt(worst);
+}
+
+gasp::Isometry3 motion(double x, double y, double yaw_deg) {
+  gasp::Isometry3 T = gasp::Isometry3::Identity();
+  T.linear() = Eigen::AngleAxisd(yaw_deg * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(x, y, 0.0);
+  return T;
+}
+
+}  // namespace
+
+TEST(PointCloudSweep, ASimulatedSweepAsPointsGetsItsRingsColumnsAndEveryReturn) {
+  for (const int lasers : {16, 64}) {
+    const gasp::sim::LidarSensor sensor = gasp::sim::lidarSensor(lasers);
+    gasp::Isometry3 T = gasp::Isometry3::Identity();
+    T.translation() = Eigen::Vector3d(0.5, 0.0, 1.0);
+    const gasp::RangeScan scan = gasp::sim::simulateLidarScan(gasp::sim::makeScene("room"), sensor, T, 3, 0);
+    const std::vector<Eigen::Vector3d> points = scan.points();
+    gasp::RangeScan back = gasp::rangeScanFrom(gasp::toPointCloud(scan, "CLOUD"));
+    EXPECT_EQ(back.model, gasp::kPointCloudModel);
+    ASSERT_EQ(back.range_m.rows, scan.range_m.rows) << lasers;
+    for (std::size_t r = 0; r < scan.elevation_rad.size(); ++r)
+      EXPECT_NEAR(back.elevation_rad[r], scan.elevation_rad[r], 1e-5) << lasers << ": row " << r;
+    EXPECT_EQ(back.range_m.cols, scan.range_m.cols) << lasers;
+    EXPECT_TRUE(gasp::coversWholeTurn(back));
+    // Every return kept at its place (float points: within 1e-5 m).
+    EXPECT_EQ(back.returnCount(), scan.returnCount()) << lasers;
+    const std::vector<Eigen::Vector3d> after = back.points();
+    EXPECT_LT(worstNearest(after, points, 400), 1e-4) << lasers;
+  }
+}
+
+TEST(PointCloudSweep, TwoSimulatedSweepsAsPointCloudsRegister) {
+  const gasp::sim::Scene room = gasp::sim::makeScene("room");
+  const gasp::sim::LidarSensor sensor = gasp::sim::lidarSensor(16);
+  gasp::Isometry3 T_a = gasp::Isometry3::Identity(), T_b = motion(1.0, 0.3, 35.0);
+  T_a.translation() = Eigen::Vector3d(0.3, -0.2, 1.0);
+  T_b.translation().z() = 1.05;
+  const gasp::RangeScan a = gasp::rangeScanFrom(gasp::toPointCloud(gasp::sim::simulateLidarScan(room, sensor, T_a, 1, 0), "A"));
+  const gasp::RangeScan b = gasp::rangeScanFrom(gasp::toPointCloud(gasp::sim::simulateLidarScan(room, sensor, T_b, 1, 1), "B"));
+  const gasp::RangePairResult r = gasp::registerRangeScans(a, b);
+  ASSERT_TRUE(r.pair.pose.success) << r.pair.pose.reason;
+  const gasp::Isometry3 E = (T_b.inverse() * T_a).inverse() * r.pair.pose.T_target_source;
+  EXPECT_LT(E.translation().norm(), 0.05);
+  EXPECT_LT(Eigen::AngleAxisd(E.linear()).angle() * 180.0 / M_PI, 0.5);
+}
+
+// MRPT's real VLP-16 sample, its calibrated points given as a point cloud: the layout the points
+// show is the sensor's, and the cloud registers to the packets' own sweep moved by known motions
+// within the real scans' tolerance (2 cm / 0.2 deg), a half turn included.
+TEST(PointCloudSweep, MrptsRealVlp16AsAPointCloudRegistersToItsPacketsSweepUnderKnownMotions) {
+  if (!std::filesystem::exists(kVelodyne)) GTEST_SKIP() << kVelodyne << " not found (package mrpt-common)";
+  mrpt::io::CFileGZInputStream in(kVelodyne);
+  auto archive = mrpt::serialization::archiveFrom(in);
+  const auto velodyne = std::dynamic_pointer_cast<mrpt::obs::CObservationVelodyneScan>(archive.ReadObject());
+  ASSERT_TRUE(velodyne);
+  const gasp::RangeScan packets = gasp::rangeScanFrom(*velodyne);
+  const mrpt::obs::CObservationPointCloud cloud = gasp::toPointCloud(packets, "VLP16_CLOUD");
+  const gasp::RangeScan scan = gasp::rangeScanFrom(cloud);
+  ASSERT_EQ(scan.range_m.rows, 16);
+  const std::vector<double> vlp16 = gasp::laserElevationsDeg("VLP-16", 16);
+  std::vector<double> sorted = vlp16;
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t r = 0; r < 16; ++r) EXPECT_NEAR(scan.elevation_rad[r] * 180.0 / M_PI, sorted[r], 0.01) << r;
+  // The sample's lasers return every other column of the packets' layout (docs/lidar.md): the
+  // points' own step is two of its columns.
+  EXPECT_NEAR(std::abs(gasp::azimuthStep(scan)), 2.0 * std::abs(gasp::azimuthStep(packets)), 0.02 * M_PI / 180.0);
+  // A few share a cell: the sample's firings drift against a uniform step.
+  EXPECT_GT(scan.returnCount(), packets.returnCount() * 98 / 100);
+  EXPECT_NEAR(scan.timestamp, packets.timestamp, 1e-6);
+  EXPECT_TRUE(scan.T_robot_sensor.isApprox(packets.T_robot_sensor, 1e-9));
+  for (const gasp::Isometry3& T : {motion(0.5, 0.1, 10.0), motion(0.3, 1.0, 180.0), motion(0.0, 0.0, -90.0)}) {
+    const gasp::RangePairResult r = gasp::registerRangeScans(scan, gasp::movedScan(packets, T));
+    ASSERT_TRUE(r.pair.pose.success) << r.pair.pose.reason;
+    const gasp::Isometry3 E = T.inverse() * r.pair.pose.T_target_source;
+    EXPECT_LT(E.translation().norm(), 0.02);
+    EXPECT_LT(Eigen::AngleAxisd(E.linear()).angle() * 180.0 / M_PI, 0.2);
+  }
+}
+
+TEST(PointCloudSweep, ACloudThatIsNotOneSweepIsAnErrorNamingIt) {
+  auto expectError = [](const mrpt::obs::CObservationPointCloud& cloud, const std::string& part) {
+    try {
+      gasp::rangeScanFrom(cloud);
+      ADD_FAILURE() << "no error (" << part << ")";
+    } catch (const gasp::Error& e) {
+      EXPECT_NE(std::string(e.what()).find("point cloud 'BAD'"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+  };
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-5.0, 5.0);
+  std::vector<Eigen::Vector3d> cube;  // a stereo camera's cloud, say: no rings
+  for (int i = 0; i < 20000; ++i) cube.emplace_back(u(rng), u(rng), u(rng));
+  expectError(cloudOf(cube, "BAD"), "ring");
+  std::vector<Eigen::Vector3d> wide;  // two bands of elevation, each wider than half their spacing
+  for (int i = 0; i < 20000; ++i) {
+    const double el = (i % 2 ? 5.0 : -5.0) + 7.0 * (i % 1000) / 1000.0 - 3.5, az = 0.01 * i;
+    wide.emplace_back(std::cos(el * M_PI / 180) * std::cos(az), std::cos(el * M_PI / 180) * std::sin(az), std::sin(el * M_PI / 180));
+  }
+  expectError(cloudOf(wide, "BAD"), "not a rotating LiDAR's rings");
+  std::vector<Eigen::Vector3d> ring;  // a 2D scan's single ring
+  for (int i = 0; i < 720; ++i) ring.emplace_back(3.0 * std::cos(i * M_PI / 360), 3.0 * std::sin(i * M_PI / 360), 0.0);
+  expectError(cloudOf(ring, "BAD"), "1 rings");
+  expectError(cloudOf({}, "BAD"), "0 points");
+  mrpt::obs::CObservationPointCloud empty;
+  empty.sensorLabel = "BAD";
+  expectError(empty, "no points map");
+  EXPECT_TRUE(gasp::isSweepObservation(empty));
+}
+
+// A rawlog of point clouds reads as a sequence of sweeps (gasp-odometry / gasp-slam --rawlog).
+TEST(PointCloudSweep, ARawlogOfPointCloudsReadsAsSweeps) {
+  const std::string dir = gasp::test::scratchDir();
+  const gasp::sim::Scene room = gasp::sim::makeScene("room");
+  const gasp::sim::LidarSensor sensor = gasp::sim::lidarSensor(16);
+  {
+    mrpt::io::CFileGZOutputStream out(dir + "/clouds.rawlog");
+    auto archive = mrpt::serialization::archiveFrom(out);
+    for (int i = 0; i < 3; ++i) {
+      gasp::Isometry3 T = motion(0.1 * i, 0.0, 5.0 * i);
+      T.translation().z() = 1.0;
+      gasp::RangeScan sweep = gasp::sim::simulateLidarScan(room, sensor, T, 1, i);
+      sweep.timestamp = 100.0 + 0.1 * i;
+      archive << gasp::toPointCloud(sweep, "CLOUD");
+    }
+  }
+  gasp::DepthSequenceOptions o;
+  o.rawlog_path = dir + "/clouds.rawlog";
+  o.sweeps = true;
+  gasp::DepthSequence sequence(o);
+  int n = 0;
+  while (const auto f = sequence.next()) {
+    ASSERT_TRUE(f->isSweep());
+    EXPECT_EQ(f->sensor_label, "CLOUD");
+    EXPECT_EQ(f->sweep->range_m.rows, 16);
+    EXPECT_NEAR(f->timestamp, 100.0 + 0.1 * n, 1e-6);
+    ++n;
+  }
+  EXPECT_EQ(n, 3);
+}
+
+// gasp-simulate --point-clouds: the sweeps as CObservationPointCloud, which read back as the
+// simulator's sweeps (their rings, columns and returns); the flag is a LiDAR's only.
+TEST(PointCloudSweep, GaspSimulateWritesSweepsAsPointClouds) {
+  const std::string dir = gasp::test::scratchDir() + "/clouds";
+  const auto run = gasp::test::runProgram("gasp-simulate", "--sensor lidar16 --point-clouds --frames 8 --rate 10 --out " + dir);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(gasp::test::contains(run.output, "sweeps:      8 of VLP-16 as point clouds")) << run.output;
+  gasp::DepthSequenceOptions o;
+  o.rawlog_path = dir + "/lidar.rawlog";
+  o.sweeps = true;
+  gasp::DepthSequence sequence(o);
+  int n = 0;
+  while (const auto f = sequence.next()) {
+    ASSERT_TRUE(f->isSweep());
+    EXPECT_EQ(f->sweep->model, gasp::kPointCloudModel);
+    EXPECT_EQ(f->sweep->range_m.rows, 16);
+    EXPECT_EQ(f->sweep->range_m.cols, 1800);
+    ++n;
+  }
+  EXPECT_EQ(n, 8);
+  const auto bad = gasp::test::runProgram("gasp-simulate", "--point-clouds --out " + dir + "/x");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_TRUE(gasp::test::contains(bad.output, "--point-clouds is a LiDAR's output")) << bad.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/x"));
+}
