@@ -6,21 +6,57 @@
 // their planes, 5 cm bins), each refined by trackViews() and compared with the claimed pose's
 // likelihood (compareAlternative(): log L(claimed) - log L(alternative), claimed or not).
 //   build/ci/bin/probe_lidar_symmetry DIR I J [I J ...]   (DIR: gasp-simulate --sensor lidarNN's folder)
-// Prints each alternative's error against the truth and the likelihood comparison.
+// Prints each alternative's error against the truth and the likelihood comparison, with the
+// patches that land on measured depth under both poses, under the claimed one and under the turn
+// (the comparison counts only the first: study section 10).
+//   PROBE_FREESPACE=1 build/ci/bin/probe_lidar_symmetry DIR I J ...: instead, for each claimed
+// pose, a free-space test on the returns (each return against the plane of the other sweep's
+// return nearest its direction, a 5 range-sigma gate): the shares of violations and occluded
+// samples both ways (study section 10).
 #include <mrpt/obs/CObservationRotatingScan.h>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
 #include "gasp/core/tum_trajectory.h"
+#include "gasp/pipeline/pose_likelihood.h"
 #include "gasp/pipeline/range_view.h"
+#include "gasp/pipeline/returns_stage.h"
 #include "gasp/pipeline/symmetric_turns.h"
 #include "gasp/rawlog/range_scan.h"
 #include "gasp/rawlog/rawlog_objects.h"
 
 using gasp::Isometry3;
 static double deg(const Isometry3& e) { return Eigen::AngleAxisd(e.linear()).angle() * 180.0 / M_PI; }
+
+
+// The free-space test on the returns: each return of `from` (with the target's return of nearest
+// direction carrying a normal) against the target's plane along its own ray.
+struct ReturnShares { int consistent = 0, violations = 0, occluded = 0; };
+static ReturnShares returnsFreeSpace(const gasp::SweepReturns& from, const gasp::SweepReturns& to, const Isometry3& T_to_from, double gate) {
+  ReturnShares out;
+  for (int r = 0; r < from.rows(); ++r)
+    for (int c = 0; c < from.cols(); ++c) {
+      const Eigen::Vector3d& p = from.point(r, c);
+      if (!p.allFinite()) continue;
+      const Eigen::Vector3d q = T_to_from * p;
+      const int i = to.lookUp(q, 2);
+      if (i < 0) continue;
+      const Eigen::Vector3d dir = q.normalized();
+      const Eigen::Vector3d& pt = to.point(i);
+      const Eigen::Vector3d& n = to.normal(i);
+      if (std::acos(std::min(1.0, dir.dot(pt.normalized()))) > to.halfCellRad()) continue;
+      const double denom = n.dot(dir);
+      if (std::abs(denom) < std::cos(80.0 * M_PI / 180.0)) continue;
+      const double d = q.norm() - n.dot(pt) / denom;
+      if (std::abs(d) <= gate) ++out.consistent;
+      else if (d > 0) ++out.occluded;
+      else ++out.violations;
+    }
+  return out;
+}
 
 int main(int argc, char** argv) {
   if (argc < 4 || argc % 2 != 0) {
@@ -48,6 +84,16 @@ int main(int argc, char** argv) {
     const Isometry3 e0 = T_true.inverse() * r.pose.T_target_source;
     std::printf("pair %d -> %d: claimed %d, %.1f cm %.2f deg off\n", i, j, r.pose.success, 100 * e0.translation().norm(), deg(e0));
     if (!r.pose.success) continue;
+    if (std::getenv("PROBE_FREESPACE")) {
+      const ReturnShares fa = returnsFreeSpace(*vs.returns, *vt.returns, r.pose.T_target_source, 5 * 0.02);
+      const ReturnShares fb = returnsFreeSpace(*vt.returns, *vs.returns, r.pose.T_target_source.inverse(), 5 * 0.02);
+      auto ratio = [](const ReturnShares& x) { return double(x.violations) / std::max(1, x.consistent + x.violations + x.occluded); };
+      auto occ = [](const ReturnShares& x) { return double(x.occluded) / std::max(1, x.consistent + x.violations + x.occluded); };
+      std::printf("freespace %d %d %s violations %.4f %.4f occluded %.3f %.3f samples %d %d\n", i, j,
+                  100 * e0.translation().norm() <= 5 && deg(e0) <= 0.5 ? "right" : "wrong", ratio(fa), ratio(fb), occ(fa), occ(fb),
+                  fa.consistent + fa.violations + fa.occluded, fb.consistent + fb.violations + fb.occluded);
+      continue;
+    }
     for (const gasp::SymmetricTurn& turn : gasp::symmetricTurns(vs, vt, r.pose.T_target_source)) {
         const Isometry3& start = turn.T_target_source;
         const gasp::PairResult t = gasp::trackViews(vs, vt, start, p);
@@ -62,9 +108,14 @@ int main(int argc, char** argv) {
           gasp::RegistrationResult st;
           st.success = true, st.T_target_source = start;
           const gasp::Uniqueness u2 = gasp::compareAlternative(vs, vt, r.pose, st, 2.0 * p.hypothesise.pose.ransac.inlier.distance_m, p.certify);
-          std::printf("  turn %d: unclaimed alternative %.1f cm %.2f deg off truth: tested %d log-ratio %.1f se %.1f take %d refused %d; its start: tested %d log-ratio %.1f se %.1f\n",
+          gasp::PoseLikelihoodParams lk;
+          lk.pixel_step = p.certify.visibility.pixel_step;
+          const int common = gasp::logLikelihoodRatio(vs, vt, r.pose.T_target_source, alt.T_target_source, lk).patches;
+          const int own = gasp::logLikelihoodRatio(vs, vt, r.pose.T_target_source, r.pose.T_target_source, lk).patches;
+          const int its = gasp::logLikelihoodRatio(vs, vt, alt.T_target_source, alt.T_target_source, lk).patches;
+          std::printf("  turn %d: unclaimed alternative %.1f cm %.2f deg off truth: tested %d log-ratio %.1f se %.1f take %d refused %d; its start: tested %d log-ratio %.1f se %.1f; patches landing: both %d, claimed %d, turn %d\n",
                       turn.degrees, 100 * ea.translation().norm(), deg(ea), u.tested, u.log_ratio, u.standard_error, u.take_alternative, u.refused,
-                      u2.tested, u2.log_ratio, u2.standard_error);
+                      u2.tested, u2.log_ratio, u2.standard_error, common, own, its);
         }
         if (!t.pose.success) {
           std::printf("  turn %d: start %.0f cm %.1f deg off; not claimed (%s)\n", turn.degrees,
