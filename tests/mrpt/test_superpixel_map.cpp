@@ -25,6 +25,9 @@
 #include "gasp/core/undistortion.h"
 #include "gasp/mrpt/CSuperpixelMap.h"
 #include "gasp/mrpt/superpixel_map_view.h"
+#include "gasp/rawlog/range_scan.h"
+#include "gasp/sim/lidar.h"
+#include "gasp/sim/scene.h"
 #include "gasp/superpixels/depth_superpixels.h"
 #include "gasp_test_data.h"
 #include "mrpt_test_helpers.h"
@@ -526,6 +529,57 @@ TEST(SuperpixelMap, MatchingRatioAndLikelihoodPreferTheTruePose) {
   EXPECT_FALSE(CSuperpixelMap::findIn(&multi4, &why));
   EXPECT_NE(why.find("holding 2 gasp::CSuperpixelMap"), std::string::npos) << why;
   EXPECT_EQ(m0.compute3DMatchingRatio(&multi4, toCPose3D(P4), mp), 0.0f);
+}
+
+// A map of LiDAR sweeps and a sweep seen from a pose, as a particle filter asks: the true pose is
+// the most likely of the ones tried, as a rotating scan and as a point cloud; the pose-free part
+// is computed once per observation; depth scans get no information from a map of sweeps.
+TEST(SuperpixelMap, LikelihoodOfALidarSweepPrefersTheTruePose) {
+  const sim::Scene room = sim::makeScene("room");
+  const sim::LidarSensor lidar = sim::lidarSensor(16);
+  Isometry3 S = Isometry3::Identity();  // the LiDAR 0.8 m up on the robot
+  S.translation() = Eigen::Vector3d(0.1, 0.0, 0.8);
+  auto robotAt = [](double x, double y, double yaw_deg) {
+    Isometry3 P = Isometry3::Identity();
+    P.linear() = Eigen::AngleAxisd(yaw_deg * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    P.translation() = Eigen::Vector3d(x, y, 0.2);
+    return P;
+  };
+  CSuperpixelMap map;
+  int frame = 0;
+  for (const Isometry3& P : {robotAt(0.0, 0.0, 0.0), robotAt(0.8, 0.3, 40.0), robotAt(-0.5, 0.6, -70.0)}) {
+    auto sweep = toRotatingScan(sim::simulateLidarScan(room, lidar, P * S, 1, frame++), "LIDAR");
+    sweep.setSensorPose(toCPose3D(S));
+    ASSERT_TRUE(map.insertObservation(sweep, toCPose3D(P)));
+  }
+  const Isometry3 P = robotAt(0.3, 0.2, 15.0);
+  const RangeScan seen = sim::simulateLidarScan(room, lidar, P * S, 1, frame);
+  auto rotating = toRotatingScan(seen, "LIDAR");
+  rotating.setSensorPose(toCPose3D(S));
+  auto cloud = toPointCloud(seen, "CLOUD");
+  cloud.setSensorPose(toCPose3D(S));
+  for (const mrpt::obs::CObservation* obs : {static_cast<const mrpt::obs::CObservation*>(&rotating),
+                                             static_cast<const mrpt::obs::CObservation*>(&cloud)}) {
+    EXPECT_TRUE(map.canComputeObservationLikelihood(*obs));
+    const auto before = map.likelihoodCacheStats();
+    const double right = map.computeObservationLikelihood(*obs, toCPose3D(P));
+    std::cout << obs->GetRuntimeClass()->className << ": log-likelihood at the true pose " << right;
+    for (const Isometry3& off : {robotAt(0.3, 0.0, 0.0), robotAt(0.0, 0.0, 10.0), robotAt(0.0, 0.15, 0.0)}) {
+      const double wrong = map.computeObservationLikelihood(*obs, toCPose3D(P * off));
+      std::cout << ", " << wrong;
+      EXPECT_GT(right, wrong + 1.0);  // by more than a nat in the mean over the sweep's patches
+    }
+    std::cout << "\n";
+    EXPECT_LE(right, 0.0);
+    const auto after = map.likelihoodCacheStats();
+    EXPECT_EQ(after.misses, before.misses + 1);  // segmented and associated once
+    EXPECT_EQ(after.hits, before.hits + 3);
+  }
+  RgbdFrame f;
+  f.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(2.0f));
+  const auto depth = observationFromFrame(f);
+  EXPECT_FALSE(map.canComputeObservationLikelihood(*depth));
+  EXPECT_EQ(map.computeObservationLikelihood(*depth, toCPose3D(P)), 0.0);
 }
 
 TEST(SuperpixelMapView, ColoursOfADistortedRegisteredFrameComeFromTheSamePixels) {

@@ -111,13 +111,25 @@ SuperpixelParams lidarSuperpixelParams(const LidarParams& lidar) {
   return p;
 }
 
+double lidarCentroidScale(const LidarParams& lidar) {
+  validate(lidar);
+  return std::sqrt(lidar.patch_area_m2 / SuperpixelParams{}.target_patch_area_m2);
+}
+
+AssociationParams lidarAssociationParams(const AssociationParams& camera, const LidarParams& lidar) {
+  const double k = lidarCentroidScale(lidar);
+  AssociationParams out = camera;
+  out.feature_sets.ordering.e_r_m *= k;
+  out.match.r_dev_m *= k;
+  return out;
+}
+
 PairParams lidarPairParams(const LidarParams& lidar) {
   PairParams p;
   p.segment = lidarSuperpixelParams(lidar);
-  const double k = std::sqrt(p.segment.target_patch_area_m2 / SuperpixelParams{}.target_patch_area_m2);
+  const double k = lidarCentroidScale(lidar);
   // Centroid comparisons: with the patch radius.
-  p.associate.feature_sets.ordering.e_r_m *= k;
-  p.associate.match.r_dev_m *= k;
+  p.associate = lidarAssociationParams(p.associate, lidar);
   auto& ransac = p.hypothesise.pose.ransac;
   ransac.inlier.distance_m *= k;
   ransac.edge_tolerance_m *= k;

@@ -121,11 +121,14 @@ class CSuperpixelMap : public mrpt::maps::CMetricMap {
   /// GASP does not know, throws.
   bool internal_insertObservation(const mrpt::obs::CObservation& obs,
                                   const std::optional<const mrpt::poses::CPose3D>& robotPose) override;
-  /// log-likelihood of a CObservation3DRangeScan taken from `takenFrom`: its patches are
-  /// associated with the map's (GASP); each contributes -0.5 min((d / sigma_m)^2, 9), d the
-  /// point-to-plane distance to its partner, 9 (3 sigma) for patches without a consistent one;
-  /// the mean over the observation's patches is returned. 0 (no information) for other
-  /// observation types and for an empty map, as MRPT's own maps answer for what they cannot use:
+  /// log-likelihood of a CObservation3DRangeScan or a LiDAR sweep (isSweepObservation()) taken
+  /// from `takenFrom`: its patches are associated with the map's views of its kind (GASP; a
+  /// sweep's with lidarAssociationParams() of the matching keys); each contributes
+  /// -0.5 min((d / sigma_m)^2, 9), d the point-to-plane distance to its partner, 9 (3 sigma) for
+  /// patches without a consistent one (centroids further apart than max_distance_m, for a sweep
+  /// times lidarCentroidScale()); the mean over the observation's patches is returned. 0 (no
+  /// information) for other observation types and for a map without views of its kind, as MRPT's
+  /// own maps answer for what they cannot use:
   /// CMetricMap::computeObservationsLikelihood and CMultiMetricMap add every map's answer for
   /// every observation without asking canComputeObservationLikelihood first. A scan that cannot
   /// be read throws.
@@ -151,8 +154,19 @@ class CSuperpixelMap : public mrpt::maps::CMetricMap {
       return *this;
     }
   };
-  /// The cache entry for `scan` (computed, or the last one when its key matches).
-  std::shared_ptr<const LikelihoodCache::Entry> likelihoodEntry(const mrpt::obs::CObservation3DRangeScan& scan) const;
+  /// The cache entry for a depth scan or a sweep (computed, or the last one when its key matches).
+  std::shared_ptr<const LikelihoodCache::Entry> likelihoodEntry(const mrpt::obs::CObservation& obs) const;
+  std::shared_ptr<const LikelihoodCache::Entry> sweepLikelihoodEntry(const mrpt::obs::CObservation& obs) const;
+  /// A new entry with the key of `obs` (its raw data's hash given) and of the map.
+  std::shared_ptr<LikelihoodCache::Entry> keyOf(const mrpt::obs::CObservation& obs, std::size_t data_hash) const;
+  /// The cached entry when its key is `key`'s (counted as a hit), else null.
+  std::shared_ptr<const LikelihoodCache::Entry> cached(const LikelihoodCache::Entry& key) const;
+  /// `entry` completed with the frame's patches and their partners among the map's views of the
+  /// frame's kind, and cached.
+  std::shared_ptr<const LikelihoodCache::Entry> associated(const RgbdFrame& frame,
+                                                           std::shared_ptr<LikelihoodCache::Entry> entry) const;
+  /// A depth scan with a depth view in the map, or a sweep with a sweep view.
+  bool holdsViewsFor(const mrpt::obs::CObservation& obs) const;
 
   std::vector<SuperpixelMapView> views_;
   std::uint64_t content_version_ = 0;  ///< changes with every change of views_ (the cache's key)

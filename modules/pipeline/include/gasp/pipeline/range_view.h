@@ -62,6 +62,14 @@ ReturnsRefineParams returnsRefineParams(const LidarParams& params = {});
 /// (it does not grow with the square of the range).
 SuperpixelParams lidarSuperpixelParams(const LidarParams& params = {});
 
+/// How much longer a LiDAR view's centroid comparisons are than a camera view's: the ratio of
+/// the patch radii, sqrt(patch_area_m2 / SuperpixelParams{}.target_patch_area_m2).
+double lidarCentroidScale(const LidarParams& params = {});
+
+/// `camera`'s association settings for LiDAR views: the lengths that compare patch centroids
+/// (the feature sets' ordering radius, the match's radius deviation) times lidarCentroidScale().
+AssociationParams lidarAssociationParams(const AssociationParams& camera, const LidarParams& params = {});
+
 /// The pair pipeline's values for LiDAR views, from the camera's defaults by two rules: lengths
 /// that compare patch centroids (association, RANSAC, guided verification, the dense rounds'
 /// gates) grow with the patch radius, sqrt(patch_area_m2 / 0.004); lengths that compare points
