@@ -148,7 +148,7 @@ mrpt::poses::CPose3DPDFGaussian::Ptr CGaspAligner::alignObservations(
   if (!map_a.insertObservation(a) || !map_b.insertObservation(b)) {
     const auto& bad = map_a.isEmpty() ? a : b;
     THROW_EXCEPTION_FMT("gasp::CGaspAligner: observation %s is a %s; only mrpt::obs::CObservation3DRangeScan "
-                        "(RGB-D or range-only), CObservationRotatingScan and CObservationVelodyneScan are supported",
+                        "(RGB-D or range-only), CObservationRotatingScan, CObservationVelodyneScan and CObservationPointCloud are supported",
                         map_a.isEmpty() ? "a" : "b", bad.GetRuntimeClass()->className);
   }
   if (isSweepObservation(a) != isSweepObservation(b))

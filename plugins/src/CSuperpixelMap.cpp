@@ -2,6 +2,7 @@
 
 #include <mrpt/core/exceptions.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservationPointCloud.h>
 
 #include <sstream>
 
@@ -32,6 +33,8 @@ bool CSuperpixelMap::internal_insertObservation(const mrpt::obs::CObservation& o
     frame = scan ? frameFromObservation(*scan, "CObservation3DRangeScan '" + scan->sensorLabel + "'")
                  : sweepFrameFromObservation(obs, std::string(obs.GetRuntimeClass()->className) + " '" + obs.sensorLabel + "'");
   } catch (const Error& e) {
+    // A point cloud that is not one LiDAR's sweep is another sensor's: not for this map.
+    if (dynamic_cast<const mrpt::obs::CObservationPointCloud*>(&obs)) return false;
     THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());
   }
   insertFrame(frame, robotPose ? fromCPose3D(*robotPose) : Isometry3::Identity());

@@ -26,7 +26,7 @@ const mrpt::obs::CObservation3DRangeScan& asRangeScan(const mrpt::obs::CObservat
   const auto* scan = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&o);
   if (!scan) {
     THROW_EXCEPTION_FMT("ObservationMatcher_GASP: observation %s is a %s; only mrpt::obs::CObservation3DRangeScan "
-                        "(RGB-D or range-only), CObservationRotatingScan and CObservationVelodyneScan are supported",
+                        "(RGB-D or range-only), CObservationRotatingScan, CObservationVelodyneScan and CObservationPointCloud are supported",
                         which, o.GetRuntimeClass()->className);
   }
   return *scan;

@@ -53,8 +53,11 @@ std::size_t rangeImageHash(const mrpt::math::CMatrix_u16& range) {
 /// A hash of a sweep's raw data as stored (isSweepObservation()): the range image of a rotating
 /// scan, the packets of a Velodyne scan, the points of a point cloud.
 std::size_t sweepHash(const mrpt::obs::CObservation& obs) {
-  if (const auto* r = dynamic_cast<const mrpt::obs::CObservationRotatingScan*>(&obs))
-    return bytesHash(rangeImageHash(r->rangeImage), r->lidarModel.data(), r->lidarModel.size());
+  if (const auto* r = dynamic_cast<const mrpt::obs::CObservationRotatingScan*>(&obs)) {
+    const std::array<double, 5> layout = {r->rangeResolution, r->startAzimuth, r->azimuthSpan, r->minRange, r->maxRange};
+    return bytesHash(bytesHash(rangeImageHash(r->rangeImage), r->lidarModel.data(), r->lidarModel.size()), layout.data(),
+                     sizeof layout);
+  }
   if (const auto* v = dynamic_cast<const mrpt::obs::CObservationVelodyneScan*>(&obs))
     return bytesHash(v->scan_packets.size(), v->scan_packets.data(),
                      v->scan_packets.size() * sizeof(mrpt::obs::CObservationVelodyneScan::TVelodyneRawPacket));
@@ -126,6 +129,8 @@ struct CSuperpixelMap::LikelihoodCache::Entry {
   };
   Isometry3 T_robot_camera = Isometry3::Identity();  ///< the sensor's pose on the robot
   double max_distance_scale = 1.0;  ///< a sweep's: lidarCentroidScale()
+  /// False for a point cloud that is not one LiDAR's sweep (another sensor's): no information.
+  bool usable = true;
   std::size_t seen_patches = 0;
   std::vector<Pair> pairs;
 
@@ -204,15 +209,28 @@ std::shared_ptr<const CSuperpixelMap::LikelihoodCache::Entry> CSuperpixelMap::ca
 
 std::shared_ptr<const CSuperpixelMap::LikelihoodCache::Entry> CSuperpixelMap::sweepLikelihoodEntry(
     const mrpt::obs::CObservation& obs) const {
+  // A point cloud kept in an external file is loaded first (MRPT's load() fills the const
+  // observation in place), one call at a time, as the depth scans' images.
+  const auto* cloud = dynamic_cast<const mrpt::obs::CObservationPointCloud*>(&obs);
+  std::unique_lock<std::mutex> load_lock(likelihood_cache_.load_mutex, std::defer_lock);
+  if (cloud && cloud->isExternallyStored()) {
+    load_lock.lock();
+    cloud->load();
+  }
   auto entry = keyOf(obs, sweepHash(obs));
   if (auto hit = cached(*entry)) return hit;
   RgbdFrame frame;
   try {
     frame = sweepFrameFromObservation(obs, std::string(obs.GetRuntimeClass()->className) + " '" + obs.sensorLabel + "'");
+    entry->max_distance_scale = lidarCentroidScale(creationOptions.lidar);
   } catch (const Error& e) {
-    THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());
+    if (!cloud) THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());
+    entry->usable = false;  // another sensor's cloud, not a sweep
+    std::lock_guard<std::mutex> lock(likelihood_cache_.mutex);
+    ++likelihood_cache_.misses;
+    likelihood_cache_.entry = entry;
+    return entry;
   }
-  entry->max_distance_scale = lidarCentroidScale(creationOptions.lidar);
   return associated(frame, std::move(entry));
 }
 
@@ -227,8 +245,12 @@ std::shared_ptr<const CSuperpixelMap::LikelihoodCache::Entry> CSuperpixelMap::as
     THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());
   }
   const bool sweep = frame.isSweep();
-  const AssociationParams association = sweep ? lidarAssociationParams(likelihoodOptions.matching.associate, creationOptions.lidar)
-                                              : likelihoodOptions.matching.associate;
+  AssociationParams association = likelihoodOptions.matching.associate;
+  try {
+    if (sweep) association = lidarAssociationParams(association, creationOptions.lidar);
+  } catch (const Error& e) {
+    THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());
+  }
   const auto& seen_patches = seen.view.segmentation.patches;
   entry->seen_patches = seen_patches.size();
   if (!seen_patches.empty()) {
@@ -257,6 +279,7 @@ double CSuperpixelMap::internal_computeObservationLikelihood(const mrpt::obs::CO
                                                              const mrpt::poses::CPose3D& takenFrom) const {
   if (!holdsViewsFor(obs)) return 0.0;  // no information (see the header)
   const auto entry = likelihoodEntry(obs);
+  if (!entry->usable) return 0.0;
   if (entry->seen_patches == 0) return -0.5 * kOutlierCost;
   const Isometry3 T_map_camera = fromCPose3D(takenFrom) * entry->T_robot_camera;
   const double sigma = likelihoodOptions.sigma_m, max_d = likelihoodOptions.max_distance_m * entry->max_distance_scale;

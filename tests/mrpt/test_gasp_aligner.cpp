@@ -254,11 +254,6 @@ TEST(GaspAligner, FinerScaleRetryWhenNoViewPairIsFound) {
   }
 }
 
-// LiDAR sweeps in the MRPT layer: two simulated 16-laser sweeps as CObservationRotatingScan go
-// into superpixel maps (their views binned, with their returns), survive the map's serialization
-// (the view made again from the stored sweep: the same patches), and the aligner gives the
-// robots' relative pose within the 5 cm / 0.5 deg from the maps read back. A sweep
-// against a depth image is refused.
 namespace {
 
 /// `map` written and read back by MRPT's serialization into `back`: a sweep's view is made again,
@@ -310,6 +305,11 @@ TEST(GaspAligner, AlignsMapsOfPointCloudSweepsAlsoAfterSerialization) {
   expectAlignsTo(back_a, map_b, T_a.inverse() * T_b);
 }
 
+// LiDAR sweeps in the MRPT layer: two simulated 16-laser sweeps as CObservationRotatingScan go
+// into superpixel maps (their views binned, with their returns), survive the map's serialization
+// (the view made again from the stored sweep: the same patches), and the aligner gives the
+// robots' relative pose within the 5 cm / 0.5 deg from the maps read back. A sweep
+// against a depth image is refused.
 TEST(GaspAligner, AlignsMapsOfLidarSweepsAlsoAfterSerialization) {
   const gasp::sim::Scene room = gasp::sim::makeScene("room");
   gasp::Isometry3 T_a = gasp::Isometry3::Identity(), T_b = gasp::Isometry3::Identity();

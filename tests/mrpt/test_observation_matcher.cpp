@@ -136,12 +136,9 @@ TEST(ObservationMatcher, OnePlaneGivesAPartialPoseWithItsFreeDirections) {
   EXPECT_GT(along_normal.dot(c.information * along_normal), 0.0);
 }
 
-// Two simulated 16-laser sweeps as MRPT's CObservationRotatingScan (toRotatingScan), mounted on a
-// robot: the matcher takes them with the LiDAR's values (the params file form's section lidar)
-// and gives the robots' relative pose within the 5 cm / 0.5 deg; a sweep against a depth
-// image is refused with both classes named.
-// The same for sweeps given as point clouds (CObservationPointCloud): their layout is found from
-// the points (rangeScanFrom()); 32 lasers, as the aligner's point-cloud test.
+// Two simulated sweeps given as point clouds (CObservationPointCloud): their layout is found from
+// the points (rangeScanFrom()), and the matcher gives the robots' relative pose within 5 cm /
+// 0.5 deg; 32 lasers, as the aligner's point-cloud test.
 TEST(ObservationMatcher, TwoPointCloudSweepsGiveTheRobotsRelativePose) {
   const sim::Scene room = sim::makeScene("room");
   Isometry3 T_a = Isometry3::Identity(), T_b = Isometry3::Identity();
@@ -163,6 +160,10 @@ TEST(ObservationMatcher, TwoPointCloudSweepsGiveTheRobotsRelativePose) {
   EXPECT_LT(rotationAngle(E) * 180.0 / M_PI, 0.5);
 }
 
+// Two simulated 16-laser sweeps as MRPT's CObservationRotatingScan (toRotatingScan), mounted on a
+// robot: the matcher takes them with the LiDAR's values (the params file form's section lidar)
+// and gives the robots' relative pose within the 5 cm / 0.5 deg; a sweep against a depth
+// image is refused with both classes named.
 TEST(ObservationMatcher, TwoLidarSweepsGiveTheRobotsRelativePose) {
   const sim::Scene room = sim::makeScene("room");
   Isometry3 T_a = Isometry3::Identity(), T_b = Isometry3::Identity();

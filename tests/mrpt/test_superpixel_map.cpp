@@ -6,6 +6,7 @@
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/maps/CMultiMetricMap.h>
+#include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/opengl/COpenGLScene.h>
@@ -575,11 +576,35 @@ TEST(SuperpixelMap, LikelihoodOfALidarSweepPrefersTheTruePose) {
     EXPECT_EQ(after.misses, before.misses + 1);  // segmented and associated once
     EXPECT_EQ(after.hits, before.hits + 3);
   }
+  // The cache keys on the points: another sweep with the same label, time and mount misses.
+  const auto before = map.likelihoodCacheStats();
+  auto other = toPointCloud(sim::simulateLidarScan(room, lidar, robotAt(-0.4, 0.5, -60.0) * S, 1, frame + 1), "CLOUD");
+  other.setSensorPose(toCPose3D(S));
+  other.timestamp = cloud.timestamp;
+  const double other_ll = map.computeObservationLikelihood(other, toCPose3D(P));
+  EXPECT_EQ(map.likelihoodCacheStats().misses, before.misses + 1);
+  EXPECT_NE(other_ll, map.computeObservationLikelihood(cloud, toCPose3D(P)));
+  // Another sensor's cloud (no rings) is not for this map: not inserted, no information.
+  auto blob = mrpt::maps::CSimplePointsMap::Create();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-3.0f, 3.0f);
+  for (int i = 0; i < 5000; ++i) blob->insertPoint(u(rng), u(rng), u(rng));
+  mrpt::obs::CObservationPointCloud stereo;
+  stereo.pointcloud = blob;
+  CSuperpixelMap unchanged = map;
+  EXPECT_FALSE(unchanged.insertObservation(stereo));
+  EXPECT_EQ(unchanged.views().size(), 3u);
+  EXPECT_EQ(map.computeObservationLikelihood(stereo, toCPose3D(P)), 0.0);
+  // Depth scans get no information from a map of sweeps, and sweeps none from a map of depth images.
   RgbdFrame f;
   f.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(2.0f));
   const auto depth = observationFromFrame(f);
   EXPECT_FALSE(map.canComputeObservationLikelihood(*depth));
   EXPECT_EQ(map.computeObservationLikelihood(*depth, toCPose3D(P)), 0.0);
+  CSuperpixelMap depth_map;
+  ASSERT_TRUE(depth_map.insertObservation(*depth));
+  EXPECT_FALSE(depth_map.canComputeObservationLikelihood(rotating));
+  EXPECT_EQ(depth_map.computeObservationLikelihood(rotating, toCPose3D(P)), 0.0);
 }
 
 TEST(SuperpixelMapView, ColoursOfADistortedRegisteredFrameComeFromTheSamePixels) {

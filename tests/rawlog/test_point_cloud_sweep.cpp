@@ -78,11 +78,46 @@ TEST(PointCloudSweep, ASimulatedSweepAsPointsGetsItsRingsColumnsAndEveryReturn) 
       EXPECT_NEAR(back.elevation_rad[r], scan.elevation_rad[r], 1e-5) << lasers << ": row " << r;
     EXPECT_EQ(back.range_m.cols, scan.range_m.cols) << lasers;
     EXPECT_TRUE(gasp::coversWholeTurn(back));
-    // Every return kept at its place (float points: within 1e-5 m).
+    // Every return kept at its place (float points: within 1e-5 m), in the cell of its own
+    // direction: within half a column of the column's azimuth and half a pitch of the row's
+    // elevation (each point keeps its ray, so its place alone would not show a wrong cell).
     EXPECT_EQ(back.returnCount(), scan.returnCount()) << lasers;
     const std::vector<Eigen::Vector3d> after = back.points();
     EXPECT_LT(worstNearest(after, points, 400), 1e-4) << lasers;
+    const double half_column = 0.5 * std::abs(gasp::azimuthStep(back)) + 1e-6, half_row = 0.5 * gasp::rowPitch(back) + 1e-6;
+    int misplaced = 0;
+    for (int r = 0; r < back.range_m.rows; ++r)
+      for (int c = 0; c < back.range_m.cols; ++c) {
+        if (!(back.range_m.at<float>(r, c) > 0.0f)) continue;
+        const Eigen::Vector3d d = back.direction(r, c);
+        const double el = std::atan2(d.z(), std::hypot(d.x(), d.y())), az = std::atan2(d.y(), d.x());
+        if (std::abs(el - back.elevation_rad[static_cast<std::size_t>(r)]) > half_row ||
+            std::abs(std::remainder(az - back.azimuth_rad[static_cast<std::size_t>(c)], 2 * M_PI)) > half_column)
+          ++misplaced;
+      }
+    EXPECT_EQ(misplaced, 0) << lasers;
   }
+}
+
+// A ring that sees mostly sky keeps its few returns as a row, and a handful of stray points at
+// elevations of no ring (multipath, a laser's offset seen close up) make no row of their own.
+TEST(PointCloudSweep, ASparseRingIsARowAndStrayPointsAreNot) {
+  const gasp::sim::LidarSensor sensor = gasp::sim::lidarSensor(16);
+  gasp::Isometry3 T = gasp::Isometry3::Identity();
+  T.translation() = Eigen::Vector3d(0.5, 0.0, 1.0);
+  gasp::RangeScan scan = gasp::sim::simulateLidarScan(gasp::sim::makeScene("room"), sensor, T, 3, 0);
+  const int top = scan.range_m.rows - 1;
+  for (int c = 0; c < scan.range_m.cols; ++c)
+    if (c % 33 != 0) scan.range_m.at<float>(top, c) = 0.0f;  // 3 % of the top ring left
+  std::vector<Eigen::Vector3d> points = scan.points();
+  for (int i = 0; i < 5; ++i) {  // four between rows 3 and 4, one above the top
+    const double el = (i < 4 ? 0.5 * (scan.elevation_rad[3] + scan.elevation_rad[4]) : scan.elevation_rad[15] + 0.03);  // beyond half a pitch: left out
+    points.push_back(4.0 * Eigen::Vector3d(std::cos(el) * std::cos(i), std::cos(el) * std::sin(i), std::sin(el)));
+  }
+  const gasp::RangeScan back = gasp::rangeScanFromPoints(points, "CLOUD");
+  ASSERT_EQ(back.range_m.rows, 16);
+  for (std::size_t r = 0; r < 16; ++r) EXPECT_NEAR(back.elevation_rad[r], scan.elevation_rad[r], 1e-5) << r;
+  EXPECT_EQ(cv::countNonZero(back.range_m.row(top)), cv::countNonZero(scan.range_m.row(top)));
 }
 
 TEST(PointCloudSweep, TwoSimulatedSweepsAsPointCloudsRegister) {
@@ -147,7 +182,7 @@ TEST(PointCloudSweep, ACloudThatIsNotOneSweepIsAnErrorNamingIt) {
   std::uniform_real_distribution<double> u(-5.0, 5.0);
   std::vector<Eigen::Vector3d> cube;  // a stereo camera's cloud, say: no rings
   for (int i = 0; i < 20000; ++i) cube.emplace_back(u(rng), u(rng), u(rng));
-  expectError(cloudOf(cube, "BAD"), "ring");
+  expectError(cloudOf(cube, "BAD"), "not a rotating LiDAR's rings");  // its elevations spread
   std::vector<Eigen::Vector3d> wide;  // two bands of elevation, each wider than half their spacing
   for (int i = 0; i < 20000; ++i) {
     const double el = (i % 2 ? 5.0 : -5.0) + 7.0 * (i % 1000) / 1000.0 - 3.5, az = 0.01 * i;

@@ -103,6 +103,7 @@ bool nearestCell(const RangeScan& scan, const Eigen::Vector3d& direction, int& r
   long k = std::lround(c);
   if (coversWholeTurn(scan)) {
     k %= cols;  // the few columns past a whole number of them fold onto column 0
+    if (k < 0) k += cols;  // c exactly -0.5 rounds to -1
   } else if (k < 0 || k >= cols) {
     return false;
   }
@@ -166,10 +167,9 @@ RangeScan rangeScanFromPoints(const std::vector<Eigen::Vector3d>& points_sensor,
     if (i > 0 && sorted[i] - sorted[i - 1] > kMinRingGapDeg * M_PI / 180.0) clusters.emplace_back();
     clusters.back().push_back(sorted[i]);
   }
-  const double least = 0.1 * static_cast<double>(sorted.size()) / static_cast<double>(clusters.size());
   std::vector<double> rings_deg, widths_deg;  // a ring's median, and its middle 90 %'s spread
   for (const auto& c : clusters)
-    if (static_cast<double>(c.size()) >= least) {
+    if (c.size() >= static_cast<std::size_t>(kMinRingPoints)) {
       rings_deg.push_back(median(c) * 180.0 / M_PI);
       widths_deg.push_back((c[c.size() * 95 / 100] - c[c.size() * 5 / 100]) * 180.0 / M_PI);
     }

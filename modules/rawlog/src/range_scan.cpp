@@ -104,6 +104,7 @@ RangeScan rangeScanFrom(const mrpt::obs::CObservation& observation) {
   // MRPT 2.5.8's fromGeneric() throws "not implemented" for point clouds: their layout is found here.
   if (const auto* cloud = dynamic_cast<const mrpt::obs::CObservationPointCloud*>(&observation)) {
     const std::string who = "point cloud '" + cloud->sensorLabel + "'";
+    if (!cloud->pointcloud && cloud->isExternallyStored()) cloud->load();  // its points in a file beside the rawlog
     if (!cloud->pointcloud) throw Error(who + ": holds no points map");
     const auto& xs = cloud->pointcloud->getPointsBufferRef_x();
     const auto& ys = cloud->pointcloud->getPointsBufferRef_y();

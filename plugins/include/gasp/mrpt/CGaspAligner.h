@@ -83,7 +83,8 @@ class CGaspAligner : public mrpt::slam::CMetricMapsAlignmentAlgorithm, public mr
 
   /// Pose of observation b's robot frame in observation a's robot frame (sensorPose honoured);
   /// both CObservation3DRangeScan (segmented with options.params.segment), or both LiDAR sweeps
-  /// (CObservationRotatingScan, CObservationVelodyneScan: options.lidar); others throw.
+  /// (CObservationRotatingScan, CObservationVelodyneScan, CObservationPointCloud: options.lidar);
+  /// others throw.
   /// nullptr = no estimate.
   mrpt::poses::CPose3DPDFGaussian::Ptr alignObservations(
       const mrpt::obs::CObservation& a, const mrpt::obs::CObservation& b,

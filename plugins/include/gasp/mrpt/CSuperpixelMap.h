@@ -36,7 +36,7 @@ class CSuperpixelMap : public mrpt::maps::CMetricMap {
   /// Segmentation of inserted observations (ini section ..._creationOpts).
   struct TCreationOptions : public mrpt::config::CLoadableOptions {
     SuperpixelParams superpixels;  ///< depth images
-    /// LiDAR sweeps (CObservationRotatingScan, CObservationVelodyneScan): lidarSuperpixelParams()
+    /// LiDAR sweeps (CObservationRotatingScan, CObservationVelodyneScan, CObservationPointCloud): lidarSuperpixelParams()
     /// and the returns' normals of these; the same section, the params file's lidar keys.
     LidarParams lidar;
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
@@ -114,11 +114,12 @@ class CSuperpixelMap : public mrpt::maps::CMetricMap {
     views_.clear();
     ++content_version_;
   }
-  /// CObservation3DRangeScan, and a LiDAR's CObservationRotatingScan or CObservationVelodyneScan
-  /// (creationOptions.lidar): inserted (true). Other observation types: false, as every MRPT map
-  /// does for what it cannot use (CMultiMetricMap offers each observation to every map). A scan
-  /// without range image or with inconsistent intrinsics, or a sweep of a model whose elevations
-  /// GASP does not know, throws.
+  /// CObservation3DRangeScan, and a LiDAR's CObservationRotatingScan, CObservationVelodyneScan or
+  /// CObservationPointCloud (creationOptions.lidar): inserted (true). Other observation types, and
+  /// a point cloud that is not one LiDAR's sweep (another sensor's: no rings), give false, as
+  /// every MRPT map does for what it cannot use (CMultiMetricMap offers each observation to every
+  /// map). A scan without range image or with inconsistent intrinsics, or a sweep of a model whose
+  /// elevations GASP does not know, throws.
   bool internal_insertObservation(const mrpt::obs::CObservation& obs,
                                   const std::optional<const mrpt::poses::CPose3D>& robotPose) override;
   /// log-likelihood of a CObservation3DRangeScan or a LiDAR sweep (isSweepObservation()) taken
@@ -127,8 +128,8 @@ class CSuperpixelMap : public mrpt::maps::CMetricMap {
   /// -0.5 min((d / sigma_m)^2, 9), d the point-to-plane distance to its partner, 9 (3 sigma) for
   /// patches without a consistent one (centroids further apart than max_distance_m, for a sweep
   /// times lidarCentroidScale()); the mean over the observation's patches is returned. 0 (no
-  /// information) for other observation types and for a map without views of its kind, as MRPT's
-  /// own maps answer for what they cannot use:
+  /// information) for other observation types, for a point cloud that is not one LiDAR's sweep
+  /// and for a map without views of its kind, as MRPT's own maps answer for what they cannot use:
   /// CMetricMap::computeObservationsLikelihood and CMultiMetricMap add every map's answer for
   /// every observation without asking canComputeObservationLikelihood first. A scan that cannot
   /// be read throws.

@@ -1,7 +1,8 @@
 #pragma once
 /// \file ObservationMatcher_GASP.h GASP's pair pipeline (gasp/pipeline/pair_registration.h) as an
 /// ObservationMatcher for mrpt::obs::CObservation3DRangeScan (RGB-D or range-only), and for two
-/// rotating LiDARs' sweeps (CObservationRotatingScan, CObservationVelodyneScan; range_view.h).
+/// rotating LiDARs' sweeps (CObservationRotatingScan, CObservationVelodyneScan, CObservationPointCloud;
+/// range_view.h).
 ///
 /// YAML parameters: every field of PairParams, all optional, under the keys of params_io.h
 /// (docs/mrpt.md "Matching keys" lists them with their defaults), e.g.

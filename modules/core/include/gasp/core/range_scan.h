@@ -71,10 +71,12 @@ inline constexpr const char* kPointCloudModel = "POINT-CLOUD";
 /// One sweep of a rotating LiDAR given as points without their layout (a point cloud, in the
 /// sensor frame) as a range scan:
 /// - rows: the rings, the clusters of the points' elevations: sorted, a new ring starts at a gap
-///   of more than kMinRingGapDeg, and a cluster holding less than a tenth of the mean cluster's
-///   points is a stray elevation (a laser's offset from the sensor's centre, seen at close range),
-///   not a ring. A row's elevation is its ring's median; the middle 90 % of a ring's elevations
-///   must span less than half the distance to the nearest other ring.
+///   of more than kMinRingGapDeg, and a cluster of fewer than kMinRingPoints points is a stray
+///   elevation (a laser's offset from the sensor's centre seen at close range, a multipath
+///   return), not a ring: a ring that sees mostly sky still has its few returns. A row's
+///   elevation is its ring's median; the middle 90 % of a ring's elevations must span less than
+///   half the distance to the nearest other ring. Points of no ring go to the nearest row within
+///   half a pitch, with their own rays, or are left out.
 /// - columns: a whole turn counter-clockwise from azimuth 0, at the median over the rings of the
 ///   median gap between a ring's consecutive azimuths.
 /// - each point in the cell nearest its direction, with its own ray (the nearer where two share a
@@ -86,6 +88,7 @@ inline constexpr const char* kPointCloudModel = "POINT-CLOUD";
 RangeScan rangeScanFromPoints(const std::vector<Eigen::Vector3d>& points_sensor, const std::string& who);
 /// Rotating LiDARs' rings lie at least this far apart (a 128-laser's densest, 0.125 deg).
 inline constexpr double kMinRingGapDeg = 0.1;
+inline constexpr int kMinRingPoints = 16;
 inline constexpr int kMaxPointCloudRows = 256;
 inline constexpr double kMinPointCloudColumnDeg = 0.01;
 
