@@ -85,7 +85,7 @@ mrpt::poses::CPose3DPDF::Ptr CGaspAligner::Align3DPDF(const mrpt::maps::CMetricM
     best.reason = "the maps hold both LiDAR sweeps' and depth images' views (" + std::to_string(sweeps) + " of " +
                   std::to_string(map1.views().size() + map2.views().size()) + " are sweeps): one kind of view per alignment";
   }
-  const ViewSetResult set = registerViewSets(sources, targets, lidar ? lidarPairParams(options.lidar) : options.params);
+  const ViewSetResult set = registerViewSets(sources, targets, lidar ? lidarPairParams(options.lidar, options.params) : options.params);
   for (const auto& note : set.notes) logFmt(mrpt::system::LVL_WARN, "%s", note.c_str());
   best.view_pairs = static_cast<int>(sources.size() * targets.size());
   std::optional<mrpt::poses::CPose3DPDFGaussian> pdf;

@@ -33,7 +33,7 @@ const mrpt::obs::CObservation3DRangeScan& asRangeScan(const mrpt::obs::CObservat
 }
 
 /// Both observations as frames and views, and the pair's parameters for them: depth images with
-/// `camera`, two LiDAR sweeps with lidarPairParams(lidar).
+/// `camera`, two LiDAR sweeps with lidarPairParams(lidar, camera).
 struct MatchInput {
   RgbdFrame fa, fb;
   DepthView va, vb;
@@ -61,7 +61,7 @@ MatchInput matchInput(const mrpt::obs::CObservation& a, const mrpt::obs::CObserv
     THROW_EXCEPTION_FMT("ObservationMatcher_GASP: %s", e.what());
   }
   if (sweep_a) {
-    in.pair = lidarPairParams(lidar);
+    in.pair = lidarPairParams(lidar, camera);
     in.va = makeRangeView(*in.fa.sweep, in.pair.segment, in.pair.returns);
     in.vb = makeRangeView(*in.fb.sweep, in.pair.segment, in.pair.returns);
   } else {

@@ -180,3 +180,27 @@ INSTANTIATE_TEST_SUITE_P(Sweeps, SimulatedLidarPair,
                            return std::to_string(motion.param.lasers) + "Lasers" +
                                   std::to_string(static_cast<int>(std::lround(std::abs(motion.param.yaw_deg)))) + "Deg";
                          });
+
+// A LiDAR's pair values are a camera's (a params file's pair sections) made a LiDAR's: lengths
+// that compare centroids scaled, those that compare points and the sampling set, the counts,
+// limits and switches kept (docs/lidar.md "Parameters").
+TEST(RangeView, TheLidarsPairValuesAreTheCamerasMadeALidars) {
+  gasp::PairParams camera;
+  camera.hypothesise.pose.ransac.min_inliers = 11;
+  camera.certify.symmetry_test = true;
+  camera.associate.match.r_dev_m = 0.03;
+  camera.refine.pixels.pixel_step = 4;
+  const gasp::LidarParams lidar;
+  const gasp::PairParams p = gasp::lidarPairParams(lidar, camera);
+  EXPECT_EQ(p.hypothesise.pose.ransac.min_inliers, 11);
+  EXPECT_TRUE(p.certify.symmetry_test);
+  EXPECT_DOUBLE_EQ(p.associate.match.r_dev_m, 0.03 * gasp::lidarCentroidScale(lidar));
+  EXPECT_DOUBLE_EQ(p.hypothesise.pose.ransac.inlier.distance_m,
+                   camera.hypothesise.pose.ransac.inlier.distance_m * gasp::lidarCentroidScale(lidar));
+  EXPECT_EQ(p.refine.pixels.pixel_step, 1);
+  EXPECT_DOUBLE_EQ(p.certify.visibility.gate_m, 5.0 * lidar.range_sigma_m);
+  EXPECT_DOUBLE_EQ(p.segment.target_patch_area_m2, lidar.patch_area_m2);
+  const gasp::PairParams defaults = gasp::lidarPairParams(lidar);
+  EXPECT_EQ(defaults.hypothesise.pose.ransac.min_inliers, gasp::PairParams{}.hypothesise.pose.ransac.min_inliers);
+  EXPECT_FALSE(defaults.certify.symmetry_test);
+}

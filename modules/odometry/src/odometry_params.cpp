@@ -20,7 +20,7 @@ void validate(const OdometryParams& params) {
 
 OdometryParams lidarOdometryParams(const LidarParams& lidar, const OdometryParams& base) {
   OdometryParams p = base;
-  p.pair = lidarPairParams(lidar);
+  p.pair = lidarPairParams(lidar, base.pair);
   p.rolling_shutter_readout_s = 0.0;
   return p;
 }

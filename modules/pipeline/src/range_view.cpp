@@ -125,7 +125,12 @@ AssociationParams lidarAssociationParams(const AssociationParams& camera, const 
 }
 
 PairParams lidarPairParams(const LidarParams& lidar) {
-  PairParams p;
+  const PairParams camera;
+  return lidarPairParams(lidar, camera);
+}
+
+PairParams lidarPairParams(const LidarParams& lidar, const PairParams& camera) {
+  PairParams p = camera;
   p.segment = lidarSuperpixelParams(lidar);
   const double k = lidarCentroidScale(lidar);
   // Centroid comparisons: with the patch radius.

@@ -57,8 +57,8 @@ class CGaspAligner : public mrpt::slam::CMetricMapsAlignmentAlgorithm, public mr
   /// The matching keys of params_io.h (ini section of your choice).
   struct TOptions : public mrpt::config::CLoadableOptions {
     PairParams params;  ///< maps of depth images' views
-    /// Maps of LiDAR sweeps' views: lidarPairParams(lidar) (the same section, the params file's
-    /// lidar keys). Two maps are aligned when all their views are of one kind.
+    /// Maps of LiDAR sweeps' views: lidarPairParams(lidar, params) (the same section, the params
+    /// file's lidar keys). Two maps are aligned when all their views are of one kind.
     LidarParams lidar;
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
     void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;

@@ -8,7 +8,8 @@
 /// (docs/mrpt.md "Matching keys" lists them with their defaults), e.g.
 ///   candidates: 30   lambda: 0.7   min_inliers: 8   dense_gates_m: [0.1, 0.05, 0.03]
 /// or the params file's form (sections, `params_file: PATH`), whose section `lidar` gives the
-/// sweeps' values (lidarPairParams()); two sweeps are matched with those, not with `params`.
+/// sweeps' values: two sweeps are matched with lidarPairParams(lidar, params), `params` made a
+/// LiDAR's by its rules.
 #include "gasp/mrpt/observation_matcher.h"
 #include "gasp/pipeline/pair_registration.h"
 #include "gasp/pipeline/range_view.h"
@@ -23,7 +24,7 @@ class ObservationMatcher_GASP : public ObservationMatcher {
                         const std::optional<mrpt::poses::CPose3D>& initial_guess = std::nullopt) const override;
 
   PairParams params;  ///< the pipeline's parameters for depth images (initialize() sets them from YAML)
-  LidarParams lidar;  ///< for two LiDAR sweeps: lidarPairParams(lidar) (the params file form's section lidar)
+  LidarParams lidar;  ///< for two LiDAR sweeps: lidarPairParams(lidar, params) (the params file form's section lidar)
 };
 
 }  // namespace gasp

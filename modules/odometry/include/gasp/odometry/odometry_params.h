@@ -45,7 +45,7 @@ struct OdometryParams {
 void validate(const OdometryParams& params);
 
 /// The odometry for a rotating LiDAR's sweeps: `base`'s keyframe, motion and scene-change limits,
-/// the pair's values of lidarPairParams(lidar), and no rolling-shutter deskew (a sweep is not a
+/// the pair's values of lidarPairParams(lidar, base.pair), and no rolling-shutter deskew (a sweep is not a
 /// camera's image). Throws gasp::Error for invalid LiDAR parameters.
 OdometryParams lidarOdometryParams(const LidarParams& lidar, const OdometryParams& base);
 /// With the default odometry limits.

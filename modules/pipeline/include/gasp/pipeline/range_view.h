@@ -70,12 +70,16 @@ double lidarCentroidScale(const LidarParams& params = {});
 /// (the feature sets' ordering radius, the match's radius deviation) times lidarCentroidScale().
 AssociationParams lidarAssociationParams(const AssociationParams& camera, const LidarParams& params = {});
 
-/// The pair pipeline's values for LiDAR views, from the camera's defaults by two rules: lengths
-/// that compare patch centroids (association, RANSAC, guided verification, the dense rounds'
-/// gates) grow with the patch radius, sqrt(patch_area_m2 / 0.004); lengths that compare points
-/// (the solvers' noise and loss scale, the free-space gate) follow the range noise. Every cell is
-/// sampled (a binned sweep has fewer cells than a camera's sampled pixels), the edge terms and
-/// the slide scan are off (docs/lidar.md), and the returns' rounds are returnsRefineParams(lidar).
+/// The pair pipeline's values for LiDAR views, from a camera's (`camera`: the defaults, or a
+/// params file's pair sections) by two rules: lengths that compare patch centroids (association,
+/// RANSAC, guided verification, the dense rounds' gates) grow with the patch radius
+/// (lidarCentroidScale()); lengths that compare points (the solvers' noise and loss scale, the
+/// free-space gate) follow the range noise. Every cell is sampled (a binned sweep has fewer cells
+/// than a camera's sampled pixels), the edge terms and the slide scan are off (docs/lidar.md),
+/// the segmentation is lidarSuperpixelParams(params) and the returns' rounds are
+/// returnsRefineParams(params). The rest (counts, limits, switches) is the camera's as given.
+PairParams lidarPairParams(const LidarParams& params, const PairParams& camera);
+/// The same from the camera's defaults.
 PairParams lidarPairParams(const LidarParams& params = {});
 
 /// Two sweeps registered with no prior: each made a view (makeRangeView, concurrently), then
