@@ -2,12 +2,14 @@
 // against the exact ground truth: pairs 1, 5 and 10 sweeps apart by default.
 //   build/ci/bin/gasp-simulate --sensor lidar16 --frames 60 --rate 10 --out /tmp/lidar16
 //   build/ci/bin/bench_lidar_sequence /tmp/lidar16 [--skips 1,5,10] [--threads 2] [--pair I,J]
-//       [--method gasp|fpfh] [--shares]
+//       [--method gasp|fpfh] [--shares] [--dense-step N]
 // --shares (gasp): a line per claimed pose with the share of the source's patches that land on
 // target patches and of those verified, its inliers and its free-space test's violation ratios
 // (both ways) and occluded share (the leads for a rule against wrong poses).
 // --method fpfh: PCL FPFH + RANSAC on the returns (gasp::baselines, when built), the same scoring.
 // --pair I,J: only that pair, with the pipeline's verdicts (inliers, support, certificate).
+// --dense-step N (gasp): the dense rounds sample every N-th binned cell each way (the LiDAR
+// values' 1 otherwise): a study of their time on 64-laser views (docs/lidar.md "Not yet").
 // A claimed pose within 5 cm / 0.5 deg of the truth is right (the bound), one within
 // 20 cm / 5 deg is coarse (a start ICP converges from), any other claimed pose is wrong; the rest
 // give no estimate. Prints one table row per skip.
@@ -86,9 +88,9 @@ PatchShares patchShares(const gasp::RangePairResult& r, const gasp::RangeScan& s
 
 /// The claimed pose of one pair by the method, or nullopt for no estimate.
 std::optional<gasp::Isometry3> registerPair(const gasp::RangeScan& source, const gasp::RangeScan& target,
-                                            const std::string& method) {
+                                            const std::string& method, const gasp::PairParams& params) {
   if (method == "gasp") {
-    const gasp::RangePairResult r = gasp::registerRangeScans(source, target);
+    const gasp::RangePairResult r = gasp::registerRangeScans(source, target, params);
     if (r.pair.pose.success) return r.pair.pose.T_target_source;
     return std::nullopt;
   }
@@ -111,6 +113,7 @@ int main(int argc, char** argv) {
   int only_i = -1, only_j = -1;
   std::string method = "gasp";
   bool shares = false;
+  gasp::PairParams params = gasp::lidarPairParams();
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--skips") == 0 && i + 1 < argc) {
       skips.clear();
@@ -126,6 +129,12 @@ int main(int argc, char** argv) {
       shares = true;
     } else if (std::strcmp(argv[i], "--pair") == 0 && i + 1 < argc) {
       if (std::sscanf(argv[++i], "%d,%d", &only_i, &only_j) != 2) only_i = -1;
+    } else if (std::strcmp(argv[i], "--dense-step") == 0 && i + 1 < argc) {
+      params.refine.pixels.pixel_step = std::atoi(argv[++i]);
+      if (params.refine.pixels.pixel_step < 1) {
+        std::fprintf(stderr, "--dense-step: a whole number >= 1\n");
+        return 2;
+      }
     } else if (std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
       threads = std::max(1, std::atoi(argv[++i]));
     } else if (dir.empty() && argv[i][0] != '-') {
@@ -156,7 +165,7 @@ int main(int argc, char** argv) {
       if (only_i >= static_cast<int>(sweeps.size()) || only_j < 0 || only_j >= static_cast<int>(sweeps.size()))
         throw gasp::Error("--pair: sweeps 0 to " + std::to_string(sweeps.size() - 1));
       const auto i = static_cast<std::size_t>(only_i), j = static_cast<std::size_t>(only_j);
-      const gasp::RangePairResult r = gasp::registerRangeScans(sweeps[i], sweeps[j]);
+      const gasp::RangePairResult r = gasp::registerRangeScans(sweeps[i], sweeps[j], params);
       const gasp::Isometry3 T_true = truth[j].T_world_camera.inverse() * truth[i].T_world_camera;
       const gasp::Isometry3 e = T_true.inverse() * r.pair.pose.T_target_source;
       std::printf("sweeps %zu -> %zu: success %d (%s), error %.2f cm %.3f deg\n", i, j, r.pair.pose.success,
@@ -182,10 +191,10 @@ int main(int argc, char** argv) {
         std::optional<gasp::Isometry3> T;
         std::optional<PatchShares> share;
         if (shares && method == "gasp") {  // the pair's patch shares too
-          const gasp::RangePairResult r = gasp::registerRangeScans(sweeps[i], sweeps[j]);
+          const gasp::RangePairResult r = gasp::registerRangeScans(sweeps[i], sweeps[j], params);
           if (r.pair.pose.success) T = r.pair.pose.T_target_source, share = patchShares(r, sweeps[i], sweeps[j]);
         } else {
-          T = registerPair(sweeps[i], sweeps[j], method);
+          T = registerPair(sweeps[i], sweeps[j], method, params);
         }
         ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
         ++pairs;
