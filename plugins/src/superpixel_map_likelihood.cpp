@@ -226,10 +226,7 @@ std::shared_ptr<const CSuperpixelMap::LikelihoodCache::Entry> CSuperpixelMap::sw
   } catch (const Error& e) {
     if (!cloud) THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());
     entry->usable = false;  // another sensor's cloud, not a sweep
-    std::lock_guard<std::mutex> lock(likelihood_cache_.mutex);
-    ++likelihood_cache_.misses;
-    likelihood_cache_.entry = entry;
-    return entry;
+    return stored(std::move(entry));
   }
   return associated(frame, std::move(entry));
 }
@@ -269,6 +266,11 @@ std::shared_ptr<const CSuperpixelMap::LikelihoodCache::Entry> CSuperpixelMap::as
       }
     }
   }
+  return stored(std::move(entry));
+}
+
+std::shared_ptr<const CSuperpixelMap::LikelihoodCache::Entry> CSuperpixelMap::stored(
+    std::shared_ptr<LikelihoodCache::Entry> entry) const {
   std::lock_guard<std::mutex> lock(likelihood_cache_.mutex);
   ++likelihood_cache_.misses;
   likelihood_cache_.entry = entry;

@@ -44,6 +44,17 @@ mrpt::obs::CObservationPointCloud cloudOf(const std::vector<Eigen::Vector3d>& po
   return cloud;
 }
 
+/// Every frame of a rawlog read for sweeps (DepthSequenceOptions::sweeps).
+std::vector<gasp::RgbdFrame> sweepsOf(const std::string& rawlog) {
+  gasp::DepthSequenceOptions o;
+  o.rawlog_path = rawlog;
+  o.sweeps = true;
+  gasp::DepthSequence sequence(o);
+  std::vector<gasp::RgbdFrame> frames;
+  while (auto f = sequence.next()) frames.push_back(std::move(*f));
+  return frames;
+}
+
 /// The largest distance from one of `a`'s points to the nearest of `b`'s (the first `n` of a).
 double worstNearest(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b, std::size_t n) {
   double worst = 0.0;
@@ -215,19 +226,15 @@ TEST(PointCloudSweep, ARawlogOfPointCloudsReadsAsSweeps) {
       archive << gasp::toPointCloud(sweep, "CLOUD");
     }
   }
-  gasp::DepthSequenceOptions o;
-  o.rawlog_path = dir + "/clouds.rawlog";
-  o.sweeps = true;
-  gasp::DepthSequence sequence(o);
-  int n = 0;
-  while (const auto f = sequence.next()) {
-    ASSERT_TRUE(f->isSweep());
-    EXPECT_EQ(f->sensor_label, "CLOUD");
-    EXPECT_EQ(f->sweep->range_m.rows, 16);
-    EXPECT_NEAR(f->timestamp, 100.0 + 0.1 * n, 1e-6);
-    ++n;
+  const std::vector<gasp::RgbdFrame> frames = sweepsOf(dir + "/clouds.rawlog");
+  for (std::size_t n = 0; n < frames.size(); ++n) {
+    const gasp::RgbdFrame& f = frames[n];
+    ASSERT_TRUE(f.isSweep());
+    EXPECT_EQ(f.sensor_label, "CLOUD");
+    EXPECT_EQ(f.sweep->range_m.rows, 16);
+    EXPECT_NEAR(f.timestamp, 100.0 + 0.1 * static_cast<double>(n), 1e-6);
   }
-  EXPECT_EQ(n, 3);
+  EXPECT_EQ(frames.size(), 3u);
 }
 
 // gasp-simulate --point-clouds: the sweeps as CObservationPointCloud, which read back as the
@@ -237,19 +244,14 @@ TEST(PointCloudSweep, GaspSimulateWritesSweepsAsPointClouds) {
   const auto run = gasp::test::runProgram("gasp-simulate", "--sensor lidar16 --point-clouds --frames 8 --rate 10 --out " + dir);
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_TRUE(gasp::test::contains(run.output, "sweeps:      8 of VLP-16 as point clouds")) << run.output;
-  gasp::DepthSequenceOptions o;
-  o.rawlog_path = dir + "/lidar.rawlog";
-  o.sweeps = true;
-  gasp::DepthSequence sequence(o);
-  int n = 0;
-  while (const auto f = sequence.next()) {
-    ASSERT_TRUE(f->isSweep());
-    EXPECT_EQ(f->sweep->model, gasp::kPointCloudModel);
-    EXPECT_EQ(f->sweep->range_m.rows, 16);
-    EXPECT_EQ(f->sweep->range_m.cols, 1800);
-    ++n;
+  const std::vector<gasp::RgbdFrame> frames = sweepsOf(dir + "/lidar.rawlog");
+  for (const gasp::RgbdFrame& f : frames) {
+    ASSERT_TRUE(f.isSweep());
+    EXPECT_EQ(f.sweep->model, gasp::kPointCloudModel);
+    EXPECT_EQ(f.sweep->range_m.rows, 16);
+    EXPECT_EQ(f.sweep->range_m.cols, 1800);
   }
-  EXPECT_EQ(n, 8);
+  EXPECT_EQ(frames.size(), 8u);
   const auto bad = gasp::test::runProgram("gasp-simulate", "--point-clouds --out " + dir + "/x");
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_TRUE(gasp::test::contains(bad.output, "--point-clouds is a LiDAR's output")) << bad.output;

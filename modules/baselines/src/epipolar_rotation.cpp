@@ -14,6 +14,7 @@
 
 #include "gasp/baselines/descriptor_matching.h"
 #include "gasp/core/error.h"
+#include "gasp/core/median.h"
 
 namespace gasp::baselines {
 
@@ -53,11 +54,6 @@ struct SampsonResidual {
   double focal;
 };
 
-/// The median of v (the upper one for an even count); v is not empty.
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
 
 Eigen::Matrix3d toEigen(const cv::Mat& m) {
   Eigen::Matrix3d out;

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "gasp/core/error.h"
+#include "gasp/core/median.h"
 #include "gasp/core/view_projection.h"
 
 namespace gasp {
@@ -125,12 +126,6 @@ void placeReturn(RangeScan& out, const Eigen::Vector3d& q) {
   cell = static_cast<float>(range);
   const Eigen::Vector3f u = (q / range).cast<float>();
   out.ray.at<cv::Vec3f>(row, col) = cv::Vec3f(u.x(), u.y(), u.z());
-}
-
-double median(std::vector<double> v) {
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
 }
 
 }  // namespace

@@ -8,6 +8,8 @@
 
 #include <opencv2/imgproc/detail/gcgraph.hpp>
 
+#include "gasp/core/median.h"
+
 namespace gasp::detail {
 
 namespace {
@@ -24,13 +26,6 @@ constexpr int kStepBandPx = 4;
 /// before this limit (docs/superpixels.md).
 constexpr int kMaxBridgeHops = 4;
 constexpr int kFar = 1 << 20;
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
 
 /// Median and robust standard deviation (1.4826 MAD) of a sample.
 struct Spread {

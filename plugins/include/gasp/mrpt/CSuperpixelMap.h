@@ -163,9 +163,11 @@ class CSuperpixelMap : public mrpt::maps::CMetricMap {
   /// The cached entry when its key is `key`'s (counted as a hit), else null.
   std::shared_ptr<const LikelihoodCache::Entry> cached(const LikelihoodCache::Entry& key) const;
   /// `entry` completed with the frame's patches and their partners among the map's views of the
-  /// frame's kind, and cached.
+  /// frame's kind, and stored().
   std::shared_ptr<const LikelihoodCache::Entry> associated(const RgbdFrame& frame,
                                                            std::shared_ptr<LikelihoodCache::Entry> entry) const;
+  /// `entry` made the cached one (counted as a miss).
+  std::shared_ptr<const LikelihoodCache::Entry> stored(std::shared_ptr<LikelihoodCache::Entry> entry) const;
   /// A depth scan with a depth view in the map, or a sweep with a sweep view.
   bool holdsViewsFor(const mrpt::obs::CObservation& obs) const;
 
