@@ -2,7 +2,9 @@
 // against the exact ground truth: pairs 1, 5 and 10 sweeps apart by default.
 //   build/ci/bin/gasp-simulate --sensor lidar16 --frames 60 --rate 10 --out /tmp/lidar16
 //   build/ci/bin/bench_lidar_sequence /tmp/lidar16 [--skips 1,5,10] [--threads 2] [--pair I,J]
-//       [--method gasp|fpfh] [--shares] [--dense-step N]
+//       [--method gasp|fpfh] [--shares] [--dense-step N] [--params FILE]
+// --params FILE (gasp): the params file's pair sections made a LiDAR's by its lidar section
+// (lidarPairParams), as gasp-odometry and the MRPT classes take them; the defaults otherwise.
 // --shares (gasp): a line per claimed pose with the share of the source's patches that land on
 // target patches and of those verified, its inliers and its free-space test's violation ratios
 // (both ways) and occluded share (the leads for a rule against wrong poses).
@@ -32,6 +34,7 @@
 
 #include "gasp/core/error.h"
 #include "gasp/core/tum_trajectory.h"
+#include "gasp/params/params_file.h"
 #include "gasp/pipeline/range_view.h"
 #include "gasp/rawlog/range_scan.h"
 #include "gasp/rawlog/rawlog_objects.h"
@@ -114,6 +117,8 @@ int main(int argc, char** argv) {
   std::string method = "gasp";
   bool shares = false;
   gasp::PairParams params = gasp::lidarPairParams();
+  std::string params_path;
+  int dense_step = 0;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--skips") == 0 && i + 1 < argc) {
       skips.clear();
@@ -130,26 +135,33 @@ int main(int argc, char** argv) {
     } else if (std::strcmp(argv[i], "--pair") == 0 && i + 1 < argc) {
       if (std::sscanf(argv[++i], "%d,%d", &only_i, &only_j) != 2) only_i = -1;
     } else if (std::strcmp(argv[i], "--dense-step") == 0 && i + 1 < argc) {
-      params.refine.pixels.pixel_step = std::atoi(argv[++i]);
-      if (params.refine.pixels.pixel_step < 1) {
+      dense_step = std::atoi(argv[++i]);
+      if (dense_step < 1) {
         std::fprintf(stderr, "--dense-step: a whole number >= 1\n");
         return 2;
       }
+    } else if (std::strcmp(argv[i], "--params") == 0 && i + 1 < argc) {
+      params_path = argv[++i];
     } else if (std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
       threads = std::max(1, std::atoi(argv[++i]));
     } else if (dir.empty() && argv[i][0] != '-') {
       dir = argv[i];
     } else {
-      std::fprintf(stderr, "usage: bench_lidar_sequence DIR [--skips 1,5,10] [--threads N]\n");
+      std::fprintf(stderr, "usage: bench_lidar_sequence DIR [--skips 1,5,10] [--threads N] [--params FILE] [--dense-step N] [--method gasp|fpfh] [--shares] [--pair I,J]\n");
       return 2;
     }
   }
   if (dir.empty() || std::any_of(skips.begin(), skips.end(), [](int k) { return k < 1; })) {
-    std::fprintf(stderr, "usage: bench_lidar_sequence DIR [--skips 1,5,10] [--threads N] (skips >= 1)\n");
+    std::fprintf(stderr, "usage: bench_lidar_sequence DIR [--skips 1,5,10] [--threads N] [--params FILE] [--dense-step N] [--method gasp|fpfh] [--shares] [--pair I,J] (skips >= 1)\n");
     return 2;
   }
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   try {
+    if (!params_path.empty()) {  // the file's pair sections made a LiDAR's, as gasp-odometry takes them
+      const gasp::SlamParams file = gasp::readParamsFile(params_path);
+      params = gasp::lidarPairParams(file.lidar, file.odometry.pair);
+    }
+    if (dense_step > 0) params.refine.pixels.pixel_step = dense_step;
     const std::vector<gasp::RangeScan> sweeps = readSweeps(dir + "/lidar.rawlog");
     const gasp::Trajectory truth = gasp::readTumTrajectory(dir + "/lidar_groundtruth.txt");
     if (truth.size() != sweeps.size())

@@ -84,6 +84,38 @@ int main(int argc, char** argv) {
     const Isometry3 e0 = T_true.inverse() * r.pose.T_target_source;
     std::printf("pair %d -> %d: claimed %d, %.1f cm %.2f deg off\n", i, j, r.pose.success, 100 * e0.translation().norm(), deg(e0));
     if (!r.pose.success) continue;
+    if (std::getenv("PROBE_DISTINCT")) {
+      // The verified associations each symmetric turn also explains (its source patch lands on a
+      // target patch facing the same way within a loose gate), and the fewest left over.
+      const auto& ps = vs.segmentation.patches;
+      const auto& pt = vt.segmentation.patches;
+      const double gate = std::atof(std::getenv("PROBE_DISTINCT"));
+      auto explained = [&](const Isometry3& T, int k) {
+        const Eigen::Vector3d c = T * ps[k].centroid;
+        const Eigen::Vector3d n = T.linear() * ps[k].normal;
+        for (const gasp::SurfacePatch& t : pt) {
+          if (n.dot(t.normal) < std::cos(20.0 * M_PI / 180.0)) continue;
+          const Eigen::Vector3d d = c - t.centroid;
+          const double along = std::abs(d.dot(t.normal));
+          if (along > gate) continue;
+          if ((d - d.dot(t.normal) * t.normal).norm() > t.radius() + ps[k].radius()) continue;
+          return true;
+        }
+        return false;
+      };
+      int least = 1 << 30, worst_deg = 0;
+      for (const gasp::SymmetricTurn& turn : gasp::symmetricTurns(vs, vt, r.pose.T_target_source)) {
+        int distinct = 0;
+        for (const auto& v : r.verified) distinct += explained(turn.T_target_source, v.a) ? 0 : 1;
+        if (distinct < least) least = distinct, worst_deg = turn.degrees;
+      }
+      int self = 0;
+      for (const auto& v : r.verified) self += explained(r.pose.T_target_source, v.a) ? 1 : 0;
+      std::printf("distinct %d %d %s verified %zu self %d inliers %d least %d turn %d\n", i, j,
+                  100 * e0.translation().norm() <= 5 && deg(e0) <= 0.5 ? "right" : (100 * e0.translation().norm() <= 20 && deg(e0) <= 5 ? "coarse" : "wrong"),
+                  r.verified.size(), self, static_cast<int>(r.pose.inliers.size()), least, worst_deg);
+      continue;
+    }
     if (std::getenv("PROBE_FREESPACE")) {
       const ReturnShares fa = returnsFreeSpace(*vs.returns, *vt.returns, r.pose.T_target_source, 5 * 0.02);
       const ReturnShares fb = returnsFreeSpace(*vt.returns, *vs.returns, r.pose.T_target_source.inverse(), 5 * 0.02);

@@ -102,6 +102,7 @@ PairParams everythingChanged() {
   p.retry.finer_area_factor = 0.4, p.certify.model_error.sigma_t_m = 0.02, p.certify.model_error.sigma_r_deg = 1.0;
   p.certify.min_likelihood_ratio = 500;
   p.certify.symmetry_test = true;
+  p.certify.violation_nats = 1.25;
   return p;
 }
 

@@ -182,25 +182,36 @@ INSTANTIATE_TEST_SUITE_P(Sweeps, SimulatedLidarPair,
                          });
 
 // A LiDAR's pair values are a camera's (a params file's pair sections) made a LiDAR's: lengths
-// that compare centroids scaled, those that compare points and the sampling set, the counts,
-// limits and switches kept (docs/lidar.md "Parameters").
+// that compare centroids scaled, those that compare points and the sampling set, the symmetry
+// test and the likelihood's violation charge from the lidar section, the other counts, limits and
+// switches kept (docs/lidar.md "Parameters").
 TEST(RangeView, TheLidarsPairValuesAreTheCamerasMadeALidars) {
   gasp::PairParams camera;
   camera.hypothesise.pose.ransac.min_inliers = 11;
   camera.certify.symmetry_test = true;
+  camera.certify.min_likelihood_ratio = 500.0;
   camera.associate.match.r_dev_m = 0.03;
   camera.refine.pixels.pixel_step = 4;
-  const gasp::LidarParams lidar;
+  gasp::LidarParams lidar;
+  lidar.symmetry_test = false;
+  lidar.violation_nats = 1.5;
   const gasp::PairParams p = gasp::lidarPairParams(lidar, camera);
   EXPECT_EQ(p.hypothesise.pose.ransac.min_inliers, 11);
-  EXPECT_TRUE(p.certify.symmetry_test);
+  EXPECT_DOUBLE_EQ(p.certify.min_likelihood_ratio, 500.0);
+  EXPECT_FALSE(p.certify.symmetry_test);
+  EXPECT_DOUBLE_EQ(p.certify.violation_nats, 1.5);
   EXPECT_DOUBLE_EQ(p.associate.match.r_dev_m, 0.03 * gasp::lidarCentroidScale(lidar));
   EXPECT_DOUBLE_EQ(p.hypothesise.pose.ransac.inlier.distance_m,
                    camera.hypothesise.pose.ransac.inlier.distance_m * gasp::lidarCentroidScale(lidar));
   EXPECT_EQ(p.refine.pixels.pixel_step, 1);
   EXPECT_DOUBLE_EQ(p.certify.visibility.gate_m, 5.0 * lidar.range_sigma_m);
   EXPECT_DOUBLE_EQ(p.segment.target_patch_area_m2, lidar.patch_area_m2);
-  const gasp::PairParams defaults = gasp::lidarPairParams(lidar);
+  const gasp::PairParams defaults = gasp::lidarPairParams(gasp::LidarParams{});
   EXPECT_EQ(defaults.hypothesise.pose.ransac.min_inliers, gasp::PairParams{}.hypothesise.pose.ransac.min_inliers);
-  EXPECT_FALSE(defaults.certify.symmetry_test);
+  EXPECT_TRUE(defaults.certify.symmetry_test);
+  EXPECT_DOUBLE_EQ(defaults.certify.violation_nats, std::log(10.0));
+  EXPECT_FALSE(gasp::PairParams{}.certify.symmetry_test);  // a camera's: neither
+  EXPECT_EQ(gasp::PairParams{}.certify.violation_nats, 0.0);
+  lidar.violation_nats = -1.0;
+  EXPECT_THROW(gasp::validate(lidar), gasp::Error);
 }

@@ -48,6 +48,29 @@ TEST(PoseLikelihood, TheTruthExplainsTheViewsBetterThanPosesAFewCentimetresOff) 
   EXPECT_EQ(logLikelihoodRatio(DepthView{}, DepthView{}, p.T_b_a, p.T_b_a).patches, 0);
 }
 
+// A sample put in space the other view saw as empty costs violation_nats beyond an outlier; an
+// occluded one nothing (pose_likelihood.h). A pose 30 cm towards the target camera puts the
+// source's surfaces in front of the target's (past the free-space gate): with the charge the truth
+// gains over it, and the certificate's comparison charges the same.
+TEST(PoseLikelihood, ASampleInTheOtherViewsFreeSpaceCostsTheViolationCharge) {
+  const Pair p = makePair("room", 10, 20);
+  const Isometry3 forward = Eigen::Translation3d(0, 0, -0.3) * p.T_b_a;
+  PoseLikelihoodParams plain, charged;
+  charged.violation_nats = std::log(10.0);
+  const LikelihoodRatio r0 = logLikelihoodRatio(p.a, p.b, p.T_b_a, forward, plain);
+  const LikelihoodRatio rc = logLikelihoodRatio(p.a, p.b, p.T_b_a, forward, charged);
+  std::printf("truth over 30 cm towards the target: %.1f without the charge, %.1f with it\n", r0.log_ratio, rc.log_ratio);
+  EXPECT_GT(rc.log_ratio, r0.log_ratio + 20.0);
+  EXPECT_EQ(logLikelihoodRatio(p.a, p.b, p.T_b_a, p.T_b_a, charged).log_ratio, 0.0);
+  EXPECT_NEAR(logLikelihoodRatio(p.a, p.b, forward, p.T_b_a, charged).log_ratio, -rc.log_ratio, 1e-9);
+  CertifyParams certify;
+  certify.violation_nats = charged.violation_nats;
+  EXPECT_NEAR(compareAlternative(p.a, p.b, fullPose(p.T_b_a), fullPose(forward), kDistinct, certify).log_ratio,
+              rc.log_ratio, 1e-9);
+  certify.violation_nats = -1.0;
+  EXPECT_THROW(validate(certify), Error);
+}
+
 TEST(Uniqueness, KeepsTheMoreLikelyPoseAndTakesABetterAlternative) {
   const Pair p = makePair("room", 10, 20);
   const RegistrationResult truth = fullPose(p.T_b_a);

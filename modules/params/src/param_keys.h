@@ -180,6 +180,7 @@ void certifyFields(P& p, F&& f) {  // the views' degeneracy, dense support, free
   f("model_error_t_m", c.model_error.sigma_t_m);
   f("model_error_r_deg", c.model_error.sigma_r_deg);
   f("min_likelihood_ratio", c.min_likelihood_ratio);
+  f("likelihood_violation_nats", c.violation_nats);
   f("symmetry_test", c.symmetry_test);
 }
 
@@ -252,6 +253,8 @@ void lidarFields(P& p, F&& f) {
   f("returns_converged_m", p.returns_converged_m);
   f("returns_normal_half_width", p.returns_normal_half_width);
   f("returns_max_flatness", p.returns_max_flatness);
+  f("sweep_symmetry_test", p.symmetry_test);
+  f("sweep_violation_nats", p.violation_nats);
 }
 
 /// The pose-graph optimiser (pose_graph_optimizer.h).

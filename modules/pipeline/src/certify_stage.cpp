@@ -22,6 +22,8 @@ void validate(const CertifyParams& p) {
   validate(p.model_error);
   if (!(p.min_likelihood_ratio == 0.0 || p.min_likelihood_ratio >= 1.0) || !std::isfinite(p.min_likelihood_ratio))
     throw Error("certify: min_likelihood_ratio must be 0 (off) or finite and >= 1");
+  if (!(p.violation_nats >= 0.0) || !std::isfinite(p.violation_nats))
+    throw Error("certify: violation_nats must be >= 0 and finite");
 }
 
 ViewsCertificate certifyViews(const DepthView& source, const DepthView& target, const CertifyParams& params) {
@@ -153,8 +155,11 @@ Uniqueness compareAlternative(const DepthView& source, const DepthView& target, 
   const Isometry3 nearest = chosen.partial ? withPrediction(chosen, alternative.T_target_source) : chosen.T_target_source;
   u.distance_m = rmsDisplacement(nearest, alternative.T_target_source, pointSpread(centroids));
   if (!(u.distance_m > distinct_m)) return u;
-  PoseLikelihoodParams likelihood;  // the free-space test's samples (every cell of a LiDAR's view)
+  // The free-space test's samples (every cell of a LiDAR's view) and its gate for the violations.
+  PoseLikelihoodParams likelihood;
   likelihood.pixel_step = params.visibility.pixel_step;
+  likelihood.violation_nats = params.violation_nats;
+  likelihood.free_space = params.visibility;
   const LikelihoodRatio lr =
       logLikelihoodRatio(source, target, chosen.T_target_source, alternative.T_target_source, likelihood);
   if (lr.patches == 0) return u;  // no sample lands under both poses: nothing to compare

@@ -14,7 +14,10 @@ namespace {
 class SampleTerm {
  public:
   SampleTerm(const DepthView& to, const PoseLikelihoodParams& p)
-      : to_(to), p_(p), scale_(p.inlier_prior / (1.0 - p.inlier_prior) * p.outlier_range_m / std::sqrt(2.0 * M_PI)) {}
+      : to_(to),
+        p_(p),
+        scale_(p.inlier_prior / (1.0 - p.inlier_prior) * p.outlier_range_m / std::sqrt(2.0 * M_PI)),
+        gate_(to, p.free_space) {}
   std::optional<double> operator()(const Eigen::Vector3d& point, const Isometry3& T_to_from) const {
     const Eigen::Vector3d q = T_to_from * point;
     double uf = 0, vf = 0;
@@ -24,14 +27,19 @@ class SampleTerm {
     const float zt = to_.depth_m.at<float>(vt, ut);
     if (!isValidDepth(zt)) return std::nullopt;
     const double sigma = p_.sigma_m + p_.sigma_per_m2 * zt * zt;
-    const double e = (to_.projection.depth(q) - zt) / sigma;
-    return std::log1p(scale_ / sigma * std::exp(-0.5 * e * e));
+    const double zq = to_.projection.depth(q);
+    const double e = (zq - zt) / sigma;
+    const double l = std::log1p(scale_ / sigma * std::exp(-0.5 * e * e));
+    // In space the other sensor saw as empty: only a random reading explains it.
+    if (p_.violation_nats > 0.0 && zq < zt - gate_(ut, vt, q, zt)) return l - p_.violation_nats;
+    return l;
   }
 
  private:
   const DepthView& to_;
   const PoseLikelihoodParams& p_;
   double scale_;
+  FreeSpaceGate gate_;
 };
 
 /// Adds `from`'s patches' means of l(a) - l(b) over their counted samples, outside the dead band.

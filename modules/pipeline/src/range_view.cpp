@@ -77,6 +77,7 @@ void validate(const LidarParams& p) {
   };
   require(p.patch_area_m2 > 0 && std::isfinite(p.patch_area_m2), "patch_area_m2 must be > 0 and finite");
   require(p.range_sigma_m > 0 && std::isfinite(p.range_sigma_m), "range_sigma_m must be > 0 and finite");
+  require(p.violation_nats >= 0 && std::isfinite(p.violation_nats), "violation_nats must be >= 0 and finite");
   validate(returnsRefineParams(p));
 }
 
@@ -158,6 +159,8 @@ PairParams lidarPairParams(const LidarParams& lidar, const PairParams& camera) {
   p.certify.visibility.pixel_step = 1;
   p.refine.edges.enabled = false;
   p.refine.slide_scan.enabled = false;
+  p.certify.symmetry_test = lidar.symmetry_test;
+  p.certify.violation_nats = lidar.violation_nats;
   p.returns = returnsRefineParams(lidar);
   return p;
 }

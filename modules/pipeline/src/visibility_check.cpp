@@ -25,6 +25,25 @@ void validate(const VisibilityCheckParams& p) {
   if (p.min_consistent < 0) throw Error("VisibilityCheckParams: min_consistent must be >= 0");
 }
 
+FreeSpaceGate::FreeSpaceGate(const DepthView& to, const VisibilityCheckParams& params)
+    : to_(to),
+      params_(params),
+      half_pixel_rad_(to.projection.halfPixelDiagonalRad()),
+      min_cos_(std::cos(to.superpixels.max_incidence_deg * M_PI / 180.0)) {}
+
+double FreeSpaceGate::operator()(int u, int v, const Eigen::Vector3d& q, double z_t) const {
+  const double gate = params_.gate_m + params_.gate_per_m2 * z_t * z_t;
+  if (!params_.pixel_spread) return gate;
+  const cv::Mat& labels = to_.segmentation.labels;
+  if (labels.rows != to_.depth_m.rows || labels.cols != to_.depth_m.cols) return gate;
+  const int label = labels.at<int>(v, u);
+  if (label < 0 || static_cast<std::size_t>(label) >= to_.segmentation.patches.size()) return gate;
+  const double len = q.norm();
+  if (!(len > 0.0)) return gate;
+  const double c = std::max(std::abs(to_.segmentation.patches[static_cast<std::size_t>(label)].normal.dot(q)) / len, min_cos_);
+  return gate + z_t * half_pixel_rad_ * std::sqrt(std::max(0.0, 1.0 - c * c)) / c;
+}
+
 namespace {
 
 struct Counts {
@@ -40,36 +59,11 @@ struct Counts {
   }
 };
 
-/// How far the target's surface moves in depth between a point's direction and the centre of the
-/// pixel it is compared with (up to half a pixel diagonal): depth * angle * tan(incidence), with
-/// the pixel's patch normal and the incidence clamped as the segmentation clamps it; 0 on a pixel
-/// without a patch. Negligible for a camera's pixels, a LiDAR cell's spread on a floor seen at a
-/// low angle can be a metre.
-class SurfaceSpread {
- public:
-  explicit SurfaceSpread(const DepthView& to)
-      : half_pixel_rad_(to.projection.halfPixelDiagonalRad()),
-        min_cos_(std::cos(to.superpixels.max_incidence_deg * M_PI / 180.0)) {}
-  double spread(const DepthView& to, int u, int v, const Eigen::Vector3d& q, double depth) const {
-    const cv::Mat& labels = to.segmentation.labels;
-    if (labels.rows != to.depth_m.rows || labels.cols != to.depth_m.cols) return 0.0;
-    const int label = labels.at<int>(v, u);
-    if (label < 0 || static_cast<std::size_t>(label) >= to.segmentation.patches.size()) return 0.0;
-    const double len = q.norm();
-    if (!(len > 0.0)) return 0.0;
-    const double c = std::max(std::abs(to.segmentation.patches[static_cast<std::size_t>(label)].normal.dot(q)) / len, min_cos_);
-    return depth * half_pixel_rad_ * std::sqrt(std::max(0.0, 1.0 - c * c)) / c;
-  }
-
- private:
-  double half_pixel_rad_, min_cos_;
-};
-
 /// `regions`: also the largest 8-connected region of the violating samples (not for depthAgreement).
 Counts countOneWay(const DepthView& from, const DepthView& to, const Isometry3& T_to_from, const VisibilityCheckParams& p,
                    bool regions) {
   Counts c;
-  const SurfaceSpread slope(to);
+  const FreeSpaceGate gate_at(to, p);
   const cv::Mat& d = from.depth_m;
   // The violating samples on the sampling grid, for their largest 8-connected region.
   cv::Mat grid;
@@ -86,7 +80,7 @@ Counts countOneWay(const DepthView& from, const DepthView& to, const Isometry3& 
       const float zt = to.depth_m.at<float>(vt, ut);
       if (!isValidDepth(zt)) continue;
       const double zq = to.projection.depth(q);
-      const double gate = p.gate_m + p.gate_per_m2 * zt * zt + (p.pixel_spread ? slope.spread(to, ut, vt, q, zt) : 0.0);
+      const double gate = gate_at(ut, vt, q, zt);
       if (std::abs(zq - zt) <= gate) ++c.consistent;
       else if (zq > zt) ++c.occluded;
       else {

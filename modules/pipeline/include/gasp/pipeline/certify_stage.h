@@ -62,11 +62,16 @@ struct CertifyParams {
   /// Uniqueness (above): the likelihood ratio a claimed pose needs over a distinct alternative;
   /// 1000 is about two patches' worth of surface explained (pose_likelihood.h). 0 = not tested.
   double min_likelihood_ratio = 1000.0;
+  /// What the likelihood comparisons (uniqueness, symmetry) charge a sample in the other view's
+  /// free space beyond an outlier [nats, >= 0] (pose_likelihood.h: only a random reading explains
+  /// it; the free-space test's gate tells it). 0: violations count as outliers, as occluded samples
+  /// do (a camera's default, measured so). LiDAR sweeps: ln 10 (LidarParams::violation_nats).
+  double violation_nats = 0.0;
   /// Symmetry: a claimed full pose is not claimed (no estimate) when one of its symmetric turns
   /// (symmetric_turns.h), refined by the dense rounds, explains the views better (a higher
-  /// likelihood, pose_likelihood.h) -- a box-shaped scene turned onto itself. Off by default: on
-  /// LiDAR sweeps it removes the simulated room's quarter-turn poses but refuses many right ones on
-  /// a street (docs/lidar.md "The symmetry test").
+  /// likelihood, pose_likelihood.h) -- a box-shaped scene turned onto itself. Off for a camera
+  /// (not measured there); on for LiDAR sweeps (LidarParams::symmetry_test), whose all-round
+  /// views of a near-square room match it turned a quarter (docs/lidar.md "The symmetry test").
   bool symmetry_test = false;
 };
 

@@ -11,8 +11,14 @@
 ///   p(e) = w N(e; 0, sigma(z_t)^2) + (1 - w) / range,   sigma(z) = sigma_m + sigma_per_m2 z^2,
 /// a Gaussian inlier with the sensor's noise and a uniform outlier (MLESAC: Torr and Zisserman,
 /// 2000). Relative to the sample being an outlier it contributes
-/// l = log(1 + w range N(e; 0, sigma^2) / (1 - w)) >= 0: occlusions and violations add nothing,
-/// surface explained adds up to l(0) (3.7 nats at 1 cm). The samples of one patch share that
+/// l = log(1 + w range N(e; 0, sigma^2) / (1 - w)) >= 0: occlusions add nothing, surface
+/// explained adds up to l(0) (3.7 nats at 1 cm). With violation_nats > 0 a sample in front of the
+/// measured surface by more than the free-space test's gate (a violation, visibility_check.h)
+/// scores l - violation_nats: the other sensor saw that space empty, so only a random reading
+/// explains it, while an occluded sample is hidden by the surface in front (the beam model of
+/// range sensors: Thrun, Burgard and Fox, Probabilistic Robotics, 2005, ch. 6). Without it a pose
+/// that puts a view's samples into the other's free space loses nothing by it, and on the few
+/// samples both poses land a far pose fitted to them can win. The samples of one patch share that
 /// patch's error (its plane, its depth bias), so they are one observation: the log-likelihood
 /// ratio is the sum over both views' patches (segmentation.labels) of the mean over their
 /// counted samples of l under one pose minus l under the other. A patch whose mean differs by at
@@ -27,12 +33,14 @@
 /// patches' worth of surface explained.
 #include "gasp/core/pose.h"
 #include "gasp/pipeline/depth_view.h"
+#include "gasp/pipeline/visibility_check.h"
 
 namespace gasp {
 
 /// The noise model above: sigma(z) = 5 mm + 2.5 mm/m^2 z^2 (half the depth-agreement gate of
 /// visibility_check.h, the Kinect's noise at 1-3 m with room for the model error), w = 0.5,
-/// range 1 m, every 8th pixel, a dead band of one nat per patch. The certificate
+/// range 1 m, every 8th pixel, a dead band of one nat per patch, violations as outliers
+/// (violation_nats 0; the certificate sets it, CertifyParams::violation_nats). The certificate
 /// (compareAlternative()) samples the free-space test's pixels instead (VisibilityCheckParams::
 /// pixel_step: every cell of a LiDAR's binned view, whose 16 rows every 8th would cut to two).
 struct PoseLikelihoodParams {
@@ -42,6 +50,11 @@ struct PoseLikelihoodParams {
   double inlier_prior = 0.5;
   double outlier_range_m = 1.0;
   double patch_deadband_nats = 1.0;
+  /// What a violating sample costs beyond an outlier [nats] (>= 0; 0: nothing); ln 10 makes it
+  /// ten times less likely than an occluded one.
+  double violation_nats = 0.0;
+  /// The gate that tells a violation (FreeSpaceGate): the free-space test's.
+  VisibilityCheckParams free_space;
 };
 
 struct LikelihoodRatio {

@@ -48,6 +48,12 @@ struct LidarParams {
   double returns_converged_m = 0.0005;
   int returns_normal_half_width = 3;
   double returns_max_flatness = 0.3;
+  /// The certificate's symmetry test for sweeps (CertifyParams::symmetry_test): a sweep sees all
+  /// around, so in a near-square room a pose turned a quarter matches walls to walls.
+  bool symmetry_test = true;
+  /// CertifyParams::violation_nats for sweeps: a sample in the other sweep's free space is ten
+  /// times less likely than an occluded one (ln 10).
+  double violation_nats = 2.302585092994046;
 };
 
 /// Throws gasp::Error naming the first parameter out of its range.
@@ -77,7 +83,9 @@ AssociationParams lidarAssociationParams(const AssociationParams& camera, const 
 /// free-space gate) follow the range noise. Every cell is sampled (a binned sweep has fewer cells
 /// than a camera's sampled pixels), the edge terms and the slide scan are off (docs/lidar.md),
 /// the segmentation is lidarSuperpixelParams(params) and the returns' rounds are
-/// returnsRefineParams(params). The rest (counts, limits, switches) is the camera's as given.
+/// returnsRefineParams(params); the certificate's symmetry test and its likelihood's violation
+/// charge are params.symmetry_test and params.violation_nats. The rest (counts, limits, switches)
+/// is the camera's as given.
 PairParams lidarPairParams(const LidarParams& params, const PairParams& camera);
 /// The same from the camera's defaults.
 PairParams lidarPairParams(const LidarParams& params = {});

@@ -50,6 +50,24 @@ struct VisibilityCheckParams {
 
 void validate(const VisibilityCheckParams& params);
 
+/// The gate of the test above where a point q (in the frame of view `to`) meets the depth z_t
+/// that `to` measured at pixel (u, v): gate_m + gate_per_m2 z_t^2, and with pixel_spread the depth
+/// change of that pixel's surface across half a pixel diagonal (depth x angle x tan(incidence),
+/// the pixel's patch normal, the incidence clamped as the segmentation clamps it; 0 on a pixel
+/// without a patch). Negligible for a camera's pixels, a LiDAR cell's spread on a floor seen at a
+/// low angle can be a metre. The free-space test and the likelihood's violations
+/// (pose_likelihood.h) both use it. Keeps references to `to` and `params`.
+class FreeSpaceGate {
+ public:
+  FreeSpaceGate(const DepthView& to, const VisibilityCheckParams& params);
+  double operator()(int u, int v, const Eigen::Vector3d& q, double z_t) const;
+
+ private:
+  const DepthView& to_;
+  const VisibilityCheckParams& params_;
+  double half_pixel_rad_, min_cos_;
+};
+
 struct VisibilityCheck {
   bool passed = false;
   int consistent = 0, occluded = 0, violations = 0;  ///< summed over both directions
