@@ -8,8 +8,12 @@
 // --shares (gasp): a line per claimed pose with the share of the source's patches that land on
 // target patches and of those verified, its inliers and its free-space test's violation ratios
 // (both ways) and occluded share (the leads for a rule against wrong poses).
+// --nees (gasp): a line per claimed pose with its NEES against the truth under its edge
+// information (pose_consistency.h: chi-square with 6 degrees of freedom if the information is
+// right; 95 % below 12.59).
 // --method fpfh: PCL FPFH + RANSAC on the returns (gasp::baselines, when built), the same scoring.
-// --pair I,J: only that pair, with the pipeline's verdicts (inliers, support, certificate).
+// --pair I,J: only that pair, with the pipeline's verdicts (inliers, support, certificate) and the
+// claimed pose's NEES against the truth (pose_consistency.h).
 // --dense-step N (gasp): the dense rounds sample every N-th binned cell each way (the LiDAR
 // values' 1 otherwise): a study of their time on 64-laser views (docs/lidar.md "Not yet").
 // A claimed pose within 5 cm / 0.5 deg of the truth is right (the bound), one within
@@ -34,6 +38,7 @@
 
 #include "gasp/core/error.h"
 #include "gasp/core/tum_trajectory.h"
+#include "gasp/eval/pose_consistency.h"
 #include "gasp/params/params_file.h"
 #include "gasp/pipeline/range_view.h"
 #include "gasp/rawlog/range_scan.h"
@@ -115,7 +120,7 @@ int main(int argc, char** argv) {
   int threads = 2;
   int only_i = -1, only_j = -1;
   std::string method = "gasp";
-  bool shares = false;
+  bool shares = false, nees = false;
   gasp::PairParams params = gasp::lidarPairParams();
   std::string params_path;
   int dense_step = 0;
@@ -132,6 +137,8 @@ int main(int argc, char** argv) {
       }
     } else if (std::strcmp(argv[i], "--shares") == 0) {
       shares = true;
+    } else if (std::strcmp(argv[i], "--nees") == 0) {
+      nees = true;
     } else if (std::strcmp(argv[i], "--pair") == 0 && i + 1 < argc) {
       if (std::sscanf(argv[++i], "%d,%d", &only_i, &only_j) != 2) only_i = -1;
     } else if (std::strcmp(argv[i], "--dense-step") == 0 && i + 1 < argc) {
@@ -147,12 +154,12 @@ int main(int argc, char** argv) {
     } else if (dir.empty() && argv[i][0] != '-') {
       dir = argv[i];
     } else {
-      std::fprintf(stderr, "usage: bench_lidar_sequence DIR [--skips 1,5,10] [--threads N] [--params FILE] [--dense-step N] [--method gasp|fpfh] [--shares] [--pair I,J]\n");
+      std::fprintf(stderr, "usage: bench_lidar_sequence DIR [--skips 1,5,10] [--threads N] [--params FILE] [--dense-step N] [--method gasp|fpfh] [--shares] [--nees] [--pair I,J]\n");
       return 2;
     }
   }
   if (dir.empty() || std::any_of(skips.begin(), skips.end(), [](int k) { return k < 1; })) {
-    std::fprintf(stderr, "usage: bench_lidar_sequence DIR [--skips 1,5,10] [--threads N] [--params FILE] [--dense-step N] [--method gasp|fpfh] [--shares] [--pair I,J] (skips >= 1)\n");
+    std::fprintf(stderr, "usage: bench_lidar_sequence DIR [--skips 1,5,10] [--threads N] [--params FILE] [--dense-step N] [--method gasp|fpfh] [--shares] [--nees] [--pair I,J] (skips >= 1)\n");
     return 2;
   }
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
@@ -189,6 +196,13 @@ int main(int argc, char** argv) {
       const PatchShares s = patchShares(r, sweeps[i], sweeps[j]);
       std::printf("verified %zu of %zu source patches on target patches (%zu source patches)\n", s.verified, s.landing,
                   s.source);
+      if (r.pair.pose.success) {  // is the claimed certainty consistent with the error? (chi-square, 6 dof)
+        const gasp::eval::NeesParts edge = gasp::eval::neesParts(r.pair.pose.T_target_source, T_true, r.pair.edge_information);
+        const gasp::eval::NeesParts own = gasp::eval::neesParts(r.pair.pose.T_target_source, T_true, r.pair.pose.information);
+        std::printf("NEES with the edge information %.1f (translation %.1f, rotation %.1f), with the refinement's %.1f; "
+                    "95 %% of chi-square(6) below %.2f\n",
+                    edge.all, edge.translation, edge.rotation, own.all, gasp::eval::kChiSquare6Quantile95);
+      }
       return 0;
     }
     std::printf("| Skip | Pairs | Right (5 cm, 0.5 deg) | Coarse (20 cm, 5 deg) | Wrong | No estimate | Median error of the right | Worst right | Median time [ms] |\n");
@@ -202,9 +216,13 @@ int main(int argc, char** argv) {
         const auto t0 = std::chrono::steady_clock::now();
         std::optional<gasp::Isometry3> T;
         std::optional<PatchShares> share;
-        if (shares && method == "gasp") {  // the pair's patch shares too
+        std::optional<gasp::Matrix6d> information;
+        if ((shares || nees) && method == "gasp") {  // the pair's patch shares or its information too
           const gasp::RangePairResult r = gasp::registerRangeScans(sweeps[i], sweeps[j], params);
-          if (r.pair.pose.success) T = r.pair.pose.T_target_source, share = patchShares(r, sweeps[i], sweeps[j]);
+          if (r.pair.pose.success) {
+            T = r.pair.pose.T_target_source, information = r.pair.edge_information;
+            if (shares) share = patchShares(r, sweeps[i], sweeps[j]);
+          }
         } else {
           T = registerPair(sweeps[i], sweeps[j], method, params);
         }
@@ -219,6 +237,12 @@ int main(int argc, char** argv) {
                       i, j, e_cm <= 5.0 && e_deg <= 0.5 ? "right" : e_cm <= 20.0 && e_deg <= 5.0 ? "coarse" : "wrong",
                       share->landing, share->source, share->verified, share->landing, share->inliers, share->violation,
                       share->violation_lesser, share->occluded);
+        if (information) {
+          const gasp::eval::NeesParts x = gasp::eval::neesParts(*T, T_true, *information);
+          std::printf("nees %zu %zu %s %.2f cm %.3f deg: %.2f (translation %.2f, rotation %.2f)\n", i, j,
+                      e_cm <= 5.0 && e_deg <= 0.5 ? "right" : e_cm <= 20.0 && e_deg <= 5.0 ? "coarse" : "wrong", e_cm, e_deg,
+                      x.all, x.translation, x.rotation);
+        }
         if (e_cm <= 5.0 && e_deg <= 0.5) {
           ++right;
           cm.push_back(e_cm), deg.push_back(e_deg);
