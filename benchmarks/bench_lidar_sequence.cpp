@@ -12,13 +12,17 @@
 // information (pose_consistency.h: chi-square with 6 degrees of freedom if the information is
 // right; 95 % below 12.59).
 // --method fpfh: PCL FPFH + RANSAC on the returns (gasp::baselines, when built), the same scoring.
-// --pair I,J: only that pair, with the pipeline's verdicts (inliers, support, certificate) and the
-// claimed pose's NEES against the truth (pose_consistency.h).
+// --pair I,J: only that pair, with the pipeline's verdicts (inliers, support, certificate), the
+// claimed pose's NEES against the truth (pose_consistency.h), or for a refused pose what the
+// returns' rounds (stage 7) would have made of it.
 // --dense-step N (gasp): the dense rounds sample every N-th binned cell each way (the LiDAR
 // values' 1 otherwise): a study of their time on 64-laser views (docs/lidar.md "Not yet").
 // A claimed pose within 5 cm / 0.5 deg of the truth is right (the bound), one within
 // 20 cm / 5 deg is coarse (a start ICP converges from), any other claimed pose is wrong; the rest
-// give no estimate. Prints one table row per skip.
+// give no estimate; in brackets, those of them whose sweeps share at least 30 % of their depth
+// under the truth (sharedDepth; under that, no estimate is the right answer). Prints one table
+// row per skip.
+#include <Eigen/Eigenvalues>
 #include <tbb/global_control.h>
 
 #include <mrpt/obs/CObservation.h>
@@ -41,6 +45,8 @@
 #include "gasp/eval/pose_consistency.h"
 #include "gasp/params/params_file.h"
 #include "gasp/pipeline/range_view.h"
+#include "gasp/pipeline/returns_stage.h"
+#include "gasp/pipeline/visibility_check.h"
 #include "gasp/rawlog/range_scan.h"
 #include "gasp/rawlog/rawlog_objects.h"
 #ifdef GASP_HAVE_BASELINES
@@ -92,6 +98,20 @@ PatchShares patchShares(const gasp::RangePairResult& r, const gasp::RangeScan& s
     s.landing += pt->segmentation.labels.at<int>(vi, ui) >= 0 ? 1 : 0;
   }
   return s;
+}
+
+/// The share of both sweeps' depth the other sees at the same place under the true pose: the
+/// free-space test's consistent samples (the LiDAR's gate, every cell) over both views' valid
+/// cells. Under 30 % "no estimate" is the right answer (docs/evaluation.md "Failures").
+double sharedDepth(const gasp::RangeScan& source, const gasp::RangeScan& target, const gasp::Isometry3& T_true,
+                   const gasp::PairParams& params) {
+  const gasp::DepthView va = gasp::makeRangeView(source, params.segment);
+  const gasp::DepthView vb = gasp::makeRangeView(target, params.segment);
+  gasp::VisibilityCheckParams every = params.certify.visibility;
+  every.pixel_step = 1;
+  const gasp::VisibilityCheck c = gasp::checkVisibility(va, vb, T_true, every);
+  const int valid = cv::countNonZero(va.depth_m > 0) + cv::countNonZero(vb.depth_m > 0);
+  return valid > 0 ? static_cast<double>(c.consistent) / valid : 0.0;
 }
 
 /// The claimed pose of one pair by the method, or nullopt for no estimate.
@@ -193,6 +213,18 @@ int main(int argc, char** argv) {
                   "visibility violations %.3f / %.3f, occluded %.3f, returns refined %d (%s)\n",
                   r.pair.association.associations.size(), r.pair.pose.num_inliers, r.pair.guided_support, r.pair.dense_terms,
                   r.pair.uniqueness_log_ratio, r.pair.visibility.violation_ratio, r.pair.visibility.violation_ratio_lesser, r.pair.visibility.occluded_ratio, r.pair.returns_refined, r.pair.returns_reason.c_str());
+      if (!r.pair.pose.success) {  // would the returns' rounds have found the pose from the refused one?
+        const gasp::DepthView va = gasp::makeRangeView(sweeps[i], params.segment, params.returns);
+        const gasp::DepthView vb = gasp::makeRangeView(sweeps[j], params.segment, params.returns);
+        const gasp::RegistrationResult q = gasp::refineOnReturns(*va.returns, *vb.returns, r.pair.pose.T_target_source,
+                                                                params.returns, params.refine.solver, vb.superpixels.max_incidence_deg);
+        const gasp::Isometry3 eq = T_true.inverse() * q.T_target_source;
+        std::printf("the returns' rounds from the refused pose: success %d, degenerate %d (%s), error %.2f cm %.3f deg, "
+                    "information eigenvalues", q.success, q.degenerate,
+                    q.reason.c_str(), 100.0 * eq.translation().norm(), Eigen::AngleAxisd(eq.linear()).angle() * 180.0 / M_PI);
+        for (int k = 0; k < 6; ++k) std::printf(" %.3g", q.information_eigenvalues(k));
+        std::printf("\n");
+      }
       const PatchShares s = patchShares(r, sweeps[i], sweeps[j]);
       std::printf("verified %zu of %zu source patches on target patches (%zu source patches)\n", s.verified, s.landing,
                   s.source);
@@ -202,13 +234,21 @@ int main(int argc, char** argv) {
         std::printf("NEES with the edge information %.1f (translation %.1f, rotation %.1f), with the refinement's %.1f; "
                     "95 %% of chi-square(6) below %.2f\n",
                     edge.all, edge.translation, edge.rotation, own.all, gasp::eval::kChiSquare6Quantile95);
+        // The translation error against the claimed translation covariance's axes.
+        const gasp::eval::Vector6 xi = gasp::eval::leftPerturbation(r.pair.pose.T_target_source, T_true);
+        const Eigen::Matrix3d C = r.pair.edge_information.inverse().topLeftCorner<3, 3>();
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(C);
+        for (int k = 2; k >= 0; --k)
+          std::printf("  translation axis (%.2f, %.2f, %.2f): sigma %.2f cm, error along it %.2f cm\n", eig.eigenvectors()(0, k),
+                      eig.eigenvectors()(1, k), eig.eigenvectors()(2, k), 100.0 * std::sqrt(std::max(0.0, eig.eigenvalues()(k))),
+                      100.0 * eig.eigenvectors().col(k).dot(xi.head<3>()));
       }
       return 0;
     }
-    std::printf("| Skip | Pairs | Right (5 cm, 0.5 deg) | Coarse (20 cm, 5 deg) | Wrong | No estimate | Median error of the right | Worst right | Median time [ms] |\n");
+    std::printf("| Skip | Pairs | Right (5 cm, 0.5 deg) | Coarse (20 cm, 5 deg) | Wrong | No estimate (sharing >= 30 %%) | Median error of the right | Worst right | Median time [ms] |\n");
     std::printf("|---|---|---|---|---|---|---|---|---|\n");
     for (const int k : skips) {
-      int pairs = 0, right = 0, coarse = 0, wrong = 0;
+      int pairs = 0, right = 0, coarse = 0, wrong = 0, missed = 0;
       std::vector<double> cm, deg, ms;
       double worst_cm = 0.0, worst_deg = 0.0;
       for (std::size_t i = 0; i + static_cast<std::size_t>(k) < sweeps.size(); ++i) {
@@ -228,8 +268,14 @@ int main(int argc, char** argv) {
         }
         ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
         ++pairs;
-        if (!T) continue;
         const gasp::Isometry3 T_true = truth[j].T_world_camera.inverse() * truth[i].T_world_camera;
+        if (!T) {
+          if (const double shared = sharedDepth(sweeps[i], sweeps[j], T_true, params); shared >= 0.3) {
+            ++missed;
+            std::printf("no estimate: sweeps %zu -> %zu, sharing %.0f %% of their depth\n", i, j, 100.0 * shared);
+          }
+          continue;
+        }
         const gasp::Isometry3 e = T_true.inverse() * *T;
         const double e_cm = 100.0 * e.translation().norm(), e_deg = Eigen::AngleAxisd(e.linear()).angle() * 180.0 / M_PI;
         if (share)
@@ -255,8 +301,9 @@ int main(int argc, char** argv) {
           std::printf("wrong pose: sweeps %zu -> %zu, %.2f cm, %.3f deg off\n", i, j, e_cm, e_deg);
         }
       }
-      std::printf("| %d | %d | %d | %d | %d | %d | %.2f cm, %.3f deg | %.2f cm, %.3f deg | %.1f |\n", k, pairs, right, coarse,
-                  wrong, pairs - right - coarse - wrong, median(cm), median(deg), worst_cm, worst_deg, median(ms));
+      std::printf("| %d | %d | %d | %d | %d | %d (%d) | %.2f cm, %.3f deg | %.2f cm, %.3f deg | %.1f |\n", k, pairs, right,
+                  coarse, wrong, pairs - right - coarse - wrong, missed, median(cm), median(deg), worst_cm, worst_deg,
+                  median(ms));
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
