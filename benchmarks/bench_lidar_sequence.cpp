@@ -2,7 +2,7 @@
 // against the exact ground truth: pairs 1, 5 and 10 sweeps apart by default.
 //   build/ci/bin/gasp-simulate --sensor lidar16 --frames 60 --rate 10 --out /tmp/lidar16
 //   build/ci/bin/bench_lidar_sequence /tmp/lidar16 [--skips 1,5,10] [--threads 2] [--pair I,J]
-//       [--method gasp|fpfh] [--shares] [--dense-step N] [--params FILE]
+//       [--method gasp|fpfh] [--shares] [--nees] [--dense-step N] [--params FILE]
 // --params FILE (gasp): the params file's pair sections made a LiDAR's by its lidar section
 // (lidarPairParams), as gasp-odometry and the MRPT classes take them; the defaults otherwise.
 // --shares (gasp): a line per claimed pose with the share of the source's patches that land on
@@ -35,6 +35,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -213,7 +214,7 @@ int main(int argc, char** argv) {
                   "visibility violations %.3f / %.3f, occluded %.3f, returns refined %d (%s)\n",
                   r.pair.association.associations.size(), r.pair.pose.num_inliers, r.pair.guided_support, r.pair.dense_terms,
                   r.pair.uniqueness_log_ratio, r.pair.visibility.violation_ratio, r.pair.visibility.violation_ratio_lesser, r.pair.visibility.occluded_ratio, r.pair.returns_refined, r.pair.returns_reason.c_str());
-      if (!r.pair.pose.success) {  // would the returns' rounds have found the pose from the refused one?
+      if (!r.pair.pose.success && r.pair.dense_rounds_run > 0) {  // would the returns' rounds have found the pose from the refused one?
         const gasp::DepthView va = gasp::makeRangeView(sweeps[i], params.segment, params.returns);
         const gasp::DepthView vb = gasp::makeRangeView(sweeps[j], params.segment, params.returns);
         const gasp::RegistrationResult q = gasp::refineOnReturns(*va.returns, *vb.returns, r.pair.pose.T_target_source,
@@ -228,9 +229,12 @@ int main(int argc, char** argv) {
       const PatchShares s = patchShares(r, sweeps[i], sweeps[j]);
       std::printf("verified %zu of %zu source patches on target patches (%zu source patches)\n", s.verified, s.landing,
                   s.source);
-      if (r.pair.pose.success) {  // is the claimed certainty consistent with the error? (chi-square, 6 dof)
+      if (r.pair.pose.success && r.pair.edge_information.determinant() > 0.0) {  // is the claimed certainty consistent with the error? (chi-square, 6 dof)
         const gasp::eval::NeesParts edge = gasp::eval::neesParts(r.pair.pose.T_target_source, T_true, r.pair.edge_information);
-        const gasp::eval::NeesParts own = gasp::eval::neesParts(r.pair.pose.T_target_source, T_true, r.pair.pose.information);
+        gasp::eval::NeesParts own;
+        own.all = std::numeric_limits<double>::quiet_NaN();
+        if (r.pair.pose.information.determinant() > 0.0)
+          own = gasp::eval::neesParts(r.pair.pose.T_target_source, T_true, r.pair.pose.information);
         std::printf("NEES with the edge information %.1f (translation %.1f, rotation %.1f), with the refinement's %.1f; "
                     "95 %% of chi-square(6) below %.2f\n",
                     edge.all, edge.translation, edge.rotation, own.all, gasp::eval::kChiSquare6Quantile95);
@@ -283,7 +287,7 @@ int main(int argc, char** argv) {
                       i, j, e_cm <= 5.0 && e_deg <= 0.5 ? "right" : e_cm <= 20.0 && e_deg <= 5.0 ? "coarse" : "wrong",
                       share->landing, share->source, share->verified, share->landing, share->inliers, share->violation,
                       share->violation_lesser, share->occluded);
-        if (information) {
+        if (information && information->determinant() > 0.0) {
           const gasp::eval::NeesParts x = gasp::eval::neesParts(*T, T_true, *information);
           std::printf("nees %zu %zu %s %.2f cm %.3f deg: %.2f (translation %.2f, rotation %.2f)\n", i, j,
                       e_cm <= 5.0 && e_deg <= 0.5 ? "right" : e_cm <= 20.0 && e_deg <= 5.0 ? "coarse" : "wrong", e_cm, e_deg,

@@ -63,6 +63,21 @@ TEST(PoseLikelihood, ASampleInTheOtherViewsFreeSpaceCostsTheViolationCharge) {
   EXPECT_GT(rc.log_ratio, r0.log_ratio + 20.0);
   EXPECT_EQ(logLikelihoodRatio(p.a, p.b, p.T_b_a, p.T_b_a, charged).log_ratio, 0.0);
   EXPECT_NEAR(logLikelihoodRatio(p.a, p.b, forward, p.T_b_a, charged).log_ratio, -rc.log_ratio, 1e-9);
+  // One direction only (a source view without patches adds no terms of its own): the target's
+  // samples mapped into the source. Moving the source 30 cm towards the target camera pushes them
+  // behind the source's surfaces (occluded: no charge); moving it away pulls them in front
+  // (violations: charged).
+  DepthView source_only_depth = p.a;
+  source_only_depth.segmentation.patches.clear();
+  const Isometry3 backward = Eigen::Translation3d(0, 0, 0.3) * p.T_b_a;
+  const double gain_forward = logLikelihoodRatio(source_only_depth, p.b, p.T_b_a, forward, charged).log_ratio -
+                              logLikelihoodRatio(source_only_depth, p.b, p.T_b_a, forward, plain).log_ratio;
+  const double gain_backward = logLikelihoodRatio(source_only_depth, p.b, p.T_b_a, backward, charged).log_ratio -
+                               logLikelihoodRatio(source_only_depth, p.b, p.T_b_a, backward, plain).log_ratio;
+  std::printf("one direction: the charge adds %.1f against the pose moved towards the target, %.1f away\n",
+              gain_forward, gain_backward);
+  EXPECT_GT(gain_backward, 20.0);
+  EXPECT_LT(gain_forward, 0.25 * gain_backward);
   CertifyParams certify;
   certify.violation_nats = charged.violation_nats;
   EXPECT_NEAR(compareAlternative(p.a, p.b, fullPose(p.T_b_a), fullPose(forward), kDistinct, certify).log_ratio,

@@ -36,6 +36,7 @@ double FreeSpaceGate::operator()(int u, int v, const Eigen::Vector3d& q, double 
   if (!params_.pixel_spread) return gate;
   const cv::Mat& labels = to_.segmentation.labels;
   if (labels.rows != to_.depth_m.rows || labels.cols != to_.depth_m.cols) return gate;
+  if (u < 0 || v < 0 || u >= labels.cols || v >= labels.rows) return gate;
   const int label = labels.at<int>(v, u);
   if (label < 0 || static_cast<std::size_t>(label) >= to_.segmentation.patches.size()) return gate;
   const double len = q.norm();

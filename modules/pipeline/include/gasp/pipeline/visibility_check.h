@@ -54,7 +54,7 @@ void validate(const VisibilityCheckParams& params);
 /// that `to` measured at pixel (u, v): gate_m + gate_per_m2 z_t^2, and with pixel_spread the depth
 /// change of that pixel's surface across half a pixel diagonal (depth x angle x tan(incidence),
 /// the pixel's patch normal, the incidence clamped as the segmentation clamps it; 0 on a pixel
-/// without a patch). Negligible for a camera's pixels, a LiDAR cell's spread on a floor seen at a
+/// without a patch or outside the image). Negligible for a camera's pixels, a LiDAR cell's spread on a floor seen at a
 /// low angle can be a metre. The free-space test and the likelihood's violations
 /// (pose_likelihood.h) both use it. Keeps references to `to` and `params`.
 class FreeSpaceGate {
