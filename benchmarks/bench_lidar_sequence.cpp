@@ -14,7 +14,8 @@
 // --method fpfh: PCL FPFH + RANSAC on the returns (gasp::baselines, when built), the same scoring.
 // --pair I,J: only that pair, with the pipeline's verdicts (inliers, support, certificate), the
 // claimed pose's NEES against the truth (pose_consistency.h), or for a refused pose what the
-// returns' rounds (stage 7) would have made of it.
+// returns' rounds (stage 7) would have made of it, and the returns' cost with the pose slid along
+// its weakest translation (slideProfile).
 // --dense-step N (gasp): the dense rounds sample every N-th binned cell each way (the LiDAR
 // values' 1 otherwise): a study of their time on 64-laser views (docs/lidar.md "Not yet").
 // A claimed pose within 5 cm / 0.5 deg of the truth is right (the bound), one within
@@ -113,6 +114,46 @@ double sharedDepth(const gasp::RangeScan& source, const gasp::RangeScan& target,
   const gasp::VisibilityCheck c = gasp::checkVisibility(va, vb, T_true, every);
   const int valid = cv::countNonZero(va.depth_m > 0) + cv::countNonZero(vb.depth_m > 0);
   return valid > 0 ? static_cast<double>(c.consistent) / valid : 0.0;
+}
+
+/// The returns' truncated point-to-plane cost (the last gate, each source return re-associated as
+/// the returns' rounds do) with the pose slid along the weakest translation of its information:
+/// a pose the returns observe there sits at the bottom of this profile.
+void slideProfile(const gasp::DepthView& va, const gasp::DepthView& vb, const gasp::RegistrationResult& pose,
+                  const gasp::PairParams& params) {
+  if (!va.returns || !vb.returns) return;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(pose.information.topLeftCorner<3, 3>());
+  const Eigen::Vector3d d = eig.eigenvectors().col(0);
+  const double gate = params.returns.gates_m.back();
+  const double min_cos = std::cos(vb.superpixels.max_incidence_deg * M_PI / 180.0);
+  std::printf("the returns' cost slid along (%.2f, %.2f, %.2f) [m: cost/terms]:", d.x(), d.y(), d.z());
+  for (const double delta : {-0.15, -0.1, -0.05, -0.02, 0.0, 0.02, 0.05, 0.1, 0.15}) {
+    const gasp::Isometry3 T = Eigen::Translation3d(delta * d) * pose.T_target_source;
+    // Every source return counts: those without a partner within the gate as the truncation.
+    double cost = 0.0;
+    int terms = 0;
+    for (int r = 0; r < va.returns->rows(); ++r)
+      for (int c = 0; c < va.returns->cols(); ++c) {
+        const Eigen::Vector3d& ps = va.returns->point(r, c);
+        if (!ps.allFinite()) continue;
+        cost += 1.0;
+        const Eigen::Vector3d pt = T * ps;
+        const int k = vb.returns->lookUp(pt, params.returns.look_up_columns);
+        if (k < 0) continue;
+        const Eigen::Vector3d& n = vb.returns->normal(k);
+        const Eigen::Vector3d& q = vb.returns->point(k);
+        const double cos_i = std::abs(n.dot(q)) / q.norm();
+        if (cos_i < min_cos) continue;
+        // As the returns' rounds associate: within a cell's footprint of the return it fell on.
+        if ((pt - q).norm() > gate + q.norm() * vb.returns->halfCellRad() / cos_i) continue;
+        const double dist = n.dot(pt - q);
+        if (std::abs(dist) > gate) continue;
+        cost += dist * dist / (gate * gate) - 1.0;
+        ++terms;
+      }
+    std::printf(" %+.2f: %.1f/%d", delta, cost, terms);
+  }
+  std::printf("\n");
 }
 
 /// The claimed pose of one pair by the method, or nullopt for no estimate.
@@ -225,10 +266,16 @@ int main(int argc, char** argv) {
                     q.reason.c_str(), 100.0 * eq.translation().norm(), Eigen::AngleAxisd(eq.linear()).angle() * 180.0 / M_PI);
         for (int k = 0; k < 6; ++k) std::printf(" %.3g", q.information_eigenvalues(k));
         std::printf("\n");
+        if (q.success) slideProfile(va, vb, q, params);
       }
       const PatchShares s = patchShares(r, sweeps[i], sweeps[j]);
       std::printf("verified %zu of %zu source patches on target patches (%zu source patches)\n", s.verified, s.landing,
                   s.source);
+      if (r.pair.pose.success && r.pair.returns_refined) {
+        const gasp::DepthView va = gasp::makeRangeView(sweeps[i], params.segment, params.returns);
+        const gasp::DepthView vb = gasp::makeRangeView(sweeps[j], params.segment, params.returns);
+        slideProfile(va, vb, r.pair.pose, params);
+      }
       if (r.pair.pose.success && r.pair.edge_information.determinant() > 0.0) {  // is the claimed certainty consistent with the error? (chi-square, 6 dof)
         const gasp::eval::NeesParts edge = gasp::eval::neesParts(r.pair.pose.T_target_source, T_true, r.pair.edge_information);
         gasp::eval::NeesParts own;
