@@ -11,6 +11,9 @@
 // --nees (gasp): a line per claimed pose with its NEES against the truth under its edge
 // information (pose_consistency.h: chi-square with 6 degrees of freedom if the information is
 // right; 95 % below 12.59).
+// --slides (gasp): for each claimed pose refined on the returns, and for each refused one after
+// the returns' rounds from it, its returns' cost above the lowest of its slide profile
+// (slideProfile) and where that lies (study 2026-11-30 section 5).
 // --method fpfh: PCL FPFH + RANSAC on the returns (gasp::baselines, when built), the same scoring.
 // --pair I,J: only that pair, with the pipeline's verdicts (inliers, support, certificate), the
 // claimed pose's NEES against the truth (pose_consistency.h), or for a refused pose what the
@@ -30,6 +33,7 @@
 #include <mrpt/obs/CObservationRotatingScan.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -119,15 +123,18 @@ double sharedDepth(const gasp::RangeScan& source, const gasp::RangeScan& target,
 /// The returns' truncated point-to-plane cost (the last gate, each source return re-associated as
 /// the returns' rounds do) with the pose slid along the weakest translation of its information:
 /// a pose the returns observe there sits at the bottom of this profile.
-void slideProfile(const gasp::DepthView& va, const gasp::DepthView& vb, const gasp::RegistrationResult& pose,
-                  const gasp::PairParams& params) {
-  if (!va.returns || !vb.returns) return;
+constexpr std::array<double, 9> kSlides = {-0.15, -0.1, -0.05, -0.02, 0.0, 0.02, 0.05, 0.1, 0.15};
+std::array<double, 9> slideProfile(const gasp::DepthView& va, const gasp::DepthView& vb, const gasp::RegistrationResult& pose,
+                                   const gasp::PairParams& params, bool print = true) {
+  std::array<double, 9> costs{};
+  if (!va.returns || !vb.returns) return costs;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(pose.information.topLeftCorner<3, 3>());
   const Eigen::Vector3d d = eig.eigenvectors().col(0);
   const double gate = params.returns.gates_m.back();
   const double min_cos = std::cos(vb.superpixels.max_incidence_deg * M_PI / 180.0);
-  std::printf("the returns' cost slid along (%.2f, %.2f, %.2f) [m: cost/terms]:", d.x(), d.y(), d.z());
-  for (const double delta : {-0.15, -0.1, -0.05, -0.02, 0.0, 0.02, 0.05, 0.1, 0.15}) {
+  if (print) std::printf("the returns' cost slid along (%.2f, %.2f, %.2f) [m: cost/terms]:", d.x(), d.y(), d.z());
+  for (std::size_t slide = 0; slide < kSlides.size(); ++slide) {
+    const double delta = kSlides[slide];
     const gasp::Isometry3 T = Eigen::Translation3d(delta * d) * pose.T_target_source;
     // Every source return counts: those without a partner within the gate as the truncation.
     double cost = 0.0;
@@ -151,9 +158,22 @@ void slideProfile(const gasp::DepthView& va, const gasp::DepthView& vb, const ga
         cost += dist * dist / (gate * gate) - 1.0;
         ++terms;
       }
-    std::printf(" %+.2f: %.1f/%d", delta, cost, terms);
+    costs[slide] = cost;
+    if (print) std::printf(" %+.2f: %.1f/%d", delta, cost, terms);
   }
-  std::printf("\n");
+  if (print) std::printf("\n");
+  return costs;
+}
+
+/// --slides: the pose's cost above the lowest of its profile, and where that lies [m].
+void printSlide(std::size_t i, std::size_t j, const char* kind, const gasp::Isometry3& T, const gasp::Isometry3& T_true,
+                const std::array<double, 9>& costs) {
+  const gasp::Isometry3 e = T_true.inverse() * T;
+  const double e_cm = 100.0 * e.translation().norm(), e_deg = Eigen::AngleAxisd(e.linear()).angle() * 180.0 / M_PI;
+  const auto lowest = std::min_element(costs.begin(), costs.end());
+  std::printf("slides %zu %zu %s %s %.2f cm %.3f deg: above the lowest %.1f at %+.2f\n", i, j, kind,
+              e_cm <= 5.0 && e_deg <= 0.5 ? "right" : e_cm <= 20.0 && e_deg <= 5.0 ? "coarse" : "wrong", e_cm, e_deg,
+              costs[4] - *lowest, kSlides[static_cast<std::size_t>(lowest - costs.begin())]);
 }
 
 /// The claimed pose of one pair by the method, or nullopt for no estimate.
@@ -182,7 +202,7 @@ int main(int argc, char** argv) {
   int threads = 2;
   int only_i = -1, only_j = -1;
   std::string method = "gasp";
-  bool shares = false, nees = false;
+  bool shares = false, nees = false, slides = false;
   gasp::PairParams params = gasp::lidarPairParams();
   std::string params_path;
   int dense_step = 0;
@@ -201,6 +221,8 @@ int main(int argc, char** argv) {
       shares = true;
     } else if (std::strcmp(argv[i], "--nees") == 0) {
       nees = true;
+    } else if (std::strcmp(argv[i], "--slides") == 0) {
+      slides = true;
     } else if (std::strcmp(argv[i], "--pair") == 0 && i + 1 < argc) {
       if (std::sscanf(argv[++i], "%d,%d", &only_i, &only_j) != 2) only_i = -1;
     } else if (std::strcmp(argv[i], "--dense-step") == 0 && i + 1 < argc) {
@@ -216,12 +238,12 @@ int main(int argc, char** argv) {
     } else if (dir.empty() && argv[i][0] != '-') {
       dir = argv[i];
     } else {
-      std::fprintf(stderr, "usage: bench_lidar_sequence DIR [--skips 1,5,10] [--threads N] [--params FILE] [--dense-step N] [--method gasp|fpfh] [--shares] [--nees] [--pair I,J]\n");
+      std::fprintf(stderr, "usage: bench_lidar_sequence DIR [--skips 1,5,10] [--threads N] [--params FILE] [--dense-step N] [--method gasp|fpfh] [--shares] [--nees] [--slides] [--pair I,J]\n");
       return 2;
     }
   }
   if (dir.empty() || std::any_of(skips.begin(), skips.end(), [](int k) { return k < 1; })) {
-    std::fprintf(stderr, "usage: bench_lidar_sequence DIR [--skips 1,5,10] [--threads N] [--params FILE] [--dense-step N] [--method gasp|fpfh] [--shares] [--nees] [--pair I,J] (skips >= 1)\n");
+    std::fprintf(stderr, "usage: bench_lidar_sequence DIR [--skips 1,5,10] [--threads N] [--params FILE] [--dense-step N] [--method gasp|fpfh] [--shares] [--nees] [--slides] [--pair I,J] (skips >= 1)\n");
     return 2;
   }
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
@@ -308,8 +330,21 @@ int main(int argc, char** argv) {
         std::optional<gasp::Isometry3> T;
         std::optional<PatchShares> share;
         std::optional<gasp::Matrix6d> information;
-        if ((shares || nees) && method == "gasp") {  // the pair's patch shares or its information too
+        if ((shares || nees || slides) && method == "gasp") {  // the pair's patch shares, information or slides too
           const gasp::RangePairResult r = gasp::registerRangeScans(sweeps[i], sweeps[j], params);
+          if (slides && (r.pair.returns_refined || (!r.pair.pose.success && r.pair.dense_rounds_run > 0))) {
+            const gasp::Isometry3 T_true = truth[j].T_world_camera.inverse() * truth[i].T_world_camera;
+            const gasp::DepthView va = gasp::makeRangeView(sweeps[i], params.segment, params.returns);
+            const gasp::DepthView vb = gasp::makeRangeView(sweeps[j], params.segment, params.returns);
+            if (r.pair.pose.success) {
+              printSlide(i, j, "claimed", r.pair.pose.T_target_source, T_true, slideProfile(va, vb, r.pair.pose, params, false));
+            } else {
+              const gasp::RegistrationResult q =
+                  gasp::refineOnReturns(*va.returns, *vb.returns, r.pair.pose.T_target_source, params.returns,
+                                        params.refine.solver, vb.superpixels.max_incidence_deg);
+              if (q.success) printSlide(i, j, "refused", q.T_target_source, T_true, slideProfile(va, vb, q, params, false));
+            }
+          }
           if (r.pair.pose.success) {
             T = r.pair.pose.T_target_source, information = r.pair.edge_information;
             if (shares) share = patchShares(r, sweeps[i], sweeps[j]);
