@@ -1,9 +1,12 @@
 #include "gasp/mrpt/keyframe_map.h"
 
+#include <mrpt/obs/CObservationPointCloud.h>
+#include <mrpt/obs/CObservationRotatingScan.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose3DPDFGaussian.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <memory>
 #include <string>
 
 #include "gasp/core/depth_image.h"
@@ -11,8 +14,24 @@
 #include "gasp/mrpt/pose_covariance.h"
 #include "gasp/rawlog/gz_output_stream.h"
 #include "gasp/rawlog/observation_conversion.h"
+#include "gasp/rawlog/range_scan.h"
 
 namespace gasp {
+
+namespace {
+
+/// A sweep as it was read: a rotating scan (its range image and layout), or a point cloud when
+/// its returns carry their own rays (a cloud or a Velodyne's calibrated points, which MRPT 2.5's
+/// rotating scan has no place for). The LiDAR's sensorPose is the frame's mounting.
+mrpt::obs::CObservation::Ptr sweepObservation(const RgbdFrame& f) {
+  RangeScan scan = *f.sweep;
+  scan.T_robot_sensor = f.T_robot_camera;
+  if (!scan.ray.empty())
+    return std::make_shared<mrpt::obs::CObservationPointCloud>(toPointCloud(scan, f.sensor_label));
+  return std::make_shared<mrpt::obs::CObservationRotatingScan>(toRotatingScan(scan, f.sensor_label));
+}
+
+}  // namespace
 
 mrpt::maps::CSimpleMap keyframeSimpleMap(const std::vector<RgbdFrame>& keyframes,
                                          const std::vector<Isometry3>& T_world_camera,
@@ -34,7 +53,7 @@ mrpt::maps::CSimpleMap keyframeSimpleMap(const std::vector<RgbdFrame>& keyframes
       *gaussian = poseWithCovariance(T_world_robot, covariance_world_camera[i]);
     const mrpt::poses::CPose3DPDF::Ptr pose = gaussian;
     auto sf = mrpt::obs::CSensoryFrame::Create();
-    sf->insert(observationFromFrame(f));
+    sf->insert(f.isSweep() ? sweepObservation(f) : mrpt::obs::CObservation::Ptr(observationFromFrame(f)));
     map.insert(pose, sf);
   }
   return map;

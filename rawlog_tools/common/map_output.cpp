@@ -15,7 +15,8 @@ void addMapOutputOptions(CLI::App& app, MapOutputOptions& o, const std::string& 
   app.add_option("--voxel", o.voxel_m, "voxel size of --cloud [m], 0.001 to 10")
       ->capture_default_str()
       ->check(within(kMinVoxelM, kMaxVoxelM));
-  app.add_option("--cloud-max-depth", o.cloud_max_depth_m, "depth beyond which points are left out of --cloud [m]")
+  app.add_option("--cloud-max-depth", o.cloud_max_depth_m,
+                 "depth (a LiDAR's: range) beyond which points are left out of --cloud [m]")
       ->capture_default_str()
       ->check(above(0));
 }
@@ -34,7 +35,10 @@ void writeMapOutputs(const MapOutputOptions& o, RunOutputs& outputs, const std::
   if (!o.cloud_path.empty()) {
     VoxelPointMap map(o.voxel_m, o.cloud_max_depth_m);
     for (std::size_t i = 0; i < frames.size() && i < T_world_camera.size(); ++i)
-      map.insert(frames[i].depth_m, frames[i].depth_intrinsics, T_world_camera[i]);
+      if (frames[i].isSweep())
+        map.insert(*frames[i].sweep, T_world_camera[i]);
+      else
+        map.insert(frames[i].depth_m, frames[i].depth_intrinsics, T_world_camera[i]);
     OutputFile& cloud = outputs.at("--cloud");
     map.writePly(cloud.stream());
     cloud.commit();

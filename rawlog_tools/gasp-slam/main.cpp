@@ -160,8 +160,6 @@ int main(int argc, char** argv) {
                           " (one kind of sensor per map)");
     }
     const bool sweeps = first_kind.value_or(false);
-    if (sweeps && map_output.wanted())
-      throw gasp::Error(sequences[0].describe() + ": LiDAR sweeps: --simplemap and --cloud take depth images only (not yet sweeps)");
     if (sweeps) params = gasp::lidarSlamParams(params);
     std::optional<gasp::DepthSlam> slam;
     gasp::Isometry3 T_robot_camera = gasp::Isometry3::Identity();

@@ -4,6 +4,8 @@
 
 #include <mrpt/maps/CSimpleMap.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservationPointCloud.h>
+#include <mrpt/obs/CObservationRotatingScan.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose3DPDF.h>
 #include <mrpt/poses/CPose3DPDFGaussian.h>
@@ -19,6 +21,8 @@
 #include "gasp/core/tum_dataset.h"
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/rawlog/observation_conversion.h"
+#include "gasp/rawlog/range_scan.h"
+#include "gasp/slam/point_map.h"
 #include "depth_difference.h"
 #include "gasp_test_data.h"
 #include "program_run.h"
@@ -327,4 +331,66 @@ TEST(GaspSlamProgram, TheOccluderFrameLeavesTheGraphInPiecesOrRejoinsItAndSaysSo
   EXPECT_EQ(run.exit_code, 0) << run.output;
   EXPECT_TRUE(contains(run.output, "tracked: 30\n")) << run.output;
   EXPECT_TRUE(contains(run.output, "(odometry alone: 1)")) << run.output;
+}
+
+// A map of LiDAR sweeps (issue 49): the simple map holds each keyframe's sweep as it was read (a
+// rotating scan, or a point cloud), and the cloud is the sweeps' returns at the optimised poses.
+// Scored against the same keyframes' returns at their true poses (world = the first sweep).
+TEST(GaspSlamProgram, MapsOfLidarSweepsHoldTheSweepsAsReadAndTheirReturnsWhereTheTruthPutsThem) {
+  const std::string out = gasp::test::scratchDir();
+  for (const bool clouds : {false, true}) {
+    const std::string d = out + (clouds ? "/clouds" : "/scans");
+    const auto sim = runProgram("gasp-simulate", std::string("--sensor lidar16 --frames 60 --rate 10") +
+                                                     (clouds ? " --point-clouds" : "") + " --out " + d);
+    ASSERT_EQ(sim.exit_code, 0) << sim.output;
+    const auto run = runProgram("gasp-slam", "--rawlog " + d + "/lidar.rawlog --max-frames 20 --out " + d + "/t.txt --simplemap " + d +
+                                                 "/map.simplemap --cloud " + d + "/map.ply --voxel 0.05 --cloud-max-depth 20");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    mrpt::maps::CSimpleMap map;
+    ASSERT_TRUE(map.loadFromFile(d + "/map.simplemap"));
+    EXPECT_EQ(map.size(), printedCount(run.output, "simplemap: " + d + "/map.simplemap (")) << run.output;
+    ASSERT_GE(map.size(), 2u);
+    const gasp::Trajectory truth = gasp::readTumTrajectory(d + "/lidar_groundtruth.txt");
+    ASSERT_FALSE(truth.empty());
+    const gasp::Isometry3 T_first_world = truth.front().T_world_camera.inverse();
+    gasp::VoxelPointMap at_truth(0.05, 20.0);
+    for (const auto& [pose, frame] : map) {
+      ASSERT_TRUE(pose && frame && frame->size() == 1u);
+      const auto obs = frame->getObservationByIndex(0);
+      if (clouds)
+        EXPECT_TRUE(std::dynamic_pointer_cast<mrpt::obs::CObservationPointCloud>(obs)) << obs->GetRuntimeClass()->className;
+      else
+        EXPECT_TRUE(std::dynamic_pointer_cast<mrpt::obs::CObservationRotatingScan>(obs)) << obs->GetRuntimeClass()->className;
+      const gasp::RangeScan scan = gasp::rangeScanFrom(*obs);
+      const auto k = std::find_if(truth.begin(), truth.end(),
+                                  [&](const gasp::StampedPose& t) { return std::abs(t.timestamp - scan.timestamp) < 1e-4; });
+      ASSERT_NE(k, truth.end()) << scan.timestamp;
+      at_truth.insert(scan, T_first_world * k->T_world_camera);
+    }
+    // The map's cloud against the truth's: each point's nearest truth point.
+    std::ifstream ply(d + "/map.ply");
+    std::string line;
+    std::size_t vertices = 0;
+    while (std::getline(ply, line) && line != "end_header")
+      if (line.rfind("element vertex ", 0) == 0) vertices = std::stoul(line.substr(15));
+    const std::vector<Eigen::Vector3f> reference = at_truth.points();
+    ASSERT_GT(vertices, 1000u);
+    ASSERT_GT(reference.size(), 1000u);
+    std::vector<double> nearest;
+    for (std::size_t i = 0; i < vertices && std::getline(ply, line); i += 1) {
+      if (i % 10 != 0) continue;  // every tenth point
+      std::istringstream xyz(line);
+      Eigen::Vector3f p;
+      xyz >> p.x() >> p.y() >> p.z();
+      double best = 1e9;
+      for (const Eigen::Vector3f& q : reference) best = std::min(best, static_cast<double>((p - q).norm()));
+      nearest.push_back(best);
+    }
+    std::sort(nearest.begin(), nearest.end());
+    const double median = nearest[nearest.size() / 2], p90 = nearest[nearest.size() * 9 / 10];
+    std::printf("%s: %zu keyframes, %zu points; to the truth's cloud: median %.3f m, 90 %% %.3f m\n",
+                clouds ? "point clouds" : "rotating scans", map.size(), vertices, median, p90);
+    EXPECT_LT(median, 0.02);  // 5 cm voxels of the same returns: about 1 cm apart at the truth
+    EXPECT_LT(p90, 0.05);
+  }
 }

@@ -28,31 +28,40 @@ void VoxelPointMap::insert(const cv::Mat& depth_m, const CameraIntrinsics& intri
   const OrganizedPointCloud cloud = backProject(pinhole, k);
   const Eigen::Matrix3d R = T_world_camera.rotation();
   const Eigen::Vector3d t = T_world_camera.translation();
-  // 21 bits per axis: +-2^20 voxels (10 km at 1 cm).
-  constexpr std::int64_t kHalf = std::int64_t{1} << 20, kMask = (std::int64_t{1} << 21) - 1;
   for (const Eigen::Vector3f& pc : cloud.points) {
     if (!pc.allFinite() || pc.z() <= 0.0f || pc.z() > max_depth_m_) continue;
-    const Eigen::Vector3d p = R * pc.cast<double>() + t;
-    std::int64_t key = 0;
-    bool inside = true;
-    for (int a = 0; a < 3; ++a) {
-      const double cell = std::floor(p[a] / voxel_m_);
-      if (!(std::abs(cell) < static_cast<double>(kHalf))) {  // also NaN; the cast below is then defined
-        inside = false;
-        break;
-      }
-      const std::int64_t v = static_cast<std::int64_t>(cell) + kHalf;
-      key = (key << 21) | (v & kMask);
-    }
-    if (!inside) {
-      ++outside_;
-      continue;
-    }
-    Cell& c = voxels_[key];
-    if (c.count == 0) c.order = voxels_.size() - 1;
-    c.sum += p;
-    ++c.count;
+    add(R * pc.cast<double>() + t);
   }
+}
+
+void VoxelPointMap::insert(const RangeScan& scan, const Isometry3& T_world_sensor) {
+  if (!T_world_sensor.matrix().allFinite()) throw Error("point map: the pose is not finite");
+  validateLayout(scan, "point map");
+  for (int r = 0; r < scan.range_m.rows; ++r)
+    for (int c = 0; c < scan.range_m.cols; ++c) {
+      const float range = scan.range_m.at<float>(r, c);
+      if (!(range > 0.0f) || !std::isfinite(range) || range > max_depth_m_) continue;
+      add(T_world_sensor * (static_cast<double>(range) * scan.direction(r, c)));
+    }
+}
+
+void VoxelPointMap::add(const Eigen::Vector3d& p) {
+  // 21 bits per axis: +-2^20 voxels (10 km at 1 cm).
+  constexpr std::int64_t kHalf = std::int64_t{1} << 20, kMask = (std::int64_t{1} << 21) - 1;
+  std::int64_t key = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double cell = std::floor(p[a] / voxel_m_);
+    if (!(std::abs(cell) < static_cast<double>(kHalf))) {  // also NaN; the cast below is then defined
+      ++outside_;
+      return;
+    }
+    const std::int64_t v = static_cast<std::int64_t>(cell) + kHalf;
+    key = (key << 21) | (v & kMask);
+  }
+  Cell& c = voxels_[key];
+  if (c.count == 0) c.order = voxels_.size() - 1;
+  c.sum += p;
+  ++c.count;
 }
 
 std::vector<Eigen::Vector3f> VoxelPointMap::points() const {

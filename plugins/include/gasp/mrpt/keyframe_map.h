@@ -17,7 +17,9 @@ namespace gasp {
 
 /// One (pose, sensory frame) pair per keyframe: the robot's pose T_world_camera[i]
 /// T_robot_camera^-1 (T_robot_camera = the frame's own, MRPT's sensorPose), as a
-/// CPose3DPDFGaussian, and a sensory frame holding the scan (observationFromFrame()). Its
+/// CPose3DPDFGaussian, and a sensory frame holding the scan (observationFromFrame(); a LiDAR's
+/// sweep as a CObservationRotatingScan, or a CObservationPointCloud when its returns carry their
+/// own rays: toRotatingScan(), toPointCloud()). Its
 /// covariance is covariance_world_camera[i] (the left perturbation [t r] of T_world_camera[i],
 /// which is also the robot pose's: pose_graph_marginals.h) in [x y z yaw pitch roll]
 /// (poseWithCovariance()), or zero when covariance_world_camera is empty. Throws gasp::Error

@@ -1,6 +1,7 @@
 #pragma once
-/// \file point_map.h A point map of the scene from depth images at their poses: the union of
-/// their back-projected points, thinned to one point per voxel (the mean of its points).
+/// \file point_map.h A point map of the scene from depth images (or LiDAR sweeps) at their poses:
+/// the union of their back-projected points, thinned to one point per voxel (the mean of its
+/// points).
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "gasp/core/camera_intrinsics.h"
+#include "gasp/core/range_scan.h"
 #include "gasp/core/pose.h"
 
 namespace gasp {
@@ -31,6 +33,10 @@ class VoxelPointMap {
   /// (the Kinect's depth noise grows with the square of the depth). Throws gasp::Error for a
   /// wrong image type or size, or a non-finite pose.
   void insert(const cv::Mat& depth_m, const CameraIntrinsics& intrinsics, const Isometry3& T_world_camera);
+  /// Adds a rotating LiDAR's sweep (range_scan.h) seen from T_world_sensor: each return along its
+  /// cell's ray; returns farther than max_depth_m are left out. Throws gasp::Error for a scan
+  /// without a layout (validateLayout) or a non-finite pose.
+  void insert(const RangeScan& scan, const Isometry3& T_world_sensor);
 
   std::size_t size() const { return voxels_.size(); }
   /// Points left out because they lie beyond the grid (+-2^20 voxels per axis from the origin).
@@ -49,6 +55,8 @@ class VoxelPointMap {
     std::size_t count = 0;
     std::size_t order = 0;
   };
+  void add(const Eigen::Vector3d& p_world);  ///< into its voxel, or counted outside the grid
+
   double voxel_m_;
   double max_depth_m_;
   std::unordered_map<std::int64_t, Cell> voxels_;
