@@ -160,6 +160,9 @@ int main(int argc, char** argv) {
                           " (one kind of sensor per map)");
     }
     const bool sweeps = first_kind.value_or(false);
+    if (sweeps && !map_output.cloud_path.empty())
+      std::fprintf(stderr, "note: --cloud leaves out the sweeps' returns beyond %g m (--cloud-max-depth)\n",
+                   map_output.cloud_max_depth_m);
     if (sweeps) params = gasp::lidarSlamParams(params);
     std::optional<gasp::DepthSlam> slam;
     gasp::Isometry3 T_robot_camera = gasp::Isometry3::Identity();

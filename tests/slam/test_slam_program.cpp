@@ -365,6 +365,12 @@ TEST(GaspSlamProgram, MapsOfLidarSweepsHoldTheSweepsAsReadAndTheirReturnsWhereTh
       const auto k = std::find_if(truth.begin(), truth.end(),
                                   [&](const gasp::StampedPose& t) { return std::abs(t.timestamp - scan.timestamp) < 1e-4; });
       ASSERT_NE(k, truth.end()) << scan.timestamp;
+      // The simple map's robot pose, with the sweep's mounting (the simulator's: none), is the
+      // LiDAR's: within a few centimetres of the truth.
+      const gasp::Isometry3 T_world_lidar = gasp::fromCPose3D(pose->getMeanVal()) * scan.T_robot_sensor;
+      const gasp::Isometry3 error = (T_first_world * k->T_world_camera).inverse() * T_world_lidar;
+      EXPECT_LT(error.translation().norm(), 0.05) << scan.timestamp;
+      EXPECT_LT(Eigen::AngleAxisd(error.linear()).angle(), 1.0 * M_PI / 180.0) << scan.timestamp;
       at_truth.insert(scan, T_first_world * k->T_world_camera);
     }
     // The map's cloud against the truth's: each point's nearest truth point.
