@@ -131,35 +131,25 @@ std::array<double, 9> slideProfile(const gasp::DepthView& va, const gasp::DepthV
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(pose.information.topLeftCorner<3, 3>());
   const Eigen::Vector3d d = eig.eigenvectors().col(0);
   const double gate = params.returns.gates_m.back();
-  const double min_cos = std::cos(vb.superpixels.max_incidence_deg * M_PI / 180.0);
+  std::vector<Eigen::Vector3d> points;
+  for (int r = 0; r < va.returns->rows(); ++r)
+    for (int c = 0; c < va.returns->cols(); ++c)
+      if (const Eigen::Vector3d& p = va.returns->point(r, c); p.allFinite()) points.push_back(p);
   if (print) std::printf("the returns' cost slid along (%.2f, %.2f, %.2f) [m: cost/terms]:", d.x(), d.y(), d.z());
   for (std::size_t slide = 0; slide < kSlides.size(); ++slide) {
     const double delta = kSlides[slide];
     const gasp::Isometry3 T = Eigen::Translation3d(delta * d) * pose.T_target_source;
-    // Every source return counts: those without a partner within the gate as the truncation.
-    double cost = 0.0;
-    int terms = 0;
-    for (int r = 0; r < va.returns->rows(); ++r)
-      for (int c = 0; c < va.returns->cols(); ++c) {
-        const Eigen::Vector3d& ps = va.returns->point(r, c);
-        if (!ps.allFinite()) continue;
-        cost += 1.0;
-        const Eigen::Vector3d pt = T * ps;
-        const int k = vb.returns->lookUp(pt, params.returns.look_up_columns);
-        if (k < 0) continue;
-        const Eigen::Vector3d& n = vb.returns->normal(k);
-        const Eigen::Vector3d& q = vb.returns->point(k);
-        const double cos_i = std::abs(n.dot(q)) / q.norm();
-        if (cos_i < min_cos) continue;
-        // As the returns' rounds associate: within a cell's footprint of the return it fell on.
-        if ((pt - q).norm() > gate + q.norm() * vb.returns->halfCellRad() / cos_i) continue;
-        const double dist = n.dot(pt - q);
-        if (std::abs(dist) > gate) continue;
-        cost += dist * dist / (gate * gate) - 1.0;
-        ++terms;
-      }
+    // The returns' rounds' last-gate terms; every return without one counts as the gate.
+    const std::vector<gasp::PointToPlane> terms = gasp::returnTerms(points, *vb.returns, T, gate,
+                                                                    params.returns.look_up_columns, vb.superpixels.max_incidence_deg);
+    double cost = static_cast<double>(points.size() - terms.size());
+    for (const gasp::PointToPlane& t : terms) {
+      const double dist = t.n_target.dot(T * t.p_source - t.q_target);
+      cost += dist * dist / (gate * gate);
+    }
+    const int n_terms = static_cast<int>(terms.size());
     costs[slide] = cost;
-    if (print) std::printf(" %+.2f: %.1f/%d", delta, cost, terms);
+    if (print) std::printf(" %+.2f: %.1f/%d", delta, cost, n_terms);
   }
   if (print) std::printf("\n");
   return costs;

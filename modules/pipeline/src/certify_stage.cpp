@@ -23,7 +23,7 @@ void validate(const CertifyParams& p) {
   if (!(p.min_likelihood_ratio == 0.0 || p.min_likelihood_ratio >= 1.0) || !std::isfinite(p.min_likelihood_ratio))
     throw Error("certify: min_likelihood_ratio must be 0 (off) or finite and >= 1");
   if (!(p.violation_nats >= 0.0) || !std::isfinite(p.violation_nats))
-    throw Error("certify: violation_nats must be >= 0 and finite");
+    throw Error("certify: likelihood_violation_nats must be >= 0 and finite");
 }
 
 ViewsCertificate certifyViews(const DepthView& source, const DepthView& target, const CertifyParams& params) {

@@ -89,6 +89,27 @@ Eigen::Vector3d SweepReturns::fitNormal(int r, int c) const {
   return normal.dot(centre) > 0.0 ? -normal : normal;
 }
 
+std::vector<PointToPlane> returnTerms(const std::vector<Eigen::Vector3d>& source_points, const SweepReturns& target,
+                                      const Isometry3& T_target_source, double gate, int look_up_columns,
+                                      double max_incidence_deg) {
+  const double min_cos = std::cos(max_incidence_deg * M_PI / 180.0);
+  std::vector<PointToPlane> terms;
+  for (const Eigen::Vector3d& ps : source_points) {
+    const Eigen::Vector3d pt = T_target_source * ps;
+    const int i = target.lookUp(pt, look_up_columns);
+    if (i < 0) continue;
+    const Eigen::Vector3d& n = target.normal(i);
+    const Eigen::Vector3d& q = target.point(i);
+    const double range = q.norm();
+    const double cos_i = std::abs(n.dot(q)) / range;
+    if (cos_i < min_cos || std::abs(n.dot(pt - q)) > gate) continue;
+    // In the plane, the point can be a cell's footprint away from the return it fell on.
+    if ((pt - q).norm() > gate + range * target.halfCellRad() / cos_i) continue;
+    terms.push_back(PointToPlane{ps, q, n, 1.0});
+  }
+  return terms;
+}
+
 RegistrationResult refineOnReturns(const SweepReturns& source, const SweepReturns& target, const Isometry3& T_target_source,
                                    const ReturnsRefineParams& p, const RefinementParams& solver, double max_incidence_deg) {
   RegistrationResult result;
@@ -100,24 +121,10 @@ RegistrationResult refineOnReturns(const SweepReturns& source, const SweepReturn
   for (int r = 0; r < source.rows(); ++r)
     for (int c = 0; c < source.cols(); c += p.column_step)
       if (const Eigen::Vector3d& q = source.point(r, c); q.allFinite()) points.push_back(q);
-  const double min_cos = std::cos(max_incidence_deg * M_PI / 180.0);
   Isometry3 T = T_target_source;
   for (int round = 0; round < p.max_rounds; ++round) {
     const double gate = p.gates_m[std::min(static_cast<std::size_t>(round), p.gates_m.size() - 1)];
-    std::vector<PointToPlane> terms;
-    for (const Eigen::Vector3d& ps : points) {
-      const Eigen::Vector3d pt = T * ps;
-      const int i = target.lookUp(pt, p.look_up_columns);
-      if (i < 0) continue;
-      const Eigen::Vector3d& n = target.normal(i);
-      const Eigen::Vector3d& q = target.point(i);
-      const double range = q.norm();
-      const double cos_i = std::abs(n.dot(q)) / range;
-      if (cos_i < min_cos || std::abs(n.dot(pt - q)) > gate) continue;
-      // In the plane, the point can be a cell's footprint away from the return it fell on.
-      if ((pt - q).norm() > gate + range * target.halfCellRad() / cos_i) continue;
-      terms.push_back(PointToPlane{ps, q, n, 1.0});
-    }
+    const std::vector<PointToPlane> terms = returnTerms(points, target, T, gate, p.look_up_columns, max_incidence_deg);
     if (terms.size() < 6) {
       result.reason = "returns refinement: " + std::to_string(terms.size()) + " point-to-plane terms in round " +
                       std::to_string(round + 1) + " (at least 6 needed)";

@@ -80,6 +80,14 @@ class SweepReturns {
   std::vector<Eigen::Vector3d> point_, normal_;
 };
 
+/// One round's point-to-plane terms: each source point (sensor frame) mapped by T_target_source
+/// takes the target's return of nearest direction with a normal (SweepReturns::lookUp within
+/// look_up_columns) when that return is seen within max_incidence_deg, the point lies within `gate`
+/// of its plane and within the gate plus a cell's footprint of the return across it.
+std::vector<PointToPlane> returnTerms(const std::vector<Eigen::Vector3d>& source_points, const SweepReturns& target,
+                                      const Isometry3& T_target_source, double gate, int look_up_columns,
+                                      double max_incidence_deg);
+
 /// Refines T_target_source between the two sweeps (point-to-plane, the target's normals;
 /// `solver`: loss, noise and degeneracy test; returns seen beyond max_incidence_deg give no term).
 /// The target's normals are those it was made with (params' normal settings are not used again).
