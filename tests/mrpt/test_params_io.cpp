@@ -94,6 +94,7 @@ PairParams everythingChanged() {
   p.certify.visibility.max_violation_ratio = 0.2, p.certify.visibility.max_occluded_ratio = 0.6, p.certify.visibility.min_consistent = 40;
   p.certify.visibility.max_two_way_violation_ratio = 0.07;
   p.certify.visibility.pixel_spread = true, p.refine.pixels.pixel_footprint = true;
+  p.refine.pixels.sample_spacing_deg = 0.5;
   p.hypothesise.pose.reselection_rounds = 3;
   auto& d = p.refine.solver;
   d.loss = RobustLoss::kCauchy, d.loss_scale_m = 0.025, d.bidirectional = false, d.max_iterations = 45;

@@ -82,6 +82,7 @@ TEST(ParamsFile, WhatIsWrittenReadsBackToTheSameValues) {
   p.graph.function_tolerance = 1e-12;
   p.lidar.patch_area_m2 = 0.7;
   p.lidar.returns_look_up_columns = 3;
+  p.lidar.dense_sample_spacing_deg = 1.25;
   ASSERT_FALSE(gasp::sameParams(p, defaults));
   const gasp::SlamParams back = gasp::readParamsYaml(gasp::paramsYaml(p), "changed");
   EXPECT_TRUE(gasp::sameParams(back, p)) << gasp::paramsYaml(back);
@@ -90,6 +91,7 @@ TEST(ParamsFile, WhatIsWrittenReadsBackToTheSameValues) {
   EXPECT_EQ(back.loop.min_keyframe_gap, 9u);
   EXPECT_EQ(back.lidar.patch_area_m2, 0.7);
   EXPECT_EQ(back.lidar.returns_look_up_columns, 3);
+  EXPECT_EQ(back.lidar.dense_sample_spacing_deg, 1.25);
   EXPECT_TRUE(std::isinf(back.odometry.pair.associate.costs.transpose));
   // A file sets only what it names; the rest keeps the values it is read over.
   const gasp::SlamParams partial = gasp::readParamsYaml("associate:\n  candidates: 7\n", "partial", p);

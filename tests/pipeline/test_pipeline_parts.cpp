@@ -57,6 +57,27 @@ TEST(ProjectiveTerms, DistanceGateDropsFarPoints) {
   EXPECT_THROW(projectiveTerms(a, b, Isometry3::Identity(), p), Error);
 }
 
+// The sample spacing in view angle sets the step where it is coarser than pixel_step: at fx 525,
+// 0.873 deg is 8 pixels, 2 deg 18.3; the terms on the wall follow the step.
+TEST(ProjectiveTerms, TheSampleSpacingInViewAngleSetsTheStepWhereItIsTheCoarser) {
+  const DepthView v = wallView();
+  ProjectiveTermParams p;
+  p.pixel_step = 1;
+  EXPECT_EQ(samplingStep(v.projection, p), 1);  // no spacing: pixel_step alone
+  p.sample_spacing_deg = 0.873;
+  EXPECT_EQ(samplingStep(v.projection, p), 8);
+  p.sample_spacing_deg = 2.0;
+  EXPECT_EQ(samplingStep(v.projection, p), 18);
+  const auto terms = projectiveTerms(v, v, Isometry3::Identity(), p);
+  EXPECT_EQ(terms.size(), static_cast<std::size_t>(((640 + 17) / 18) * ((480 + 17) / 18)));
+  p.pixel_step = 24;  // the coarser of the two
+  EXPECT_EQ(samplingStep(v.projection, p), 24);
+  p.sample_spacing_deg = -1.0;
+  EXPECT_THROW(projectiveTerms(v, v, Isometry3::Identity(), p), Error);
+  p.sample_spacing_deg = std::nan("");
+  EXPECT_THROW(validate(p), Error);
+}
+
 TEST(ViewDegeneracy, AWallIsDegenerateACornerIsNot) {
   DepthView v = wallView();
   const auto d = analyseViewGeometry(v.segmentation);

@@ -204,6 +204,8 @@ TEST(RangeView, TheLidarsPairValuesAreTheCamerasMadeALidars) {
   EXPECT_DOUBLE_EQ(p.hypothesise.pose.ransac.inlier.distance_m,
                    camera.hypothesise.pose.ransac.inlier.distance_m * gasp::lidarCentroidScale(lidar));
   EXPECT_EQ(p.refine.pixels.pixel_step, 1);
+  EXPECT_DOUBLE_EQ(p.refine.pixels.sample_spacing_deg, lidar.dense_sample_spacing_deg);
+  EXPECT_EQ(gasp::PairParams{}.refine.pixels.sample_spacing_deg, 0.0);  // a camera's: pixel_step alone
   EXPECT_DOUBLE_EQ(p.certify.visibility.gate_m, 5.0 * lidar.range_sigma_m);
   EXPECT_DOUBLE_EQ(p.segment.target_patch_area_m2, lidar.patch_area_m2);
   const gasp::PairParams defaults = gasp::lidarPairParams(gasp::LidarParams{});
@@ -213,5 +215,8 @@ TEST(RangeView, TheLidarsPairValuesAreTheCamerasMadeALidars) {
   EXPECT_FALSE(gasp::PairParams{}.certify.symmetry_test);  // a camera's: neither
   EXPECT_EQ(gasp::PairParams{}.certify.violation_nats, 0.0);
   lidar.violation_nats = -1.0;
+  EXPECT_THROW(gasp::validate(lidar), gasp::Error);
+  lidar.violation_nats = 1.5;
+  lidar.dense_sample_spacing_deg = -0.1;
   EXPECT_THROW(gasp::validate(lidar), gasp::Error);
 }

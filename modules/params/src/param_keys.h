@@ -138,6 +138,7 @@ void refineFields(P& p, F&& f) {  // dense rounds (dense_rounds.h), pixel and ed
   f("projective_max_distance_m", d.pixels.max_distance_m);
   f("projective_max_normal_angle_deg", d.pixels.max_normal_angle_deg);
   f("projective_pixel_footprint", d.pixels.pixel_footprint);
+  f("projective_sample_spacing_deg", d.pixels.sample_spacing_deg);
   f("edge_terms", d.edges.enabled);
   f("edge_min_jump_m", d.edges.terms.min_jump_m);
   f("edge_jump_per_m2", d.edges.terms.jump_per_m2);
@@ -255,6 +256,7 @@ void lidarFields(P& p, F&& f) {
   f("returns_max_flatness", p.returns_max_flatness);
   f("sweep_symmetry_test", p.symmetry_test);
   f("sweep_violation_nats", p.violation_nats);
+  f("dense_sample_spacing_deg", p.dense_sample_spacing_deg);
 }
 
 /// The pose-graph optimiser (pose_graph_optimizer.h).

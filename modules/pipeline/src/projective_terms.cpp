@@ -1,5 +1,6 @@
 #include "gasp/pipeline/projective_terms.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "gasp/core/depth_image.h"
@@ -13,6 +14,13 @@ void validate(const ProjectiveTermParams& p) {
     throw Error("ProjectiveTermParams: max_distance_m must be finite and > 0");
   if (!(p.max_normal_angle_deg > 0 && p.max_normal_angle_deg <= 180))
     throw Error("ProjectiveTermParams: max_normal_angle_deg must be in (0, 180]");
+  if (!(p.sample_spacing_deg >= 0) || !std::isfinite(p.sample_spacing_deg))
+    throw Error("ProjectiveTermParams: projective_sample_spacing_deg must be finite and >= 0");
+}
+
+int samplingStep(const ViewProjection& projection, const ProjectiveTermParams& p) {
+  const double spacing_px = p.sample_spacing_deg * M_PI / 180.0 * projection.pixelsPerRadian();
+  return std::max(p.pixel_step, static_cast<int>(std::lround(spacing_px)));
 }
 
 namespace {
@@ -46,8 +54,9 @@ std::vector<PointToPlane> projectiveTerms(const DepthView& source, const DepthVi
   const double half_pixel = target.projection.halfPixelDiagonalRad();
   const double min_cos = std::cos(target.superpixels.max_incidence_deg * M_PI / 180.0);
   const Eigen::Matrix3d R = T_target_source.linear();
-  for (int v = 0; v < ls.rows; v += p.pixel_step)
-    for (int u = 0; u < ls.cols; u += p.pixel_step) {
+  const int step = samplingStep(source.projection, p);
+  for (int v = 0; v < ls.rows; v += step)
+    for (int u = 0; u < ls.cols; u += step) {
       const int la = ls.at<int>(v, u);
       if (la < 0) continue;
       const float z = source.depth_m.at<float>(v, u);

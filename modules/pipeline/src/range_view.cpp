@@ -78,6 +78,8 @@ void validate(const LidarParams& p) {
   require(p.patch_area_m2 > 0 && std::isfinite(p.patch_area_m2), "patch_area_m2 must be > 0 and finite");
   require(p.range_sigma_m > 0 && std::isfinite(p.range_sigma_m), "range_sigma_m must be > 0 and finite");
   require(p.violation_nats >= 0 && std::isfinite(p.violation_nats), "sweep_violation_nats must be >= 0 and finite");
+  require(p.dense_sample_spacing_deg >= 0 && std::isfinite(p.dense_sample_spacing_deg),
+          "dense_sample_spacing_deg must be >= 0 and finite");
   validate(returnsRefineParams(p));
 }
 
@@ -154,8 +156,9 @@ PairParams lidarPairParams(const LidarParams& lidar, const PairParams& camera) {
   // A binned cell is 0.4-2 deg wide: gates widen by its spread on the surface.
   p.certify.visibility.pixel_spread = true;
   p.refine.pixels.pixel_footprint = true;
-  // Every cell.
+  // Every cell, or as far apart as a camera's samples where the cells are finer.
   p.refine.pixels.pixel_step = 1;
+  p.refine.pixels.sample_spacing_deg = lidar.dense_sample_spacing_deg;
   p.certify.visibility.pixel_step = 1;
   p.refine.edges.enabled = false;
   p.refine.slide_scan.enabled = false;

@@ -22,10 +22,19 @@ struct ProjectiveTermParams {
   /// camera, whose dense rounds were measured without.
   bool pixel_footprint = false;
   double max_normal_angle_deg = 20.0;  ///< gate on the angle between the two patch normals [deg]
+  /// Samples at least this far apart in view angle [deg, >= 0]: the step is the larger of
+  /// pixel_step and this angle in the source view's pixels, rounded (samplingStep). 0: pixel_step
+  /// alone (a camera's). LiDAR sweeps (LidarParams::dense_sample_spacing_deg): about a camera's
+  /// spacing, so views of finer cells are not sampled more densely than the rounds were measured on.
+  double sample_spacing_deg = 0.0;
 };
 
 /// Throws gasp::Error for a parameter out of range.
 void validate(const ProjectiveTermParams& params);
+
+/// The pixel step projectiveTerms() samples a view of `projection` with: max(pixel_step,
+/// round(sample_spacing_deg in pixels)), pixels per radian as ViewProjection::pixelsPerRadian().
+int samplingStep(const ViewProjection& projection, const ProjectiveTermParams& params);
 
 /// The terms for the current pose. Empty when nothing overlaps.
 std::vector<PointToPlane> projectiveTerms(const DepthView& source, const DepthView& target,

@@ -54,6 +54,11 @@ struct LidarParams {
   /// CertifyParams::violation_nats for sweeps: a sample in the other sweep's free space is ten
   /// times less likely than an occluded one (ln 10).
   double violation_nats = 2.302585092994046;
+  /// The dense rounds' samples at least this far apart in view angle [deg]
+  /// (ProjectiveTermParams::sample_spacing_deg): a camera's every 8th pixel at 525 px focal
+  /// length. Binned cells of 16 and 32 lasers (1.4-2 deg) are each sampled; 64 lasers' (0.4 deg)
+  /// every second one each way.
+  double dense_sample_spacing_deg = 0.873;
 };
 
 /// Throws gasp::Error naming the first parameter out of its range.
