@@ -17,8 +17,12 @@
 // --method fpfh: PCL FPFH + RANSAC on the returns (gasp::baselines, when built), the same scoring.
 // --pair I,J: only that pair, with the pipeline's verdicts (inliers, support, certificate), the
 // claimed pose's NEES against the truth (pose_consistency.h), or for a refused pose what the
-// returns' rounds (stage 7) would have made of it, and the returns' cost with the pose slid along
-// its weakest translation (slideProfile).
+// returns' rounds (stage 7) would have made of it and what the free-space test says of that; the
+// returns' cost with the pose slid along its weakest translation (slideProfile), the returns'
+// rounds restarted 0.1 and 0.2 m either side along it (printBasin), the distinct surfaces fixing
+// it (surfacesAlongWeakest), the rounds on the source's odd and even rows alone
+// (printSplitHalves), and association against the truth (printAssociationOracle: true partners,
+// true associations, the partner's edit-distance rank).
 // --dense-step N (gasp): the dense rounds sample every N-th binned cell each way (the LiDAR
 // values' 1 otherwise): a study of their time on 64-laser views (docs/lidar.md "Not yet").
 // A claimed pose within 5 cm / 0.5 deg of the truth is right (the bound), one within
@@ -50,6 +54,8 @@
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/eval/pose_consistency.h"
 #include "gasp/params/params_file.h"
+#include "gasp/pipeline/associate_stage.h"
+#include "gasp/pipeline/certify_stage.h"
 #include "gasp/pipeline/range_view.h"
 #include "gasp/pipeline/returns_stage.h"
 #include "gasp/pipeline/visibility_check.h"
@@ -118,6 +124,158 @@ double sharedDepth(const gasp::RangeScan& source, const gasp::RangeScan& target,
   const gasp::VisibilityCheck c = gasp::checkVisibility(va, vb, T_true, every);
   const int valid = cv::countNonZero(va.depth_m > 0) + cv::countNonZero(vb.depth_m > 0);
   return valid > 0 ? static_cast<double>(c.consistent) / valid : 0.0;
+}
+
+/// --pair: the returns' rounds from `start` on the source's even rows and on its odd rows alone
+/// (two sets of returns that share no measurement), each half's error against the truth, and
+/// their disagreement against the information both claim: xi^T (C_even + C_odd)^-1 xi,
+/// chi-square with 6 degrees of freedom when the claimed information is right.
+void printSplitHalves(const gasp::RangeScan& source, const gasp::DepthView& vb, const gasp::Isometry3& start,
+                      const gasp::Isometry3& T_true, const gasp::PairParams& params) {
+  std::array<gasp::RegistrationResult, 2> half;
+  for (int parity = 0; parity < 2; ++parity) {
+    gasp::RangeScan h = source;
+    h.range_m = source.range_m.clone();
+    for (int r = parity; r < h.range_m.rows; r += 2) h.range_m.row(r).setTo(0.0f);
+    const gasp::SweepReturns returns(h, params.returns);
+    half[static_cast<std::size_t>(parity)] = gasp::refineOnReturns(returns, *vb.returns, start, params.returns, params.refine.solver,
+                                                                   vb.superpixels.max_incidence_deg);
+  }
+  std::printf("  split halves (odd rows, even rows):");
+  for (const auto& q : half) {
+    const gasp::Isometry3 e = T_true.inverse() * q.T_target_source;
+    std::printf(" success %d error %.2f cm %.3f deg;", q.success, 100.0 * e.translation().norm(),
+                Eigen::AngleAxisd(e.linear()).angle() * 180.0 / M_PI);
+  }
+  if (half[0].success && half[1].success && half[0].information.determinant() > 0.0 && half[1].information.determinant() > 0.0) {
+    const gasp::eval::Vector6 xi = gasp::eval::leftPerturbation(half[0].T_target_source, half[1].T_target_source);
+    const gasp::Matrix6d C = half[0].information.inverse() + half[1].information.inverse();
+    std::printf(" disagreement %.1f (translation %.2f cm)", xi.dot(C.ldlt().solve(xi)), 100.0 * xi.head<3>().norm());
+  }
+  std::printf("\n");
+}
+
+/// How many distinct surfaces fix the weakest translation of a returns' pose: the returns' last-gate
+/// terms at the pose grouped by the target patch their plane point lies in (the binned target
+/// view's labels), each group weighing (n . d)^2 summed over its terms for the weakest direction
+/// d of the translation information; the effective count (sum w)^2 / sum w^2, and the largest
+/// group's share.
+struct SurfaceCount {
+  double effective = 0.0, largest_share = 0.0;
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();
+};
+SurfaceCount surfacesAlongWeakest(const gasp::DepthView& va, const gasp::DepthView& vb, const gasp::RegistrationResult& pose,
+                                  const gasp::PairParams& params) {
+  SurfaceCount out;
+  if (!va.returns || !vb.returns) return out;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(pose.information.topLeftCorner<3, 3>());
+  const Eigen::Vector3d d = eig.eigenvectors().col(0);
+  out.direction = d;
+  std::vector<Eigen::Vector3d> points;
+  for (int r = 0; r < va.returns->rows(); ++r)
+    for (int c = 0; c < va.returns->cols(); ++c)
+      if (const Eigen::Vector3d& p = va.returns->point(r, c); p.allFinite()) points.push_back(p);
+  const std::vector<gasp::PointToPlane> terms = gasp::returnTerms(points, *vb.returns, pose.T_target_source, params.returns.gates_m.back(),
+                                                                  params.returns.look_up_columns, vb.superpixels.max_incidence_deg);
+  std::vector<double> w(vb.segmentation.patches.size() + 1, 0.0);  // the last: no patch
+  for (const gasp::PointToPlane& t : terms) {
+    double u = 0, v = 0;
+    int label = -1;
+    if (vb.projection.project(t.q_target, u, v)) {
+      const int ui = static_cast<int>(std::lround(u)), vi = static_cast<int>(std::lround(v));
+      if (ui >= 0 && vi >= 0 && ui < vb.segmentation.labels.cols && vi < vb.segmentation.labels.rows)
+        label = vb.segmentation.labels.at<int>(vi, ui);
+    }
+    const double x = t.n_target.dot(d);
+    w[label >= 0 ? static_cast<std::size_t>(label) : w.size() - 1] += x * x;
+  }
+  double sum = 0, sum2 = 0, largest = 0;
+  for (double x : w) sum += x, sum2 += x * x, largest = std::max(largest, x);
+  if (sum2 > 0) out.effective = sum * sum / sum2, out.largest_share = largest / sum;
+  return out;
+}
+
+/// --pair: the returns' rounds again from the pose moved +-`offset_m` along the weakest translation
+/// of its information: how far from it each ends, along that direction and in all.
+void printBasin(const gasp::DepthView& va, const gasp::DepthView& vb, const gasp::RegistrationResult& pose,
+                const gasp::Isometry3& T_true, const gasp::PairParams& params, double offset_m) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(pose.information.topLeftCorner<3, 3>());
+  const Eigen::Vector3d d = eig.eigenvectors().col(0);
+  std::printf("  from %.2f m either side along (%.2f, %.2f, %.2f):", offset_m, d.x(), d.y(), d.z());
+  for (const double s : {-offset_m, offset_m}) {
+    const gasp::Isometry3 start = Eigen::Translation3d(s * d) * pose.T_target_source;
+    const gasp::RegistrationResult q = gasp::refineOnReturns(*va.returns, *vb.returns, start, params.returns,
+                                                            params.refine.solver, vb.superpixels.max_incidence_deg);
+    const Eigen::Vector3d t = q.T_target_source.translation() - pose.T_target_source.translation();
+    const gasp::Isometry3 e = T_true.inverse() * q.T_target_source;
+    std::printf(" success %d, ends %.2f cm along it (%.2f cm in all; error %.2f cm);", q.success, 100.0 * t.dot(d),
+                100.0 * t.norm(), 100.0 * e.translation().norm());
+  }
+  std::printf("\n");
+}
+
+/// --pair: how far association is from the truth. A source patch's true partner is the target
+/// patch whose centroid is nearest its own under the true pose, within RANSAC's inlier distance
+/// and with normals within 30 deg. Prints how many source patches have one, how many of the
+/// mutual and one-way associations are true partners, and, over every patch with a partner, the
+/// rank of its partner's normalised edit distance among all target patches (exhaustive search).
+void printAssociationOracle(const gasp::DepthView& va, const gasp::DepthView& vb, const gasp::Isometry3& T_true,
+                            const gasp::PairParams& params) {
+  const gasp::AssociatedViews a = gasp::associate(va, vb, params.associate);
+  const double gate = params.hypothesise.pose.ransac.inlier.distance_m;
+  const auto& S = a.source_patches;
+  const auto& Tp = a.target_patches;
+  std::vector<int> partner(S.size(), -1);
+  int with_partner = 0;
+  for (std::size_t s = 0; s < S.size(); ++s) {
+    if (!gasp::isUsable(S[s]) || a.source_features[s].empty()) continue;
+    const Eigen::Vector3d c = T_true * S[s].centroid, n = T_true.linear() * S[s].normal.normalized();
+    double best = gate;
+    for (std::size_t t = 0; t < Tp.size(); ++t) {
+      if (!gasp::isUsable(Tp[t]) || a.target_features[t].empty()) continue;
+      const double d = (Tp[t].centroid - c).norm();
+      if (d <= best && n.dot(Tp[t].normal.normalized()) >= std::cos(30.0 * M_PI / 180.0)) best = d, partner[s] = static_cast<int>(t);
+    }
+    with_partner += partner[s] >= 0 ? 1 : 0;
+  }
+  auto right = [&](const std::vector<gasp::PatchAssociation>& v) {
+    int n = 0;
+    for (const auto& x : v) n += partner[static_cast<std::size_t>(x.a)] == x.b ? 1 : 0;
+    return n;
+  };
+  std::printf("association against the truth: %d of %zu source patches have a true partner (centroid within %.2f m); "
+              "mutual associations true %d of %zu, one-way %d of %zu\n",
+              with_partner, S.size(), gate, right(a.result.associations), a.result.associations.size(),
+              right(a.result.one_way), a.result.one_way.size());
+  std::array<int, 5> ranks{};  // 1, 2-5, 6-20, 21-100, beyond
+  std::vector<double> d_true;
+  int within_lambda = 0, strictly_best = 0;
+  gasp::EditDistanceWorkspace ws;
+  const double inf = std::numeric_limits<double>::infinity();
+  for (std::size_t s = 0; s < S.size(); ++s) {
+    if (partner[s] < 0) continue;
+    const auto& q = a.source_features[s];
+    auto dhat = [&](std::size_t t) {
+      const auto& qt = a.target_features[t];
+      if (qt.empty()) return inf;
+      return gasp::featureSetDistance(q, qt, a.params.match, a.params.costs, inf, ws) / static_cast<double>(q.size() + qt.size());
+    };
+    const double mine = dhat(static_cast<std::size_t>(partner[s]));
+    int better = 0, tied = 0;
+    for (std::size_t t = 0; t < Tp.size(); ++t) {
+      if (static_cast<int>(t) == partner[s]) continue;
+      const double d = dhat(t);
+      better += d < mine ? 1 : 0;
+      tied += d == mine ? 1 : 0;
+    }
+    ranks[better == 0 ? 0 : better < 5 ? 1 : better < 20 ? 2 : better < 100 ? 3 : 4] += 1;
+    strictly_best += better == 0 && tied == 0 ? 1 : 0;
+    d_true.push_back(mine);
+    within_lambda += mine <= a.params.lambda ? 1 : 0;
+  }
+  std::printf("  the true partner's edit distance: median %.3f, within lambda %.2f for %d; its rank 1: %d, 2-5: %d, "
+              "6-20: %d, 21-100: %d, beyond: %d (strictly best, no tie: %d)\n",
+              median(d_true), a.params.lambda, within_lambda, ranks[0], ranks[1], ranks[2], ranks[3], ranks[4], strictly_best);
 }
 
 /// The returns' truncated point-to-plane cost (the last gate, each source return re-associated as
@@ -278,7 +436,24 @@ int main(int argc, char** argv) {
                     q.reason.c_str(), 100.0 * eq.translation().norm(), Eigen::AngleAxisd(eq.linear()).angle() * 180.0 / M_PI);
         for (int k = 0; k < 6; ++k) std::printf(" %.3g", q.information_eigenvalues(k));
         std::printf("\n");
-        if (q.success) slideProfile(va, vb, q, params);
+        printSplitHalves(sweeps[i], vb, r.pair.pose.T_target_source, T_true, params);
+        if (q.success) {  // what the certificate's free-space test says of that pose
+          const gasp::VisibilityCheck c = gasp::freeSpaceTest(va, vb, params.certify, false)(q.T_target_source);
+          std::printf("  its free-space test: passed %d, violations %.3f / %.3f, occluded %.3f, consistent %d (%s)\n", c.passed,
+                      c.violation_ratio, c.violation_ratio_lesser, c.occluded_ratio, c.consistent, c.reason.c_str());
+        }
+        if (q.success) {
+          slideProfile(va, vb, q, params);
+          const SurfaceCount n = surfacesAlongWeakest(va, vb, q, params);
+          std::printf("  surfaces along the weakest translation (%.2f, %.2f, %.2f): effective %.1f, largest share %.2f\n",
+                      n.direction.x(), n.direction.y(), n.direction.z(), n.effective, n.largest_share);
+          for (const double offset : {0.1, 0.2}) printBasin(va, vb, q, T_true, params, offset);
+        }
+      }
+      {
+        const gasp::DepthView va = gasp::makeRangeView(sweeps[i], params.segment, params.returns);
+        const gasp::DepthView vb = gasp::makeRangeView(sweeps[j], params.segment, params.returns);
+        printAssociationOracle(va, vb, T_true, params);
       }
       const PatchShares s = patchShares(r, sweeps[i], sweeps[j]);
       std::printf("verified %zu of %zu source patches on target patches (%zu source patches)\n", s.verified, s.landing,
@@ -287,6 +462,11 @@ int main(int argc, char** argv) {
         const gasp::DepthView va = gasp::makeRangeView(sweeps[i], params.segment, params.returns);
         const gasp::DepthView vb = gasp::makeRangeView(sweeps[j], params.segment, params.returns);
         slideProfile(va, vb, r.pair.pose, params);
+        const SurfaceCount n = surfacesAlongWeakest(va, vb, r.pair.pose, params);
+        std::printf("  surfaces along the weakest translation (%.2f, %.2f, %.2f): effective %.1f, largest share %.2f\n",
+                    n.direction.x(), n.direction.y(), n.direction.z(), n.effective, n.largest_share);
+        for (const double offset : {0.1, 0.2}) printBasin(va, vb, r.pair.pose, T_true, params, offset);
+        printSplitHalves(sweeps[i], vb, r.pair.pose.T_target_source, T_true, params);
       }
       if (r.pair.pose.success && r.pair.edge_information.determinant() > 0.0) {  // is the claimed certainty consistent with the error? (chi-square, 6 dof)
         const gasp::eval::NeesParts edge = gasp::eval::neesParts(r.pair.pose.T_target_source, T_true, r.pair.edge_information);

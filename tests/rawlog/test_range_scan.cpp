@@ -478,6 +478,36 @@ TEST(RangeScan, TheDefaultsLeaveNoQuarterTurnOnTheRoomsRoll) {
   }
 }
 
+// Stage 7 on a refused pose (pair_registration.h). The 16-laser room's sweeps 30 and 31: the
+// binned cells' dense terms leave the sensor's vertical free while both views' geometry fixes it
+// (the band sees the floor at 75 deg incidence or more), so the certificate refuses the cells'
+// pose; the returns' rounds from it fix the vertical, come back to their pose from 15 cm either
+// side, and their pose is claimed within the bound. On the roll, sweeps 49 and 50, the
+// returns' rounds from the refused pose end 13 cm off and, restarted either side, end elsewhere:
+// no estimate, the basin named.
+TEST(RangeScan, TheReturnsFixTheVerticalTheCellsLeaveFreeOnlyWhereTheyHoldTheirBasin) {
+  const SimulatedSweepPair fixed = simulatedSweeps("room", 16, 30, 31);
+  const gasp::RangePairResult r = gasp::registerRangeScans(fixed.a, fixed.b, gasp::lidarPairParams());
+  ASSERT_TRUE(r.pair.pose.success) << r.pair.pose.reason;
+  EXPECT_TRUE(r.pair.returns_fixed_free);
+  EXPECT_TRUE(r.pair.returns_refined);
+  EXPECT_NE(r.pair.cells_reason.find("not aligned"), std::string::npos) << r.pair.cells_reason;
+  EXPECT_LT(errorCm(fixed.T_b_a, r.pair.pose.T_target_source), 5.0);
+  EXPECT_LT(errorDeg(fixed.T_b_a, r.pair.pose.T_target_source), 0.5);
+
+  const SimulatedSweepPair roll = simulatedSweeps("room", 16, 49, 50);
+  const gasp::RangePairResult q = gasp::registerRangeScans(roll.a, roll.b, gasp::lidarPairParams());
+  EXPECT_FALSE(q.pair.pose.success) << errorCm(roll.T_b_a, q.pair.pose.T_target_source) << " cm";
+  EXPECT_FALSE(q.pair.returns_fixed_free);
+  EXPECT_NE(q.pair.pose.reason.find("do not fix the translation"), std::string::npos) << q.pair.pose.reason;
+
+  gasp::ReturnsRefineParams bad = gasp::returnsRefineParams();
+  EXPECT_DOUBLE_EQ(bad.basin_offset_m, 0.15);  // half the first gate
+  EXPECT_DOUBLE_EQ(bad.basin_tolerance_m, 0.02);  // the range noise
+  bad.basin_offset_m = 0.0;
+  EXPECT_THROW(gasp::validate(bad), gasp::Error);
+}
+
 // The likelihood's charge for samples in the other view's free space (LidarParams::violation_nats)
 // is what lets the symmetry test keep right poses on a street: 16-laser sweeps 30 and 35 of the
 // street's walk (about 4.5 m apart). Without it, a turn fitted to the few samples it shares with

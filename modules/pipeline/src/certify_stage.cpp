@@ -95,6 +95,7 @@ Certificate certify(const RegistrationResult& pose, std::optional<int> dense_ter
   if (c.free_directions.cols() > 0 && views_free.cols() == 0) {
     c.reason = "unobservable: " + directionsText(c.free_directions) +
                ", which the views' own geometry fixes: the structure that fixes it is not aligned";
+    c.not_aligned = true;
     return c;
   }
   if (c.free_directions.cols() > kMaxFreeDirections) {

@@ -137,6 +137,7 @@ void testUniqueness(const DepthView& source, const DepthView& target, const Asso
     record(c, r);
     r.timings = timings;
     r.alternative_taken = true;
+    r.returns_refined = r.returns_fixed_free = false;  // the alternative is the cells' pose
     r.uniqueness_log_ratio = -u.log_ratio;
     if (guided_support >= 0) r.guided_support = guided_support;
   } else if (u.refused) {
@@ -144,6 +145,54 @@ void testUniqueness(const DepthView& source, const DepthView& target, const Asso
     refusal.reason = u.reason;
     record(refusal, r);
   }
+}
+
+/// Stage 7 on a refused pose: the certificate refused the cells' pose in `r` for a direction their
+/// terms leave free while both views' geometry fixes it (`refusal.not_aligned`). Where both views
+/// carry their returns, the returns' rounds from it are claimed instead when they fix every
+/// direction, reach their pose again from either side along their weakest translation
+/// (returnsBasin) and pass the certificate as a full pose; the tests after the certificate
+/// (uniqueness, symmetry) then judge it as any claimed pose.
+void fixOnTheReturns(const DepthView& source, const DepthView& target, const PairParams& p, const FreeSpaceTest& free_space,
+                     const ViewsCertificate& views, const Certificate& refusal, PairResult& r) {
+  if (!refusal.not_aligned || !source.returns || !target.returns || !r.pose.T_target_source.matrix().allFinite()) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  const RegistrationResult q = refineOnReturns(*source.returns, *target.returns, r.pose.T_target_source, p.returns,
+                                               p.refine.solver, target.superpixels.max_incidence_deg);
+  std::string why;
+  if (!q.success) {
+    why = q.reason;
+  } else if (const ReturnsBasin basin = returnsBasin(*source.returns, *target.returns, q, p.returns, p.refine.solver,
+                                                     target.superpixels.max_incidence_deg);
+             !basin.held) {
+    why = basin.reason;
+  }
+  r.timings.returns_ms += msSince(t0);
+  if (!why.empty()) {
+    r.returns_reason = why;
+    r.pose.reason += "; the returns' rounds from it: " + why;
+    return;
+  }
+  const auto t1 = std::chrono::steady_clock::now();
+  const Certificate c = certify(q, std::nullopt, free_space, std::nullopt, views, p.certify);
+  r.timings.certify_ms += msSince(t1);
+  if (!c.claimed || c.partial) {
+    r.returns_reason = "their pose: " + (c.partial ? "partial, " + c.reason : c.reason);
+    r.pose.reason += "; the returns' rounds from it: " + r.returns_reason;
+    return;
+  }
+  r.cells_reason = r.pose.reason;
+  r.pose.T_target_source = q.T_target_source;
+  r.pose.information = q.information;
+  r.pose.information_eigenvalues = q.information_eigenvalues;
+  r.pose.success = false;  // record() claims it
+  r.pose.degenerate = false;
+  r.pose.unobservable_directions.resize(6, 0);
+  r.pose.reason.clear();
+  record(c, r);
+  r.returns_refined = true;
+  r.returns_fixed_free = true;
+  r.returns_reason.clear();
 }
 
 /// The patch pairs RANSAC would count as inliers at a pose: the dense rounds' anchors when no
@@ -236,10 +285,11 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
     record(*dense, msSince(t0), r);
   }
   const auto t1 = std::chrono::steady_clock::now();
-  record(certify(r.pose, dense ? std::optional<int>(dense->rounds.terms) : std::nullopt, free_space,
-                 dense ? dense->check : std::nullopt, views, p.certify),
-         r);
+  const Certificate certificate = certify(r.pose, dense ? std::optional<int>(dense->rounds.terms) : std::nullopt, free_space,
+                                          dense ? dense->check : std::nullopt, views, p.certify);
+  record(certificate, r);
   r.timings.certify_ms = msSince(t1);
+  if (dense) fixOnTheReturns(source, target, p, free_space, views, certificate, r);
   if (r.pose.estimated() && dense && h.verified && h.pose.alternative_T_target_source &&
       p.certify.min_likelihood_ratio > 0.0)
     testUniqueness(source, target, a, h, p, refine_params, free_space, views, r);
@@ -262,7 +312,7 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
 /// Stage 7 in the result: when a full pose is claimed and both views carry their returns, the
 /// returns' rounds from it; their pose and information replace the cells' when they succeed.
 void refineOnTheReturns(const DepthView& source, const DepthView& target, const PairParams& p, PairResult& r) {
-  if (!r.pose.success || !source.returns || !target.returns) return;
+  if (!r.pose.success || r.returns_refined || !source.returns || !target.returns) return;
   const auto t0 = std::chrono::steady_clock::now();
   const RegistrationResult refined = refineOnReturns(*source.returns, *target.returns, r.pose.T_target_source, p.returns,
                                                      p.refine.solver, target.superpixels.max_incidence_deg);
@@ -346,8 +396,10 @@ PairResult trackViews(const DepthView& source, const DepthView& target, const Is
                                   target_edges);
   record(dense, msSince(t0), r);
   const auto t1 = std::chrono::steady_clock::now();
-  record(certify(r.pose, dense.rounds.terms, free_space, dense.check, views, p.certify), r);
+  const Certificate certificate = certify(r.pose, dense.rounds.terms, free_space, dense.check, views, p.certify);
+  record(certificate, r);
   r.timings.certify_ms = msSince(t1);
+  fixOnTheReturns(source, target, p, free_space, views, certificate, r);
   refineOnTheReturns(source, target, p, r);
   return r;
 }

@@ -1,9 +1,12 @@
 #include "gasp/pipeline/returns_stage.h"
 
 #include <Eigen/Eigenvalues>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -22,6 +25,8 @@ void validate(const ReturnsRefineParams& r) {
   require(r.converged_m >= 0 && std::isfinite(r.converged_m), "returns_converged_m must be >= 0 and finite");
   require(r.normal_half_width >= 1 && r.normal_half_width <= 100 && r.max_flatness > 0 && r.max_flatness <= 1,
           "returns_normal_half_width must be in [1, 100] and returns_max_flatness in (0, 1]");
+  require(r.basin_offset_m > 0 && std::isfinite(r.basin_offset_m) && r.basin_tolerance_m > 0 && std::isfinite(r.basin_tolerance_m),
+          "the returns' basin offset and tolerance must be > 0 and finite");
 }
 
 SweepReturns::SweepReturns(const RangeScan& scan, const ReturnsRefineParams& p)
@@ -153,6 +158,43 @@ RegistrationResult refineOnReturns(const RangeScan& source, const RangeScan& tar
   validate(params);
   return refineOnReturns(SweepReturns(source, params), SweepReturns(target, params), T_target_source, params, solver,
                          max_incidence_deg);
+}
+
+ReturnsBasin returnsBasin(const SweepReturns& source, const SweepReturns& target, const RegistrationResult& pose,
+                          const ReturnsRefineParams& params, const RefinementParams& solver, double max_incidence_deg) {
+  validate(params);
+  ReturnsBasin b;
+  if (!pose.T_target_source.matrix().allFinite() || !pose.information.allFinite()) {
+    b.reason = "the returns' basin: no finite pose and information";
+    return b;
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(pose.information.topLeftCorner<3, 3>());
+  b.direction = eig.eigenvectors().col(0);
+  std::array<double, 2> end_m{};
+  tbb::parallel_for(0, 2, [&](int k) {
+    const double offset = k == 0 ? -params.basin_offset_m : params.basin_offset_m;
+    const Isometry3 start = Eigen::Translation3d(offset * b.direction) * pose.T_target_source;
+    const RegistrationResult q = refineOnReturns(source, target, start, params, solver, max_incidence_deg);
+    end_m[static_cast<std::size_t>(k)] = q.success ? (q.T_target_source.translation() - pose.T_target_source.translation()).norm()
+                                                   : std::numeric_limits<double>::infinity();
+  });
+  b.farthest_m = std::max(end_m[0], end_m[1]);
+  b.held = b.farthest_m <= params.basin_tolerance_m;
+  if (!b.held && !std::isfinite(b.farthest_m)) {
+    char text[200];
+    std::snprintf(text, sizeof text, "the returns' rounds restarted %.2f m from their pose along (%.2f, %.2f, %.2f) failed",
+                  params.basin_offset_m, b.direction.x(), b.direction.y(), b.direction.z());
+    b.reason = text;
+  } else if (!b.held) {
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  "the returns' rounds do not fix the translation along (%.2f, %.2f, %.2f): restarted %.2f m either side, "
+                  "one ends %.1f cm from their pose (at most %.1f cm)",
+                  b.direction.x(), b.direction.y(), b.direction.z(), params.basin_offset_m, 100.0 * b.farthest_m,
+                  100.0 * params.basin_tolerance_m);
+    b.reason = text;
+  }
+  return b;
 }
 
 }  // namespace gasp

@@ -107,6 +107,10 @@ struct Certificate {
   std::string reason;           ///< why not claimed; for a partial pose, which directions are free
   std::optional<VisibilityCheck> visibility;  ///< the free-space test of the pose (when it ran)
   bool free_space_refused = false;  ///< refused on the free-space test's violation or occlusion limits
+  /// Refused because the pose's terms leave free a direction both views' own geometry fixes (the
+  /// structure that fixes it was not brought into alignment). For LiDAR views, the returns may
+  /// fix it (pair_registration.h, stage 7).
+  bool not_aligned = false;
   /// Claimed only: information with the model error, zero in a partial pose's free directions.
   Matrix6d edge_information = Matrix6d::Zero();
 };

@@ -12,7 +12,9 @@
 ///   6. retry        one-way partners, then a finer scale, when the chain gives no estimate
 ///                   (retry_stage.h)
 ///   7. returns      LiDAR views: point-to-plane rounds on the sweeps' own returns from a
-///                   claimed pose (returns_stage.h)
+///                   claimed pose (returns_stage.h); from a pose refused for a direction the
+///                   cells leave free that the views fix, when the returns fix it (their basin)
+///                   and their pose passes the certificate
 /// The result is what a SLAM system consumes: T_target_source with its information matrix, or
 /// no estimate with the reason (too few associations, no consensus, degenerate geometry,
 /// contradicted free space).
@@ -137,6 +139,12 @@ struct PairResult {
   /// pose stays and returns_reason says why.
   bool returns_refined = false;
   std::string returns_reason;
+  /// Stage 7 fixed what the cells left free: the certificate refused the cells' pose for a direction
+  /// their terms leave free while both views' geometry fixes it (Certificate::not_aligned), and the
+  /// returns' rounds from it fixed every direction, held their basin (returnsBasin) and passed the
+  /// certificate; the claimed pose is theirs (returns_refined), and cells_reason keeps the refusal.
+  bool returns_fixed_free = false;
+  std::string cells_reason;
 };
 
 /// The source and target views whose patches r's indices (association, used, verified) refer to:

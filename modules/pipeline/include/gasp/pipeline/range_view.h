@@ -65,7 +65,8 @@ struct LidarParams {
 void validate(const LidarParams& params);
 
 /// The returns' rounds of `params`: gates of 15, 7.5 and 4 range_sigma_m (0.3, 0.15, 0.08 m at
-/// 2 cm), the other settings as given.
+/// 2 cm), their basin test restarted half the first gate away and held within range_sigma_m, the
+/// other settings as given.
 ReturnsRefineParams returnsRefineParams(const LidarParams& params = {});
 
 /// The segmentation for binned sweeps: patches of params.patch_area_m2, at full resolution of the

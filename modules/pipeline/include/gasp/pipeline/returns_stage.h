@@ -34,6 +34,12 @@ struct ReturnsRefineParams {
   /// its thinnest spread is below max_flatness of the next (a surface, not an edge or foliage).
   int normal_half_width = 3;
   double max_flatness = 0.3;
+  /// The returns fix a direction the cells left free (returnsBasin) when their rounds reach their
+  /// pose again from starts basin_offset_m either side of it along its weakest translation, each
+  /// ending within basin_tolerance_m of it [m, > 0]. Sweeps: half the first gate (a surface moved
+  /// that far still lies inside it) and the range noise (returnsRefineParams).
+  double basin_offset_m = 0.15;
+  double basin_tolerance_m = 0.02;
 };
 
 /// Throws gasp::Error naming the first parameter out of its range.
@@ -100,5 +106,22 @@ RegistrationResult refineOnReturns(const SweepReturns& source, const SweepReturn
 RegistrationResult refineOnReturns(const RangeScan& source, const RangeScan& target, const Isometry3& T_target_source,
                                    const ReturnsRefineParams& params = {}, const RefinementParams& solver = {},
                                    double max_incidence_deg = 80.0);
+
+/// Whether the returns' rounds fix their pose's weakest translation themselves, rather than keep
+/// it where they started: the rounds run again from `pose` moved params.basin_offset_m either way
+/// along the weakest eigenvector of its translation information, and both must succeed and end
+/// within params.basin_tolerance_m of it. On the binned cells' poses of the simulated room's roll,
+/// where the cells leave the sensor's vertical free, the rounds that end right come back within
+/// 0.7 cm and those that end wrong stay 5-105 cm away (docs/lidar.md "The returns fix what the
+/// cells leave free").
+struct ReturnsBasin {
+  bool held = false;
+  double farthest_m = 0.0;  ///< the farther of the two restarts' ends from the pose (infinite: one failed)
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();  ///< the weakest translation, target frame
+  std::string reason;  ///< why not, when it did not hold
+};
+ReturnsBasin returnsBasin(const SweepReturns& source, const SweepReturns& target, const RegistrationResult& pose,
+                          const ReturnsRefineParams& params = {}, const RefinementParams& solver = {},
+                          double max_incidence_deg = 80.0);
 
 }  // namespace gasp
