@@ -19,12 +19,14 @@
 // claimed pose's NEES against the truth (pose_consistency.h), or for a refused pose what the
 // returns' rounds (stage 7) would have made of it and what the free-space test says of that; the
 // returns' cost with the pose slid along its weakest translation (slideProfile), the returns'
-// rounds restarted 0.1 and 0.2 m either side along it (printBasin), the distinct surfaces fixing
+// rounds restarted 0.1, 0.15 (the basin test's) and 0.2 m either side along it (printBasin), the
+// distinct surfaces fixing
 // it (surfacesAlongWeakest), the rounds on the source's odd and even rows alone
 // (printSplitHalves), and association against the truth (printAssociationOracle: true partners,
 // true associations, the partner's edit-distance rank).
-// --dense-step N (gasp): the dense rounds sample every N-th binned cell each way (the LiDAR
-// values' 1 otherwise): a study of their time on 64-laser views (docs/lidar.md "Not yet").
+// --dense-step N (gasp): the dense rounds sample at least every N-th binned cell each way (their
+// step is the larger of N and the sample spacing's, lidar.dense_sample_spacing_deg; every cell
+// takes --params with lidar: {dense_sample_spacing_deg: 0}).
 // A claimed pose within 5 cm / 0.5 deg of the truth is right (the bound), one within
 // 20 cm / 5 deg is coarse (a start ICP converges from), any other claimed pose is wrong; the rest
 // give no estimate; in brackets, those of them whose sweeps share at least 30 % of their depth
@@ -195,12 +197,15 @@ SurfaceCount surfacesAlongWeakest(const gasp::DepthView& va, const gasp::DepthVi
   return out;
 }
 
-/// --pair: the returns' rounds again from the pose moved +-`offset_m` along the weakest translation
-/// of its information: how far from it each ends, along that direction and in all.
+/// --pair: the returns' rounds again from the pose moved +-`offset_m` along its weakest translation
+/// (the largest axis of the translation's covariance, as returnsBasin takes it): how far from it
+/// each ends, along that direction and in all.
 void printBasin(const gasp::DepthView& va, const gasp::DepthView& vb, const gasp::RegistrationResult& pose,
                 const gasp::Isometry3& T_true, const gasp::PairParams& params, double offset_m) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(pose.information.topLeftCorner<3, 3>());
-  const Eigen::Vector3d d = eig.eigenvectors().col(0);
+  if (!(pose.information.determinant() > 0.0)) return;
+  const gasp::Matrix6d covariance = pose.information.inverse();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(covariance.topLeftCorner<3, 3>());
+  const Eigen::Vector3d d = eig.eigenvectors().col(2);
   std::printf("  from %.2f m either side along (%.2f, %.2f, %.2f):", offset_m, d.x(), d.y(), d.z());
   for (const double s : {-offset_m, offset_m}) {
     const gasp::Isometry3 start = Eigen::Translation3d(s * d) * pose.T_target_source;
@@ -447,7 +452,7 @@ int main(int argc, char** argv) {
           const SurfaceCount n = surfacesAlongWeakest(va, vb, q, params);
           std::printf("  surfaces along the weakest translation (%.2f, %.2f, %.2f): effective %.1f, largest share %.2f\n",
                       n.direction.x(), n.direction.y(), n.direction.z(), n.effective, n.largest_share);
-          for (const double offset : {0.1, 0.2}) printBasin(va, vb, q, T_true, params, offset);
+          for (const double offset : {0.1, params.returns.basin_offset_m, 0.2}) printBasin(va, vb, q, T_true, params, offset);
         }
       }
       {
@@ -465,7 +470,7 @@ int main(int argc, char** argv) {
         const SurfaceCount n = surfacesAlongWeakest(va, vb, r.pair.pose, params);
         std::printf("  surfaces along the weakest translation (%.2f, %.2f, %.2f): effective %.1f, largest share %.2f\n",
                     n.direction.x(), n.direction.y(), n.direction.z(), n.effective, n.largest_share);
-        for (const double offset : {0.1, 0.2}) printBasin(va, vb, r.pair.pose, T_true, params, offset);
+        for (const double offset : {0.1, params.returns.basin_offset_m, 0.2}) printBasin(va, vb, r.pair.pose, T_true, params, offset);
         printSplitHalves(sweeps[i], vb, r.pair.pose.T_target_source, T_true, params);
       }
       if (r.pair.pose.success && r.pair.edge_information.determinant() > 0.0) {  // is the claimed certainty consistent with the error? (chi-square, 6 dof)

@@ -74,6 +74,8 @@ TEST(ProjectiveTerms, TheSampleSpacingInViewAngleSetsTheStepWhereItIsTheCoarser)
   EXPECT_EQ(samplingStep(v.projection, p), 24);
   p.sample_spacing_deg = -1.0;
   EXPECT_THROW(projectiveTerms(v, v, Isometry3::Identity(), p), Error);
+  p.sample_spacing_deg = 1e12;  // would overflow the step
+  EXPECT_THROW(validate(p), Error);
   p.sample_spacing_deg = std::nan("");
   EXPECT_THROW(validate(p), Error);
 }

@@ -506,6 +506,8 @@ TEST(RangeScan, TheReturnsFixTheVerticalTheCellsLeaveFreeOnlyWhereTheyHoldTheirB
   EXPECT_DOUBLE_EQ(bad.basin_tolerance_m, 0.02);  // the range noise
   bad.basin_offset_m = 0.0;
   EXPECT_THROW(gasp::validate(bad), gasp::Error);
+  bad.basin_offset_m = 0.02;  // a restart that did not move would end within the tolerance
+  EXPECT_THROW(gasp::validate(bad), gasp::Error);
 }
 
 // The likelihood's charge for samples in the other view's free space (LidarParams::violation_nats)

@@ -81,6 +81,11 @@ void expectRightConstraints(const std::vector<gasp::PoseConstraint>& constraints
       ++within;
       continue;
     }
+    if (!(c.information.determinant() > 0.0)) {
+      ADD_FAILURE() << c.from << " -> " << c.to << ": outside the bound (" << cm << " cm, " << deg
+                    << " deg) with an information that is not positive definite";
+      continue;
+    }
     const double nees = gasp::eval::neesParts(c.T_from_to, T_true, c.information).all;
     std::printf("%zu -> %zu%s: %.2f cm, %.3f deg off, NEES %.1f\n", c.from, c.to, c.loop_closure ? " (loop)" : "", cm, deg,
                 nees);

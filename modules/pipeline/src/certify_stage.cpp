@@ -87,6 +87,7 @@ Certificate certify(const RegistrationResult& pose, std::optional<int> dense_ter
   c.free_directions = unitedDirections(pose, views_free);
   if (c.free_directions.cols() > 0 && !params.partial_poses) {
     c.reason = "unobservable: " + directionsText(c.free_directions);
+    c.not_aligned = views_free.cols() == 0;
     return c;
   }
   // A partial pose needs views whose own geometry leaves some direction free: where both views

@@ -138,6 +138,7 @@ void testUniqueness(const DepthView& source, const DepthView& target, const Asso
     r.timings = timings;
     r.alternative_taken = true;
     r.returns_refined = r.returns_fixed_free = false;  // the alternative is the cells' pose
+    r.cells_reason.clear();
     r.uniqueness_log_ratio = -u.log_ratio;
     if (guided_support >= 0) r.guided_support = guided_support;
   } else if (u.refused) {
@@ -289,12 +290,20 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
                                           dense ? dense->check : std::nullopt, views, p.certify);
   record(certificate, r);
   r.timings.certify_ms = msSince(t1);
+  const RegistrationResult cells_refused = r.pose;
   if (dense) fixOnTheReturns(source, target, p, free_space, views, certificate, r);
   if (r.pose.estimated() && dense && h.verified && h.pose.alternative_T_target_source &&
       p.certify.min_likelihood_ratio > 0.0)
     testUniqueness(source, target, a, h, p, refine_params, free_space, views, r);
   if (r.pose.success && dense && p.certify.symmetry_test && p.certify.min_likelihood_ratio > 0.0)
     testSymmetries(source, target, p, refine_params, free_space, views, r);
+  if (r.returns_fixed_free && !r.pose.success) {  // the returns' pose refused after all: the cells' refusal stands
+    r.returns_reason = "their pose: " + r.pose.reason;
+    r.pose = cells_refused;
+    r.pose.reason += "; the returns' rounds from it: " + r.returns_reason;
+    r.returns_refined = r.returns_fixed_free = false;
+    r.cells_reason.clear();
+  }
   if (r.plane_hypothesis && !r.pose.estimated())
     r.pose.reason = no_hypothesis + "; from the views' dominant planes: " + r.pose.reason;
   if (!r.pose.success || !p.hypothesise.guided.enabled) return r;
@@ -496,7 +505,9 @@ ViewSetResult registerViewSets(const std::vector<const DepthView*>& sources,
   for (std::size_t k = 0; k < out.registrations.size(); ++k)
     if (better(out.registrations[k], out.best < 0 ? nullptr : &out.registrations[static_cast<std::size_t>(out.best)]))
       out.best = static_cast<int>(k);
-  // Stage 7 for the one to use only (a finer-scale view carries its view's returns).
+  // Stage 7 for the one to use only (a finer-scale view carries its view's returns); the returns'
+  // rounds from a refused pose ran in each pair's registerAtScale, since they decide which pairs
+  // give an estimate.
   if (out.best >= 0) {
     ViewSetRegistration& best = out.registrations[static_cast<std::size_t>(out.best)];
     refineOnTheReturns(*sources[best.source], *targets[best.target], params, best.result);

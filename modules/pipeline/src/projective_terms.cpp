@@ -14,8 +14,8 @@ void validate(const ProjectiveTermParams& p) {
     throw Error("ProjectiveTermParams: max_distance_m must be finite and > 0");
   if (!(p.max_normal_angle_deg > 0 && p.max_normal_angle_deg <= 180))
     throw Error("ProjectiveTermParams: max_normal_angle_deg must be in (0, 180]");
-  if (!(p.sample_spacing_deg >= 0) || !std::isfinite(p.sample_spacing_deg))
-    throw Error("ProjectiveTermParams: projective_sample_spacing_deg must be finite and >= 0");
+  if (!(p.sample_spacing_deg >= 0 && p.sample_spacing_deg <= 90))
+    throw Error("ProjectiveTermParams: projective_sample_spacing_deg must be in [0, 90]");
 }
 
 int samplingStep(const ViewProjection& projection, const ProjectiveTermParams& p) {

@@ -78,8 +78,7 @@ void validate(const LidarParams& p) {
   require(p.patch_area_m2 > 0 && std::isfinite(p.patch_area_m2), "patch_area_m2 must be > 0 and finite");
   require(p.range_sigma_m > 0 && std::isfinite(p.range_sigma_m), "range_sigma_m must be > 0 and finite");
   require(p.violation_nats >= 0 && std::isfinite(p.violation_nats), "sweep_violation_nats must be >= 0 and finite");
-  require(p.dense_sample_spacing_deg >= 0 && std::isfinite(p.dense_sample_spacing_deg),
-          "dense_sample_spacing_deg must be >= 0 and finite");
+  require(p.dense_sample_spacing_deg >= 0 && p.dense_sample_spacing_deg <= 90, "dense_sample_spacing_deg must be in [0, 90]");
   validate(returnsRefineParams(p));
 }
 

@@ -25,8 +25,9 @@ void validate(const ReturnsRefineParams& r) {
   require(r.converged_m >= 0 && std::isfinite(r.converged_m), "returns_converged_m must be >= 0 and finite");
   require(r.normal_half_width >= 1 && r.normal_half_width <= 100 && r.max_flatness > 0 && r.max_flatness <= 1,
           "returns_normal_half_width must be in [1, 100] and returns_max_flatness in (0, 1]");
-  require(r.basin_offset_m > 0 && std::isfinite(r.basin_offset_m) && r.basin_tolerance_m > 0 && std::isfinite(r.basin_tolerance_m),
-          "the returns' basin offset and tolerance must be > 0 and finite");
+  require(r.basin_offset_m > 0 && std::isfinite(r.basin_offset_m) && r.basin_tolerance_m > 0 &&
+              r.basin_tolerance_m < r.basin_offset_m,
+          "the returns' basin tolerance must be > 0 and below their offset (a restart that did not move would pass)");
 }
 
 SweepReturns::SweepReturns(const RangeScan& scan, const ReturnsRefineParams& p)
@@ -168,8 +169,16 @@ ReturnsBasin returnsBasin(const SweepReturns& source, const SweepReturns& target
     b.reason = "the returns' basin: no finite pose and information";
     return b;
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(pose.information.topLeftCorner<3, 3>());
-  b.direction = eig.eigenvectors().col(0);
+  // The weakest translation with the rotation left free: the largest axis of the translation's
+  // marginal covariance (the information's inverse), not of its conditional information block.
+  const Eigen::LDLT<Matrix6d> ldlt(pose.information);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) {
+    b.reason = "the returns' basin: their information is not positive definite";
+    return b;
+  }
+  const Matrix6d covariance = ldlt.solve(Matrix6d::Identity());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(covariance.topLeftCorner<3, 3>());
+  b.direction = eig.eigenvectors().col(2);
   std::array<double, 2> end_m{};
   tbb::parallel_for(0, 2, [&](int k) {
     const double offset = k == 0 ? -params.basin_offset_m : params.basin_offset_m;

@@ -134,15 +134,17 @@ struct PairResult {
   /// with both reasons. viewsOf() picks the right pair.
   std::shared_ptr<const std::pair<DepthView, DepthView>> retry_views;
   /// Stage 7 (LiDAR views): the returns' rounds refined the claimed pose, whose pose.T_target_source,
-  /// pose.information and edge_information are then theirs (the other fields -- inliers,
-  /// visibility, dense terms -- describe the cells' pose). When they ran and failed, the cells'
-  /// pose stays and returns_reason says why.
+  /// pose.information and edge_information are then theirs (the other fields -- inliers, dense
+  /// terms, and visibility unless returns_fixed_free -- describe the cells' pose). When they ran
+  /// and failed, the cells' pose stays and returns_reason says why.
   bool returns_refined = false;
   std::string returns_reason;
   /// Stage 7 fixed what the cells left free: the certificate refused the cells' pose for a direction
   /// their terms leave free while both views' geometry fixes it (Certificate::not_aligned), and the
   /// returns' rounds from it fixed every direction, held their basin (returnsBasin) and passed the
-  /// certificate; the claimed pose is theirs (returns_refined), and cells_reason keeps the refusal.
+  /// certificate (visibility is its free-space test); the claimed pose is theirs (returns_refined),
+  /// and cells_reason keeps the refusal. When the uniqueness or symmetry test then refuses their
+  /// pose, the cells' refused pose is restored, both reasons in pose.reason, and these are unset.
   bool returns_fixed_free = false;
   std::string cells_reason;
 };

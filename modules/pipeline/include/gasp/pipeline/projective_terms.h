@@ -22,7 +22,7 @@ struct ProjectiveTermParams {
   /// camera, whose dense rounds were measured without.
   bool pixel_footprint = false;
   double max_normal_angle_deg = 20.0;  ///< gate on the angle between the two patch normals [deg]
-  /// Samples at least this far apart in view angle [deg, >= 0]: the step is the larger of
+  /// Samples about this far apart in view angle [deg, in [0, 90]]: the step is the larger of
   /// pixel_step and this angle in the source view's pixels, rounded (samplingStep). 0: pixel_step
   /// alone (a camera's). LiDAR sweeps (LidarParams::dense_sample_spacing_deg): about a camera's
   /// spacing, so views of finer cells are not sampled more densely than the rounds were measured on.

@@ -109,11 +109,11 @@ RegistrationResult refineOnReturns(const RangeScan& source, const RangeScan& tar
 
 /// Whether the returns' rounds fix their pose's weakest translation themselves, rather than keep
 /// it where they started: the rounds run again from `pose` moved params.basin_offset_m either way
-/// along the weakest eigenvector of its translation information, and both must succeed and end
-/// within params.basin_tolerance_m of it. On the binned cells' poses of the simulated room's roll,
-/// where the cells leave the sensor's vertical free, the rounds that end right come back within
-/// 0.7 cm and those that end wrong stay 5-105 cm away (docs/lidar.md "The returns fix what the
-/// cells leave free").
+/// along the largest axis of its translation's covariance (the information's inverse), and both
+/// must succeed and end within params.basin_tolerance_m of it (< basin_offset_m). On the simulated
+/// room's pairs whose cells leave the sensor's vertical free, restarts of the rounds that end
+/// right come back within 0.9 cm, and for the rounds that end wrong the farther restart ends
+/// 15-88 cm away (docs/lidar.md "The returns fix what the cells leave free").
 struct ReturnsBasin {
   bool held = false;
   double farthest_m = 0.0;  ///< the farther of the two restarts' ends from the pose (infinite: one failed)
