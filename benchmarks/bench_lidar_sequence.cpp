@@ -219,6 +219,46 @@ void printBasin(const gasp::DepthView& va, const gasp::DepthView& vb, const gasp
   std::printf("\n");
 }
 
+/// --pair: a free-space test on the returns (a lead, study 2026-11-30-lidar-free-directions): each
+/// source return mapped by T into the target sweep is compared with the target's return nearest
+/// its direction, where that return has a normal: in front of it by more than 5 range sigmas plus
+/// the depth change of its surface across half a cell (range x half cell x tan(incidence), the
+/// incidence clamped at max_incidence_deg) is a violation, behind it by as much is occluded.
+/// Returns the violation share of one direction.
+double returnsViolationShare(const gasp::SweepReturns& from, const gasp::SweepReturns& to, const gasp::Isometry3& T_to_from,
+                             double sigma, double max_incidence_deg, double& occluded_share) {
+  const double max_tan = std::tan(max_incidence_deg * M_PI / 180.0);
+  int consistent = 0, violations = 0, occluded = 0;
+  for (int r = 0; r < from.rows(); ++r)
+    for (int c = 0; c < from.cols(); ++c) {
+      const Eigen::Vector3d& p = from.point(r, c);
+      if (!p.allFinite()) continue;
+      const Eigen::Vector3d q = T_to_from * p;
+      const int i = to.lookUp(q, 0);
+      if (i < 0) continue;
+      const Eigen::Vector3d& t = to.point(i);
+      const double range = t.norm(), cos_i = std::abs(to.normal(i).dot(t)) / range;
+      const double tan_i = std::min(max_tan, std::sqrt(std::max(0.0, 1.0 - cos_i * cos_i)) / std::max(cos_i, 1e-9));
+      const double gate = 5.0 * sigma + range * to.halfCellRad() * tan_i;
+      const double along = q.norm() - range;
+      if (along < -gate) ++violations;
+      else if (along > gate) ++occluded;
+      else ++consistent;
+    }
+  const int n = consistent + violations + occluded;
+  occluded_share = n > 0 ? static_cast<double>(occluded) / n : 0.0;
+  return n > 0 ? static_cast<double>(violations) / n : 0.0;
+}
+
+void printReturnsFreeSpace(const gasp::DepthView& va, const gasp::DepthView& vb, const gasp::Isometry3& T, const char* which,
+                           const gasp::PairParams& params) {
+  const double sigma = params.returns.basin_tolerance_m;  // range_sigma_m for sweeps
+  double occ_ab = 0, occ_ba = 0;
+  const double ab = returnsViolationShare(*va.returns, *vb.returns, T, sigma, vb.superpixels.max_incidence_deg, occ_ab);
+  const double ba = returnsViolationShare(*vb.returns, *va.returns, T.inverse(), sigma, va.superpixels.max_incidence_deg, occ_ba);
+  std::printf("  free space on the returns at %s: violations %.3f / %.3f, occluded %.3f / %.3f\n", which, ab, ba, occ_ab, occ_ba);
+}
+
 /// --pair: how far association is from the truth. A source patch's true partner is the target
 /// patch whose centroid is nearest its own under the true pose, within RANSAC's inlier distance
 /// and with normals within 30 deg. Prints how many source patches have one, how many of the
@@ -442,6 +482,9 @@ int main(int argc, char** argv) {
         for (int k = 0; k < 6; ++k) std::printf(" %.3g", q.information_eigenvalues(k));
         std::printf("\n");
         printSplitHalves(sweeps[i], vb, r.pair.pose.T_target_source, T_true, params);
+        printReturnsFreeSpace(va, vb, r.pair.pose.T_target_source, "the refused pose", params);
+        if (q.success) printReturnsFreeSpace(va, vb, q.T_target_source, "the returns' pose from it", params);
+        printReturnsFreeSpace(va, vb, T_true, "the truth", params);
         if (q.success) {  // what the certificate's free-space test says of that pose
           const gasp::VisibilityCheck c = gasp::freeSpaceTest(va, vb, params.certify, false)(q.T_target_source);
           std::printf("  its free-space test: passed %d, violations %.3f / %.3f, occluded %.3f, consistent %d (%s)\n", c.passed,
@@ -472,6 +515,7 @@ int main(int argc, char** argv) {
                     n.direction.x(), n.direction.y(), n.direction.z(), n.effective, n.largest_share);
         for (const double offset : {0.1, params.returns.basin_offset_m, 0.2}) printBasin(va, vb, r.pair.pose, T_true, params, offset);
         printSplitHalves(sweeps[i], vb, r.pair.pose.T_target_source, T_true, params);
+        printReturnsFreeSpace(va, vb, r.pair.pose.T_target_source, "the claimed pose", params);
       }
       if (r.pair.pose.success && r.pair.edge_information.determinant() > 0.0) {  // is the claimed certainty consistent with the error? (chi-square, 6 dof)
         const gasp::eval::NeesParts edge = gasp::eval::neesParts(r.pair.pose.T_target_source, T_true, r.pair.edge_information);
