@@ -157,31 +157,25 @@ void testUniqueness(const DepthView& source, const DepthView& target, const Asso
 void fixOnTheReturns(const DepthView& source, const DepthView& target, const PairParams& p, const FreeSpaceTest& free_space,
                      const ViewsCertificate& views, const Certificate& refusal, PairResult& r) {
   if (!refusal.not_aligned || !source.returns || !target.returns || !r.pose.T_target_source.matrix().allFinite()) return;
-  const auto t0 = std::chrono::steady_clock::now();
-  const RegistrationResult q = refineOnReturns(*source.returns, *target.returns, r.pose.T_target_source, p.returns,
-                                               p.refine.solver, target.superpixels.max_incidence_deg);
-  std::string why;
-  if (!q.success) {
-    why = q.reason;
-  } else if (const ReturnsBasin basin = returnsBasin(*source.returns, *target.returns, q, p.returns, p.refine.solver,
-                                                     target.superpixels.max_incidence_deg);
-             !basin.held) {
-    why = basin.reason;
-  }
-  r.timings.returns_ms += msSince(t0);
-  if (!why.empty()) {
+  const auto refused = [&r](const std::string& why) {
     r.returns_reason = why;
     r.pose.reason += "; the returns' rounds from it: " + why;
-    return;
-  }
+  };
+  auto t0 = std::chrono::steady_clock::now();
+  const RegistrationResult q = refineOnReturns(*source.returns, *target.returns, r.pose.T_target_source, p.returns,
+                                               p.refine.solver, target.superpixels.max_incidence_deg);
+  r.timings.returns_ms += msSince(t0);
+  if (!q.success) return refused(q.reason);
+  // The certificate before the basin: its free-space test costs less than the basin's two restarts.
   const auto t1 = std::chrono::steady_clock::now();
   const Certificate c = certify(q, std::nullopt, free_space, std::nullopt, views, p.certify);
   r.timings.certify_ms += msSince(t1);
-  if (!c.claimed || c.partial) {
-    r.returns_reason = "their pose: " + (c.partial ? "partial, " + c.reason : c.reason);
-    r.pose.reason += "; the returns' rounds from it: " + r.returns_reason;
-    return;
-  }
+  if (!c.claimed || c.partial) return refused("their pose: " + (c.partial ? "partial, " + c.reason : c.reason));
+  t0 = std::chrono::steady_clock::now();
+  const ReturnsBasin basin =
+      returnsBasin(*source.returns, *target.returns, q, p.returns, p.refine.solver, target.superpixels.max_incidence_deg);
+  r.timings.returns_ms += msSince(t0);
+  if (!basin.held) return refused(basin.reason);
   r.cells_reason = r.pose.reason;
   r.pose.T_target_source = q.T_target_source;
   r.pose.information = q.information;
