@@ -202,10 +202,9 @@ SurfaceCount surfacesAlongWeakest(const gasp::DepthView& va, const gasp::DepthVi
 /// each ends, along that direction and in all.
 void printBasin(const gasp::DepthView& va, const gasp::DepthView& vb, const gasp::RegistrationResult& pose,
                 const gasp::Isometry3& T_true, const gasp::PairParams& params, double offset_m) {
-  if (!(pose.information.determinant() > 0.0)) return;
-  const gasp::Matrix6d covariance = pose.information.inverse();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(covariance.topLeftCorner<3, 3>());
-  const Eigen::Vector3d d = eig.eigenvectors().col(2);
+  const std::optional<Eigen::Vector3d> weakest = gasp::weakestTranslation(pose.information);
+  if (!weakest) return;
+  const Eigen::Vector3d d = *weakest;
   std::printf("  from %.2f m either side along (%.2f, %.2f, %.2f):", offset_m, d.x(), d.y(), d.z());
   for (const double s : {-offset_m, offset_m}) {
     const gasp::Isometry3 start = Eigen::Translation3d(s * d) * pose.T_target_source;
@@ -464,6 +463,9 @@ int main(int argc, char** argv) {
       const gasp::RangePairResult r = gasp::registerRangeScans(sweeps[i], sweeps[j], params);
       const gasp::Isometry3 T_true = truth[j].T_world_camera.inverse() * truth[i].T_world_camera;
       const gasp::Isometry3 e = T_true.inverse() * r.pair.pose.T_target_source;
+      // The pair's views again, segmented once for the diagnostics below.
+      const gasp::DepthView va = gasp::makeRangeView(sweeps[i], params.segment, params.returns);
+      const gasp::DepthView vb = gasp::makeRangeView(sweeps[j], params.segment, params.returns);
       std::printf("sweeps %zu -> %zu: success %d (%s), error %.2f cm %.3f deg\n", i, j, r.pair.pose.success,
                   r.pair.pose.reason.c_str(), 100.0 * e.translation().norm(), Eigen::AngleAxisd(e.linear()).angle() * 180.0 / M_PI);
       std::printf("associations %zu, inliers %d, guided support %d, dense terms %d, uniqueness log-ratio %.2f, "
@@ -471,8 +473,6 @@ int main(int argc, char** argv) {
                   r.pair.association.associations.size(), r.pair.pose.num_inliers, r.pair.guided_support, r.pair.dense_terms,
                   r.pair.uniqueness_log_ratio, r.pair.visibility.violation_ratio, r.pair.visibility.violation_ratio_lesser, r.pair.visibility.occluded_ratio, r.pair.returns_refined, r.pair.returns_reason.c_str());
       if (!r.pair.pose.success && r.pair.dense_rounds_run > 0) {  // would the returns' rounds have found the pose from the refused one?
-        const gasp::DepthView va = gasp::makeRangeView(sweeps[i], params.segment, params.returns);
-        const gasp::DepthView vb = gasp::makeRangeView(sweeps[j], params.segment, params.returns);
         const gasp::RegistrationResult q = gasp::refineOnReturns(*va.returns, *vb.returns, r.pair.pose.T_target_source,
                                                                 params.returns, params.refine.solver, vb.superpixels.max_incidence_deg);
         const gasp::Isometry3 eq = T_true.inverse() * q.T_target_source;
@@ -498,17 +498,11 @@ int main(int argc, char** argv) {
           for (const double offset : {0.1, params.returns.basin_offset_m, 0.2}) printBasin(va, vb, q, T_true, params, offset);
         }
       }
-      {
-        const gasp::DepthView va = gasp::makeRangeView(sweeps[i], params.segment, params.returns);
-        const gasp::DepthView vb = gasp::makeRangeView(sweeps[j], params.segment, params.returns);
-        printAssociationOracle(va, vb, T_true, params);
-      }
+      printAssociationOracle(va, vb, T_true, params);
       const PatchShares s = patchShares(r, sweeps[i], sweeps[j]);
       std::printf("verified %zu of %zu source patches on target patches (%zu source patches)\n", s.verified, s.landing,
                   s.source);
       if (r.pair.pose.success && r.pair.returns_refined) {
-        const gasp::DepthView va = gasp::makeRangeView(sweeps[i], params.segment, params.returns);
-        const gasp::DepthView vb = gasp::makeRangeView(sweeps[j], params.segment, params.returns);
         slideProfile(va, vb, r.pair.pose, params);
         const SurfaceCount n = surfacesAlongWeakest(va, vb, r.pair.pose, params);
         std::printf("  surfaces along the weakest translation (%.2f, %.2f, %.2f): effective %.1f, largest share %.2f\n",

@@ -153,13 +153,17 @@ void testUniqueness(const DepthView& source, const DepthView& target, const Asso
 /// carry their returns, the returns' rounds from it are claimed instead when they fix every
 /// direction, reach their pose again from either side along their weakest translation
 /// (returnsBasin) and pass the certificate as a full pose; the tests after the certificate
-/// (uniqueness, symmetry) then judge it as any claimed pose.
-void fixOnTheReturns(const DepthView& source, const DepthView& target, const PairParams& p, const FreeSpaceTest& free_space,
-                     const ViewsCertificate& views, const Certificate& refusal, PairResult& r) {
-  if (!refusal.not_aligned || !source.returns || !target.returns || !r.pose.T_target_source.matrix().allFinite()) return;
-  const auto refused = [&r](const std::string& why) {
+/// (uniqueness, symmetry) then judge it as any claimed pose. Returns the cells' refused pose when
+/// the returns' pose replaced it (for restoring it should a later test refuse theirs).
+std::optional<RegistrationResult> fixOnTheReturns(const DepthView& source, const DepthView& target, const PairParams& p,
+                                                  const FreeSpaceTest& free_space, const ViewsCertificate& views,
+                                                  const Certificate& refusal, PairResult& r) {
+  if (!refusal.not_aligned || !source.returns || !target.returns || !r.pose.T_target_source.matrix().allFinite())
+    return std::nullopt;
+  const auto refused = [&r](const std::string& why) -> std::optional<RegistrationResult> {
     r.returns_reason = why;
     r.pose.reason += "; the returns' rounds from it: " + why;
+    return std::nullopt;
   };
   auto t0 = std::chrono::steady_clock::now();
   const RegistrationResult q = refineOnReturns(*source.returns, *target.returns, r.pose.T_target_source, p.returns,
@@ -176,6 +180,7 @@ void fixOnTheReturns(const DepthView& source, const DepthView& target, const Pai
       returnsBasin(*source.returns, *target.returns, q, p.returns, p.refine.solver, target.superpixels.max_incidence_deg);
   r.timings.returns_ms += msSince(t0);
   if (!basin.held) return refused(basin.reason);
+  std::optional<RegistrationResult> cells = r.pose;
   r.cells_reason = r.pose.reason;
   r.pose.T_target_source = q.T_target_source;
   r.pose.information = q.information;
@@ -188,6 +193,7 @@ void fixOnTheReturns(const DepthView& source, const DepthView& target, const Pai
   r.returns_refined = true;
   r.returns_fixed_free = true;
   r.returns_reason.clear();
+  return cells;
 }
 
 /// The patch pairs RANSAC would count as inliers at a pose: the dense rounds' anchors when no
@@ -284,16 +290,16 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
                                           dense ? dense->check : std::nullopt, views, p.certify);
   record(certificate, r);
   r.timings.certify_ms = msSince(t1);
-  const RegistrationResult cells_refused = r.pose;
-  if (dense) fixOnTheReturns(source, target, p, free_space, views, certificate, r);
+  const std::optional<RegistrationResult> cells_refused =
+      dense ? fixOnTheReturns(source, target, p, free_space, views, certificate, r) : std::nullopt;
   if (r.pose.estimated() && dense && h.verified && h.pose.alternative_T_target_source &&
       p.certify.min_likelihood_ratio > 0.0)
     testUniqueness(source, target, a, h, p, refine_params, free_space, views, r);
   if (r.pose.success && dense && p.certify.symmetry_test && p.certify.min_likelihood_ratio > 0.0)
     testSymmetries(source, target, p, refine_params, free_space, views, r);
-  if (r.returns_fixed_free && !r.pose.success) {  // the returns' pose refused after all: the cells' refusal stands
+  if (cells_refused && r.returns_fixed_free && !r.pose.success) {  // the returns' pose refused after all: the cells' refusal stands
     r.returns_reason = "their pose: " + r.pose.reason;
-    r.pose = cells_refused;
+    r.pose = *cells_refused;
     r.pose.reason += "; the returns' rounds from it: " + r.returns_reason;
     r.returns_refined = r.returns_fixed_free = false;
     r.cells_reason.clear();

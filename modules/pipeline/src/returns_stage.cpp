@@ -161,24 +161,24 @@ RegistrationResult refineOnReturns(const RangeScan& source, const RangeScan& tar
                          max_incidence_deg);
 }
 
+std::optional<Eigen::Vector3d> weakestTranslation(const Matrix6d& information) {
+  const Eigen::LDLT<Matrix6d> ldlt(information);
+  if (!information.allFinite() || ldlt.info() != Eigen::Success || !ldlt.isPositive()) return std::nullopt;
+  const Matrix6d covariance = ldlt.solve(Matrix6d::Identity());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(covariance.topLeftCorner<3, 3>());
+  return Eigen::Vector3d(eig.eigenvectors().col(2));
+}
+
 ReturnsBasin returnsBasin(const SweepReturns& source, const SweepReturns& target, const RegistrationResult& pose,
                           const ReturnsRefineParams& params, const RefinementParams& solver, double max_incidence_deg) {
   validate(params);
   ReturnsBasin b;
-  if (!pose.T_target_source.matrix().allFinite() || !pose.information.allFinite()) {
-    b.reason = "the returns' basin: no finite pose and information";
+  const std::optional<Eigen::Vector3d> weakest = weakestTranslation(pose.information);
+  if (!pose.T_target_source.matrix().allFinite() || !weakest) {
+    b.reason = "the returns' basin: no finite pose with a positive definite information";
     return b;
   }
-  // The weakest translation with the rotation left free: the largest axis of the translation's
-  // marginal covariance (the information's inverse), not of its conditional information block.
-  const Eigen::LDLT<Matrix6d> ldlt(pose.information);
-  if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) {
-    b.reason = "the returns' basin: their information is not positive definite";
-    return b;
-  }
-  const Matrix6d covariance = ldlt.solve(Matrix6d::Identity());
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(covariance.topLeftCorner<3, 3>());
-  b.direction = eig.eigenvectors().col(2);
+  b.direction = *weakest;
   std::array<double, 2> end_m{};
   tbb::parallel_for(0, 2, [&](int k) {
     const double offset = k == 0 ? -params.basin_offset_m : params.basin_offset_m;

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -114,6 +115,11 @@ RegistrationResult refineOnReturns(const RangeScan& source, const RangeScan& tar
 /// room's pairs whose cells leave the sensor's vertical free, restarts of the rounds that end
 /// right come back within 0.9 cm, and for the rounds that end wrong the farther restart ends
 /// 15-88 cm away (docs/lidar.md "The returns fix what the cells leave free").
+/// The weakest translation of a pose's information [t r]: the unit largest axis of the
+/// translation's marginal covariance (the information's inverse; the rotation left free).
+/// nullopt when the information is not positive definite.
+std::optional<Eigen::Vector3d> weakestTranslation(const Matrix6d& information);
+
 struct ReturnsBasin {
   bool held = false;
   double farthest_m = 0.0;  ///< the farther of the two restarts' ends from the pose (infinite: one failed)
