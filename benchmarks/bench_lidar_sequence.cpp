@@ -58,6 +58,7 @@
 #include "gasp/params/params_file.h"
 #include "gasp/pipeline/associate_stage.h"
 #include "gasp/pipeline/certify_stage.h"
+#include "gasp/pipeline/ground_search.h"
 #include "gasp/pipeline/range_view.h"
 #include "gasp/pipeline/returns_stage.h"
 #include "gasp/pipeline/visibility_check.h"
@@ -472,6 +473,26 @@ int main(int argc, char** argv) {
                   "visibility violations %.3f / %.3f, occluded %.3f, returns refined %d (%s)\n",
                   r.pair.association.associations.size(), r.pair.pose.num_inliers, r.pair.guided_support, r.pair.dense_terms,
                   r.pair.uniqueness_log_ratio, r.pair.visibility.violation_ratio, r.pair.visibility.violation_ratio_lesser, r.pair.visibility.occluded_ratio, r.pair.returns_refined, r.pair.returns_reason.c_str());
+      {  // the ground search on its own (ground_search.h), whether or not the pipeline ran it
+        const gasp::GroundSearchResult g = gasp::groundSearch(*va.returns, *vb.returns, params.ground_search);
+        const gasp::Isometry3 eg = T_true.inverse() * g.T_target_source;
+        std::printf("ground search: found %d (%s) cells %d/%d score %.3f error %.2f cm %.3f deg, %.0f ms", g.found, g.reason.c_str(),
+                    g.source_cells, g.target_cells, g.score, 100.0 * eg.translation().norm(),
+                    Eigen::AngleAxisd(eg.linear()).angle() * 180.0 / M_PI, g.ms);
+        if (g.runner_up) {
+          const gasp::Isometry3 e2 = T_true.inverse() * *g.runner_up;
+          std::printf("; runner-up score %.3f error %.2f cm %.3f deg", g.runner_up_score, 100.0 * e2.translation().norm(),
+                      Eigen::AngleAxisd(e2.linear()).angle() * 180.0 / M_PI);
+        }
+        std::printf("; score at the truth %.3f\n", gasp::groundSearchScore(*va.returns, *vb.returns, T_true, params.ground_search));
+        if (g.found) {
+          const gasp::RegistrationResult q = gasp::refineOnReturns(*va.returns, *vb.returns, g.T_target_source,
+                                                                  params.returns, params.refine.solver, vb.superpixels.max_incidence_deg);
+          const gasp::Isometry3 eq = T_true.inverse() * q.T_target_source;
+          std::printf("  the returns' rounds from it: success %d (%s) error %.2f cm %.3f deg\n", q.success, q.reason.c_str(),
+                      100.0 * eq.translation().norm(), Eigen::AngleAxisd(eq.linear()).angle() * 180.0 / M_PI);
+        }
+      }
       if (!r.pair.pose.success && r.pair.dense_rounds_run > 0) {  // would the returns' rounds have found the pose from the refused one?
         const gasp::RegistrationResult q = gasp::refineOnReturns(*va.returns, *vb.returns, r.pair.pose.T_target_source,
                                                                 params.returns, params.refine.solver, vb.superpixels.max_incidence_deg);

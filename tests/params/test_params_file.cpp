@@ -83,6 +83,8 @@ TEST(ParamsFile, WhatIsWrittenReadsBackToTheSameValues) {
   p.lidar.patch_area_m2 = 0.7;
   p.lidar.returns_look_up_columns = 3;
   p.lidar.dense_sample_spacing_deg = 1.25;
+  p.lidar.ground_search = false;
+  p.lidar.ground_search_max_offset_m = 12.5;
   ASSERT_FALSE(gasp::sameParams(p, defaults));
   const gasp::SlamParams back = gasp::readParamsYaml(gasp::paramsYaml(p), "changed");
   EXPECT_TRUE(gasp::sameParams(back, p)) << gasp::paramsYaml(back);
@@ -92,6 +94,8 @@ TEST(ParamsFile, WhatIsWrittenReadsBackToTheSameValues) {
   EXPECT_EQ(back.lidar.patch_area_m2, 0.7);
   EXPECT_EQ(back.lidar.returns_look_up_columns, 3);
   EXPECT_EQ(back.lidar.dense_sample_spacing_deg, 1.25);
+  EXPECT_FALSE(back.lidar.ground_search);
+  EXPECT_EQ(back.lidar.ground_search_max_offset_m, 12.5);
   EXPECT_TRUE(std::isinf(back.odometry.pair.associate.costs.transpose));
   // A file sets only what it names; the rest keeps the values it is read over.
   const gasp::SlamParams partial = gasp::readParamsYaml("associate:\n  candidates: 7\n", "partial", p);

@@ -219,4 +219,13 @@ TEST(RangeView, TheLidarsPairValuesAreTheCamerasMadeALidars) {
   lidar.violation_nats = 1.5;
   lidar.dense_sample_spacing_deg = -0.1;
   EXPECT_THROW(gasp::validate(lidar), gasp::Error);
+  lidar.dense_sample_spacing_deg = 0.873;
+  EXPECT_TRUE(defaults.ground_search.enabled);
+  lidar.ground_search = false;
+  lidar.ground_search_max_offset_m = 12.5;
+  const gasp::PairParams unsearched = gasp::lidarPairParams(lidar, camera);
+  EXPECT_FALSE(unsearched.ground_search.enabled);
+  EXPECT_DOUBLE_EQ(unsearched.ground_search.max_offset_m, 12.5);
+  lidar.ground_search_max_offset_m = 0.0;
+  EXPECT_THROW(gasp::validate(lidar), gasp::Error);
 }

@@ -257,6 +257,8 @@ void lidarFields(P& p, F&& f) {
   f("sweep_symmetry_test", p.symmetry_test);
   f("sweep_violation_nats", p.violation_nats);
   f("dense_sample_spacing_deg", p.dense_sample_spacing_deg);
+  f("ground_search", p.ground_search);
+  f("ground_search_max_offset_m", p.ground_search_max_offset_m);
 }
 
 /// The pose-graph optimiser (pose_graph_optimizer.h).

@@ -26,6 +26,7 @@ void validate(const PairParams& p) {
   validate(p.certify);
   validate(p.retry);
   validate(p.returns);
+  validate(p.ground_search);
 }
 
 namespace {
@@ -92,10 +93,48 @@ bool refusedByViews(const ViewsCertificate& views, PairResult& r) {
   return true;
 }
 
+/// The certificate's uniqueness test on one alternative start: refined and certified like the
+/// claimed pose in `r` (from `start`, anchored by `anchors`); the more likely of the two stays
+/// claimed only when it is min_likelihood_ratio times more likely. `guided_support`: the
+/// alternative's guided associations (-1: not verified that way).
+void judgeAlternative(const DepthView& source, const DepthView& target, const RegistrationResult& start,
+                      const std::vector<PatchCorrespondence>& anchors, int guided_support, const PairParams& p,
+                      const RefineParams& refine_params, const FreeSpaceTest& free_space, const ViewsCertificate& views,
+                      PairResult& r) {
+  Refinement alternative = refine(source, target, start, anchors, refine_params, free_space,
+                                  views.target_plane ? &*views.target_plane : nullptr);
+  const Certificate c =
+      certify(alternative.pose, alternative.rounds.terms, free_space, alternative.check, views, p.certify);
+  Uniqueness u;
+  if (c.claimed) {
+    alternative.pose.success = !c.partial;
+    alternative.pose.partial = c.partial;
+    if (c.partial) alternative.pose.unobservable_directions = c.free_directions;
+    u = compareAlternative(source, target, r.pose, alternative.pose, 2.0 * p.hypothesise.pose.ransac.inlier.distance_m,
+                           p.certify);
+  }
+  if (!u.tested) return;
+  r.uniqueness_log_ratio = u.log_ratio;
+  if (u.take_alternative) {
+    const PairTimings timings = r.timings;
+    record(alternative, timings.dense_ms, r);
+    record(c, r);
+    r.timings = timings;
+    r.alternative_taken = true;
+    r.returns_refined = r.returns_fixed_free = false;  // the alternative is the cells' pose
+    r.cells_reason.clear();
+    r.uniqueness_log_ratio = -u.log_ratio;
+    if (guided_support >= 0) r.guided_support = guided_support;
+  } else if (u.refused) {
+    Certificate refusal;
+    refusal.reason = u.reason;
+    record(refusal, r);
+  }
+}
+
 /// The certificate's uniqueness test (certify_stage.h): the best distinct alternative RANSAC found
-/// for hypothesis `h` must pass the guided verification as the hypothesis did, and is refined and
-/// certified like the claimed pose in `r`; the more likely of the two stays claimed only when it
-/// is min_likelihood_ratio times more likely.
+/// for hypothesis `h` must pass the guided verification as the hypothesis did, then is judged
+/// (judgeAlternative).
 void testUniqueness(const DepthView& source, const DepthView& target, const AssociatedViews& a, const Hypothesis& h,
                     const PairParams& p, const RefineParams& refine_params, const FreeSpaceTest& free_space,
                     const ViewsCertificate& views, PairResult& r) {
@@ -115,37 +154,9 @@ void testUniqueness(const DepthView& source, const DepthView& target, const Asso
       return;
     }
   }
-  Refinement alternative = refine(source, target, start, correspondencesAt(r, start.inliers), refine_params, free_space,
-                                  views.target_plane ? &*views.target_plane : nullptr);
-  const Certificate c =
-      certify(alternative.pose, alternative.rounds.terms, free_space, alternative.check, views, p.certify);
-  Uniqueness u;
-  if (c.claimed) {
-    alternative.pose.success = !c.partial;
-    alternative.pose.partial = c.partial;
-    if (c.partial) alternative.pose.unobservable_directions = c.free_directions;
-    u = compareAlternative(source, target, r.pose, alternative.pose, 2.0 * p.hypothesise.pose.ransac.inlier.distance_m,
-                           p.certify);
-  }
-  const double ms = msSince(t0);
-  r.timings.certify_ms += ms;
-  if (!u.tested) return;
-  r.uniqueness_log_ratio = u.log_ratio;
-  if (u.take_alternative) {
-    const PairTimings timings = r.timings;
-    record(alternative, timings.dense_ms, r);
-    record(c, r);
-    r.timings = timings;
-    r.alternative_taken = true;
-    r.returns_refined = r.returns_fixed_free = false;  // the alternative is the cells' pose
-    r.cells_reason.clear();
-    r.uniqueness_log_ratio = -u.log_ratio;
-    if (guided_support >= 0) r.guided_support = guided_support;
-  } else if (u.refused) {
-    Certificate refusal;
-    refusal.reason = u.reason;
-    record(refusal, r);
-  }
+  judgeAlternative(source, target, start, correspondencesAt(r, start.inliers), guided_support, p, refine_params, free_space,
+                   views, r);
+  r.timings.certify_ms += msSince(t0);
 }
 
 /// Stage 7 on a refused pose: the certificate refused the cells' pose in `r` for a direction their
@@ -248,33 +259,15 @@ void testSymmetries(const DepthView& source, const DepthView& target, const Pair
   r.timings.certify_ms += msSince(t0);
 }
 
-/// Stages 2-5 on the views as segmented. `finer`: the views of the finer-scale retry (mutual
-/// associations only; its poses face the fallback limit).
-PairResult registerAtScale(const DepthView& source, const DepthView& target, const PairParams& p, bool finer) {
-  PairResult r;
-  const ViewsCertificate views = certifyViews(source, target, p.certify);  // can these views fix a pose at all?
-  if (refusedByViews(views, r)) return r;
-  const AssociatedViews a = associate(source, target, p.associate);
-  r.association = a.result;
-  r.timings.association_ms = a.ms;
-  Hypothesis h;
-  if (a.result.associations.empty() && a.result.one_way.empty())
-    r.pose.reason = "no associations: " + a.result.reason;
-  else
-    h = detail::hypothesiseWithFallback(a, p.hypothesise, p.retry.one_way_fallback && !finer, r);
-  std::string no_hypothesis;  // why association gave none, when the plane hypothesis stands in
-  if (!h.verified) {
-    // Views that leave directions free: their dominant planes fix the others (plane_hypothesis.h).
-    const auto T = views.source_plane && views.target_plane
-                       ? planeHypothesis(*views.source_plane, *views.target_plane)
-                       : std::nullopt;
-    if (!T) return r;
-    no_hypothesis = std::move(r.pose.reason);
-    r.pose = RegistrationResult{};
-    r.pose.T_target_source = *T;
-    r.plane_hypothesis = true;
-  }
-
+/// Stages 4-5 and the tests after the certificate, from the start in r.pose: `h` is association's
+/// hypothesis (unverified when another stands in), `runner_up` the ground search's distinct
+/// runner-up. `finer`: the views of the finer-scale retry.
+void claimFrom(const DepthView& source, const DepthView& target, const PairParams& p, bool finer,
+               const ViewsCertificate& views, const AssociatedViews& a, const Hypothesis& h,
+               const std::optional<Isometry3>& runner_up, PairResult& r) {
+  // A pose from a fallback hypothesis set (one-way partners, the finer scale) faces the fallback
+  // limit. The ground search's does not: its look-alikes are judged by the uniqueness test on its
+  // runner-up.
   const FreeSpaceTest free_space = freeSpaceTest(source, target, p.certify, finer || r.used_one_way);
   std::optional<Refinement> dense;
   const RefineParams refine_params = refineParamsOf(p);
@@ -295,6 +288,14 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
   if (r.pose.estimated() && dense && h.verified && h.pose.alternative_T_target_source &&
       p.certify.min_likelihood_ratio > 0.0)
     testUniqueness(source, target, a, h, p, refine_params, free_space, views, r);
+  if (r.pose.estimated() && dense && runner_up && p.certify.min_likelihood_ratio > 0.0) {
+    const auto t2 = std::chrono::steady_clock::now();
+    RegistrationResult start;
+    start.success = true;
+    start.T_target_source = *runner_up;
+    judgeAlternative(source, target, start, {}, -1, p, refine_params, free_space, views, r);
+    r.timings.certify_ms += msSince(t2);
+  }
   if (r.pose.success && dense && p.certify.symmetry_test && p.certify.min_likelihood_ratio > 0.0)
     testSymmetries(source, target, p, refine_params, free_space, views, r);
   if (cells_refused && r.returns_fixed_free && !r.pose.success) {  // the returns' pose refused after all: the cells' refusal stands
@@ -304,18 +305,77 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
     r.returns_refined = r.returns_fixed_free = false;
     r.cells_reason.clear();
   }
-  if (r.plane_hypothesis && !r.pose.estimated())
-    r.pose.reason = no_hypothesis + "; from the views' dominant planes: " + r.pose.reason;
-  if (!r.pose.success || !p.hypothesise.guided.enabled) return r;
+  if (!r.pose.success || !p.hypothesise.guided.enabled) return;
   // The verified associations: the guided ones at the claimed pose.
   if (!dense && !p.hypothesise.guided.densify) {
     r.verified = h.guided;
-    return r;
+    return;
   }
   const auto t2 = std::chrono::steady_clock::now();
   r.verified = guidedAt(a, r.pose.T_target_source, p.hypothesise.guided);
   r.timings.guided_ms += msSince(t2);
+}
+
+/// The ground search (ground_search.h) for two sweeps whose association gave no claimed pose:
+/// `refused` is that result. Its best pose is claimed from as association's hypothesis is, its
+/// runner-up judged as RANSAC's alternative is. Either the search's claimed pose, or the search's
+/// refusal with both reasons.
+PairResult claimFromGroundSearch(const DepthView& source, const DepthView& target, const PairParams& p,
+                                 const ViewsCertificate& views, const AssociatedViews& a, PairResult refused) {
+  const GroundSearchResult g = groundSearch(*source.returns, *target.returns, p.ground_search);
+  refused.timings.ground_search_ms = g.ms;
+  if (!g.found) {
+    refused.pose.reason += "; " + g.reason;
+    return refused;
+  }
+  PairResult r;
+  r.association = refused.association;
+  r.views_free_directions = refused.views_free_directions;
+  r.ground_search = true;
+  r.pose.T_target_source = g.T_target_source;
+  claimFrom(source, target, p, false, views, a, Hypothesis{}, g.runner_up, r);
+  PairTimings total = refused.timings;
+  total.addStages(r.timings);
+  r.timings = total;
+  if (!r.pose.estimated()) r.pose.reason = refused.pose.reason + "; from the ground search: " + r.pose.reason;
   return r;
+}
+
+/// Stages 2-5 on the views as segmented. `finer`: the views of the finer-scale retry (mutual
+/// associations only; its poses face the fallback limit). Association's hypothesis, or where it
+/// gives none the views' dominant planes (views that leave directions free); for two sweeps, the
+/// ground search where neither gives a claimed pose.
+PairResult registerAtScale(const DepthView& source, const DepthView& target, const PairParams& p, bool finer) {
+  PairResult r;
+  const ViewsCertificate views = certifyViews(source, target, p.certify);  // can these views fix a pose at all?
+  if (refusedByViews(views, r)) return r;
+  const AssociatedViews a = associate(source, target, p.associate);
+  r.association = a.result;
+  r.timings.association_ms = a.ms;
+  Hypothesis h;
+  if (a.result.associations.empty() && a.result.one_way.empty())
+    r.pose.reason = "no associations: " + a.result.reason;
+  else
+    h = detail::hypothesiseWithFallback(a, p.hypothesise, p.retry.one_way_fallback && !finer, r);
+  const bool searchable = !finer && source.returns && target.returns && p.ground_search.enabled;
+  if (h.verified) {
+    claimFrom(source, target, p, finer, views, a, h, std::nullopt, r);
+    if (r.pose.estimated() || !searchable) return r;
+    return claimFromGroundSearch(source, target, p, views, a, std::move(r));
+  }
+  // Views that leave directions free: their dominant planes fix the others (plane_hypothesis.h).
+  const auto T = views.source_plane && views.target_plane ? planeHypothesis(*views.source_plane, *views.target_plane)
+                                                          : std::nullopt;
+  if (T) {
+    std::string no_hypothesis = std::move(r.pose.reason);
+    r.pose = RegistrationResult{};
+    r.pose.T_target_source = *T;
+    r.plane_hypothesis = true;
+    claimFrom(source, target, p, finer, views, a, h, std::nullopt, r);
+    if (!r.pose.estimated()) r.pose.reason = no_hypothesis + "; from the views' dominant planes: " + r.pose.reason;
+    return r;
+  }
+  return searchable ? claimFromGroundSearch(source, target, p, views, a, std::move(r)) : r;
 }
 
 /// Stage 7 in the result: when a full pose is claimed and both views carry their returns, the

@@ -27,6 +27,7 @@
 #include "gasp/pipeline/associate_stage.h"
 #include "gasp/pipeline/certify_stage.h"
 #include "gasp/pipeline/depth_view.h"
+#include "gasp/pipeline/ground_search.h"
 #include "gasp/pipeline/hypothesise_stage.h"
 #include "gasp/pipeline/refine_stage.h"
 #include "gasp/pipeline/retry_stage.h"
@@ -47,6 +48,9 @@ struct PairParams {
   RetryParams retry;
   /// Stage 7: runs only when both views carry their sweep's returns (DepthView::returns).
   ReturnsRefineParams returns;
+  /// The hypothesis for sweeps that association gives none for: runs only when both views carry
+  /// their returns (ground_search.h).
+  GroundSearchParams ground_search;
 };
 
 /// Throws gasp::Error naming the stage and the first invalid parameter.
@@ -59,6 +63,7 @@ struct PairTimings {
   double certify_ms = 0;   ///< the certificate: its free-space test, and the uniqueness test (the alternative's refinement included)
   double retry_segmentation_ms = 0;  ///< the finer-scale retry's segmentation of both views (0: no retry)
   double returns_ms = 0;   ///< stage 7, the returns' rounds (LiDAR views)
+  double ground_search_ms = 0;  ///< the ground search (LiDAR views association gave no hypothesis for)
   double total() const {
     return association_ms + ransac_ms + refine_ms + dense_ms + guided_ms + certify_ms + retry_segmentation_ms +
            returns_ms;
@@ -67,6 +72,7 @@ struct PairTimings {
   void addStages(const PairTimings& o) {
     association_ms += o.association_ms, ransac_ms += o.ransac_ms, refine_ms += o.refine_ms;
     dense_ms += o.dense_ms, guided_ms += o.guided_ms, certify_ms += o.certify_ms, returns_ms += o.returns_ms;
+    ground_search_ms += o.ground_search_ms;
   }
 };
 
@@ -84,6 +90,10 @@ struct PairResult {
   /// Association gave no hypothesis and the views leave directions free: the dense rounds started
   /// from the views' dominant planes aligned (plane_hypothesis.h; partial poses only).
   bool plane_hypothesis = false;
+  /// Association gave no hypothesis for two sweeps: the dense rounds started from the ground search's
+  /// best pose (ground_search.h), and its distinct runner-up was judged as RANSAC's alternative is
+  /// (the uniqueness test).
+  bool ground_search = false;
   AssociationResult association;
   /// What the hypothesis stage ran on: one per entry of `used`, same order.
   std::vector<PatchCorrespondence> correspondences;

@@ -59,6 +59,10 @@ struct LidarParams {
   /// length. Binned cells of 16 and 32 lasers (1.4-2 deg) are each sampled; 64 lasers' (0.4 deg)
   /// every second one each way.
   double dense_sample_spacing_deg = 0.873;
+  /// The ground search (ground_search.h) for sweeps whose association gives no claimed pose, and
+  /// the farthest it looks for the source sensor from the target's [m].
+  bool ground_search = true;
+  double ground_search_max_offset_m = 30.0;
 };
 
 /// Throws gasp::Error naming the first parameter out of its range.
