@@ -228,4 +228,6 @@ TEST(RangeView, TheLidarsPairValuesAreTheCamerasMadeALidars) {
   EXPECT_DOUBLE_EQ(unsearched.ground_search.max_offset_m, 12.5);
   lidar.ground_search_max_offset_m = 0.0;
   EXPECT_THROW(gasp::validate(lidar), gasp::Error);
+  lidar.ground_search_max_offset_m = 81.0;  // beyond twice the search's range
+  EXPECT_THROW(gasp::validate(lidar), gasp::Error);
 }

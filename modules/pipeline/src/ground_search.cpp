@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <unordered_map>
 #include <vector>
 
@@ -24,7 +25,7 @@ struct GroundView {
   Isometry3 sensor_from_ground = Isometry3::Identity();
   std::vector<Eigen::Vector2d> fine;    ///< per fine cell
   std::vector<Eigen::Vector2d> coarse;  ///< per coarse cell
-  std::string reason;                   ///< why there is none, when fine is empty
+  std::string reason;                   ///< why there is no ground (a ground without upright cells leaves it empty)
 };
 
 /// A return on the ground's side of the sweep: its point, the normal of the cell it spans with the
@@ -112,10 +113,12 @@ bool groundPlane(const SweepReturns& s, const GroundSearchParams& p, Eigen::Vect
 
 /// Mean point per grid cell of `cell_m`.
 std::vector<Eigen::Vector2d> cellMeans(const std::vector<Eigen::Vector2d>& points, double cell_m) {
-  std::unordered_map<long long, std::pair<Eigen::Vector2d, int>> cells;
+  std::unordered_map<std::uint64_t, std::pair<Eigen::Vector2d, int>> cells;
   for (const Eigen::Vector2d& q : points) {
-    const long long key = (static_cast<long long>(std::floor(q.x() / cell_m)) << 32) ^
-                          (static_cast<long long>(std::floor(q.y() / cell_m)) & 0xffffffffLL);
+    // Two 32-bit cell indices packed (unsigned: shifting a negative value is undefined).
+    const auto ix = static_cast<std::uint32_t>(static_cast<std::int32_t>(std::floor(q.x() / cell_m)));
+    const auto iy = static_cast<std::uint32_t>(static_cast<std::int32_t>(std::floor(q.y() / cell_m)));
+    const std::uint64_t key = (static_cast<std::uint64_t>(ix) << 32) | iy;
     auto& [sum, count] = cells.try_emplace(key, Eigen::Vector2d::Zero(), 0).first->second;
     sum += q, ++count;
   }
@@ -158,11 +161,13 @@ GroundView groundView(const SweepReturns& s, const GroundSearchParams& p) {
   return v;
 }
 
-/// The target's upright cells as a field on a grid of fine_cell_m: 1 on an occupied cell, falling
-/// off with the distance to the nearest one (Gaussian, sigma one cell, cut at two).
+/// The target's upright cells as a field on a grid of fine_cell_m: at each grid cell, a Gaussian
+/// (sigma one cell, cut at two) of the distance from its centre to the nearest upright cell's
+/// mean point, at least exp(-1/4) on a cell holding one. Empty points: zero everywhere.
 class Field {
  public:
   Field(const std::vector<Eigen::Vector2d>& points, double cell_m) : cell_(cell_m) {
+    if (points.empty()) return;
     Eigen::Vector2d lo = points.front(), hi = points.front();
     for (const auto& q : points) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
     origin_ = lo - Eigen::Vector2d::Constant(3.0 * cell_);
@@ -191,7 +196,7 @@ class Field {
 
  private:
   double cell_;
-  Eigen::Vector2d origin_;
+  Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   int w_ = 0, h_ = 0;
   std::vector<float> v_;
 };
@@ -208,6 +213,7 @@ bool distinct(const Peak& a, const Peak& b, const GroundSearchParams& p) {
 }
 
 double scoreAt(const Field& field, const std::vector<Eigen::Vector2d>& source, double yaw, const Eigen::Vector2d& t) {
+  if (source.empty()) return 0.0;
   const Eigen::Rotation2Dd R(yaw);
   double sum = 0.0;
   for (const auto& q : source) sum += field.at(R * q + t);
@@ -262,11 +268,10 @@ std::vector<Peak> coarsePeaks(const GroundView& s, const GroundView& t, const Gr
     candidates.insert(candidates.end(), here.begin(), here.begin() + static_cast<long>(keep));
   }
   std::sort(candidates.begin(), candidates.end(), [](const Peak& a, const Peak& b) { return a.score > b.score; });
-  // The best candidates, distinct from one another (twice as many as are refined: the coarse
-  // vote's order is rough).
+  // The best candidates, distinct from one another.
   std::vector<Peak> peaks;
   for (const Peak& q : candidates) {
-    if (static_cast<int>(peaks.size()) >= 2 * p.peaks) break;
+    if (static_cast<int>(peaks.size()) >= p.peaks) break;
     if (std::all_of(peaks.begin(), peaks.end(), [&](const Peak& o) { return distinct(q, o, p); })) peaks.push_back(q);
   }
   return peaks;
@@ -308,19 +313,24 @@ void validate(const GroundSearchParams& p) {
   };
   angle(p.max_ground_tilt_deg, "max_ground_tilt_deg");
   angle(p.max_upright_tilt_deg, "max_upright_tilt_deg");
-  positive(p.ground_bin_m, "ground_bin_m");
+  if (!(p.ground_bin_m >= 0.01 && p.ground_bin_m <= 1.0)) throw Error("ground_search.ground_bin_m must be in [0.01, 1] m");
   if (!(p.min_height_m >= 0.0) || !std::isfinite(p.min_height_m)) throw Error("ground_search.min_height_m must be >= 0");
   positive(p.max_range_m, "max_range_m");
   positive(p.coarse_cell_m, "coarse_cell_m");
   positive(p.fine_cell_m, "fine_cell_m");
-  if (!(p.fine_cell_m <= p.coarse_cell_m)) throw Error("ground_search.fine_cell_m must be at most coarse_cell_m");
-  if (!(p.coarse_yaw_deg > 0.0 && p.coarse_yaw_deg <= 30.0)) throw Error("ground_search.coarse_yaw_deg must be in (0, 30]");
+  // The bounds keep the grids and the vote to sizes a pair can afford.
+  if (!(p.fine_cell_m <= p.coarse_cell_m && p.coarse_cell_m <= 20.0 * p.fine_cell_m))
+    throw Error("ground_search.fine_cell_m must be at most coarse_cell_m and at least a 20th of it");
+  if (!(p.max_range_m <= 2000.0 * p.fine_cell_m)) throw Error("ground_search.max_range_m must be at most 2000 fine cells");
+  if (!(p.coarse_yaw_deg >= 0.1 && p.coarse_yaw_deg <= 30.0)) throw Error("ground_search.coarse_yaw_deg must be in [0.1, 30]");
   positive(p.max_offset_m, "max_offset_m");
+  // Two sensors that see common structure within max_range_m each are at most twice it apart.
+  if (!(p.max_offset_m <= 2.0 * p.max_range_m)) throw Error("ground_search.max_offset_m must be at most twice max_range_m");
   if (p.max_offset_m / p.coarse_cell_m > 500.0)
     throw Error("ground_search.max_offset_m must be at most 500 coarse cells (coarse_cell_m)");
   if (p.peaks < 1) throw Error("ground_search.peaks must be >= 1");
   positive(p.distinct_m, "distinct_m");
-  positive(p.distinct_deg, "distinct_deg");
+  if (!(p.distinct_deg > 0.0 && p.distinct_deg < 180.0)) throw Error("ground_search.distinct_deg must be in (0, 180)");
   if (p.min_cells < 3) throw Error("ground_search.min_cells must be >= 3");
   if (!(p.min_score > 0.0 && p.min_score <= 1.0)) throw Error("ground_search.min_score must be in (0, 1]");
 }

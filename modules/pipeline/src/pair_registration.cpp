@@ -318,8 +318,9 @@ void claimFrom(const DepthView& source, const DepthView& target, const PairParam
 
 /// The ground search (ground_search.h) for two sweeps whose association gave no claimed pose:
 /// `refused` is that result. Its best pose is claimed from as association's hypothesis is, its
-/// runner-up judged as RANSAC's alternative is. Either the search's claimed pose, or the search's
-/// refusal with both reasons.
+/// runner-up judged as RANSAC's alternative is. Either the search's claimed pose, or `refused`
+/// with the search's reason and time added (association's verdicts, such as a free-space refusal
+/// or a free direction, stay what the callers and the finer-scale retry read).
 PairResult claimFromGroundSearch(const DepthView& source, const DepthView& target, const PairParams& p,
                                  const ViewsCertificate& views, const AssociatedViews& a, PairResult refused) {
   const GroundSearchResult g = groundSearch(*source.returns, *target.returns, p.ground_search);
@@ -328,16 +329,21 @@ PairResult claimFromGroundSearch(const DepthView& source, const DepthView& targe
     refused.pose.reason += "; " + g.reason;
     return refused;
   }
+  const auto t0 = std::chrono::steady_clock::now();
   PairResult r;
   r.association = refused.association;
   r.views_free_directions = refused.views_free_directions;
   r.ground_search = true;
   r.pose.T_target_source = g.T_target_source;
   claimFrom(source, target, p, false, views, a, Hypothesis{}, g.runner_up, r);
+  if (!r.pose.estimated()) {
+    refused.pose.reason += "; from the ground search: " + r.pose.reason;
+    refused.timings.ground_search_ms += msSince(t0);  // the search's pose refined and judged
+    return refused;
+  }
   PairTimings total = refused.timings;
   total.addStages(r.timings);
   r.timings = total;
-  if (!r.pose.estimated()) r.pose.reason = refused.pose.reason + "; from the ground search: " + r.pose.reason;
   return r;
 }
 
@@ -373,7 +379,7 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
     r.plane_hypothesis = true;
     claimFrom(source, target, p, finer, views, a, h, std::nullopt, r);
     if (!r.pose.estimated()) r.pose.reason = no_hypothesis + "; from the views' dominant planes: " + r.pose.reason;
-    return r;
+    if (r.pose.estimated() || !searchable) return r;
   }
   return searchable ? claimFromGroundSearch(source, target, p, views, a, std::move(r)) : r;
 }

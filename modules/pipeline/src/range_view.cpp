@@ -79,8 +79,8 @@ void validate(const LidarParams& p) {
   require(p.range_sigma_m > 0 && std::isfinite(p.range_sigma_m), "range_sigma_m must be > 0 and finite");
   require(p.violation_nats >= 0 && std::isfinite(p.violation_nats), "sweep_violation_nats must be >= 0 and finite");
   require(p.dense_sample_spacing_deg >= 0 && p.dense_sample_spacing_deg <= 90, "dense_sample_spacing_deg must be in [0, 90]");
-  require(p.ground_search_max_offset_m > 0 && p.ground_search_max_offset_m <= 500,
-          "ground_search_max_offset_m must be in (0, 500] m");
+  require(p.ground_search_max_offset_m > 0 && p.ground_search_max_offset_m <= 2.0 * GroundSearchParams{}.max_range_m,
+          "ground_search_max_offset_m must be in (0, 80] m (twice the search's 40 m range)");
   validate(returnsRefineParams(p));
 }
 

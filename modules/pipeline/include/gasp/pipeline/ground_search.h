@@ -34,12 +34,13 @@ struct GroundSearchParams {
   double max_range_m = 40.0;
   /// The search: yaws every coarse_yaw_deg and offsets up to max_offset_m voted on cells of
   /// coarse_cell_m; the best `peaks` distinct peaks refined on cells of fine_cell_m over
-  /// +-coarse_yaw_deg and +-coarse_cell_m.
+  /// +-coarse_yaw_deg and +-coarse_cell_m, then on a quarter of the steps (the coarse vote ranks
+  /// roughly; the refined scores decide).
   double coarse_cell_m = 1.0;
   double coarse_yaw_deg = 2.0;
   double max_offset_m = 30.0;
   double fine_cell_m = 0.25;
-  int peaks = 6;
+  int peaks = 12;
   /// Two peaks are distinct when their offsets differ by more than distinct_m or their yaws by
   /// more than distinct_deg.
   double distinct_m = 2.0;

@@ -6,7 +6,9 @@
 ///                   (associate_stage.h)
 ///   3. hypothesise  RANSAC over the associated centroids, patch point-to-plane refinement, guided
 ///                   verification (hypothesise_stage.h); for views that leave directions free and
-///                   give no hypothesis, their dominant planes aligned (plane_hypothesis.h)
+///                   give no hypothesis, their dominant planes aligned (plane_hypothesis.h); for
+///                   two sweeps whose association gives no claimed pose, the ground search
+///                   (ground_search.h)
 ///   4. refine       dense point-to-plane and edge rounds (refine_stage.h)
 ///   5. certify      observability, dense support, free space; the information (certify_stage.h)
 ///   6. retry        one-way partners, then a finer scale, when the chain gives no estimate
@@ -48,8 +50,8 @@ struct PairParams {
   RetryParams retry;
   /// Stage 7: runs only when both views carry their sweep's returns (DepthView::returns).
   ReturnsRefineParams returns;
-  /// The hypothesis for sweeps that association gives none for: runs only when both views carry
-  /// their returns (ground_search.h).
+  /// The hypothesis for sweeps whose association gives no claimed pose: runs only when both views
+  /// carry their returns (ground_search.h).
   GroundSearchParams ground_search;
 };
 
@@ -63,10 +65,10 @@ struct PairTimings {
   double certify_ms = 0;   ///< the certificate: its free-space test, and the uniqueness test (the alternative's refinement included)
   double retry_segmentation_ms = 0;  ///< the finer-scale retry's segmentation of both views (0: no retry)
   double returns_ms = 0;   ///< stage 7, the returns' rounds (LiDAR views)
-  double ground_search_ms = 0;  ///< the ground search (LiDAR views association gave no hypothesis for)
+  double ground_search_ms = 0;  ///< the ground search (LiDAR views association gave no claimed pose for)
   double total() const {
     return association_ms + ransac_ms + refine_ms + dense_ms + guided_ms + certify_ms + retry_segmentation_ms +
-           returns_ms;
+           returns_ms + ground_search_ms;
   }
   /// Adds another attempt's stage times (all but retry_segmentation_ms).
   void addStages(const PairTimings& o) {
@@ -90,9 +92,10 @@ struct PairResult {
   /// Association gave no hypothesis and the views leave directions free: the dense rounds started
   /// from the views' dominant planes aligned (plane_hypothesis.h; partial poses only).
   bool plane_hypothesis = false;
-  /// Association gave no hypothesis for two sweeps: the dense rounds started from the ground search's
-  /// best pose (ground_search.h), and its distinct runner-up was judged as RANSAC's alternative is
-  /// (the uniqueness test).
+  /// Association gave no claimed pose for two sweeps, and the claimed pose is the ground search's:
+  /// the dense rounds started from its best pose (ground_search.h), and its distinct runner-up was
+  /// judged as RANSAC's alternative is (the uniqueness test). When the search's pose is refused too,
+  /// the result is association's with both reasons, timings.ground_search_ms set, and this unset.
   bool ground_search = false;
   AssociationResult association;
   /// What the hypothesis stage ran on: one per entry of `used`, same order.

@@ -60,7 +60,8 @@ struct LidarParams {
   /// every second one each way.
   double dense_sample_spacing_deg = 0.873;
   /// The ground search (ground_search.h) for sweeps whose association gives no claimed pose, and
-  /// the farthest it looks for the source sensor from the target's [m].
+  /// the farthest it looks for the source sensor from the target's, along each axis of the ground
+  /// [m, at most twice the search's 40 m range].
   bool ground_search = true;
   double ground_search_max_offset_m = 30.0;
 };
