@@ -219,44 +219,12 @@ void printBasin(const gasp::DepthView& va, const gasp::DepthView& vb, const gasp
   std::printf("\n");
 }
 
-/// --pair: a free-space test on the returns (a lead, study 2026-11-30-lidar-free-directions): each
-/// source return mapped by T into the target sweep is compared with the target's return nearest
-/// its direction, where that return has a normal: in front of it by more than 5 range sigmas plus
-/// the depth change of its surface across half a cell (range x half cell x tan(incidence), the
-/// incidence clamped at max_incidence_deg) is a violation, behind it by as much is occluded.
-/// Returns the violation share of one direction.
-double returnsViolationShare(const gasp::SweepReturns& from, const gasp::SweepReturns& to, const gasp::Isometry3& T_to_from,
-                             double sigma, double max_incidence_deg, double& occluded_share) {
-  const double max_tan = std::tan(max_incidence_deg * M_PI / 180.0);
-  int consistent = 0, violations = 0, occluded = 0;
-  for (int r = 0; r < from.rows(); ++r)
-    for (int c = 0; c < from.cols(); ++c) {
-      const Eigen::Vector3d& p = from.point(r, c);
-      if (!p.allFinite()) continue;
-      const Eigen::Vector3d q = T_to_from * p;
-      const int i = to.lookUp(q, 0);
-      if (i < 0) continue;
-      const Eigen::Vector3d& t = to.point(i);
-      const double range = t.norm(), cos_i = std::abs(to.normal(i).dot(t)) / range;
-      const double tan_i = std::min(max_tan, std::sqrt(std::max(0.0, 1.0 - cos_i * cos_i)) / std::max(cos_i, 1e-9));
-      const double gate = 5.0 * sigma + range * to.halfCellRad() * tan_i;
-      const double along = q.norm() - range;
-      if (along < -gate) ++violations;
-      else if (along > gate) ++occluded;
-      else ++consistent;
-    }
-  const int n = consistent + violations + occluded;
-  occluded_share = n > 0 ? static_cast<double>(occluded) / n : 0.0;
-  return n > 0 ? static_cast<double>(violations) / n : 0.0;
-}
-
 void printReturnsFreeSpace(const gasp::DepthView& va, const gasp::DepthView& vb, const gasp::Isometry3& T, const char* which,
                            const gasp::PairParams& params) {
-  const double sigma = params.returns.basin_tolerance_m;  // range_sigma_m for sweeps
-  double occ_ab = 0, occ_ba = 0;
-  const double ab = returnsViolationShare(*va.returns, *vb.returns, T, sigma, vb.superpixels.max_incidence_deg, occ_ab);
-  const double ba = returnsViolationShare(*vb.returns, *va.returns, T.inverse(), sigma, va.superpixels.max_incidence_deg, occ_ba);
-  std::printf("  free space on the returns at %s: violations %.3f / %.3f, occluded %.3f / %.3f\n", which, ab, ba, occ_ab, occ_ba);
+  const gasp::VisibilityCheck c = gasp::returnsFreeSpace(*va.returns, *vb.returns, T, params.certify.visibility,
+                                                         params.refine.solver.noise_sigma_m, vb.superpixels.max_incidence_deg);
+  std::printf("  free space on the returns at %s: violations %.3f / %.3f (worse / lesser direction), occluded %.3f, passed %d\n",
+              which, c.violation_ratio, c.violation_ratio_lesser, c.occluded_ratio, c.passed);
 }
 
 /// --pair: how far association is from the truth. A source patch's true partner is the target

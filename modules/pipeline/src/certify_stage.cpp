@@ -50,11 +50,16 @@ ViewsCertificate certifyViews(const DepthView& source, const DepthView& target, 
   return out;
 }
 
-FreeSpaceTest freeSpaceTest(const DepthView& source, const DepthView& target, const CertifyParams& params,
-                            bool fallback) {
+VisibilityCheckParams visibilityLimits(const CertifyParams& params, bool fallback) {
   VisibilityCheckParams visibility = params.visibility;
   if (fallback)
     visibility.max_violation_ratio = std::min(visibility.max_violation_ratio, params.fallback_max_violation_ratio);
+  return visibility;
+}
+
+FreeSpaceTest freeSpaceTest(const DepthView& source, const DepthView& target, const CertifyParams& params,
+                            bool fallback) {
+  const VisibilityCheckParams visibility = visibilityLimits(params, fallback);
   return [&source, &target, visibility](const Isometry3& T_target_source) {
     return checkVisibility(source, target, T_target_source, visibility);
   };

@@ -160,16 +160,23 @@ void testUniqueness(const DepthView& source, const DepthView& target, const Asso
 }
 
 /// Stage 7 on a refused pose: the certificate refused the cells' pose in `r` for a direction their
-/// terms leave free while both views' geometry fixes it (`refusal.not_aligned`). Where both views
-/// carry their returns, the returns' rounds from it are claimed instead when they fix every
-/// direction, reach their pose again from either side along their weakest translation
-/// (returnsBasin) and pass the certificate as a full pose; the tests after the certificate
-/// (uniqueness, symmetry) then judge it as any claimed pose. Returns the cells' refused pose when
-/// the returns' pose replaced it (for restoring it should a later test refuse theirs).
+/// terms leave free while both views' geometry fixes it (`refusal.not_aligned`), or, with
+/// `returns_free_space`, on its free-space test. Where both views carry their returns, the returns'
+/// rounds from it are claimed instead when they fix every direction, reach their pose again from
+/// either side along their weakest translation (returnsBasin) and pass the certificate as a full
+/// pose -- after a free-space refusal, with the free-space test on the returns
+/// (returnsFreeSpace, these limits) instead of the binned cells', whose bins fall elsewhere in each
+/// sweep. The tests after the certificate (uniqueness, symmetry) then judge it as any claimed
+/// pose. Returns the cells' refused pose when the returns' pose replaced it (for restoring it
+/// should a later test refuse theirs).
 std::optional<RegistrationResult> fixOnTheReturns(const DepthView& source, const DepthView& target, const PairParams& p,
                                                   const FreeSpaceTest& free_space, const ViewsCertificate& views,
-                                                  const Certificate& refusal, PairResult& r) {
-  if (!refusal.not_aligned || !source.returns || !target.returns || !r.pose.T_target_source.matrix().allFinite())
+                                                  const Certificate& refusal,
+                                                  const std::optional<VisibilityCheckParams>& returns_free_space,
+                                                  PairResult& r) {
+  const bool on_free_space = returns_free_space && refusal.free_space_refused && !refusal.not_aligned;
+  if ((!refusal.not_aligned && !on_free_space) || !source.returns || !target.returns ||
+      !r.pose.T_target_source.matrix().allFinite())
     return std::nullopt;
   const auto refused = [&r](const std::string& why) -> std::optional<RegistrationResult> {
     r.returns_reason = why;
@@ -183,7 +190,11 @@ std::optional<RegistrationResult> fixOnTheReturns(const DepthView& source, const
   if (!q.success) return refused(q.reason);
   // The certificate before the basin: its free-space test costs less than the basin's two restarts.
   const auto t1 = std::chrono::steady_clock::now();
-  const Certificate c = certify(q, std::nullopt, free_space, std::nullopt, views, p.certify);
+  const FreeSpaceTest on_the_returns = [&](const Isometry3& T) {
+    return returnsFreeSpace(*source.returns, *target.returns, T, *returns_free_space, p.refine.solver.noise_sigma_m,
+                            target.superpixels.max_incidence_deg);
+  };
+  const Certificate c = certify(q, std::nullopt, on_free_space ? on_the_returns : free_space, std::nullopt, views, p.certify);
   r.timings.certify_ms += msSince(t1);
   if (!c.claimed || c.partial) return refused("their pose: " + (c.partial ? "partial, " + c.reason : c.reason));
   t0 = std::chrono::steady_clock::now();
@@ -284,7 +295,8 @@ void claimFrom(const DepthView& source, const DepthView& target, const PairParam
   record(certificate, r);
   r.timings.certify_ms = msSince(t1);
   const std::optional<RegistrationResult> cells_refused =
-      dense ? fixOnTheReturns(source, target, p, free_space, views, certificate, r) : std::nullopt;
+      dense ? fixOnTheReturns(source, target, p, free_space, views, certificate, visibilityLimits(p.certify, finer || r.used_one_way), r)
+            : std::nullopt;
   if (r.pose.estimated() && dense && h.verified && h.pose.alternative_T_target_source &&
       p.certify.min_likelihood_ratio > 0.0)
     testUniqueness(source, target, a, h, p, refine_params, free_space, views, r);
@@ -474,7 +486,8 @@ PairResult trackViews(const DepthView& source, const DepthView& target, const Is
   const Certificate certificate = certify(r.pose, dense.rounds.terms, free_space, dense.check, views, p.certify);
   record(certificate, r);
   r.timings.certify_ms = msSince(t1);
-  fixOnTheReturns(source, target, p, free_space, views, certificate, r);
+  // A free-space refusal stands here: odometry reads it as a scene change.
+  fixOnTheReturns(source, target, p, free_space, views, certificate, std::nullopt, r);
   refineOnTheReturns(source, target, p, r);
   return r;
 }

@@ -93,6 +93,10 @@ struct ViewsCertificate {
 };
 ViewsCertificate certifyViews(const DepthView& source, const DepthView& target, const CertifyParams& params);
 
+/// The free-space test's parameters for a pose; `fallback`: from a fallback hypothesis set
+/// (fallback_max_violation_ratio applies).
+VisibilityCheckParams visibilityLimits(const CertifyParams& params, bool fallback);
+
 /// The free-space test a pose from this pair faces; `fallback`: the pose came from a fallback
 /// hypothesis set (fallback_max_violation_ratio applies).
 FreeSpaceTest freeSpaceTest(const DepthView& source, const DepthView& target, const CertifyParams& params,

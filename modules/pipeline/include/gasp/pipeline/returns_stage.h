@@ -18,6 +18,7 @@
 
 #include "gasp/core/pose.h"
 #include "gasp/core/range_scan.h"
+#include "gasp/pipeline/visibility_check.h"
 #include "gasp/registration/refinement.h"
 
 namespace gasp {
@@ -129,5 +130,17 @@ struct ReturnsBasin {
 ReturnsBasin returnsBasin(const SweepReturns& source, const SweepReturns& target, const RegistrationResult& pose,
                           const ReturnsRefineParams& params = {}, const RefinementParams& solver = {},
                           double max_incidence_deg = 80.0);
+
+/// The free-space test (visibility_check.h) on the sweeps' own returns rather than on binned cells,
+/// whose means of different returns in each sweep disagree 9 m apart even at the true pose: every
+/// return of each sweep, mapped into the other, against the return nearest its direction there
+/// (with a normal); consistent within 5 range_sigma_m plus the depth change of that return's
+/// surface across half a cell (the incidence clamped at max_incidence_deg), occluded behind it,
+/// a violation in front of it. `params`' limits (violations per direction and seen from both,
+/// occlusion, consistent samples) decide as they do for the cells; its gates and steps are not
+/// used.
+VisibilityCheck returnsFreeSpace(const SweepReturns& source, const SweepReturns& target, const Isometry3& T_target_source,
+                                 const VisibilityCheckParams& params, double range_sigma_m,
+                                 double max_incidence_deg = 80.0);
 
 }  // namespace gasp
