@@ -15,8 +15,9 @@
 ///                   (retry_stage.h)
 ///   7. returns      LiDAR views: point-to-plane rounds on the sweeps' own returns from a
 ///                   claimed pose (returns_stage.h); from a pose refused for a direction the
-///                   cells leave free that the views fix, when the returns fix it (their basin)
-///                   and their pose passes the certificate
+///                   cells leave free that the views fix, or on the cells' free-space test,
+///                   when the returns fix it (their basin) and their pose passes the
+///                   certificate (after a free-space refusal, its test on the returns)
 /// The result is what a SLAM system consumes: T_target_source with its information matrix, or
 /// no estimate with the reason (too few associations, no consensus, degenerate geometry,
 /// contradicted free space).
@@ -152,11 +153,12 @@ struct PairResult {
   /// and failed, the cells' pose stays and returns_reason says why.
   bool returns_refined = false;
   std::string returns_reason;
-  /// Stage 7 fixed what the cells left free: the certificate refused the cells' pose for a direction
-  /// their terms leave free while both views' geometry fixes it (Certificate::not_aligned), and the
-  /// returns' rounds from it fixed every direction, held their basin (returnsBasin) and passed the
-  /// certificate (visibility is its free-space test); the claimed pose is theirs (returns_refined),
-  /// and cells_reason keeps the refusal. When the uniqueness or symmetry test then refuses their
+  /// Stage 7 answered the cells' refusal: the certificate refused the cells' pose for a direction
+  /// their terms leave free while both views' geometry fixes it (Certificate::not_aligned) or, in
+  /// registerViews, on its free-space test; the returns' rounds from it fixed every direction, held
+  /// their basin (returnsBasin) and passed the certificate (visibility is its free-space test, on
+  /// the returns after a free-space refusal: returnsFreeSpace); the claimed pose is theirs
+  /// (returns_refined), and cells_reason keeps the refusal. When the uniqueness or symmetry test then refuses their
   /// pose, the cells' refused pose is restored, both reasons in pose.reason, and these are unset.
   bool returns_fixed_free = false;
   std::string cells_reason;
