@@ -11,6 +11,7 @@
 #include <string>
 
 #include "gasp/core/error.h"
+#include "free_space_verdict.h"
 
 namespace gasp {
 
@@ -208,9 +209,7 @@ ReturnsBasin returnsBasin(const SweepReturns& source, const SweepReturns& target
 
 namespace {
 
-struct FreeSpaceCounts {
-  int consistent = 0, occluded = 0, violations = 0;
-};
+using detail::FreeSpaceCounts;
 
 FreeSpaceCounts freeSpaceCounts(const SweepReturns& from, const SweepReturns& to, const Isometry3& T_to_from,
                                 double range_sigma_m, double max_incidence_deg) {
@@ -246,48 +245,7 @@ VisibilityCheck returnsFreeSpace(const SweepReturns& source, const SweepReturns&
   }
   const FreeSpaceCounts ab = freeSpaceCounts(source, target, T_target_source, range_sigma_m, max_incidence_deg);
   const FreeSpaceCounts ba = freeSpaceCounts(target, source, T_target_source.inverse(), range_sigma_m, max_incidence_deg);
-  check.consistent = ab.consistent + ba.consistent;
-  check.occluded = ab.occluded + ba.occluded;
-  check.violations = ab.violations + ba.violations;
-  const auto violating = [](const FreeSpaceCounts& n) {
-    return n.consistent + n.violations > 0 ? static_cast<double>(n.violations) / (n.consistent + n.violations) : 0.0;
-  };
-  const auto occluding = [](const FreeSpaceCounts& n) {
-    const int all = n.consistent + n.occluded + n.violations;
-    return all > 0 ? static_cast<double>(n.occluded) / all : 0.0;
-  };
-  check.violation_ratio = std::max(violating(ab), violating(ba));
-  check.violation_ratio_lesser = std::min(violating(ab), violating(ba));
-  check.occluded_ratio = std::max(occluding(ab), occluding(ba));
-  char reason[240];
-  if (std::min(ab.consistent, ba.consistent) < params.min_consistent) {
-    std::snprintf(reason, sizeof reason, "free space on the returns: %d consistent returns, fewer than %d",
-                  std::min(ab.consistent, ba.consistent), params.min_consistent);
-    check.reason = reason;
-    return check;
-  }
-  if (check.violation_ratio > params.max_violation_ratio) {
-    std::snprintf(reason, sizeof reason,
-                  "free space on the returns: %.1f%% of the overlapping returns lie in space the other sweep saw as "
-                  "empty (at most %.1f%%)",
-                  100.0 * check.violation_ratio, 100.0 * params.max_violation_ratio);
-  } else if (check.violation_ratio_lesser > params.max_two_way_violation_ratio) {
-    std::snprintf(reason, sizeof reason,
-                  "free space on the returns: %.1f%% and %.1f%% of the overlapping returns lie in space the other "
-                  "sweep saw as empty, seen from both (at most %.1f%% from both)",
-                  100.0 * check.violation_ratio, 100.0 * check.violation_ratio_lesser,
-                  100.0 * params.max_two_way_violation_ratio);
-  } else if (check.occluded_ratio > params.max_occluded_ratio) {
-    std::snprintf(reason, sizeof reason,
-                  "free space on the returns: %.1f%% of the returns lie behind the other sweep's surfaces (at most "
-                  "%.1f%%)",
-                  100.0 * check.occluded_ratio, 100.0 * params.max_occluded_ratio);
-  } else {
-    check.passed = true;
-    return check;
-  }
-  check.reason = reason;
-  check.free_space_refused = true;
+  detail::decideFreeSpace(ab, ba, params, {"free space on the returns", "returns", "sweep"}, check);
   return check;
 }
 

@@ -1,5 +1,7 @@
 #include "gasp/pipeline/visibility_check.h"
 
+#include "free_space_verdict.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -47,18 +49,7 @@ double FreeSpaceGate::operator()(int u, int v, const Eigen::Vector3d& q, double 
 
 namespace {
 
-struct Counts {
-  int consistent = 0, occluded = 0, violations = 0;
-  double largest_blob_share = 1.0;  ///< share of the violations in the largest 8-connected blob
-  double ratio() const {
-    const int n = consistent + violations;
-    return n ? static_cast<double>(violations) / n : 0.0;
-  }
-  double occludedRatio() const {
-    const int n = consistent + occluded + violations;
-    return n ? static_cast<double>(occluded) / n : 0.0;
-  }
-};
+using Counts = detail::FreeSpaceCounts;
 
 /// `regions`: also the largest 8-connected region of the violating samples (not for depthAgreement).
 Counts countOneWay(const DepthView& from, const DepthView& to, const Isometry3& T_to_from, const VisibilityCheckParams& p,
@@ -109,43 +100,7 @@ VisibilityCheck check(const DepthView& source, const DepthView& target, const Is
   }
   const Counts st = countOneWay(source, target, T_target_source, p, regions);
   const Counts ts = countOneWay(target, source, T_target_source.inverse(), p, regions);
-  out.consistent = st.consistent + ts.consistent;
-  out.occluded = st.occluded + ts.occluded;
-  out.violations = st.violations + ts.violations;
-  out.violation_ratio = std::max(st.ratio(), ts.ratio());
-  out.violation_ratio_lesser = std::min(st.ratio(), ts.ratio());
-  out.occluded_ratio = std::max(st.occludedRatio(), ts.occludedRatio());
-  out.violation_blob_share_lesser = std::min(st.largest_blob_share, ts.largest_blob_share);
-  out.violation_blob_share = std::max(st.largest_blob_share, ts.largest_blob_share);
-  char buf[256];
-  if (std::min(st.consistent, ts.consistent) < p.min_consistent) {
-    std::snprintf(buf, sizeof buf, "visibility check: only %d consistent samples (at least %d needed): the views barely overlap at this pose",
-                  std::min(st.consistent, ts.consistent), p.min_consistent);
-    out.reason = buf;
-    return out;
-  }
-  if (out.violation_ratio > p.max_violation_ratio) {
-    std::snprintf(buf, sizeof buf, "visibility check: %.0f%% of the overlapping samples lie in space the other view saw as empty (at most %.0f%%)",
-                  100.0 * out.violation_ratio, 100.0 * p.max_violation_ratio);
-    out.reason = buf;
-    out.free_space_refused = true;
-    return out;
-  }
-  if (out.violation_ratio_lesser > p.max_two_way_violation_ratio) {
-    std::snprintf(buf, sizeof buf, "visibility check: %.1f%% and %.1f%% of the overlapping samples lie in space the other view saw as empty, seen from both views (at most %.1f%% from both)",
-                  100.0 * out.violation_ratio, 100.0 * out.violation_ratio_lesser, 100.0 * p.max_two_way_violation_ratio);
-    out.reason = buf;
-    out.free_space_refused = true;
-    return out;
-  }
-  if (out.occluded_ratio > p.max_occluded_ratio) {
-    std::snprintf(buf, sizeof buf, "visibility check: %.0f%% of the samples lie behind the other view's surfaces (at most %.0f%%): the pose hides one view behind the other",
-                  100.0 * out.occluded_ratio, 100.0 * p.max_occluded_ratio);
-    out.reason = buf;
-    out.free_space_refused = true;
-    return out;
-  }
-  out.passed = true;
+  detail::decideFreeSpace(st, ts, p, {"visibility check", "samples", "view"}, out);
   return out;
 }
 
