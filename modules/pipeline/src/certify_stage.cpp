@@ -150,8 +150,12 @@ Certificate certify(const RegistrationResult& pose, std::optional<int> dense_ter
   return c;
 }
 
-Uniqueness compareAlternative(const DepthView& source, const DepthView& target, const RegistrationResult& chosen,
-                              const RegistrationResult& alternative, double distinct_m, const CertifyParams& params) {
+namespace {
+
+/// compareAlternative() with the ratio `ratio`(T_chosen, T_alternative, likelihood params).
+template <typename Ratio>
+Uniqueness compareWith(const DepthView& source, const RegistrationResult& chosen, const RegistrationResult& alternative,
+                       double distinct_m, const CertifyParams& params, const Ratio& ratio) {
   Uniqueness u;
   if (params.min_likelihood_ratio == 0.0) return u;
   std::vector<Eigen::Vector3d> centroids;
@@ -167,8 +171,7 @@ Uniqueness compareAlternative(const DepthView& source, const DepthView& target, 
   likelihood.pixel_step = params.visibility.pixel_step;
   likelihood.violation_nats = params.violation_nats;
   likelihood.free_space = params.visibility;
-  const LikelihoodRatio lr =
-      logLikelihoodRatio(source, target, chosen.T_target_source, alternative.T_target_source, likelihood);
+  const LikelihoodRatio lr = ratio(chosen.T_target_source, alternative.T_target_source, likelihood);
   if (lr.patches == 0) return u;  // no sample lands under both poses: nothing to compare
   u.tested = true;
   u.log_ratio = lr.log_ratio;
@@ -187,6 +190,27 @@ Uniqueness compareAlternative(const DepthView& source, const DepthView& target, 
   u.reason = buf;
   u.refused = true;
   return u;
+}
+
+}  // namespace
+
+Uniqueness compareAlternative(const DepthView& source, const DepthView& target, const RegistrationResult& chosen,
+                              const RegistrationResult& alternative, double distinct_m, const CertifyParams& params) {
+  return compareWith(source, chosen, alternative, distinct_m, params,
+                     [&](const Isometry3& T_a, const Isometry3& T_b, const PoseLikelihoodParams& likelihood) {
+                       return logLikelihoodRatio(source, target, T_a, T_b, likelihood);
+                     });
+}
+
+Uniqueness compareAlternativeOnReturns(const DepthView& source, const DepthView& target, const RegistrationResult& chosen,
+                                       const RegistrationResult& alternative, double distinct_m,
+                                       const CertifyParams& params, double range_sigma_m, double max_incidence_deg) {
+  if (!source.returns || !target.returns) return Uniqueness{};
+  return compareWith(source, chosen, alternative, distinct_m, params,
+                     [&](const Isometry3& T_a, const Isometry3& T_b, const PoseLikelihoodParams& likelihood) {
+                       return returnsLogLikelihoodRatio(source, target, T_a, T_b, likelihood, range_sigma_m,
+                                                        max_incidence_deg);
+                     });
 }
 
 }  // namespace gasp

@@ -12,6 +12,7 @@
 #include "gasp/core/error.h"
 #include "gasp/core/stopwatch.h"
 #include "gasp/pipeline/model_error.h"
+#include "gasp/pipeline/pose_likelihood.h"
 #include "gasp/pipeline/symmetric_turns.h"
 #include "gasp/superpixels/depth_superpixels.h"
 #include "retry_policy.h"
@@ -230,15 +231,21 @@ ProjectiveTermParams inlierPairParams(const PairParams& p) {
 /// The certificate's symmetry test (CertifyParams::symmetry_test): the claimed full pose in `r`
 /// against each of its symmetric turns refined by the dense rounds (anchored, as the tracking path,
 /// by the patch pairs RANSAC would count as inliers there); the first turn that explains the views
-/// better refuses it.
+/// better refuses it. For two sweeps carrying their returns, a turn the binned cells find better
+/// is judged again on the returns (compareAlternativeOnReturns), the claimed pose and the turn
+/// each refined by the returns' rounds: a binned cell is the mean of different returns in each
+/// sweep, so where the cells find the turn better, the returns decide, and the claimed pose must
+/// explain them better as the uniqueness test asks (its ratio and standard errors).
 void testSymmetries(const DepthView& source, const DepthView& target, const PairParams& p,
                     const RefineParams& refine_params, const FreeSpaceTest& free_space, const ViewsCertificate& views,
                     PairResult& r) {
   const auto t0 = std::chrono::steady_clock::now();
   const ProjectiveTermParams pairs = inlierPairParams(p);
+  const double distinct_m = 2.0 * p.hypothesise.pose.ransac.inlier.distance_m;
   // The turns refined and compared concurrently (one TBB task each), then taken in their order.
   const std::vector<SymmetricTurn> turns = symmetricTurns(source, target, r.pose.T_target_source);
   std::vector<Uniqueness> compared(turns.size());
+  std::vector<RegistrationResult> refined(turns.size());
   tbb::parallel_for(std::size_t{0}, turns.size(), [&](std::size_t k) {
     RegistrationResult start;
     start.success = true;
@@ -250,18 +257,44 @@ void testSymmetries(const DepthView& source, const DepthView& target, const Pair
     if (!a.T_target_source.matrix().allFinite()) return;
     a.success = true;  // compared whether its own certificate would claim it or not
     a.partial = false;
-    compared[k] =
-        compareAlternative(source, target, r.pose, a, 2.0 * p.hypothesise.pose.ransac.inlier.distance_m, p.certify);
+    compared[k] = compareAlternative(source, target, r.pose, a, distinct_m, p.certify);
+    refined[k] = a;
   });
+  const bool on_returns = source.returns && target.returns;
+  const double max_incidence_deg = target.superpixels.max_incidence_deg;
+  // The returns' pose of `pose` (itself when their rounds fail).
+  const auto returnsPose = [&](RegistrationResult pose) {
+    const RegistrationResult q = refineOnReturns(*source.returns, *target.returns, pose.T_target_source, p.returns,
+                                                 p.refine.solver, max_incidence_deg);
+    if (q.success) pose.T_target_source = q.T_target_source;
+    return pose;
+  };
+  std::optional<RegistrationResult> claimed_on_returns;
   for (std::size_t k = 0; k < turns.size(); ++k) {
     const SymmetricTurn& turn = turns[k];
     const Uniqueness& u = compared[k];
     if (!u.tested || !(u.log_ratio < 0.0)) continue;
-    char reason[240];
+    char reason[360];
     std::snprintf(reason, sizeof reason,
                   "symmetry: the pose turned %d deg about the target's axis (%.2f, %.2f, %.2f) explains the views "
                   "better (log-likelihood ratio %.1f)",
                   turn.degrees, turn.axis.x(), turn.axis.y(), turn.axis.z(), u.log_ratio);
+    if (on_returns) {
+      if (!claimed_on_returns) claimed_on_returns = r.returns_refined ? r.pose : returnsPose(r.pose);
+      const Uniqueness v = compareAlternativeOnReturns(source, target, *claimed_on_returns, returnsPose(refined[k]),
+                                                       distinct_m, p.certify, p.refine.solver.noise_sigma_m,
+                                                       max_incidence_deg);
+      // Told apart in the claimed pose's favour, or the turn's returns' pose is the claimed one;
+      // when no return lands under both, the cells' verdict stands.
+      if (v.tested ? !v.refused && !v.take_alternative : !(v.distance_m > distinct_m)) continue;
+      if (v.tested)
+        std::snprintf(reason, sizeof reason,
+                      "symmetry: the pose turned %d deg about the target's axis (%.2f, %.2f, %.2f) explains the "
+                      "binned cells better (log-likelihood ratio %.1f), and the returns do not favour the claimed "
+                      "pose by the uniqueness test's margin (%.1f +- %.1f)",
+                      turn.degrees, turn.axis.x(), turn.axis.y(), turn.axis.z(), u.log_ratio, v.log_ratio,
+                      v.standard_error);
+    }
     Certificate refusal;
     refusal.reason = reason;
     record(refusal, r);

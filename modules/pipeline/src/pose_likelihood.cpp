@@ -5,19 +5,35 @@
 #include <vector>
 
 #include "gasp/core/depth_image.h"
+#include "gasp/pipeline/range_view.h"
+#include "gasp/pipeline/returns_stage.h"
 
 namespace gasp {
 
 namespace {
 
+/// A sample's l for a residual [m] of noise sigma [m] (the header's), less violation_nats for a violation.
+class InlierTerm {
+ public:
+  explicit InlierTerm(const PoseLikelihoodParams& p)
+      : scale_(p.inlier_prior / (1.0 - p.inlier_prior) * p.outlier_range_m / std::sqrt(2.0 * M_PI)),
+        violation_nats_(p.violation_nats) {}
+  double operator()(double residual_m, double sigma_m, bool violation) const {
+    const double e = residual_m / sigma_m;
+    const double l = std::log1p(scale_ / sigma_m * std::exp(-0.5 * e * e));
+    // In space the other sensor saw as empty: only a random reading explains it.
+    return violation ? l - violation_nats_ : l;
+  }
+
+ private:
+  double scale_, violation_nats_;
+};
+
 /// One sample's l under T_to_from (the header's), or nullopt where it lands on no measured depth.
 class SampleTerm {
  public:
   SampleTerm(const DepthView& to, const PoseLikelihoodParams& p)
-      : to_(to),
-        p_(p),
-        scale_(p.inlier_prior / (1.0 - p.inlier_prior) * p.outlier_range_m / std::sqrt(2.0 * M_PI)),
-        gate_(to, p.free_space) {}
+      : to_(to), p_(p), term_(p), gate_(to, p.free_space) {}
   std::optional<double> operator()(const Eigen::Vector3d& point, const Isometry3& T_to_from) const {
     const Eigen::Vector3d q = T_to_from * point;
     double uf = 0, vf = 0;
@@ -28,19 +44,29 @@ class SampleTerm {
     if (!isValidDepth(zt)) return std::nullopt;
     const double sigma = p_.sigma_m + p_.sigma_per_m2 * zt * zt;
     const double zq = to_.projection.depth(q);
-    const double e = (zq - zt) / sigma;
-    const double l = std::log1p(scale_ / sigma * std::exp(-0.5 * e * e));
-    // In space the other sensor saw as empty: only a random reading explains it.
-    if (p_.violation_nats > 0.0 && zq < zt - gate_(ut, vt, q, zt)) return l - p_.violation_nats;
-    return l;
+    return term_(zq - zt, sigma, p_.violation_nats > 0.0 && zq < zt - gate_(ut, vt, q, zt));
   }
 
  private:
   const DepthView& to_;
   const PoseLikelihoodParams& p_;
-  double scale_;
+  InlierTerm term_;
   FreeSpaceGate gate_;
 };
+
+/// Adds the patches' means of l(a) - l(b) over their counted samples (sum, count per patch),
+/// outside the dead band.
+void addPatchMeans(const std::vector<double>& sum, const std::vector<int>& count, const PoseLikelihoodParams& p,
+                   LikelihoodRatio& out) {
+  for (std::size_t k = 0; k < sum.size(); ++k) {
+    if (count[k] == 0) continue;
+    ++out.patches;
+    const double mean = sum[k] / count[k];
+    if (std::abs(mean) <= p.patch_deadband_nats) continue;
+    out.log_ratio += mean;
+    out.standard_error += mean * mean;  // the square root is taken at the end
+  }
+}
 
 /// Adds `from`'s patches' means of l(a) - l(b) over their counted samples, outside the dead band.
 void oneWay(const DepthView& from, const DepthView& to, const Isometry3& T_to_from_a, const Isometry3& T_to_from_b,
@@ -64,14 +90,39 @@ void oneWay(const DepthView& from, const DepthView& to, const Isometry3& T_to_fr
       sum[k] += *la - *lb;
       ++count[k];
     }
-  for (std::size_t k = 0; k < n; ++k) {
-    if (count[k] == 0) continue;
-    ++out.patches;
-    const double mean = sum[k] / count[k];
-    if (std::abs(mean) <= p.patch_deadband_nats) continue;
-    out.log_ratio += mean;
-    out.standard_error += mean * mean;  // the square root is taken at the end
-  }
+  addPatchMeans(sum, count, p, out);
+}
+
+/// oneWay() on the sweeps' returns (returnsLogLikelihoodRatio).
+void oneWayOnReturns(const DepthView& from, const DepthView& to, const Isometry3& T_to_from_a,
+                     const Isometry3& T_to_from_b, const PoseLikelihoodParams& p, double range_sigma_m,
+                     double max_incidence_deg, LikelihoodRatio& out) {
+  const SweepReturns& returns = *from.returns;
+  const cv::Mat& labels = from.segmentation.labels;
+  const std::size_t n = from.segmentation.patches.size();
+  if (n == 0 || labels.rows != returns.rows()) return;
+  const int b = rangeBinColumns(returns.scan());  // the binned cell of a return: same row, column / b
+  std::vector<double> sum(n, 0.0);
+  std::vector<int> count(n, 0);
+  const InlierTerm term(p);
+  const auto l = [&](const Eigen::Vector3d& point, const Isometry3& T) -> std::optional<double> {
+    const ReturnLanding landing = landOnReturns(*to.returns, T * point, range_sigma_m, max_incidence_deg);
+    if (landing.index < 0) return std::nullopt;
+    return term(landing.plane_m, range_sigma_m, landing.beyond_m < -landing.gate_m);
+  };
+  for (int r = 0; r < returns.rows(); ++r)
+    for (int c = 0; c < returns.cols(); ++c) {
+      const Eigen::Vector3d& point = returns.point(r, c);
+      if (!point.allFinite() || c / b >= labels.cols) continue;
+      const int label = labels.at<int>(r, c / b);
+      if (label < 0 || static_cast<std::size_t>(label) >= n) continue;
+      const auto la = l(point, T_to_from_a), lb = l(point, T_to_from_b);
+      if (!la || !lb) continue;
+      const std::size_t k = static_cast<std::size_t>(label);
+      sum[k] += *la - *lb;
+      ++count[k];
+    }
+  addPatchMeans(sum, count, p, out);
 }
 
 }  // namespace
@@ -82,6 +133,17 @@ LikelihoodRatio logLikelihoodRatio(const DepthView& source, const DepthView& tar
   if (!T_a.matrix().allFinite() || !T_b.matrix().allFinite()) return out;
   oneWay(source, target, T_a, T_b, params, out);
   oneWay(target, source, T_a.inverse(), T_b.inverse(), params, out);
+  out.standard_error = std::sqrt(out.standard_error);
+  return out;
+}
+
+LikelihoodRatio returnsLogLikelihoodRatio(const DepthView& source, const DepthView& target, const Isometry3& T_a,
+                                          const Isometry3& T_b, const PoseLikelihoodParams& params,
+                                          double range_sigma_m, double max_incidence_deg) {
+  LikelihoodRatio out;
+  if (!T_a.matrix().allFinite() || !T_b.matrix().allFinite() || !source.returns || !target.returns) return out;
+  oneWayOnReturns(source, target, T_a, T_b, params, range_sigma_m, max_incidence_deg, out);
+  oneWayOnReturns(target, source, T_a.inverse(), T_b.inverse(), params, range_sigma_m, max_incidence_deg, out);
   out.standard_error = std::sqrt(out.standard_error);
   return out;
 }

@@ -146,5 +146,11 @@ struct Uniqueness {
 /// twice RANSAC's inlier distance. Not tested when the ratio is 0 or the two are not distinct.
 Uniqueness compareAlternative(const DepthView& source, const DepthView& target, const RegistrationResult& chosen,
                               const RegistrationResult& alternative, double distinct_m, const CertifyParams& params);
+/// The same on two sweeps' own returns (returnsLogLikelihoodRatio, pose_likelihood.h; both views
+/// carry DepthView::returns, else not tested): where binned cells, means of different returns in
+/// each sweep, cannot tell the two poses apart fairly, the returns can.
+Uniqueness compareAlternativeOnReturns(const DepthView& source, const DepthView& target, const RegistrationResult& chosen,
+                                       const RegistrationResult& alternative, double distinct_m,
+                                       const CertifyParams& params, double range_sigma_m, double max_incidence_deg);
 
 }  // namespace gasp

@@ -68,4 +68,15 @@ struct LikelihoodRatio {
 LikelihoodRatio logLikelihoodRatio(const DepthView& source, const DepthView& target, const Isometry3& T_a,
                           const Isometry3& T_b, const PoseLikelihoodParams& params = {});
 
+/// The same ratio on two sweeps' own returns (both views carry DepthView::returns; zero otherwise),
+/// with no binned cell's mean of different returns in between: every return of each sweep mapped
+/// into the other lands on the return nearest its direction there (landOnReturns,
+/// returns_stage.h); its residual is its distance from that return's plane, sigma = range_sigma_m;
+/// a landing in front of that return by more than the returns' free-space gate is a violation;
+/// the samples are grouped by the patch of the binned cell they belong to. params' sigma_m,
+/// sigma_per_m2, pixel_step and free_space are not used.
+LikelihoodRatio returnsLogLikelihoodRatio(const DepthView& source, const DepthView& target, const Isometry3& T_a,
+                                          const Isometry3& T_b, const PoseLikelihoodParams& params,
+                                          double range_sigma_m, double max_incidence_deg = 80.0);
+
 }  // namespace gasp

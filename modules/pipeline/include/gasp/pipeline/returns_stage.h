@@ -131,6 +131,18 @@ ReturnsBasin returnsBasin(const SweepReturns& source, const SweepReturns& target
                           const ReturnsRefineParams& params = {}, const RefinementParams& solver = {},
                           double max_incidence_deg = 80.0);
 
+/// Where a point in a sweep's sensor frame lands on that sweep's returns: the return nearest its
+/// direction with a normal (SweepReturns::lookUp, no reach), how far the point lies beyond that
+/// return along its own ray (negative: in front of it, in the space the sweep saw empty), its
+/// distance from that return's plane, and the free-space gate there: 5 range_sigma_m plus the depth
+/// change of the return's surface across half a cell (the incidence clamped at max_incidence_deg).
+struct ReturnLanding {
+  int index = -1;  ///< the return's (SweepReturns::point(i)); -1: it lands on none with a normal
+  double beyond_m = 0.0, plane_m = 0.0, gate_m = 0.0;
+};
+ReturnLanding landOnReturns(const SweepReturns& sweep, const Eigen::Vector3d& q, double range_sigma_m,
+                            double max_incidence_deg);
+
 /// The free-space test (visibility_check.h) on the sweeps' own returns rather than on binned cells,
 /// whose means of different returns in each sweep disagree 9 m apart even at the true pose: every
 /// return of each sweep, mapped into the other, against the return nearest its direction there
