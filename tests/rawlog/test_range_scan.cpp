@@ -462,6 +462,26 @@ double errorDeg(const gasp::Isometry3& T_true, const gasp::Isometry3& T) {
   return Eigen::AngleAxisd((T_true.inverse() * T).linear()).angle() * 180.0 / M_PI;
 }
 
+/// The pair registered with the LiDAR defaults, within the bound (5 cm, 0.5 deg).
+void expectRightPose(const SimulatedSweepPair& s) {
+  const gasp::RangePairResult r = gasp::registerRangeScans(s.a, s.b, gasp::lidarPairParams());
+  ASSERT_TRUE(r.pair.pose.success) << r.pair.pose.reason;
+  EXPECT_LT(errorCm(s.T_b_a, r.pair.pose.T_target_source), 5.0);
+  EXPECT_LT(errorDeg(s.T_b_a, r.pair.pose.T_target_source), 0.5);
+}
+
+/// Both sweeps' views with `p`'s segmentation and returns, and the truth as a claimed pose.
+struct SweepViews {
+  gasp::DepthView a, b;
+  gasp::RegistrationResult truth;
+};
+SweepViews sweepViews(const SimulatedSweepPair& s, const gasp::PairParams& p) {
+  SweepViews v{gasp::makeRangeView(s.a, p.segment, p.returns), gasp::makeRangeView(s.b, p.segment, p.returns), {}};
+  v.truth.success = true;
+  v.truth.T_target_source = s.T_b_a;
+  return v;
+}
+
 }  // namespace
 
 // The certificate's symmetry test, on for sweeps (LidarParams::symmetry_test), on the simulated
@@ -526,20 +546,13 @@ TEST(RangeScan, TheReturnsFixTheVerticalTheCellsLeaveFreeOnlyWhereTheyHoldTheirB
 // the returns: WhereTheCellsPreferATurnOfTheStreetTheReturnsDecide.)
 TEST(RangeScan, TheViolationChargeKeepsARightPoseOnTheStreetFromItsTurns) {
   const SimulatedSweepPair s = simulatedSweeps("street", 16, 30, 35);
-  const gasp::RangePairResult r = gasp::registerRangeScans(s.a, s.b, gasp::lidarPairParams());
-  ASSERT_TRUE(r.pair.pose.success) << r.pair.pose.reason;
-  EXPECT_LT(errorCm(s.T_b_a, r.pair.pose.T_target_source), 5.0);
-  EXPECT_LT(errorDeg(s.T_b_a, r.pair.pose.T_target_source), 0.5);
+  ASSERT_NO_FATAL_FAILURE(expectRightPose(s));
 
   const gasp::PairParams p = gasp::lidarPairParams();
   gasp::LidarParams uncharged;
   uncharged.violation_nats = 0.0;
   const gasp::CertifyParams free_of_charge = gasp::lidarPairParams(uncharged).certify;
-  const gasp::DepthView a = gasp::makeRangeView(s.a, p.segment, p.returns);
-  const gasp::DepthView b = gasp::makeRangeView(s.b, p.segment, p.returns);
-  gasp::RegistrationResult truth;
-  truth.success = true;
-  truth.T_target_source = s.T_b_a;
+  const auto [a, b, truth] = sweepViews(s, p);
   const double distinct_m = 2.0 * p.hypothesise.pose.ransac.inlier.distance_m;
   int tested = 0, lost_charged = 0, lost_uncharged = 0;
   for (const gasp::SymmetricTurn& t : gasp::symmetricTurns(a, b, s.T_b_a)) {
@@ -676,20 +689,13 @@ TEST(RangeScan, AfterAFreeSpaceRefusalTheReturnsDecideWhereTheCellsBinsDisagree)
 // turn claimed, the truth is taken.
 TEST(RangeScan, WhereTheCellsPreferATurnOfTheStreetTheReturnsDecide) {
   const SimulatedSweepPair s = simulatedSweeps("street", 16, 45, 55);
-  const gasp::RangePairResult r = gasp::registerRangeScans(s.a, s.b, gasp::lidarPairParams());
-  ASSERT_TRUE(r.pair.pose.success) << r.pair.pose.reason;
-  EXPECT_LT(errorCm(s.T_b_a, r.pair.pose.T_target_source), 5.0);
-  EXPECT_LT(errorDeg(s.T_b_a, r.pair.pose.T_target_source), 0.5);
+  ASSERT_NO_FATAL_FAILURE(expectRightPose(s));
 
   // The comparison itself: the truth against its half turn about the target's principal axis
   // along the street (symmetric_turns.h) refined on the cells by the tracking path, as the
   // symmetry test's turns are, then on the returns.
   const gasp::PairParams p = gasp::lidarPairParams();
-  const gasp::DepthView a = gasp::makeRangeView(s.a, p.segment, p.returns);
-  const gasp::DepthView b = gasp::makeRangeView(s.b, p.segment, p.returns);
-  gasp::RegistrationResult truth;
-  truth.success = true;
-  truth.T_target_source = s.T_b_a;
+  const auto [a, b, truth] = sweepViews(s, p);
   std::optional<gasp::RegistrationResult> turn;
   double along = 0.0;
   for (const gasp::SymmetricTurn& t : gasp::symmetricTurns(a, b, s.T_b_a)) {
