@@ -62,6 +62,11 @@ void DepthSlam::startSession(const Isometry3& T_world_first) { odometry_.startSe
 
 void DepthSlam::finishLoops() { takeLoops(true); }
 
+void DepthSlam::setRegistrar(CandidateRegistrar registrar) {
+  takeLoops(true);  // a search running keeps the registrar it started with
+  registrar_ = std::move(registrar);
+}
+
 void DepthSlam::closeLoops(std::size_t k) {
   if (searchLoops(k, graphFor(k), params_.odometry.pair, params_.loop, attempts_, votes_, vote_groups_)) optimise();
 }
@@ -80,7 +85,9 @@ void DepthSlam::startJob(std::size_t k, const std::vector<std::size_t>& candidat
     std::vector<std::pair<std::size_t, const DepthView*>> with_views;
     for (const std::size_t c : candidates) with_views.emplace_back(c, &keyframe_views_.at(c));
     job.registered = std::async(std::launch::async, [k, view_k = &keyframe_views_.at(k), with_views, relocalisation,
-                                                     pair = params_.odometry.pair, loop = params_.loop] {
+                                                     pair = params_.odometry.pair, loop = params_.loop,
+                                                     registrar = registrar_] {
+      if (registrar) return registrar(k, *view_k, with_views, relocalisation, pair, loop);
       return registerCandidates(k, *view_k, with_views, relocalisation, pair, loop);
     });
   }
@@ -125,6 +132,7 @@ LoopSearchGraph DepthSlam::graphFor(std::size_t k) {
   g.view = [this](std::size_t i) -> const DepthView& { return keyframe_views_.at(i); };
   g.links = [this] { return constraints(); };
   g.retrieve = [this](std::size_t key) { return retrieveEarlier(places_, key); };
+  g.register_candidates = registrar_;
   g.insert = [this](const PoseConstraint& c, std::size_t attempt, std::size_t group) {
     loop_closures_.push_back(c);
     loop_attempt_.push_back(attempt);

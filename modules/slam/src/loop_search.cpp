@@ -153,14 +153,16 @@ bool takeRelocalisations(std::size_t k, const LoopSearchGraph& g, std::vector<Lo
 bool searchLoops(std::size_t k, const LoopSearchGraph& g, const PairParams& pair, const LoopClosureParams& loop,
                  std::vector<LoopClosureAttempt>& attempts, RelocalisationVotes& votes, std::size_t& vote_groups) {
   const DepthView& view_k = g.view(k);
-  bool taken = takeNearLoops(
-      k, g, registerCandidates(k, view_k, withViews(nearLoopCandidates(k, g, loop), g), false, pair, loop), loop,
-      attempts);
+  // One phase's candidates registered by the graph's registrar (none to register: none asked).
+  const auto registered = [&](const std::vector<std::size_t>& candidates, bool relocalisation) {
+    if (candidates.empty()) return std::vector<LoopRegistration>{};
+    if (g.register_candidates) return g.register_candidates(k, view_k, withViews(candidates, g), relocalisation, pair, loop);
+    return registerCandidates(k, view_k, withViews(candidates, g), relocalisation, pair, loop);
+  };
+  bool taken = takeNearLoops(k, g, registered(nearLoopCandidates(k, g, loop), false), loop, attempts);
   const std::vector<std::size_t> relocalisation = relocalisationCandidatesOf(k, g, loop);
   if (relocalisation.empty()) return taken;
-  taken = takeRelocalisations(k, g, registerCandidates(k, view_k, withViews(relocalisation, g), true, pair, loop),
-                              attempts, votes, vote_groups) ||
-          taken;
+  taken = takeRelocalisations(k, g, registered(relocalisation, true), attempts, votes, vote_groups) || taken;
   return taken;
 }
 

@@ -70,6 +70,11 @@ class DepthSlam {
   /// (agreeing votes, relocalisation.h) joins it to the sessions before when they share places,
   /// and never otherwise. A session that is not joined keeps the world it started in.
   void startSession(const Isometry3& T_world_first);
+  /// Who registers the loop searches' candidates from now on (loop_search.h; empty:
+  /// registerCandidates(), in this process). It must return what registerCandidates() would, as
+  /// a log of an earlier run's registrations does (registration_log.h); with background searches it
+  /// runs on their thread.
+  void setRegistrar(CandidateRegistrar registrar);
   /// Waits for every loop search still running or queued and takes them: afterwards the graph,
   /// poses() and attempts() hold every keyframe's search. Call it after the last frame.
   void finishLoops();
@@ -137,6 +142,7 @@ class DepthSlam {
   RelocalisationVotes votes_;                   ///< relocalisations waiting for agreement
   std::size_t optimisations_ = 0;
   double optimisation_ms_ = 0.0;
+  CandidateRegistrar registrar_;               ///< empty: registerCandidates()
   std::deque<std::size_t> waiting_keyframes_;  ///< background: keyframes whose search has not started
   std::optional<LoopJob> job_;                 ///< last: destroyed (waited for) before the views it reads
 };

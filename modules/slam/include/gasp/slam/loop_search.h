@@ -18,6 +18,15 @@
 
 namespace gasp {
 
+struct LoopRegistration;
+
+/// Registers one phase's candidates to keyframe k, in the candidates' order: registerCandidates()
+/// (below), or anything that returns the same registrations -- a log of them from an earlier run
+/// (registration_log.h), another process.
+using CandidateRegistrar = std::function<std::vector<LoopRegistration>(
+    std::size_t k, const DepthView& view_k, const std::vector<std::pair<std::size_t, const DepthView*>>& candidates,
+    bool relocalisation, const PairParams& pair, const LoopClosureParams& loop)>;
+
 /// The owner's graph, as the search sees it.
 struct LoopSearchGraph {
   std::size_t node_count = 0;
@@ -39,6 +48,8 @@ struct LoopSearchGraph {
   std::function<std::string(const PoseConstraint& newest, const RelocalisationVotes::Decision& d,
                             const std::vector<std::size_t>& roots)>
       before_join;
+  /// Who registers the candidates (empty: registerCandidates()).
+  CandidateRegistrar register_candidates;
 };
 
 /// A keyframe's place descriptor (place_descriptor.h): its view's patches through the pair's
