@@ -11,6 +11,7 @@ PACKAGES=(
   libceres-dev                      # pose refinement (point-to-plane)
   libnanoflann-dev                  # KD-trees
   libpcl-dev                        # baselines of the pair benchmark: FPFH, SHOT, colour SHOT
+  libopenmpi-dev openmpi-bin        # gasp-slam --mpi: a map-building job over MPI processes
   libtbb-dev                        # parallel loops
   libcli11-dev                      # command-line parsing of the programs
   zlib1g-dev                        # rawlogs' gzip streams checked to their end

@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 scripts/install_deps.sh
 BUILD_DIR=${GASP_TEST_BUILD_DIR:-build/ci}
 JOBS=$(nproc)
-cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DGASP_WARNINGS_AS_ERRORS=ON -DGASP_BUILD_TESTS=ON -DGASP_BUILD_BASELINES=ON
+cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DGASP_WARNINGS_AS_ERRORS=ON -DGASP_BUILD_TESTS=ON -DGASP_BUILD_BASELINES=ON -DGASP_WITH_MPI=ON
 cmake --build "$BUILD_DIR" -j"$JOBS"
 cd "$BUILD_DIR"
 ctest --output-on-failure -j"$JOBS"

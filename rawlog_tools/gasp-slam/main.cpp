@@ -3,7 +3,7 @@
 //   gasp-slam --tum DIR | --rawlog FILE | --session PATH[@FIRST-LAST]... [--sensor LABEL]
 //             [--gt TRAJ.txt] --out TRAJ.txt [--graph G.graph] [--simplemap MAP.simplemap]
 //             [--cloud MAP.ply] [--marginals-csv M.csv] [--sessions-report R.yaml]
-//             [--params FILE] [options]
+//             [--params FILE] [--checkpoint FILE [--resume]] [--mpi] [options]
 // Writes the optimised trajectory of the depth camera (TUM format) in the world of the first
 // frame's robot frame (MRPT's sensorPose; TUM folders: the camera looking along the robot's +X;
 // a rawlog of LiDAR sweeps: the LiDAR's, with the params' lidar section, lidarSlamParams()),
@@ -15,6 +15,12 @@
 // them (never otherwise): one trajectory per session (TRAJ.session<N>.txt) in its map's world,
 // one graph and map over all, and the report of which sessions were joined.
 // Every output is opened before the run and written whole or not at all (run_outputs.h).
+// --checkpoint journals the loop searches' registrations as they are made
+// (gasp/slam/registration_log.h); a run cut short and started again with --resume answers from it
+// what it had registered and registers only the rest: with the searches in place
+// (loop_closure.background: false), the same graph as the uninterrupted run.
+// --mpi (mpirun -np N gasp-slam ... --mpi; built with GASP_WITH_MPI): rank 0 runs the job and
+// hands its loop registrations to the other ranks (gasp/mpi/registrar_pool.h).
 // Exit codes: 0 every frame tracked and the graph in one piece, 1 bad input (when the input ends
 // with an error after some frames, the outputs are written for those frames, marked partial),
 // 2 usage error, 3 written, but some frames were not tracked or the graph stayed in pieces.
@@ -36,6 +42,7 @@
 #include "gasp/rawlog/depth_sequence.h"
 #include "gasp/slam/depth_slam.h"
 #include "gasp/slam/point_map.h"
+#include "gasp/slam/registration_log.h"
 #include "cli.h"
 #include "params_options.h"
 #include "frames_ahead.h"
@@ -44,6 +51,9 @@
 #include "sequence_options.h"
 #include "sequence_report.h"
 #include "sessions.h"
+#ifdef GASP_WITH_MPI
+#include "gasp/mpi/registrar_pool.h"
+#endif
 
 namespace {
 
@@ -62,6 +72,22 @@ void writeLoopsCsv(std::ostream& out, const std::vector<gasp::LoopClosureAttempt
 }  // namespace
 
 int main(int argc, char** argv) {
+  bool use_mpi = false;
+  for (int i = 1; i < argc; ++i) use_mpi = use_mpi || std::string(argv[i]) == "--mpi";
+#ifdef GASP_WITH_MPI
+  std::optional<gasp::mpi::Session> mpi;
+  try {
+    if (use_mpi) mpi.emplace(argc, argv);
+  } catch (const gasp::Error& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return 1;
+  }
+#else
+  if (use_mpi) {
+    std::cerr << "error: --mpi: this gasp-slam was built without MPI (cmake -DGASP_WITH_MPI=ON, with libopenmpi-dev)\n";
+    return 2;
+  }
+#endif
   CLI::App app{"gasp-slam: a map built offline from a depth sequence with GASP: odometry, loop closures between "
                "keyframes and the optimised pose graph"};
   gasp::DepthSequenceOptions input;
@@ -97,6 +123,19 @@ int main(int argc, char** argv) {
   gasp::tools::addSequentialOption(app, sequential);
   app.add_flag("--no-loop-closures", no_loops,
                "odometry only (no loop closures, no optimisation; loop_closure.enabled = false)");
+  std::string checkpoint_path;
+  bool resume = false;
+  app.add_option("--checkpoint", checkpoint_path,
+                 "journal of the loop searches' registrations, appended and flushed as they are made: a run cut short "
+                 "resumes from it with --resume (with loop_closure.background: false, the same graph as the "
+                 "uninterrupted run)");
+  app.add_flag("--resume", resume,
+               "answer from the --checkpoint journal (the same inputs and parameters) what it holds, register the rest "
+               "and go on journaling")
+      ->needs(app.get_option("--checkpoint"));
+  app.add_flag("--mpi", use_mpi,
+               "under mpirun: rank 0 runs the job and hands its loop registrations to the other ranks, each a keyframe's "
+               "view sent once (with loop_closure.background: false, the single process's graph)");
   params_options.add(app);
   if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;
   if (no_loops) params.loop.enabled = false;
@@ -111,6 +150,19 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+#ifdef GASP_WITH_MPI
+  if (mpi && mpi->rank() != 0) {  // a worker: registers what rank 0 hands it, reads no input, writes nothing
+    try {
+      gasp::validate(params);
+      gasp::mpi::serveRegistrations(*mpi, gasp::paramsYaml(params), params,
+                                    gasp::paramsYaml(gasp::lidarSlamParams(params)), gasp::lidarSlamParams(params));
+    } catch (const std::exception& e) {
+      std::cerr << "error: rank " << mpi->rank() << ": " << gasp::exceptionMessage(e) << '\n';
+      return 1;
+    }
+    return 0;
+  }
+#endif
   try {
     gasp::validate(params);
     const gasp::VoxelPointMap probe(map_output.voxel_m, map_output.cloud_max_depth_m);  // checked before the run
@@ -164,6 +216,33 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "note: --cloud leaves out the sweeps' returns beyond %g m (--cloud-max-depth)\n",
                    map_output.cloud_max_depth_m);
     if (sweeps) params = gasp::lidarSlamParams(params);
+    // The job's registrations journaled (--checkpoint): named by the effective parameters and the
+    // sessions, so that a journal answers only the job that wrote it.
+    std::optional<gasp::RegistrationLog> registrations;
+    if (!checkpoint_path.empty()) {
+      std::string job = gasp::paramsYaml(params);
+      for (std::size_t s = 0; s < n_sessions; ++s)
+        job += "\nsession " + sequences[s].describe() + (session_specs.empty() ? "" : " " + session_specs[s]) +
+               " first " + std::to_string(sessions[s].first) + " every " + std::to_string(sessions[s].every) +
+               " max " + std::to_string(sessions[s].max_frames) + " sensor " + sessions[s].sensor_label;
+      registrations.emplace(resume ? gasp::RegistrationLog::read(checkpoint_path, job) : gasp::RegistrationLog(job));
+      registrations->journalTo(checkpoint_path);
+      if (resume) std::printf("checkpoint: %zu registrations from %s\n", registrations->size(), checkpoint_path.c_str());
+      if (params.loop.background)
+        std::fprintf(stderr, "note: --checkpoint with background loop searches: a resumed run answers what the journal "
+                             "holds, but which candidates it searches follows how far tracking got (for the "
+                             "uninterrupted run's graph: loop_closure.background: false)\n");
+    }
+    gasp::CandidateRegistrar registrar;  // empty: in this process
+#ifdef GASP_WITH_MPI
+    std::optional<gasp::mpi::RegistrarPool> pool;
+    if (mpi) {
+      pool.emplace(*mpi, gasp::paramsYaml(params), sweeps);
+      registrar = pool->registrar();
+      std::printf("mpi: %d ranks, the loop registrations on ranks 1-%d\n", mpi->size(), mpi->size() - 1);
+    }
+#endif
+    if (registrations) registrar = registrations->registrar(registrar);
     std::optional<gasp::DepthSlam> slam;
     gasp::Isometry3 T_robot_camera = gasp::Isometry3::Identity();
     std::vector<gasp::RgbdFrame> keyframes;  // for --simplemap and --cloud
@@ -187,6 +266,7 @@ int main(int argc, char** argv) {
             // World = the first frame's robot frame: the first camera sits at its sensorPose.
             T_robot_camera = frame.T_robot_camera;
             slam.emplace(params, T_robot_camera);
+            if (registrar) slam->setRegistrar(registrar);
           } else if (!session_started) {
             // A new session starts in the world of its own first robot frame, as the first did.
             if (!frame.T_robot_camera.isApprox(T_robot_camera, 1e-9))
@@ -300,6 +380,14 @@ int main(int argc, char** argv) {
     std::printf("loop_closures: %zu (%zu registrations tried; %zu relocalisations)\n",
                 slam->loopClosures().size() - relocalisations, tried, relocalisations);
     std::printf("optimisations: %zu (%.1f ms in all)\n", slam->optimisationCount(), slam->optimisationMs());
+    if (registrations)
+      std::printf("checkpoint: %s (%zu registrations made, %zu answered from it)\n", checkpoint_path.c_str(),
+                  registrations->registered(), registrations->answered());
+#ifdef GASP_WITH_MPI
+    if (pool)
+      std::printf("mpi: %zu pairs registered on the other ranks, %zu views sent (%.1f MB)\n", pool->pairsSent(),
+                  pool->viewsSent(), pool->megabytesSent());
+#endif
     std::printf("graph_pieces: %zu (odometry alone: %zu)\n", slam->pieceCount(), slam->odometry().componentCount());
     const std::size_t tracked = slam->odometry().trackedCount();
     if (n_sessions == 1) {

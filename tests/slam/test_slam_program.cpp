@@ -26,6 +26,7 @@
 #include "depth_difference.h"
 #include "gasp_test_data.h"
 #include "program_run.h"
+#include "two_session_job.h"
 
 namespace {
 
@@ -399,4 +400,56 @@ TEST(GaspSlamProgram, MapsOfLidarSweepsHoldTheSweepsAsReadAndTheirReturnsWhereTh
     EXPECT_LT(median, 0.02);  // 5 cm voxels of the same returns: about 1 cm apart at the truth
     EXPECT_LT(p90, 0.05);
   }
+}
+
+TEST(GaspSlamProgram, AJobKilledMidRunResumesFromItsCheckpointToTheSameGraph) {
+  // Two sessions of the simulated room that share frames 20-24, the searches in place: killed
+  // (SIGKILL) once two registrations are journaled, then started again with --resume, the job
+  // writes the uninterrupted job's trajectories and graph byte for byte, registering only what
+  // the journal did not hold.
+  const std::string out = gasp::test::scratchDir();
+  const gasp::test::TwoSessionJob two = gasp::test::twoSessionJob(out);
+  const auto job = [&](const std::string& name) { return two.args(name) + " --checkpoint " + out + "/" + name + ".journal"; };
+  const auto whole = runProgram("gasp-slam", job("whole"));
+  ASSERT_TRUE(whole.exit_code == 0 || whole.exit_code == 3) << whole.output;
+  const std::size_t registrations = countLinesStartingWith(out + "/whole.journal", "R\t");
+  ASSERT_GE(registrations, 4u) << whole.output;
+  EXPECT_TRUE(contains(whole.output, "registrations made, 0 answered from it)")) << whole.output;
+
+  // The same job, killed.
+  const std::string journal = out + "/cut.journal";
+  const auto killed = gasp::test::runCommand(
+      "bash -c '\"" + std::string(GASP_BIN_DIR) + "/gasp-slam\" " + job("cut") + " > " + out + "/cut.log 2>&1 & pid=$!; " +
+      "for i in $(seq 1 1200); do n=$(grep -c \"^R\" " + journal + " 2>/dev/null); " +
+      "[ \"${n:-0}\" -ge 2 ] && break; sleep 0.05; done; kill -9 $pid && echo killed; wait $pid; " +
+      "echo records=$(grep -c \"^R\" " + journal + ")'");
+  ASSERT_TRUE(contains(killed.output, "killed\n")) << killed.output;
+  const std::size_t kept = printedCount(killed.output, "records=");
+  ASSERT_GE(kept, 2u) << killed.output;
+  ASSERT_LT(kept, registrations) << killed.output;
+
+  const auto resumed = runProgram("gasp-slam", job("cut") + " --resume");
+  EXPECT_EQ(resumed.exit_code, whole.exit_code) << resumed.output;
+  EXPECT_TRUE(contains(resumed.output, "checkpoint: " + std::to_string(kept) + " registrations from")) << resumed.output;
+  EXPECT_TRUE(contains(resumed.output, std::to_string(registrations - kept) + " registrations made, " +
+                                           std::to_string(kept) + " answered from it)"))
+      << resumed.output;
+  for (const std::string file : {".session1.txt", ".session2.txt", ".graph"}) {
+    const std::string a = gasp::test::fileText(out + "/whole" + file);
+    EXPECT_FALSE(a.empty()) << file;
+    EXPECT_EQ(a, gasp::test::fileText(out + "/cut" + file)) << file;
+  }
+  EXPECT_EQ(countLinesStartingWith(journal, "R\t"), registrations);
+
+  // Another job's journal (other frames), --resume without --checkpoint, a journal that is not one.
+  auto other = runProgram("gasp-slam", "--session " + out + "/room@0-23 --session " + out + "/room@20-44 --params " + out +
+                                           "/inplace.yaml --out " + out + "/o.txt --checkpoint " + journal + " --resume");
+  EXPECT_EQ(other.exit_code, 1) << other.output;
+  EXPECT_TRUE(contains(other.output, "is another job's")) << other.output;
+  other = runProgram("gasp-slam", "--tum " + out + "/room --out " + out + "/o.txt --resume");
+  EXPECT_EQ(other.exit_code, 2) << other.output;
+  other = runProgram("gasp-slam", "--tum " + out + "/room --out " + out + "/o.txt --checkpoint " + out +
+                                      "/room/groundtruth.txt --resume");
+  EXPECT_EQ(other.exit_code, 1) << other.output;
+  EXPECT_TRUE(contains(other.output, "is not a GASP registration journal")) << other.output;
 }

@@ -1,0 +1,51 @@
+// gasp-slam --mpi (gasp/mpi/registrar_pool.h) under mpirun with 2 and 3 ranks: the same
+// trajectories and graph, byte for byte, as the single process, with the loop registrations made
+// on the other ranks.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+#include "gasp_test_data.h"
+#include "program_run.h"
+#include "two_session_job.h"
+
+namespace {
+
+using gasp::test::contains;
+using gasp::test::fileText;
+using gasp::test::printedCount;
+using gasp::test::runCommand;
+using gasp::test::runProgram;
+
+}  // namespace
+
+TEST(GaspSlamMpi, TwoAndThreeRanksWriteTheSingleProcessGraph) {
+  const std::string out = gasp::test::scratchDir();
+  const gasp::test::TwoSessionJob two = gasp::test::twoSessionJob(out);
+  const auto job = [&](const std::string& name) { return two.args(name); };
+  const auto single = runProgram("gasp-slam", job("single"));
+  ASSERT_TRUE(single.exit_code == 0 || single.exit_code == 3) << single.output;
+  const std::size_t tried = printedCount(single.output, "loop_closures: ");
+  ASSERT_NE(tried, static_cast<std::size_t>(-1)) << single.output;
+
+  for (const int ranks : {2, 3}) {
+    const std::string name = "ranks" + std::to_string(ranks);
+    // As root (a CI container) Open MPI needs both variables; --oversubscribe: more ranks than cores.
+    const auto mpi = runCommand("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " + std::string(GASP_MPIEXEC) +
+                                " --oversubscribe -np " + std::to_string(ranks) + " " + std::string(GASP_BIN_DIR) +
+                                "/gasp-slam " + job(name) + " --mpi 2>&1");
+    EXPECT_EQ(mpi.exit_code, single.exit_code) << mpi.output;
+    EXPECT_TRUE(contains(mpi.output, "mpi: " + std::to_string(ranks) + " ranks")) << mpi.output;
+    // Every registration made on another rank: "mpi: N pairs registered on the other ranks".
+    const auto at = mpi.output.find(" pairs registered on the other ranks");
+    ASSERT_NE(at, std::string::npos) << mpi.output;
+    const std::size_t line = mpi.output.rfind("mpi: ", at);
+    EXPECT_GE(std::stoul(mpi.output.substr(line + 5, at - line - 5)), 4u) << mpi.output;
+    for (const std::string file : {".session1.txt", ".session2.txt", ".graph"}) {
+      const std::string a = fileText(out + "/single" + file), b = fileText(out + "/" + name + file);
+      EXPECT_FALSE(a.empty()) << file;
+      EXPECT_EQ(a, b) << name << file;
+    }
+  }
+}
