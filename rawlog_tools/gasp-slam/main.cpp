@@ -27,6 +27,8 @@
 #include <CLI/CLI.hpp>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <chrono>
 #include <cstdio>
 #include <ostream>
@@ -35,6 +37,8 @@
 #include <vector>
 
 #include "gasp/core/error.h"
+#include "gasp/core/format.h"
+#include "gasp/core/output_file.h"
 #include "gasp/core/stopwatch.h"
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/mrpt/keyframe_map.h"
@@ -67,6 +71,47 @@ void writeLoopsCsv(std::ostream& out, const std::vector<gasp::LoopClosureAttempt
                   a.accepted ? 1 : 0, a.inliers, a.gate_chi2, a.registration_ms);
     out << buf << '"' << reason << "\"\n";
   }
+}
+
+/// What names a session's frames for a registration journal's fingerprint: every input option and
+/// each input file's size and modification time (a file replaced, another camera: another job).
+std::string sessionFingerprint(const gasp::DepthSequenceOptions& o) {
+  std::string text = "tum " + o.tum_dir + " rawlog " + o.rawlog_path + " sweeps " + std::to_string(o.sweeps) +
+                     " sensor " + o.sensor_label + " first " + std::to_string(o.first) + " every " +
+                     std::to_string(o.every) + " max " + std::to_string(o.max_frames) + " intrinsics " + o.intrinsics +
+                     " units " + gasp::formatted("%.17g", o.depth_units_per_metre) + " undistort " +
+                     std::to_string(o.undistort);
+  for (const std::string& f : gasp::tools::sequenceInputs(o, "")) {
+    std::error_code e1, e2;
+    const auto size = std::filesystem::file_size(f, e1);
+    const auto time = std::filesystem::last_write_time(f, e2);
+    text += " file " + f + " " + (e1 ? "?" : std::to_string(size)) + " " +
+            (e2 ? "?" : std::to_string(time.time_since_epoch().count()));
+  }
+  return text;
+}
+
+/// The registration journal is neither an input nor another output, and a journal already there
+/// is continued only with --resume (a restart without it would drop the checkpoint).
+void checkJournalPath(const std::string& path, bool resume, const std::vector<std::string>& inputs,
+                      const std::vector<std::pair<std::string, std::string>>& outputs) {
+  namespace fs = std::filesystem;
+  const gasp::FileIdentity journal = gasp::fileIdentity(path);
+  for (const std::string& input : inputs)
+    if (journal.exists() && journal == gasp::fileIdentity(input))
+      throw gasp::Error("--checkpoint '" + path + "' is the input '" + input + "'");
+  std::error_code ec;
+  const fs::path canonical = fs::weakly_canonical(path, ec);
+  for (const auto& [option, output] : outputs)
+    if (!output.empty() && fs::weakly_canonical(output, ec) == canonical)
+      throw gasp::Error("--checkpoint '" + path + "' is also the output of " + option);
+  if (resume || !journal.exists()) return;
+  std::ifstream in(path, std::ios::binary);
+  std::string head(18, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  if (in && head == "gasp-registrations")
+    throw gasp::Error("--checkpoint '" + path + "' holds a registration journal: add --resume to go on from it, or " +
+                      "remove it to start again");
 }
 
 }  // namespace
@@ -156,9 +201,9 @@ int main(int argc, char** argv) {
       gasp::validate(params);
       gasp::mpi::serveRegistrations(*mpi, gasp::paramsYaml(params), params,
                                     gasp::paramsYaml(gasp::lidarSlamParams(params)), gasp::lidarSlamParams(params));
-    } catch (const std::exception& e) {
-      std::cerr << "error: rank " << mpi->rank() << ": " << gasp::exceptionMessage(e) << '\n';
-      return 1;
+    } catch (const std::exception& e) {  // rank 0 would wait for this rank for ever: the job ends
+      std::cerr << "error: rank " << mpi->rank() << ": " << gasp::exceptionMessage(e) << std::endl;
+      mpi->abort(1);
     }
     return 0;
   }
@@ -220,11 +265,9 @@ int main(int argc, char** argv) {
     // sessions, so that a journal answers only the job that wrote it.
     std::optional<gasp::RegistrationLog> registrations;
     if (!checkpoint_path.empty()) {
+      checkJournalPath(checkpoint_path, resume, input_files, output_paths);
       std::string job = gasp::paramsYaml(params);
-      for (std::size_t s = 0; s < n_sessions; ++s)
-        job += "\nsession " + sequences[s].describe() + (session_specs.empty() ? "" : " " + session_specs[s]) +
-               " first " + std::to_string(sessions[s].first) + " every " + std::to_string(sessions[s].every) +
-               " max " + std::to_string(sessions[s].max_frames) + " sensor " + sessions[s].sensor_label;
+      for (std::size_t s = 0; s < n_sessions; ++s) job += "\nsession " + sessionFingerprint(sessions[s]);
       registrations.emplace(resume ? gasp::RegistrationLog::read(checkpoint_path, job) : gasp::RegistrationLog(job));
       registrations->journalTo(checkpoint_path);
       if (resume) std::printf("checkpoint: %zu registrations from %s\n", registrations->size(), checkpoint_path.c_str());

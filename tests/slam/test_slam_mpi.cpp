@@ -18,6 +18,15 @@ using gasp::test::printedCount;
 using gasp::test::runCommand;
 using gasp::test::runProgram;
 
+/// gasp-slam under mpirun with `ranks` processes. As root (a CI container) Open MPI needs both
+/// ALLOW variables; --oversubscribe: more ranks than cores; no single-copy shared memory (which
+/// containers without ptrace refuse).
+gasp::test::ProgramRun mpirun(int ranks, const std::string& args) {
+  return runCommand("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl_vader_single_copy_mechanism=none " +
+                    std::string(GASP_MPIEXEC) + " --oversubscribe -np " + std::to_string(ranks) + " " +
+                    std::string(GASP_BIN_DIR) + "/gasp-slam " + args + " --mpi 2>&1");
+}
+
 }  // namespace
 
 TEST(GaspSlamMpi, TwoAndThreeRanksWriteTheSingleProcessGraph) {
@@ -31,10 +40,7 @@ TEST(GaspSlamMpi, TwoAndThreeRanksWriteTheSingleProcessGraph) {
 
   for (const int ranks : {2, 3}) {
     const std::string name = "ranks" + std::to_string(ranks);
-    // As root (a CI container) Open MPI needs both variables; --oversubscribe: more ranks than cores.
-    const auto mpi = runCommand("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " + std::string(GASP_MPIEXEC) +
-                                " --oversubscribe -np " + std::to_string(ranks) + " " + std::string(GASP_BIN_DIR) +
-                                "/gasp-slam " + job(name) + " --mpi 2>&1");
+    const auto mpi = mpirun(ranks, job(name) + (ranks == 2 ? " --checkpoint " + out + "/half.journal" : ""));
     EXPECT_EQ(mpi.exit_code, single.exit_code) << mpi.output;
     EXPECT_TRUE(contains(mpi.output, "mpi: " + std::to_string(ranks) + " ranks")) << mpi.output;
     // Every registration made on another rank: "mpi: N pairs registered on the other ranks".
@@ -48,4 +54,20 @@ TEST(GaspSlamMpi, TwoAndThreeRanksWriteTheSingleProcessGraph) {
       EXPECT_EQ(a, b) << name << file;
     }
   }
+
+  // With a checkpoint: the 2-rank job's journal cut to half its registrations, resumed on 2 ranks:
+  // the journal answers first, rank 1 registers the rest, the outputs are the single process's.
+  const std::string journal = fileText(out + "/half.journal");
+  std::size_t lines = 0, at = 0;
+  for (std::size_t p = journal.find('\n'); p != std::string::npos; p = journal.find('\n', p + 1)) ++lines;
+  const std::size_t kept = (lines - 1) / 2;
+  for (std::size_t i = 0; i < 1 + kept; ++i) at = journal.find('\n', at) + 1;
+  std::ofstream(out + "/half.journal", std::ios::binary | std::ios::trunc) << journal.substr(0, at);
+  const auto resumed = mpirun(2, job("resumed") + " --checkpoint " + out + "/half.journal --resume");
+  EXPECT_EQ(resumed.exit_code, single.exit_code) << resumed.output;
+  EXPECT_TRUE(contains(resumed.output, std::to_string(lines - 1 - kept) + " registrations made, " +
+                                           std::to_string(kept) + " answered from it)"))
+      << resumed.output;
+  for (const std::string file : {".session1.txt", ".session2.txt", ".graph"})
+    EXPECT_EQ(fileText(out + "/single" + file), fileText(out + "/resumed" + file)) << file;
 }

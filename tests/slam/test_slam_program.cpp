@@ -420,7 +420,7 @@ TEST(GaspSlamProgram, AJobKilledMidRunResumesFromItsCheckpointToTheSameGraph) {
   const std::string journal = out + "/cut.journal";
   const auto killed = gasp::test::runCommand(
       "bash -c '\"" + std::string(GASP_BIN_DIR) + "/gasp-slam\" " + job("cut") + " > " + out + "/cut.log 2>&1 & pid=$!; " +
-      "for i in $(seq 1 1200); do n=$(grep -c \"^R\" " + journal + " 2>/dev/null); " +
+      "for i in $(seq 1 2400); do n=$(grep -c \"^R\" " + journal + " 2>/dev/null); " +
       "[ \"${n:-0}\" -ge 2 ] && break; sleep 0.05; done; kill -9 $pid && echo killed; wait $pid; " +
       "echo records=$(grep -c \"^R\" " + journal + ")'");
   ASSERT_TRUE(contains(killed.output, "killed\n")) << killed.output;
@@ -441,15 +441,29 @@ TEST(GaspSlamProgram, AJobKilledMidRunResumesFromItsCheckpointToTheSameGraph) {
   }
   EXPECT_EQ(countLinesStartingWith(journal, "R\t"), registrations);
 
+  gasp::test::ProgramRun other{0, ""};
+  // A journal there already, without --resume; the journal an input or another output.
+  other = runProgram("gasp-slam", job("cut"));
+  EXPECT_EQ(other.exit_code, 1) << other.output;
+  EXPECT_TRUE(contains(other.output, "holds a registration journal: add --resume")) << other.output;
+  other = runProgram("gasp-slam", two.args("x") + " --checkpoint " + out + "/room/depth.txt");
+  EXPECT_EQ(other.exit_code, 1) << other.output;
+  EXPECT_TRUE(contains(other.output, "is the input")) << other.output;
+  other = runProgram("gasp-slam", two.args("x") + " --checkpoint " + out + "/x.graph");
+  EXPECT_EQ(other.exit_code, 1) << other.output;
+  EXPECT_TRUE(contains(other.output, "is also the output of --graph")) << other.output;
+  EXPECT_EQ(countLinesStartingWith(journal, "R\t"), registrations);  // untouched
+
   // Another job's journal (other frames), --resume without --checkpoint, a journal that is not one.
-  auto other = runProgram("gasp-slam", "--session " + out + "/room@0-23 --session " + out + "/room@20-44 --params " + out +
+  other = runProgram("gasp-slam", "--session " + out + "/room@0-23 --session " + out + "/room@20-44 --params " + out +
                                            "/inplace.yaml --out " + out + "/o.txt --checkpoint " + journal + " --resume");
   EXPECT_EQ(other.exit_code, 1) << other.output;
   EXPECT_TRUE(contains(other.output, "is another job's")) << other.output;
   other = runProgram("gasp-slam", "--tum " + out + "/room --out " + out + "/o.txt --resume");
   EXPECT_EQ(other.exit_code, 2) << other.output;
+  std::ofstream(out + "/notes.txt") << "not a journal\n";
   other = runProgram("gasp-slam", "--tum " + out + "/room --out " + out + "/o.txt --checkpoint " + out +
-                                      "/room/groundtruth.txt --resume");
+                                      "/notes.txt --resume");
   EXPECT_EQ(other.exit_code, 1) << other.output;
   EXPECT_TRUE(contains(other.output, "is not a GASP registration journal")) << other.output;
 }

@@ -3,6 +3,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <deque>
 #include <limits>
@@ -21,7 +22,7 @@ enum Tag : int { kJob = 1, kView = 2, kPair = 3, kRegistration = 4, kStop = 5 };
 
 void send(const std::string& bytes, int to, Tag tag) {
   if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
-    throw Error("MPI: a message of " + std::to_string(bytes.size()) + " bytes is over MPI's 2 GB count");
+    throw JobError("MPI: a message of " + std::to_string(bytes.size()) + " bytes is over MPI's 2 GB count");
   MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, to, tag, MPI_COMM_WORLD);
 }
 
@@ -41,7 +42,7 @@ void put(std::string& out, T v) {
 }
 template <class T>
 T take(const std::string& in, std::size_t& at) {
-  if (in.size() < at + sizeof(T)) throw Error("MPI: a truncated message");
+  if (in.size() < at + sizeof(T)) throw JobError("MPI: a truncated message");
   T v;
   std::memcpy(&v, in.data() + at, sizeof v);
   at += sizeof v;
@@ -64,6 +65,11 @@ Session::Session(int& argc, char**& argv) {
 Session::~Session() {
   stopWorkers();
   MPI_Finalize();
+}
+
+void Session::abort(int code) {
+  MPI_Abort(MPI_COMM_WORLD, code);
+  std::_Exit(code);  // MPI_Abort does not return; should an MPI return from it, end this rank anyway
 }
 
 void Session::stopWorkers() {
@@ -102,11 +108,13 @@ std::vector<LoopRegistration> RegistrarPool::spread(std::size_t k, const DepthVi
     const std::size_t i = waiting.front();
     waiting.pop_front();
     for (const auto& [index, view] : {std::pair<std::size_t, const DepthView*>{k, &view_k}, candidates[i]}) {
-      if (!held_[static_cast<std::size_t>(rank)].insert(index).second) continue;
+      std::set<std::size_t>& held = held_[static_cast<std::size_t>(rank)];
+      if (held.count(index)) continue;
       std::string message;
       put<std::uint64_t>(message, index);
       message += viewBytes(*view);
       send(message, rank, kView);
+      held.insert(index);
       ++views_;
       bytes_ += message.size();
     }
@@ -123,13 +131,13 @@ std::vector<LoopRegistration> RegistrarPool::spread(std::size_t k, const DepthVi
     MPI_Status status;
     const std::string record = receive(MPI_ANY_SOURCE, kRegistration, status);
     const auto it = busy.find(status.MPI_SOURCE);
-    if (it == busy.end()) throw Error("MPI: a registration from rank " + std::to_string(status.MPI_SOURCE) + ", which had none to make");
+    if (it == busy.end()) throw JobError("MPI: a registration from rank " + std::to_string(status.MPI_SOURCE) + ", which had none to make");
     std::size_t rk = 0, candidate = 0;
     bool phase = false;
     LoopRegistration r;
     if (!readRegistrationRecord(record.substr(0, record.size() - 1), rk, candidate, phase, r) || rk != k ||
         candidate != candidates[it->second].first || phase != relocalisation)
-      throw Error("MPI: rank " + std::to_string(status.MPI_SOURCE) + " returned another registration than asked");
+      throw JobError("MPI: rank " + std::to_string(status.MPI_SOURCE) + " returned another registration than asked");
     out[it->second] = std::move(r);
     busy.erase(it);
     if (!waiting.empty()) give(status.MPI_SOURCE);
@@ -176,7 +184,8 @@ std::size_t serveRegistrations(const Session& session, const std::string& job_fi
       r.attempt.to = r.constraint.to = k;
       r.attempt.relocalisation = relocalisation;
       r.constraint.loop_closure = true;
-      r.attempt.reason = "no estimate: the registration failed on rank " + std::to_string(session.rank()) + ": " + e.what();
+      r.attempt.reason =
+          std::string(kRegistrationFailed) + " on rank " + std::to_string(session.rank()) + ": " + e.what();
     }
     send(registrationRecord(k, candidate, relocalisation, r), 0, kRegistration);
     ++served;

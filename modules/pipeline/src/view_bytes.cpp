@@ -88,9 +88,9 @@ class Reader {
     const auto rows = get<std::int32_t>(what), cols = get<std::int32_t>(what);
     if (rows < 1 || cols < 1 || rows > kMaxImageSide || cols > kMaxImageSide)
       fail(std::string(what) + ": a size out of range");
+    const std::size_t row_bytes = static_cast<std::size_t>(cols) * CV_ELEM_SIZE(type);
+    need(row_bytes * static_cast<std::size_t>(rows), what);  // before allocating: the bytes hold them all
     cv::Mat m(rows, cols, type);
-    const std::size_t row_bytes = static_cast<std::size_t>(cols) * m.elemSize();
-    need(row_bytes * static_cast<std::size_t>(rows), what);
     for (int r = 0; r < rows; ++r, at_ += row_bytes) std::memcpy(m.ptr(r), in_.data() + at_, row_bytes);
     return m;
   }
@@ -247,6 +247,7 @@ DepthView viewFromBytes(std::string_view bytes, const SuperpixelParams& superpix
   seg.stats.valid_pixels = r.getSize(0, "the counts");
   seg.stats.assigned_pixels = r.getSize(0, "the counts");
   seg.stats.dropped_pixels = r.getSize(0, "the counts");
+  if (seg.labels.empty() && n > 0) Reader::fail("patches without labels");
   if (!seg.labels.empty()) {
     if (seg.labels.size() != v.depth_m.size()) Reader::fail("the labels' size is not the depth image's");
     for (int row = 0; row < seg.labels.rows; ++row)

@@ -201,23 +201,35 @@ struct RegistrationLog::State {
   std::size_t answered = 0, registered = 0;
   std::string journal_path;
   int journal_fd = -1;
+  std::string journal_failed;  ///< why the journal stopped (every later append is refused)
 
   ~State() {
     if (journal_fd >= 0) ::close(journal_fd);
   }
 
-  /// Appends `text` to the journal and flushes it to disk; throws naming the file.
+  /// Appends `text` to the journal and flushes it to disk. A failed append is cut off again (the
+  /// journal keeps whole records only), the journal is closed, and this and every later append
+  /// throw JobError naming the file.
   void append(const std::string& text) {
+    if (!journal_failed.empty()) throw JobError(journal_failed);
     if (journal_fd < 0) return;
+    const off_t before = ::lseek(journal_fd, 0, SEEK_END);
     std::size_t done = 0;
-    while (done < text.size()) {
+    std::string why;
+    while (done < text.size() && why.empty()) {
       const ssize_t n = ::write(journal_fd, text.data() + done, text.size() - done);
       if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) throw Error("cannot write registration journal '" + journal_path + "': " + std::strerror(errno));
-      done += static_cast<std::size_t>(n);
+      if (n < 0) why = std::strerror(errno);
+      else if (n == 0) why = "nothing written";
+      else done += static_cast<std::size_t>(n);
     }
-    if (::fsync(journal_fd) != 0)
-      throw Error("cannot write registration journal '" + journal_path + "': " + std::strerror(errno));
+    if (why.empty() && ::fsync(journal_fd) != 0) why = std::strerror(errno);
+    if (why.empty()) return;
+    if (before >= 0) (void)::ftruncate(journal_fd, before);
+    ::close(journal_fd);
+    journal_fd = -1;
+    journal_failed = "cannot write registration journal '" + journal_path + "': " + why;
+    throw JobError(journal_failed);
   }
 };
 
@@ -250,7 +262,6 @@ RegistrationLog RegistrationLog::read(const std::string& path, const std::string
     Key key;
     LoopRegistration r;
     if (!parseRecord(text.substr(at, end - at), key, r)) {
-      if (end + 1 >= text.size()) break;  // the last line torn without reaching its end
       throw Error("registration journal '" + path + "', line " + std::to_string(line_number) +
                   ": not a registration record (" + std::to_string(kFields) + " tab-separated fields expected)");
     }
@@ -270,6 +281,7 @@ void RegistrationLog::journalTo(const std::string& path) {
   if (state_->journal_fd >= 0) ::close(state_->journal_fd);
   state_->journal_fd = fd;
   state_->journal_path = path;
+  state_->journal_failed.clear();
 }
 
 CandidateRegistrar RegistrationLog::registrar(CandidateRegistrar inner) const {
@@ -297,14 +309,17 @@ CandidateRegistrar RegistrationLog::registrar(CandidateRegistrar inner) const {
     std::vector<LoopRegistration> made = inner ? inner(k, view_k, missing, relocalisation, pair, loop)
                                                : registerCandidates(k, view_k, missing, relocalisation, pair, loop);
     if (made.size() != missing.size())
-      throw Error("registration log: the registrar returned " + std::to_string(made.size()) + " registrations for " +
+      throw JobError("registration log: the registrar returned " + std::to_string(made.size()) + " registrations for " +
                   std::to_string(missing.size()) + " candidates");
     std::lock_guard<std::mutex> lock(state->mutex);
     std::string lines;
     for (std::size_t j = 0; j < made.size(); ++j) {
       const Key key{k, missing[j].first, relocalisation};
-      lines += recordLine(key, made[j]);
-      if (state->records.emplace(key, made[j]).second) state->order.push_back(key);
+      // A registration that failed where it ran is not kept: a resumed job tries it again.
+      if (made[j].attempt.reason.rfind(kRegistrationFailed, 0) != 0) {
+        lines += recordLine(key, made[j]);
+        if (state->records.emplace(key, made[j]).second) state->order.push_back(key);
+      }
       out[missing_at[j]] = std::move(made[j]);
       ++state->registered;
     }

@@ -7,10 +7,13 @@
 /// registration to the next free rank (dynamic load balancing: a rank gets its next pair when it
 /// returns one). A keyframe's segmented view goes to a rank once, the first time a pair needs it
 /// there (view_bytes.h); what comes back is the registration's record (registration_log.h). The
-/// registrations are those registerCandidates() makes (the same views, parameters and arithmetic),
-/// returned in the candidates' order, so with the searches in place the graph is the
-/// single-process job's. A registration that throws on a rank comes back as a failed one, its
-/// reason naming the rank and the error, and the job goes on.
+/// registrations are those registerCandidates() makes (the same views, parameters and arithmetic
+/// on ranks of the same CPU kind), returned in the candidates' order, so with the searches in
+/// place the graph is the single-process job's. A registration that throws on a rank comes back
+/// as a failed one (kRegistrationFailed, its reason naming the rank and the error; a journal does
+/// not keep it), and the job goes on. A rank that cannot go on at all (other parameters than rank
+/// 0's, bytes that are not a view) ends the job with an error naming it (Session::abort), and a
+/// protocol error on rank 0 is a JobError (loop_search.h).
 ///
 /// Message tags between rank 0 and the others: parameters (the job's fingerprint and whether its
 /// views are sweeps), a view (keyframe index, bytes), a pair (keyframe, candidate, phase), a
@@ -40,6 +43,9 @@ class Session {
   int size() const { return size_; }
   /// Rank 0: tells every other rank to end (once).
   void stopWorkers();
+  /// Ends every rank of the job at once (MPI_Abort): a rank that cannot go on, since the others
+  /// would wait for it for ever.
+  [[noreturn]] void abort(int code);
 
  private:
   int rank_ = 0, size_ = 1;

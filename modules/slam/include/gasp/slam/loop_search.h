@@ -8,6 +8,7 @@
 /// the views and where taken constraints go.
 #include <cstddef>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -19,6 +20,20 @@
 namespace gasp {
 
 struct LoopRegistration;
+
+/// A failure of the job rather than of one input -- a registration journal that cannot be written,
+/// another process of the job that failed (registration_log.h, gasp::mpi) -- raised through a
+/// loop search. Not a gasp::Error, so that a program reading several sessions ends the job
+/// instead of recording it as the session's error and going on without the registrations.
+class JobError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// How a registration that threw where it ran (another process of the job) is returned: no
+/// estimate, its reason starting with this and naming where and why. The job goes on without it;
+/// a journal does not keep it, so a resumed job tries it again.
+inline constexpr const char* kRegistrationFailed = "the registration failed";
 
 /// Registers one phase's candidates to keyframe k, in the candidates' order: registerCandidates()
 /// (below), or anything that returns the same registrations -- a log of them from an earlier run

@@ -18,8 +18,8 @@
 /// last with backslash escapes). Each phase's registrations are appended and flushed to disk as
 /// soon as they are made, so a job killed at any moment leaves every phase before it whole; a
 /// torn last line (the kill mid-write) is dropped on reading and cut off when the journal is
-/// continued. The fingerprint names the job (its inputs and parameters): a log answers only the
-/// job it was written by.
+/// continued. The fingerprint names the job (gasp-slam: the effective parameters, every input
+/// option and each input file's size and time): a log answers only the job it was written by.
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -42,12 +42,14 @@ class RegistrationLog {
   explicit RegistrationLog(const std::string& fingerprint);
   /// The log in `path`, written by the same job. Throws gasp::Error naming the file when it cannot
   /// be read, is not a registration journal, was written by another job (another fingerprint) or
-  /// holds a malformed line before its last.
+  /// holds a malformed line (a last line without its newline is the kill's, and dropped).
   static RegistrationLog read(const std::string& path, const std::string& fingerprint);
 
   /// Writes the log to `path` (a temporary file in its folder, renamed over it) and from then on
-  /// appends every registration the registrar makes, flushed to disk after each phase. Throws
-  /// gasp::Error naming the file when it cannot be written; so does the registrar, later.
+  /// appends every registration the registrar makes, flushed to disk after each phase (not those
+  /// that failed where they ran, kRegistrationFailed: a resumed job tries them again). Throws
+  /// gasp::Error naming the file when it cannot be written; the registrar, later, throws
+  /// JobError (loop_search.h), having cut the failed append off.
   void journalTo(const std::string& path);
 
   /// A registrar (loop_search.h) that answers the pairs the log holds and passes the others to
