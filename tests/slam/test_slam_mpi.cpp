@@ -19,11 +19,12 @@ using gasp::test::runCommand;
 using gasp::test::runProgram;
 
 /// gasp-slam under mpirun with `ranks` processes. As root (a CI container) Open MPI needs both
-/// ALLOW variables; --oversubscribe: more ranks than cores; no single-copy shared memory (which
-/// containers without ptrace refuse).
+/// ALLOW variables; --oversubscribe: more ranks than cores; --bind-to none: each rank's threads
+/// on every core (with 2 ranks Open MPI would bind each to one); no single-copy shared memory
+/// (which containers without ptrace refuse).
 gasp::test::ProgramRun mpirun(int ranks, const std::string& args) {
   return runCommand("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl_vader_single_copy_mechanism=none " +
-                    std::string(GASP_MPIEXEC) + " --oversubscribe -np " + std::to_string(ranks) + " " +
+                    std::string(GASP_MPIEXEC) + " --bind-to none --oversubscribe -np " + std::to_string(ranks) + " " +
                     std::string(GASP_BIN_DIR) + "/gasp-slam " + args + " --mpi 2>&1");
 }
 
