@@ -282,7 +282,10 @@ int main(int argc, char** argv) {
     if (mpi) {
       pool.emplace(*mpi, gasp::paramsYaml(params), sweeps);
       registrar = pool->registrar();
-      std::printf("mpi: %d ranks, the loop registrations on ranks 1-%d\n", mpi->size(), mpi->size() - 1);
+      if (mpi->size() > 1)
+        std::printf("mpi: %d ranks, the loop registrations on ranks 1-%d\n", mpi->size(), mpi->size() - 1);
+      else
+        std::printf("mpi: 1 rank (not started by mpirun -np N?), the loop registrations in this process\n");
     }
 #endif
     if (registrations) registrar = registrations->registrar(registrar);
