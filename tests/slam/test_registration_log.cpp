@@ -9,6 +9,8 @@
 #include <iterator>
 #include <memory>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "gasp/core/error.h"
@@ -147,4 +149,50 @@ TEST(RegistrationLog, ARunResumedFromHalfItsJournalBuildsTheSameGraphRegistering
   EXPECT_THROW((void)gasp::RegistrationLog::read(tempPath("absent.txt"), job), gasp::Error);
   std::filesystem::remove(full_path);
   std::filesystem::remove(cut_path);
+}
+
+TEST(RegistrationLog, AFailureOfTheJobEndsItAndARegistrationThatFailedElsewhereIsNotKept) {
+  const LoopSequence s = circleSequence(30);
+  gasp::SlamParams p;
+  p.loop.background = false;
+
+  // A registrar whose first registration failed where it ran (another process): the search goes
+  // on without it, and the journal does not keep it (a resumed job tries it again).
+  const std::string path = tempPath("failed.txt");
+  gasp::RegistrationLog log("the circle");
+  log.journalTo(path);
+  bool failed_one = false;
+  gasp::DepthSlam slam(p, s.T_world_camera[0]);
+  slam.setRegistrar(log.registrar([&](std::size_t k, const gasp::DepthView& view_k,
+                                      const std::vector<std::pair<std::size_t, const gasp::DepthView*>>& candidates,
+                                      bool relocalisation, const gasp::PairParams& pair, const gasp::LoopClosureParams& loop) {
+    auto out = gasp::registerCandidates(k, view_k, candidates, relocalisation, pair, loop);
+    if (!failed_one && !out.empty()) {
+      failed_one = true;
+      out[0].attempt.reason = std::string(gasp::kRegistrationFailed) + " on rank 1: out of memory";
+    }
+    return out;
+  }));
+  for (std::size_t i = 0; i < s.depth.size(); ++i) slam.addFrame(s.timestamps[i], s.depth[i], s.K);
+  ASSERT_TRUE(failed_one);
+  EXPECT_EQ(log.registered(), slam.attempts().size());
+  EXPECT_EQ(log.size(), slam.attempts().size() - 1);
+  EXPECT_EQ(gasp::RegistrationLog::read(path, "the circle").size(), log.size());
+  EXPECT_FALSE(slam.attempts().front().accepted);
+  std::filesystem::remove(path);
+
+  // A failure of the job (a journal that cannot be appended, another process gone) is a JobError,
+  // which DepthSlam passes on: not a gasp::Error, which a program reading several sessions would
+  // take for the session's.
+  static_assert(!std::is_base_of_v<gasp::Error, gasp::JobError>);
+  gasp::DepthSlam failing(p, s.T_world_camera[0]);
+  failing.setRegistrar([](std::size_t, const gasp::DepthView&, const std::vector<std::pair<std::size_t, const gasp::DepthView*>>&,
+                          bool, const gasp::PairParams&, const gasp::LoopClosureParams&) -> std::vector<gasp::LoopRegistration> {
+    throw gasp::JobError("cannot write registration journal 'j': No space left on device");
+  });
+  EXPECT_THROW(
+      {
+        for (std::size_t i = 0; i < s.depth.size(); ++i) failing.addFrame(s.timestamps[i], s.depth[i], s.K);
+      },
+      gasp::JobError);
 }
