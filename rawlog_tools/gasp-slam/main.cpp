@@ -28,7 +28,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <chrono>
 #include <cstdio>
 #include <ostream>
@@ -51,6 +50,7 @@
 #include "params_options.h"
 #include "frames_ahead.h"
 #include "map_output.h"
+#include "run_outputs.h"
 #include "marginals_report.h"
 #include "sequence_options.h"
 #include "sequence_report.h"
@@ -74,14 +74,15 @@ void writeLoopsCsv(std::ostream& out, const std::vector<gasp::LoopClosureAttempt
 }
 
 /// What names a session's frames for a registration journal's fingerprint: every input option and
-/// each input file's size and modification time (a file replaced, another camera: another job).
-std::string sessionFingerprint(const gasp::DepthSequenceOptions& o) {
+/// each of its input files' (`files`) size and modification time (a file replaced, another
+/// camera: another job).
+std::string sessionFingerprint(const gasp::DepthSequenceOptions& o, const std::vector<std::string>& files) {
   std::string text = "tum " + o.tum_dir + " rawlog " + o.rawlog_path + " sweeps " + std::to_string(o.sweeps) +
                      " sensor " + o.sensor_label + " first " + std::to_string(o.first) + " every " +
                      std::to_string(o.every) + " max " + std::to_string(o.max_frames) + " intrinsics " + o.intrinsics +
                      " units " + gasp::formatted("%.17g", o.depth_units_per_metre) + " undistort " +
                      std::to_string(o.undistort);
-  for (const std::string& f : gasp::tools::sequenceInputs(o, "")) {
+  for (const std::string& f : files) {
     std::error_code e1, e2;
     const auto size = std::filesystem::file_size(f, e1);
     const auto time = std::filesystem::last_write_time(f, e2);
@@ -93,23 +94,18 @@ std::string sessionFingerprint(const gasp::DepthSequenceOptions& o) {
 
 /// The registration journal is neither an input nor another output, and a journal already there
 /// is continued only with --resume (a restart without it would drop the checkpoint).
-void checkJournalPath(const std::string& path, bool resume, const std::vector<std::string>& inputs,
+void checkJournalPath(const std::string& path, bool resume, const gasp::tools::InputFiles& inputs,
                       const std::vector<std::pair<std::string, std::string>>& outputs) {
   namespace fs = std::filesystem;
   const gasp::FileIdentity journal = gasp::fileIdentity(path);
-  for (const std::string& input : inputs)
-    if (journal.exists() && journal == gasp::fileIdentity(input))
-      throw gasp::Error("--checkpoint '" + path + "' is the input '" + input + "'");
+  if (const std::string* input = journal.exists() ? inputs.find(journal) : nullptr)
+    throw gasp::Error("--checkpoint '" + path + "' is the input '" + *input + "'");
   std::error_code ec;
   const fs::path canonical = fs::weakly_canonical(path, ec);
   for (const auto& [option, output] : outputs)
     if (!output.empty() && fs::weakly_canonical(output, ec) == canonical)
       throw gasp::Error("--checkpoint '" + path + "' is also the output of " + option);
-  if (resume || !journal.exists()) return;
-  std::ifstream in(path, std::ios::binary);
-  std::string head(18, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  if (in && head == "gasp-registrations")
+  if (!resume && journal.exists() && gasp::RegistrationLog::isJournal(path))
     throw gasp::Error("--checkpoint '" + path + "' holds a registration journal: add --resume to go on from it, or " +
                       "remove it to start again");
 }
@@ -229,10 +225,15 @@ int main(int argc, char** argv) {
              {"--marginals-csv", marginals_csv}, {"--sessions-report", sessions_report}})
       output_paths.push_back(p);
     for (const auto& p : gasp::tools::mapOutputPaths(map_output)) output_paths.push_back(p);
+    std::vector<std::vector<std::string>> session_inputs;  // each session's files, listed once
     std::vector<std::string> input_files;
-    for (const auto& session : sessions)
-      for (const std::string& f : gasp::tools::sequenceInputs(session, gt_path)) input_files.push_back(f);
-    gasp::tools::RunOutputs outputs(output_paths, input_files);  // before the run
+    for (const auto& session : sessions) {
+      session_inputs.push_back(gasp::tools::sequenceInputs(session, ""));
+      input_files.insert(input_files.end(), session_inputs.back().begin(), session_inputs.back().end());
+    }
+    if (!gt_path.empty()) input_files.push_back(gt_path);
+    const gasp::tools::InputFiles inputs(input_files);
+    gasp::tools::RunOutputs outputs(output_paths, inputs);  // before the run
 
     // Every input opened before the run: a missing one is reported now, not after the others.
     std::vector<gasp::DepthSequence> sequences;
@@ -265,9 +266,9 @@ int main(int argc, char** argv) {
     // sessions, so that a journal answers only the job that wrote it.
     std::optional<gasp::RegistrationLog> registrations;
     if (!checkpoint_path.empty()) {
-      checkJournalPath(checkpoint_path, resume, input_files, output_paths);
+      checkJournalPath(checkpoint_path, resume, inputs, output_paths);
       std::string job = gasp::paramsYaml(params);
-      for (std::size_t s = 0; s < n_sessions; ++s) job += "\nsession " + sessionFingerprint(sessions[s]);
+      for (std::size_t s = 0; s < n_sessions; ++s) job += "\nsession " + sessionFingerprint(sessions[s], session_inputs[s]);
       registrations.emplace(resume ? gasp::RegistrationLog::read(checkpoint_path, job) : gasp::RegistrationLog(job));
       registrations->journalTo(checkpoint_path);
       if (resume) std::printf("checkpoint: %zu registrations from %s\n", registrations->size(), checkpoint_path.c_str());

@@ -482,6 +482,16 @@ SweepViews sweepViews(const SimulatedSweepPair& s, const gasp::PairParams& p) {
   return v;
 }
 
+/// A symmetric turn refined on the binned cells by the tracking path, as the symmetry test refines
+/// its turns, and compared as a claimed full pose whether its certificate would claim it or not.
+gasp::RegistrationResult refinedTurn(const gasp::DepthView& a, const gasp::DepthView& b, const gasp::SymmetricTurn& t,
+                                     const gasp::PairParams& p) {
+  gasp::RegistrationResult turn = gasp::trackViews(a, b, t.T_target_source, p).pose;
+  turn.success = true;
+  turn.partial = false;
+  return turn;
+}
+
 }  // namespace
 
 // The certificate's symmetry test, on for sweeps (LidarParams::symmetry_test), on the simulated
@@ -556,9 +566,7 @@ TEST(RangeScan, TheViolationChargeKeepsARightPoseOnTheStreetFromItsTurns) {
   const double distinct_m = 2.0 * p.hypothesise.pose.ransac.inlier.distance_m;
   int tested = 0, lost_charged = 0, lost_uncharged = 0;
   for (const gasp::SymmetricTurn& t : gasp::symmetricTurns(a, b, s.T_b_a)) {
-    gasp::RegistrationResult turn = gasp::trackViews(a, b, t.T_target_source, p).pose;
-    turn.success = true;
-    turn.partial = false;
+    const gasp::RegistrationResult turn = refinedTurn(a, b, t, p);
     const gasp::Uniqueness charged = gasp::compareAlternative(a, b, truth, turn, distinct_m, p.certify);
     const gasp::Uniqueness free = gasp::compareAlternative(a, b, truth, turn, distinct_m, free_of_charge);
     std::printf("truth against the turn of %d deg about (%.2f, %.2f, %.2f): log-likelihood ratio %.1f charged, %.1f not\n",
@@ -701,9 +709,7 @@ TEST(RangeScan, WhereTheCellsPreferATurnOfTheStreetTheReturnsDecide) {
   for (const gasp::SymmetricTurn& t : gasp::symmetricTurns(a, b, s.T_b_a)) {
     if (t.degrees != 180 || std::abs(t.axis.x()) <= along) continue;
     along = std::abs(t.axis.x());
-    turn = gasp::trackViews(a, b, t.T_target_source, p).pose;
-    turn->success = true;
-    turn->partial = false;
+    turn = refinedTurn(a, b, t, p);
   }
   ASSERT_TRUE(turn);
   const double distinct_m = 2.0 * p.hypothesise.pose.ransac.inlier.distance_m;

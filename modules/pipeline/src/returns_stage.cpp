@@ -207,15 +207,16 @@ ReturnsBasin returnsBasin(const SweepReturns& source, const SweepReturns& target
   return b;
 }
 
-ReturnLanding landOnReturns(const SweepReturns& sweep, const Eigen::Vector3d& q, double range_sigma_m,
-                            double max_incidence_deg) {
+namespace {
+
+/// landOnReturns() with the incidence's clamp as its tangent (computed once by a caller's loop).
+ReturnLanding land(const SweepReturns& sweep, const Eigen::Vector3d& q, double range_sigma_m, double max_tan) {
   ReturnLanding l;
   const int i = sweep.lookUp(q, 0);
   if (i < 0) return l;
   const Eigen::Vector3d& t = sweep.point(i);
   const Eigen::Vector3d& n = sweep.normal(i);
   const double range = t.norm(), cos_i = std::abs(n.dot(t)) / range;
-  const double max_tan = std::tan(max_incidence_deg * M_PI / 180.0);
   const double tan_i = std::min(max_tan, std::sqrt(std::max(0.0, 1.0 - cos_i * cos_i)) / std::max(cos_i, 1e-9));
   l.index = i;
   l.gate_m = 5.0 * range_sigma_m + range * sweep.halfCellRad() * tan_i;
@@ -224,18 +225,26 @@ ReturnLanding landOnReturns(const SweepReturns& sweep, const Eigen::Vector3d& q,
   return l;
 }
 
+}  // namespace
+
+ReturnLanding landOnReturns(const SweepReturns& sweep, const Eigen::Vector3d& q, double range_sigma_m,
+                            double max_incidence_deg) {
+  return land(sweep, q, range_sigma_m, std::tan(max_incidence_deg * M_PI / 180.0));
+}
+
 namespace {
 
 using detail::FreeSpaceCounts;
 
 FreeSpaceCounts freeSpaceCounts(const SweepReturns& from, const SweepReturns& to, const Isometry3& T_to_from,
                                 double range_sigma_m, double max_incidence_deg) {
+  const double max_tan = std::tan(max_incidence_deg * M_PI / 180.0);
   FreeSpaceCounts n;
   for (int r = 0; r < from.rows(); ++r)
     for (int c = 0; c < from.cols(); ++c) {
       const Eigen::Vector3d& p = from.point(r, c);
       if (!p.allFinite()) continue;
-      const ReturnLanding l = landOnReturns(to, T_to_from * p, range_sigma_m, max_incidence_deg);
+      const ReturnLanding l = land(to, T_to_from * p, range_sigma_m, max_tan);
       if (l.index < 0) continue;
       if (l.beyond_m < -l.gate_m) ++n.violations;
       else if (l.beyond_m > l.gate_m) ++n.occluded;

@@ -271,6 +271,12 @@ RegistrationLog RegistrationLog::read(const std::string& path, const std::string
   return log;
 }
 
+bool RegistrationLog::isJournal(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string magic;
+  return static_cast<bool>(in >> magic) && magic == kMagic;
+}
+
 void RegistrationLog::journalTo(const std::string& path) {
   std::lock_guard<std::mutex> lock(state_->mutex);
   std::string text = headerLine(state_->hash);

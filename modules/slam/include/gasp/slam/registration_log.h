@@ -44,6 +44,9 @@ class RegistrationLog {
   /// be read, is not a registration journal, was written by another job (another fingerprint) or
   /// holds a malformed line (a last line without its newline is the kill's, and dropped).
   static RegistrationLog read(const std::string& path, const std::string& fingerprint);
+  /// Whether the file at `path` starts as a registration journal does (any job's); false when it
+  /// cannot be read.
+  static bool isJournal(const std::string& path);
 
   /// Writes the log to `path` (a temporary file in its folder, renamed over it) and from then on
   /// appends every registration the registrar makes, flushed to disk after each phase (not those
