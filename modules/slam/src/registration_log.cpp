@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -239,6 +240,9 @@ RegistrationLog::RegistrationLog(const std::string& fingerprint) : state_(std::m
 
 RegistrationLog RegistrationLog::read(const std::string& path, const std::string& fingerprint) {
   RegistrationLog log(fingerprint);
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw Error("cannot read registration journal '" + path + "': not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error("cannot read registration journal '" + path + "': " + std::strerror(errno));
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -272,9 +276,16 @@ RegistrationLog RegistrationLog::read(const std::string& path, const std::string
 }
 
 bool RegistrationLog::isJournal(const std::string& path) {
+  // A regular file's first bytes only: a device (/dev/zero) never ends.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return false;
   std::ifstream in(path, std::ios::binary);
-  std::string magic;
-  return static_cast<bool>(in >> magic) && magic == kMagic;
+  const std::string magic = kMagic;
+  std::string head(magic.size() + 1, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return head.size() == magic.size() + 1 && head.compare(0, magic.size(), magic) == 0 &&
+         (head.back() == ' ' || head.back() == '\n');
 }
 
 void RegistrationLog::journalTo(const std::string& path) {
