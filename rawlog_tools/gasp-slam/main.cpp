@@ -57,9 +57,56 @@
 #include "sessions.h"
 #ifdef GASP_WITH_MPI
 #include "gasp/mpi/registrar_pool.h"
+#include "handed_frames.h"
 #endif
 
 namespace {
+
+constexpr const char* kOtherMounting =
+    "its depth camera sits on the robot (sensorPose) otherwise than the first session's: the sessions of one map must "
+    "share one camera mounting";
+
+/// A keyframe as the map outputs keep it: depth only; deskewed as it was registered (keyframe_map.h).
+gasp::RgbdFrame mapKeyframe(const gasp::RgbdFrame& frame, const gasp::OdometryFrame& f, const gasp::DepthView* view) {
+  gasp::RgbdFrame kept = frame;
+  kept.rgb.release();
+  return f.deskewed && view ? gasp::withViewDepth(std::move(kept), *view) : kept;
+}
+
+#ifdef GASP_WITH_MPI
+/// --mpi, a rank other than 0: tracks one session (`options`) as rank 0 would, from the first
+/// session's mounting that rank 0's `context` gives, and hands each frame to `emit`; returns the
+/// session's end (handed_frames.h). An input this rank cannot open is the job's error (thrown).
+std::string trackForRankZero(const gasp::DepthSequenceOptions& options, const std::string& context,
+                             gasp::SlamParams params, bool sequential, bool keep_keyframes,
+                             const std::function<void(std::string)>& emit) {
+  gasp::ByteReader r(context, "MPI: rank 0's context");
+  const bool sweeps = r.get<std::uint8_t>("the sensor") == 1;
+  const gasp::Isometry3 T_robot_camera = r.getPose("the first session's mounting");
+  if (sweeps) params = gasp::lidarSlamParams(params);
+  gasp::DepthSequence sequence(options);
+  gasp::tools::HandedEnd end;
+  try {
+    std::optional<gasp::DepthOdometry> odometry;
+    end.end = gasp::tools::forEachFrameWithViewAhead(sequence, params.odometry, sequential, [&](const gasp::RgbdFrame& frame, auto segmented) {
+      if (!odometry) {
+        if (!frame.T_robot_camera.isApprox(T_robot_camera, 1e-9)) throw gasp::Error(kOtherMounting);
+        odometry.emplace(params.odometry, T_robot_camera);
+      }
+      const gasp::OdometryFrame& f =
+          frame.isSweep() ? odometry->addFrame(frame.timestamp, *frame.sweep, std::move(segmented))
+                          : odometry->addFrame(frame.timestamp, frame.depth_m, frame.depth_intrinsics, std::move(segmented));
+      std::optional<gasp::RgbdFrame> kept;
+      if (f.keyframe && keep_keyframes) kept = mapKeyframe(frame, f, odometry->keyframeView());
+      emit(gasp::tools::handedFrameBytes(odometry->lastTracked(), kept ? &*kept : nullptr));
+    });
+  } catch (const gasp::Error& e) {  // the session's error, as one process reports it
+    end.threw = true;
+    end.end.error = e.what();
+  }
+  return gasp::tools::handedEndBytes(end);
+}
+#endif
 
 void writeLoopsCsv(std::ostream& out, const std::vector<gasp::LoopClosureAttempt>& attempts) {
   out << "from,to,relocalisation,accepted,inliers,gate_chi2,registration_ms,reason\n";
@@ -192,11 +239,18 @@ int main(int argc, char** argv) {
   }
 
 #ifdef GASP_WITH_MPI
-  if (mpi && mpi->rank() != 0) {  // a worker: registers what rank 0 hands it, reads no input, writes nothing
+  if (mpi && mpi->rank() != 0) {  // a worker: tracks its sessions, registers the pairs rank 0 hands it, writes nothing
     try {
       gasp::validate(params);
+      std::vector<gasp::DepthSequenceOptions> sessions;
+      for (const std::string& spec : session_specs) sessions.push_back(gasp::tools::sessionOptions(spec, input));
+      if (sessions.empty()) sessions.push_back(input);
+      const auto track = [&](std::size_t s, const std::string& context, const std::function<void(std::string)>& emit) {
+        if (s >= sessions.size()) throw gasp::Error("MPI: rank 0 asks for session " + std::to_string(s + 1) + " of " + std::to_string(sessions.size()));
+        return trackForRankZero(sessions[s], context, params, sequential, map_output.wanted(), emit);
+      };
       gasp::mpi::serveRegistrations(*mpi, gasp::paramsYaml(params), params,
-                                    gasp::paramsYaml(gasp::lidarSlamParams(params)), gasp::lidarSlamParams(params));
+                                    gasp::paramsYaml(gasp::lidarSlamParams(params)), gasp::lidarSlamParams(params), track);
     } catch (const std::exception& e) {  // rank 0 would wait for this rank for ever: the job ends
       std::cerr << "error: rank " << mpi->rank() << ": " << gasp::exceptionMessage(e) << std::endl;
       mpi->abort(1);
@@ -242,6 +296,7 @@ int main(int argc, char** argv) {
     // kind of input for all sessions. A session whose first frame cannot be read is reported by
     // its run below, as without the look ahead.
     std::optional<bool> first_kind;
+    gasp::Isometry3 first_mounting = gasp::Isometry3::Identity();  // the first frame's, as the graph takes it
     for (std::size_t s = 0; s < sequences.size(); ++s) {
       const gasp::RgbdFrame* first = nullptr;
       try {
@@ -251,7 +306,10 @@ int main(int argc, char** argv) {
         continue;
       }
       if (!first) continue;
-      if (!first_kind) first_kind = first->isSweep();
+      if (!first_kind) {
+        first_kind = first->isSweep();
+        first_mounting = first->T_robot_camera;
+      }
       if (first->isSweep() != *first_kind)
         throw gasp::Error(sequences[s].describe() + ": " + (first->isSweep() ? "LiDAR sweeps" : "depth images") +
                           ", an earlier session's are " + (*first_kind ? "LiDAR sweeps" : "depth images") +
@@ -281,10 +339,14 @@ int main(int argc, char** argv) {
 #ifdef GASP_WITH_MPI
     std::optional<gasp::mpi::RegistrarPool> pool;
     if (mpi) {
-      pool.emplace(*mpi, gasp::paramsYaml(params), sweeps);
+      gasp::ByteWriter context;  // what a rank tracking a session needs beyond the command line
+      context.put(static_cast<std::uint8_t>(sweeps ? 1 : 0));
+      context.putPose(first_mounting);
+      pool.emplace(*mpi, gasp::paramsYaml(params), sweeps, n_sessions, context.take());
       registrar = pool->registrar();
       if (mpi->size() > 1)
-        std::printf("mpi: %d ranks, the loop registrations on ranks 1-%d\n", mpi->size(), mpi->size() - 1);
+        std::printf("mpi: %d ranks: the sessions tracked on ranks 1-%d, the loop registrations on whichever rank is "
+                    "free\n", mpi->size(), mpi->size() - 1);
       else
         std::printf("mpi: 1 rank (not started by mpirun -np N?), the loop registrations in this process\n");
     }
@@ -305,37 +367,74 @@ int main(int argc, char** argv) {
       gasp::tools::reportIntrinsics(stdout, sequence.intrinsicsSummary(), sequence.intrinsicsWarning());
       run.ground_truth = gt_path.empty() ? sequence.groundTruth() : gasp::readTumTrajectory(gt_path);
       bool session_started = false;
-      // Each frame is segmented while the one before it is registered (frames_ahead.h). With
-      // several sessions, one that fails ends there (partial) and the others still run.
+      // Before a frame goes into the graph: the graph made at the first frame (world = the first
+      // frame's robot frame: the first camera sits at its sensorPose), a session started at its
+      // first, in the world of its own first robot frame, as the first session did.
+      const auto beforeFrame = [&](const gasp::Isometry3& T_robot_frame_camera) {
+        if (!slam) {
+          T_robot_camera = T_robot_frame_camera;
+          slam.emplace(params, T_robot_camera);
+          if (registrar) slam->setRegistrar(registrar);
+        } else if (!session_started) {
+          if (!T_robot_frame_camera.isApprox(T_robot_camera, 1e-9)) throw gasp::Error(kOtherMounting);
+          slam->startSession(T_robot_camera);
+        }
+        session_started = true;
+      };
+      const auto afterFrame = [&](const gasp::OdometryFrame& f) {
+        if (slam->odometry().frames().size() % 50 == 0)
+          std::fprintf(stderr, "frame %zu: %zu tracked of %zu, %zu loop closures\n", f.index,
+                       slam->odometry().trackedCount(), slam->odometry().frames().size(), slam->loopClosures().size());
+      };
+      // With several sessions, one that fails ends there (partial) and the others still run.
       try {
-        run.end = gasp::tools::forEachFrameWithViewAhead(sequence, params.odometry, sequential, [&](const gasp::RgbdFrame& frame, auto segmented) {
-          if (!slam) {
-            // World = the first frame's robot frame: the first camera sits at its sensorPose.
-            T_robot_camera = frame.T_robot_camera;
-            slam.emplace(params, T_robot_camera);
-            if (registrar) slam->setRegistrar(registrar);
-          } else if (!session_started) {
-            // A new session starts in the world of its own first robot frame, as the first did.
-            if (!frame.T_robot_camera.isApprox(T_robot_camera, 1e-9))
-              throw gasp::Error("its depth camera sits on the robot (sensorPose) otherwise than the first session's: the "
-                                "sessions of one map must share one camera mounting");
-            slam->startSession(T_robot_camera);
+#ifdef GASP_WITH_MPI
+        if (pool && pool->tracksElsewhere()) {
+          // Tracked on another rank: its frames replayed into the graph as they come.
+          std::string message;
+          bool ended = false;
+          try {
+            while (!(ended = pool->nextTracked(s, message))) {
+              gasp::tools::HandedFrame h;
+              try {
+                h = gasp::tools::handedFrameFromBytes(message, params);
+              } catch (const gasp::Error& e) {
+                throw gasp::JobError(e.what());
+              }
+              beforeFrame(first_mounting);  // the other rank checked the session's mounting
+              const gasp::OdometryFrame& f = slam->addTracked(std::move(h.tracked));
+              if (f.keyframe && keep_keyframes) {
+                if (!h.keyframe) throw gasp::JobError("MPI: a keyframe came without its frame for the map");
+                keyframes.push_back(std::move(*h.keyframe));
+              }
+              afterFrame(f);
+            }
+          } catch (const gasp::Error&) {
+            if (n_sessions > 1)  // the session's frames not taken: the next session's come after them
+              while (!ended) ended = pool->nextTracked(s, message);
+            throw;
           }
-          session_started = true;
-          const gasp::OdometryFrame& f =
-              frame.isSweep() ? slam->addFrame(frame.timestamp, *frame.sweep, std::move(segmented))
-                              : slam->addFrame(frame.timestamp, frame.depth_m, frame.depth_intrinsics, std::move(segmented));
-          if (f.keyframe && keep_keyframes) {
-            gasp::RgbdFrame kept = frame;
-            kept.rgb.release();  // the map keeps depth only
-            // A deskewed keyframe goes to the map as it was registered (keyframe_map.h).
-            const gasp::DepthView* view = slam->odometry().keyframeView();
-            keyframes.push_back(f.deskewed && view ? gasp::withViewDepth(std::move(kept), *view) : std::move(kept));
+          gasp::tools::HandedEnd end;
+          try {
+            end = gasp::tools::handedEndFromBytes(message);
+          } catch (const gasp::Error& e) {
+            throw gasp::JobError(e.what());
           }
-          if (slam->odometry().frames().size() % 50 == 0)
-            std::fprintf(stderr, "frame %zu: %zu tracked of %zu, %zu loop closures\n", f.index,
-                         slam->odometry().trackedCount(), slam->odometry().frames().size(), slam->loopClosures().size());
-        });
+          if (end.threw) throw gasp::Error(end.end.error);
+          run.end = end.end;
+        } else
+#endif
+        {
+          // Each frame is segmented while the one before it is registered (frames_ahead.h).
+          run.end = gasp::tools::forEachFrameWithViewAhead(sequence, params.odometry, sequential, [&](const gasp::RgbdFrame& frame, auto segmented) {
+            beforeFrame(frame.T_robot_camera);
+            const gasp::OdometryFrame& f =
+                frame.isSweep() ? slam->addFrame(frame.timestamp, *frame.sweep, std::move(segmented))
+                                : slam->addFrame(frame.timestamp, frame.depth_m, frame.depth_intrinsics, std::move(segmented));
+            if (f.keyframe && keep_keyframes) keyframes.push_back(mapKeyframe(frame, f, slam->odometry().keyframeView()));
+            afterFrame(f);
+          });
+        }
       } catch (const gasp::Error& e) {
         if (n_sessions == 1) throw;
         run.end.complete = false;
@@ -432,8 +531,9 @@ int main(int argc, char** argv) {
                   registrations->registered(), registrations->answered());
 #ifdef GASP_WITH_MPI
     if (pool)
-      std::printf("mpi: %zu pairs registered on the other ranks, %zu views sent (%.1f MB)\n", pool->pairsSent(),
-                  pool->viewsSent(), pool->megabytesSent());
+      std::printf("mpi: %zu pairs registered on the other ranks and %zu on rank 0 while none was free, %zu views sent "
+                  "(%.1f MB)\n",
+                  pool->pairsSent(), pool->pairsHere(), pool->viewsSent(), pool->megabytesSent());
 #endif
     std::printf("graph_pieces: %zu (odometry alone: %zu)\n", slam->pieceCount(), slam->odometry().componentCount());
     const std::size_t tracked = slam->odometry().trackedCount();

@@ -15,6 +15,7 @@
 #include "gasp/core/tum_trajectory.h"
 #include "gasp/rawlog/rawlog_reader.h"
 #include "gasp/rawlog/rawlog_writer.h"
+#include "gasp/rawlog/rgbd_frame_bytes.h"
 #include "gasp/rawlog/tum_to_rawlog.h"
 #include "gasp_test_data.h"
 #include "rawlog_test_frames.h"
@@ -240,5 +241,55 @@ TEST(RawlogEdit, InfoListsTheObservations) {
       while (std::fgets(buf.data(), static_cast<int>(buf.size()), f.get())) text += buf.data();
     }
     EXPECT_EQ(countOccurrences(text, "mrpt::obs::CObservation3DRangeScan"), 5u) << text;
+  }
+}
+
+TEST(RgbdFrameBytes, FramesReadBackExactly) {
+  // A camera frame (depth, stored depth, colour) and a sweep (rgbd_frame_bytes.h).
+  gasp::RgbdFrame camera = gasp::test::syntheticFrame(12.5);
+  camera.T_robot_camera.translation() << 0.1, -0.2, 0.3;
+  camera.T_depth_rgb.translation() << 0.025, 0, 0;
+  camera.sensor_label = "KINECT";
+  gasp::RgbdFrame sweep;
+  sweep.timestamp = 7.25;
+  sweep.sensor_label = "VLP16";
+  gasp::RangeScan s;
+  s.timestamp = 7.25;
+  s.model = "VLP16";
+  s.range_m = (cv::Mat_<float>(2, 3) << 1.5f, 0.0f, 2.25f, 3.0f, 4.5f, 0.0f);
+  s.elevation_rad = {-0.1, 0.1};
+  s.azimuth_rad = {0.0, 2.0, 4.0};
+  s.laser_of_row = {0, 1};
+  s.sweep_duration_s = 0.1;
+  s.T_robot_sensor.translation() << 0, 0, 1.2;
+  sweep.sweep = s;
+  for (const gasp::RgbdFrame& f : {camera, sweep}) {
+    const gasp::RgbdFrame g = gasp::rgbdFrameFromBytes(gasp::rgbdFrameBytes(f));
+    EXPECT_EQ(g.timestamp, f.timestamp);
+    EXPECT_TRUE(gasp::test::sameMat(g.depth_m, f.depth_m));
+    EXPECT_TRUE(gasp::test::sameMat(g.depth_raw, f.depth_raw));
+    EXPECT_TRUE(gasp::test::sameMat(g.rgb, f.rgb));
+    EXPECT_EQ(g.depth_units_per_metre, f.depth_units_per_metre);
+    EXPECT_EQ(g.depth_intrinsics.fx, f.depth_intrinsics.fx);
+    EXPECT_EQ(g.rgb_intrinsics.fx, f.rgb_intrinsics.fx);
+    EXPECT_TRUE(g.T_robot_camera.matrix() == f.T_robot_camera.matrix());
+    EXPECT_TRUE(g.T_depth_rgb.matrix() == f.T_depth_rgb.matrix());
+    EXPECT_EQ(g.sensor_label, f.sensor_label);
+    ASSERT_EQ(g.isSweep(), f.isSweep());
+    if (f.isSweep()) {
+      EXPECT_TRUE(gasp::test::sameMat(g.sweep->range_m, f.sweep->range_m));
+      EXPECT_EQ(g.sweep->azimuth_rad, f.sweep->azimuth_rad);
+      EXPECT_EQ(g.sweep->laser_of_row, f.sweep->laser_of_row);
+      EXPECT_TRUE(g.sweep->T_robot_sensor.matrix() == f.sweep->T_robot_sensor.matrix());
+    }
+    const std::string bytes = gasp::rgbdFrameBytes(f);
+    for (const std::string& bad : {bytes.substr(0, bytes.size() - 1), bytes + "x", "GRF2" + bytes.substr(4)}) {
+      try {
+        gasp::rgbdFrameFromBytes(bad);
+        ADD_FAILURE() << "read";
+      } catch (const gasp::Error& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("frame bytes: ", 0), 0u) << e.what();
+      }
+    }
   }
 }

@@ -17,6 +17,7 @@
 #include "gasp/sim/object_move.h"
 #include "gasp/sim/renderer.h"
 #include "gasp/sim/simulation.h"
+#include "gasp/odometry/tracked_frame_bytes.h"
 #include "gasp/slam/depth_slam.h"
 #include "gasp/slam/pose_graph.h"
 #include "gasp_test_data.h"
@@ -402,4 +403,102 @@ TEST(DepthSlam, Fr1XyzRevisitsGiveLoopClosuresThatLowerTheError) {
   EXPECT_GE(slam.loopClosures().size(), 5u);
   EXPECT_LT(ate, ate_odo);
   EXPECT_LT(ate, 0.02);
+}
+
+TEST(DepthSlam, SessionsTrackedElsewhereAndReplayedGiveTheSameGraph) {
+  // The two sessions of SessionsThatShareThePlacesAreJoinedInOneFrame (the second starting with a
+  // frame without depth), with the searches in place: once tracked here, once each tracked by an
+  // odometry of its own, handed over as bytes (tracked_frame_bytes.h) and replayed. The graphs are
+  // the same, bit for bit.
+  const LoopSequence s = circleSequence(30);
+  gasp::SlamParams p;
+  p.loop.background = false;
+  const std::vector<std::pair<std::size_t, Isometry3>> sessions{{15, s.T_world_camera[15]}, {0, Isometry3::Identity()}};
+  const cv::Mat blank = cv::Mat::zeros(s.K.height, s.K.width, CV_32FC1);
+  gasp::DepthSlam here(p, sessions[0].second), replayed(p, sessions[0].second);
+  for (const auto& [start, T_first] : sessions) {
+    gasp::DepthOdometry elsewhere(p.odometry, T_first);
+    if (start == 0) {
+      here.startSession(T_first);
+      replayed.startSession(T_first);
+    }
+    const auto add = [&](double t, const cv::Mat& depth) {
+      here.addFrame(t, depth, s.K);
+      elsewhere.addFrame(t, depth, s.K);
+      const std::string bytes = gasp::trackedFrameBytes(elsewhere.lastTracked());
+      replayed.addTracked(gasp::trackedFrameFromBytes(bytes, p.odometry.pair.segment, p.odometry.pair.returns));
+    };
+    if (start == 0) add(s.timestamps[0] - 0.1, blank);
+    for (std::size_t i = start; i < start + 15; ++i) add(s.timestamps[i], s.depth[i]);
+    // A replayed session's frames cannot be tracked here: no view is left to track them against.
+    EXPECT_THROW(replayed.addFrame(s.timestamps[start + 15], s.depth[start + 15], s.K), gasp::Error);
+  }
+  here.finishLoops();
+  replayed.finishLoops();
+  ASSERT_GT(here.sessionLinks()[0][1], 0u);  // joined: the replay took the same relocalisations
+  ASSERT_EQ(here.poses().size(), replayed.poses().size());
+  for (std::size_t i = 0; i < here.poses().size(); ++i) {
+    EXPECT_TRUE(here.poses()[i].matrix() == replayed.poses()[i].matrix()) << i;
+    const gasp::OdometryFrame &a = here.odometry().frames()[i], &b = replayed.odometry().frames()[i];
+    EXPECT_EQ(a.index, b.index);
+    EXPECT_EQ(a.session, b.session);
+    EXPECT_EQ(a.reference, b.reference);
+    EXPECT_EQ(a.tracked, b.tracked);
+    EXPECT_EQ(a.keyframe, b.keyframe);
+    EXPECT_EQ(a.reason, b.reason);
+  }
+  const auto edges_here = here.constraints(), edges_replayed = replayed.constraints();
+  ASSERT_EQ(edges_here.size(), edges_replayed.size());
+  for (std::size_t j = 0; j < edges_here.size(); ++j) {
+    EXPECT_EQ(edges_here[j].from, edges_replayed[j].from) << j;
+    EXPECT_EQ(edges_here[j].to, edges_replayed[j].to) << j;
+    EXPECT_TRUE(edges_here[j].T_from_to.matrix() == edges_replayed[j].T_from_to.matrix()) << j;
+    EXPECT_TRUE(edges_here[j].information == edges_replayed[j].information) << j;
+  }
+  ASSERT_EQ(here.attempts().size(), replayed.attempts().size());
+  for (std::size_t j = 0; j < here.attempts().size(); ++j) {
+    EXPECT_EQ(here.attempts()[j].accepted, replayed.attempts()[j].accepted) << j;
+    EXPECT_EQ(here.attempts()[j].reason, replayed.attempts()[j].reason) << j;
+  }
+  EXPECT_EQ(here.odometry().sessionStarts(), replayed.odometry().sessionStarts());
+}
+
+TEST(DepthSlam, AFrameTrackedElsewhereThatBreaksItsSessionIsRefused) {
+  const LoopSequence s = circleSequence(4);
+  gasp::DepthOdometry elsewhere;
+  std::vector<gasp::TrackedFrame> frames;
+  for (std::size_t i = 0; i < 4; ++i) {
+    elsewhere.addFrame(s.timestamps[i], s.depth[i], s.K);
+    frames.push_back(elsewhere.lastTracked());
+  }
+  ASSERT_TRUE(frames[0].keyframe_view && frames[1].constraint);
+  const auto refused = [](gasp::DepthOdometry& o, gasp::TrackedFrame t, const std::string& why) {
+    const std::size_t n = o.frames().size();
+    try {
+      o.addTracked(std::move(t));
+      ADD_FAILURE() << "taken: " << why;
+    } catch (const gasp::Error& e) {
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(o.frames().size(), n);  // nothing added
+  };
+  gasp::DepthOdometry o;
+  auto no_view = frames[0];
+  no_view.keyframe_view.reset();
+  refused(o, no_view, "a keyframe comes with its view");
+  o.addTracked(frames[0]);
+  refused(o, frames[2], "not the next frame of its session");
+  auto no_constraint = frames[1];
+  no_constraint.constraint.reset();
+  refused(o, no_constraint, "its constraint is not the one from its reference to it");
+  auto earlier = frames[1];
+  earlier.frame.timestamp = frames[0].frame.timestamp;
+  refused(o, earlier, "is not later than the previous frame's");
+  o.addTracked(frames[1]);
+  EXPECT_EQ(o.constraints().size(), 1u);
+  EXPECT_THROW(o.addFrame(s.timestamps[2], s.depth[2], s.K), gasp::Error);  // a replayed session
+  // Bytes that are not a tracked frame's.
+  const std::string bytes = gasp::trackedFrameBytes(frames[1]);
+  for (const std::string& bad : {bytes.substr(0, bytes.size() / 2), bytes + "x", std::string("GVW1") + bytes.substr(4)})
+    EXPECT_THROW(gasp::trackedFrameFromBytes(bad, {}), gasp::Error);
 }

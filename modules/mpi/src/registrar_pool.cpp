@@ -6,13 +6,14 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdlib>
-#include <cstring>
 #include <deque>
 #include <limits>
+#include <list>
 #include <map>
 #include <thread>
 #include <utility>
 
+#include "gasp/core/byte_stream.h"
 #include "gasp/core/error.h"
 #include "gasp/pipeline/view_bytes.h"
 #include "gasp/slam/registration_log.h"
@@ -21,46 +22,110 @@ namespace gasp::mpi {
 
 namespace {
 
-enum Tag : int { kJob = 1, kView = 2, kPair = 3, kRegistration = 4, kStop = 5 };
+enum Tag : int { kJob = 1, kView = 2, kPair = 3, kRegistration = 4, kStop = 5, kTracked = 6, kReady = 7 };
+/// A kTracked message's kind: a frame, a session's end, the rank's last message.
+enum Kind : std::uint8_t { kFrame = 0, kEnd = 1, kLast = 2 };
 
-void send(const std::string& bytes, int to, Tag tag) {
+/// Held around one MPI call on rank 0 (nullptr elsewhere: one thread calls MPI).
+class Calls {
+ public:
+  explicit Calls(std::mutex* m) : m_(m) {
+    if (m_) m_->lock();
+  }
+  ~Calls() {
+    if (m_) m_->unlock();
+  }
+  Calls(const Calls&) = delete;
+  Calls& operator=(const Calls&) = delete;
+
+ private:
+  std::mutex* m_;
+};
+
+int count(const std::string& bytes) {
   if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     throw JobError("MPI: a message of " + std::to_string(bytes.size()) + " bytes is over MPI's 2 GB count");
-  MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, to, tag, MPI_COMM_WORLD);
+  return static_cast<int>(bytes.size());
 }
 
-/// The next message from `from` (MPI_ANY_SOURCE: any) with `tag` (MPI_ANY_TAG: any). Waits by
-/// polling with short sleeps (0.1 ms, growing to 2 ms) rather than in MPI_Probe, which spins a
-/// core: an idle rank would take the core that the ranks at work (rank 0 tracking, a rank
-/// registering on its threads) share with it.
-std::string receive(int from, int tag, MPI_Status& status) {
+void send(const std::string& bytes, int to, Tag tag, std::mutex* calls = nullptr) {
+  const int n = count(bytes);
+  Calls held(calls);
+  MPI_Send(bytes.data(), n, MPI_BYTE, to, tag, MPI_COMM_WORLD);
+}
+
+/// The message that has arrived from `from` (MPI_ANY_SOURCE: any) with `tag` (MPI_ANY_TAG: any),
+/// if one has.
+bool tryReceive(int from, int tag, MPI_Status& status, std::string& bytes, std::mutex* calls) {
+  Calls held(calls);
   int arrived = 0;
+  MPI_Iprobe(from, tag, MPI_COMM_WORLD, &arrived, &status);
+  if (!arrived) return false;
+  int n = 0;
+  MPI_Get_count(&status, MPI_BYTE, &n);
+  bytes.assign(static_cast<std::size_t>(n), '\0');
+  MPI_Recv(bytes.data(), n, MPI_BYTE, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  return true;
+}
+
+/// The next message from `from` with `tag`. Waits by polling with short sleeps (0.1 ms, growing to
+/// 2 ms) rather than in MPI_Probe, which spins a core: an idle rank would take the core that the
+/// ranks at work share with it. `between`: called between polls.
+std::string receive(int from, int tag, MPI_Status& status, std::mutex* calls = nullptr,
+                    const std::function<void()>& between = {}) {
+  std::string bytes;
   for (auto pause = std::chrono::microseconds(100);; pause = std::min(2 * pause, std::chrono::microseconds(2000))) {
-    MPI_Iprobe(from, tag, MPI_COMM_WORLD, &arrived, &status);
-    if (arrived) break;
+    if (tryReceive(from, tag, status, bytes, calls)) return bytes;
+    if (between) between();
     std::this_thread::sleep_for(pause);
   }
-  int count = 0;
-  MPI_Get_count(&status, MPI_BYTE, &count);
-  std::string bytes(static_cast<std::size_t>(count), '\0');
-  MPI_Recv(bytes.data(), count, MPI_BYTE, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+}
+
+/// A rank's messages to rank 0 that may be large (tracked frames), sent without waiting for rank 0
+/// to take them: each is kept until its send completes.
+class Outbox {
+ public:
+  void post(std::string bytes) {
+    const int n = count(bytes);
+    sent_.push_back({std::move(bytes), MPI_REQUEST_NULL});
+    MPI_Isend(sent_.back().bytes.data(), n, MPI_BYTE, 0, kTracked, MPI_COMM_WORLD, &sent_.back().request);
+  }
+  /// Drops the messages rank 0 has taken.
+  void collect() {
+    for (auto it = sent_.begin(); it != sent_.end();) {
+      int done = 0;
+      MPI_Test(&it->request, &done, MPI_STATUS_IGNORE);
+      it = done ? sent_.erase(it) : std::next(it);
+    }
+  }
+  /// Waits for rank 0 to take every message (it does, up to the rank's last: Session::stopWorkers()).
+  void flush() {
+    for (Message& m : sent_) MPI_Wait(&m.request, MPI_STATUS_IGNORE);
+    sent_.clear();
+  }
+
+ private:
+  struct Message {
+    std::string bytes;
+    MPI_Request request;
+  };
+  std::list<Message> sent_;  // a list: the buffers stay put while MPI sends them
+};
+
+std::string tracked(std::size_t session, Kind kind, const std::string& payload) {
+  ByteWriter w;
+  w.putSize(session);
+  w.put(static_cast<std::uint8_t>(kind));
+  std::string bytes = w.take();
+  bytes += payload;
   return bytes;
 }
 
-template <class T>
-void put(std::string& out, T v) {
-  out.append(reinterpret_cast<const char*>(&v), sizeof v);
-}
-template <class T>
-T take(const std::string& in, std::size_t& at) {
-  if (in.size() < at + sizeof(T)) throw JobError("MPI: a truncated message");
-  T v;
-  std::memcpy(&v, in.data() + at, sizeof v);
-  at += sizeof v;
-  return v;
-}
-
 }  // namespace
+
+int trackerOf(std::size_t session, int size) {
+  return 1 + static_cast<int>(session % static_cast<std::size_t>(std::max(1, size - 1)));
+}
 
 Session::Session(int& argc, char**& argv) {
   int provided = 0;
@@ -74,8 +139,19 @@ Session::Session(int& argc, char**& argv) {
 }
 
 Session::~Session() {
-  stopWorkers();
+  try {
+    stopWorkers();
+    sendLast();
+  } catch (const std::exception&) {  // a protocol error while stopping: end every rank
+    abort(1);
+  }
   MPI_Finalize();
+}
+
+void Session::sendLast() {
+  if (rank_ == 0 || last_sent_) return;
+  last_sent_ = true;
+  send(tracked(0, kLast, {}), 0, kTracked);
 }
 
 void Session::abort(int code) {
@@ -86,31 +162,80 @@ void Session::abort(int code) {
 void Session::stopWorkers() {
   if (rank_ != 0 || stopped_) return;
   stopped_ = true;
-  for (int r = 1; r < size_; ++r) send({}, r, kStop);
+  for (int r = 1; r < size_; ++r) send({}, r, kStop, &calls_);
+  // Everything a rank still sends -- frames rank 0 did not take, its ready message -- up to its
+  // last message: its sends then complete, and it can end.
+  for (int r = 1; r < size_; ++r)
+    for (;;) {
+      MPI_Status status;
+      const std::string bytes = receive(r, MPI_ANY_TAG, status, &calls_);
+      if (status.MPI_TAG == kTracked && bytes.size() >= 9 && static_cast<std::uint8_t>(bytes[8]) == kLast) break;
+    }
 }
 
-RegistrarPool::RegistrarPool(Session& session, const std::string& job_fingerprint, bool sweeps)
-    : session_(session), held_(static_cast<std::size_t>(session.size())) {
+RegistrarPool::RegistrarPool(Session& session, const std::string& job_fingerprint, bool sweeps, std::size_t sessions,
+                             const std::string& context)
+    : session_(session), sessions_(sessions), held_(static_cast<std::size_t>(session.size())),
+      ready_(static_cast<std::size_t>(session.size()), sessions == 0) {
   if (session.rank() != 0) throw Error("MPI: the registrar pool is rank 0's");
-  std::string job(1, sweeps ? '\1' : '\0');
-  job += job_fingerprint;
-  for (int r = 1; r < session.size(); ++r) send(job, r, kJob);
+  ByteWriter w;
+  w.put(static_cast<std::uint8_t>(sweeps ? 1 : 0));
+  w.putSize(sessions);
+  w.putString(context);
+  w.putString(job_fingerprint);
+  const std::string job = w.take();
+  for (int r = 1; r < session.size(); ++r) send(job, r, kJob, &session_.calls());
 }
 
-RegistrarPool::~RegistrarPool() { session_.stopWorkers(); }
+RegistrarPool::~RegistrarPool() {
+  try {
+    session_.stopWorkers();
+  } catch (const std::exception&) {
+    session_.abort(1);
+  }
+}
 
 CandidateRegistrar RegistrarPool::registrar() {
   return [this](std::size_t k, const DepthView& view_k,
                 const std::vector<std::pair<std::size_t, const DepthView*>>& candidates, bool relocalisation,
                 const PairParams& pair, const LoopClosureParams& loop) {
     if (session_.size() < 2) return registerCandidates(k, view_k, candidates, relocalisation, pair, loop);
-    return spread(k, view_k, candidates, relocalisation);
+    return spread(k, view_k, candidates, relocalisation, pair, loop);
   };
+}
+
+bool RegistrarPool::nextTracked(std::size_t s, std::string& message) {
+  if (!tracksElsewhere() || s >= sessions_) throw JobError("MPI: session " + std::to_string(s) + " is not tracked elsewhere");
+  const int from = trackerOf(s, session_.size());
+  MPI_Status status;
+  const std::string bytes = receive(from, kTracked, status, &session_.calls());
+  ByteReader r(bytes, "MPI: rank " + std::to_string(from) + "'s tracked frame");
+  std::size_t session = 0;
+  std::uint8_t kind = 0;
+  try {
+    session = r.getSize(0, "its session");
+    kind = r.get<std::uint8_t>("its kind");
+  } catch (const Error& e) {
+    throw JobError(e.what());
+  }
+  if (session != s || kind > kEnd)
+    throw JobError("MPI: rank " + std::to_string(from) + " sent another session's frame than " + std::to_string(s));
+  message = bytes.substr(9);
+  return kind == kEnd;
+}
+
+void RegistrarPool::takeReady() {
+  MPI_Status status;
+  std::string bytes;
+  while (tryReceive(MPI_ANY_SOURCE, kReady, status, bytes, &session_.calls()))
+    ready_[static_cast<std::size_t>(status.MPI_SOURCE)] = true;
 }
 
 std::vector<LoopRegistration> RegistrarPool::spread(std::size_t k, const DepthView& view_k,
                                                     const std::vector<std::pair<std::size_t, const DepthView*>>& candidates,
-                                                    bool relocalisation) {
+                                                    bool relocalisation, const PairParams& pair,
+                                                    const LoopClosureParams& loop) {
+  std::mutex* calls = &session_.calls();
   std::vector<LoopRegistration> out(candidates.size());
   std::deque<std::size_t> waiting;
   for (std::size_t i = 0; i < candidates.size(); ++i) waiting.push_back(i);
@@ -121,84 +246,134 @@ std::vector<LoopRegistration> RegistrarPool::spread(std::size_t k, const DepthVi
     for (const auto& [index, view] : {std::pair<std::size_t, const DepthView*>{k, &view_k}, candidates[i]}) {
       std::set<std::size_t>& held = held_[static_cast<std::size_t>(rank)];
       if (held.count(index)) continue;
-      std::string message;
-      put<std::uint64_t>(message, index);
+      ByteWriter w;
+      w.putSize(index);
+      std::string message = w.take();
       message += viewBytes(*view);
-      send(message, rank, kView);
+      send(message, rank, kView, calls);
       held.insert(index);
       ++views_;
       bytes_ += message.size();
     }
-    std::string message;
-    put<std::uint64_t>(message, k);
-    put<std::uint64_t>(message, candidates[i].first);
-    put<std::uint8_t>(message, relocalisation ? 1 : 0);
-    send(message, rank, kPair);
+    ByteWriter w;
+    w.putSize(k);
+    w.putSize(candidates[i].first);
+    w.put(static_cast<std::uint8_t>(relocalisation ? 1 : 0));
+    send(w.take(), rank, kPair, calls);
     ++pairs_;
     busy[rank] = i;
   };
-  for (int rank = 1; rank < session_.size() && !waiting.empty(); ++rank) give(rank);
-  while (!busy.empty()) {
-    MPI_Status status;
-    const std::string record = receive(MPI_ANY_SOURCE, kRegistration, status);
-    const auto it = busy.find(status.MPI_SOURCE);
-    if (it == busy.end()) throw JobError("MPI: a registration from rank " + std::to_string(status.MPI_SOURCE) + ", which had none to make");
+  const auto take = [&](const std::string& record, int rank) {
+    const auto it = busy.find(rank);
+    if (it == busy.end()) throw JobError("MPI: a registration from rank " + std::to_string(rank) + ", which had none to make");
     std::size_t rk = 0, candidate = 0;
     bool phase = false;
     LoopRegistration r;
-    if (!readRegistrationRecord(record.substr(0, record.size() - 1), rk, candidate, phase, r) || rk != k ||
-        candidate != candidates[it->second].first || phase != relocalisation)
-      throw JobError("MPI: rank " + std::to_string(status.MPI_SOURCE) + " returned another registration than asked");
+    if (record.empty() || !readRegistrationRecord(record.substr(0, record.size() - 1), rk, candidate, phase, r) ||
+        rk != k || candidate != candidates[it->second].first || phase != relocalisation)
+      throw JobError("MPI: rank " + std::to_string(rank) + " returned another registration than asked");
     out[it->second] = std::move(r);
     busy.erase(it);
-    if (!waiting.empty()) give(status.MPI_SOURCE);
+  };
+  while (!waiting.empty() || !busy.empty()) {
+    takeReady();
+    for (int rank = 1; rank < session_.size() && !waiting.empty(); ++rank)
+      if (ready_[static_cast<std::size_t>(rank)] && !busy.count(rank)) give(rank);
+    MPI_Status status;
+    std::string record;
+    if (!waiting.empty()) {
+      // No rank is free (they are tracking, or all registering): this one registers a pair, then
+      // takes what has come back.
+      const std::size_t i = waiting.front();
+      waiting.pop_front();
+      out[i] = std::move(registerCandidates(k, view_k, {candidates[i]}, relocalisation, pair, loop).front());
+      ++pairs_here_;
+      while (tryReceive(MPI_ANY_SOURCE, kRegistration, status, record, calls)) take(record, status.MPI_SOURCE);
+      continue;
+    }
+    record = receive(MPI_ANY_SOURCE, kRegistration, status, calls);
+    take(record, status.MPI_SOURCE);
   }
   return out;
 }
 
-std::size_t serveRegistrations(const Session& session, const std::string& job_fingerprint, const SlamParams& params,
-                               const std::string& job_fingerprint_sweeps, const SlamParams& sweep_params) {
+std::size_t serveRegistrations(Session& session, const std::string& job_fingerprint, const SlamParams& params,
+                               const std::string& job_fingerprint_sweeps, const SlamParams& sweep_params,
+                               const SessionTracker& track) {
+  Outbox outbox;
+  std::size_t served = 0;
   MPI_Status status;
-  std::string job = receive(0, MPI_ANY_TAG, status);
-  if (status.MPI_TAG == kStop) return 0;
-  if (status.MPI_TAG != kJob || job.empty()) throw Error("MPI: rank 0 sent no job");
-  const bool sweeps = job[0] == '\1';
-  if (job.substr(1) != (sweeps ? job_fingerprint_sweeps : job_fingerprint))
+  // Rank 0 stopped the job: its last message, once everything before it is taken.
+  const auto stopped = [&] {
+    outbox.flush();
+    session.sendLast();
+    return served;
+  };
+  const std::string job = receive(0, MPI_ANY_TAG, status);
+  if (status.MPI_TAG == kStop) return stopped();
+  if (status.MPI_TAG != kJob) throw Error("MPI: rank 0 sent no job");
+  ByteReader r(job, "MPI: rank 0's job");
+  const bool sweeps = r.get<std::uint8_t>("its sensor") == 1;
+  const std::size_t sessions = r.getSize(1, "its sessions");
+  const std::string context = r.getString("its context");
+  if (r.getString("its fingerprint") != (sweeps ? job_fingerprint_sweeps : job_fingerprint))
     throw Error("MPI: rank " + std::to_string(session.rank()) +
                 " computed other parameters than rank 0 (every rank must be given the same command line and files)");
   const SlamParams& p = sweeps ? sweep_params : params;
+
+  // The sessions this rank tracks, each frame handed to rank 0 as it is tracked; a stop from rank
+  // 0 ends the tracking at the next frame.
+  if (sessions > 0) {
+    if (!track) throw Error("MPI: rank 0 asks for sessions to be tracked, and this program tracks none");
+    std::string stop;
+    try {
+      for (std::size_t s = 0; s < sessions; ++s) {
+        if (trackerOf(s, session.size()) != session.rank()) continue;
+        const std::string end = track(s, context, [&](std::string frame) {
+          MPI_Status st;
+          if (tryReceive(0, kStop, st, stop, nullptr)) throw JobStopped();
+          outbox.collect();
+          outbox.post(tracked(s, kFrame, frame));
+        });
+        outbox.post(tracked(s, kEnd, end));
+      }
+    } catch (const JobStopped&) {
+      return stopped();
+    }
+    send({}, 0, kReady);
+  }
+
   std::map<std::size_t, DepthView> views;
-  std::size_t served = 0;
   for (;;) {
-    const std::string message = receive(0, MPI_ANY_TAG, status);
-    if (status.MPI_TAG == kStop) return served;
-    std::size_t at = 0;
+    const std::string message = receive(0, MPI_ANY_TAG, status, nullptr, [&] { outbox.collect(); });
+    if (status.MPI_TAG == kStop) return stopped();
+    ByteReader m(message, "MPI: rank 0's message");
     if (status.MPI_TAG == kView) {
-      const auto index = static_cast<std::size_t>(take<std::uint64_t>(message, at));
-      views.insert_or_assign(index, viewFromBytes(std::string_view(message).substr(at), p.odometry.pair.segment,
+      const std::size_t index = m.getSize(0, "the view's keyframe");
+      views.insert_or_assign(index, viewFromBytes(std::string_view(message).substr(8), p.odometry.pair.segment,
                                                   p.odometry.pair.returns));
       continue;
     }
     if (status.MPI_TAG != kPair) throw Error("MPI: an unknown message tag " + std::to_string(status.MPI_TAG));
-    const auto k = static_cast<std::size_t>(take<std::uint64_t>(message, at));
-    const auto candidate = static_cast<std::size_t>(take<std::uint64_t>(message, at));
-    const bool relocalisation = take<std::uint8_t>(message, at) != 0;
-    LoopRegistration r;
+    const std::size_t k = m.getSize(0, "the pair");
+    const std::size_t candidate = m.getSize(0, "the pair");
+    const bool relocalisation = m.get<std::uint8_t>("the pair") != 0;
+    LoopRegistration reg;
     try {
       const auto from = views.find(candidate), to = views.find(k);
       if (from == views.end() || to == views.end()) throw Error("its views were not sent");
-      r.attempt = registerLoopClosure(from->second, to->second, candidate, k, relocalisation, p.odometry.pair, p.loop,
-                                      r.constraint);
+      reg.attempt = registerLoopClosure(from->second, to->second, candidate, k, relocalisation, p.odometry.pair, p.loop,
+                                        reg.constraint);
     } catch (const std::exception& e) {  // reported, and the job goes on
-      r = LoopRegistration{};
-      r.attempt.from = r.constraint.from = candidate;
-      r.attempt.to = r.constraint.to = k;
-      r.attempt.relocalisation = relocalisation;
-      r.constraint.loop_closure = true;
-      r.attempt.reason =
+      reg = LoopRegistration{};
+      reg.attempt.from = reg.constraint.from = candidate;
+      reg.attempt.to = reg.constraint.to = k;
+      reg.attempt.relocalisation = relocalisation;
+      reg.constraint.loop_closure = true;
+      reg.attempt.reason =
           std::string(kRegistrationFailed) + " on rank " + std::to_string(session.rank()) + ": " + e.what();
     }
-    send(registrationRecord(k, candidate, relocalisation, r), 0, kRegistration);
+    send(registrationRecord(k, candidate, relocalisation, reg), 0, kRegistration);
     ++served;
   }
 }

@@ -52,6 +52,61 @@ void DepthOdometry::startSession(const Isometry3& T_world_first) {
   velocity_.reset();
 }
 
+TrackedFrame DepthOdometry::lastTracked() const {
+  if (frames_.empty()) throw Error("odometry: no frame to hand over yet");
+  TrackedFrame t;
+  t.frame = frames_.back();
+  if (t.frame.tracked && t.frame.reference != t.frame.index) t.constraint = constraints_.back();
+  if (t.frame.keyframe) t.keyframe_view = keyframe_view_;
+  return t;
+}
+
+const OdometryFrame& DepthOdometry::addTracked(TrackedFrame t) {
+  checkNext(t.frame.timestamp, true);
+  OdometryFrame& f = t.frame;
+  const bool session_start = frames_.empty() || session_pending_;
+  const std::size_t index = frames_.size();
+  const std::size_t first = session_start ? index : session_starts_.back();
+  // Its own odometry's number of this session's first frame.
+  const std::size_t offset = session_start ? f.index : replay_offset_;
+  const std::string what = "odometry: frame " + std::to_string(index) + " (tracked elsewhere as frame " +
+                           std::to_string(f.index) + ")";
+  if (f.index < offset || f.index - offset != index - first)
+    throw Error(what + ": not the next frame of its session");
+  const auto here = [&](std::size_t i) { return i - offset + first; };  // i >= offset
+  if (f.reference < offset || f.reference > f.index) throw Error(what + ": its reference is not in its session");
+  const bool measured = f.tracked && f.reference != f.index;  // against a reference: a constraint
+  if (!f.tracked && f.reference != f.index) throw Error(what + ": not tracked, yet with a reference");
+  if (measured != t.constraint.has_value() ||
+      (t.constraint && (t.constraint->to != f.index || t.constraint->from != f.reference)))
+    throw Error(what + ": its constraint is not the one from its reference to it");
+  if (f.keyframe != t.keyframe_view.has_value()) throw Error(what + ": a keyframe comes with its view, and only a keyframe");
+  if (measured && !keyframe_view_) throw Error(what + ": tracked before its session's origin");
+  f.index = index;
+  f.reference = here(f.reference);
+  f.session = session_start ? session_starts_.size() : frames_.back().session;
+  if (t.constraint) {
+    t.constraint->from = f.reference;
+    t.constraint->to = index;
+    constraints_.push_back(*t.constraint);
+  }
+  if (t.keyframe_view) {
+    keyframe_index_ = index;
+    keyframe_view_ = std::move(*t.keyframe_view);
+    keyframe_edges_.reset();
+  }
+  previous_view_.reset();
+  velocity_.reset();
+  if (session_start) {
+    session_starts_.push_back(index);
+    replay_offset_ = offset;
+  }
+  session_pending_ = false;
+  session_replayed_ = true;
+  frames_.push_back(std::move(f));
+  return frames_.back();
+}
+
 bool DepthOdometry::track(const DepthView& view, const DepthView& ref, std::size_t ref_index, OdometryFrame& f,
                           const char* attempt, const PairParams& pair, const std::optional<Isometry3>& T_ref_predicted,
                           bool* visibility_refused, const std::optional<Isometry3>& T_ref_motion) {
@@ -123,9 +178,13 @@ bool DepthOdometry::take(PairResult r, std::size_t ref_index, OdometryFrame& f, 
   return true;
 }
 
-void DepthOdometry::checkTimestamp(double timestamp) const {
+void DepthOdometry::checkNext(double timestamp, bool tracked_elsewhere) const {
   if (!std::isfinite(timestamp)) throw Error("odometry: frame " + std::to_string(frames_.size()) + ": timestamp is not finite");
   const bool session_start = frames_.empty() || session_pending_;
+  if (!session_start && session_replayed_ != tracked_elsewhere)
+    throw Error("odometry: frame " + std::to_string(frames_.size()) + ": its session's frames were " +
+                (session_replayed_ ? "tracked elsewhere (addTracked()): none is left here to track it against"
+                                   : "tracked here: a frame tracked elsewhere cannot join them"));
   if (!session_start && !(timestamp > frames_.back().timestamp)) {
     char buf[200];
     std::snprintf(buf, sizeof buf, "odometry: frame %zu: timestamp %.6f is not later than the previous frame's (%.6f)",
@@ -136,7 +195,7 @@ void DepthOdometry::checkTimestamp(double timestamp) const {
 
 const OdometryFrame& DepthOdometry::addFrame(double timestamp, const RangeScan& sweep,
                                              std::optional<SegmentedDepth> segmented) {
-  checkTimestamp(timestamp);
+  checkNext(timestamp, false);
   if (params_.rolling_shutter_readout_s != 0.0)
     throw Error("odometry: frame " + std::to_string(frames_.size()) +
                 ": a LiDAR sweep is not deskewed for a rolling shutter (rolling_shutter_readout_s must be 0; "
@@ -150,7 +209,7 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const RangeScan& 
 const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& depth_m,
                                              const CameraIntrinsics& intrinsics,
                                              std::optional<SegmentedDepth> segmented) {
-  checkTimestamp(timestamp);
+  checkNext(timestamp, false);
   if (depth_m.empty()) throw Error("odometry: frame " + std::to_string(frames_.size()) + ": empty depth image");
   if (depth_m.cols != intrinsics.width || depth_m.rows != intrinsics.height) {
     char buf[200];
@@ -271,6 +330,7 @@ const OdometryFrame& DepthOdometry::addView(double timestamp, DepthView view, do
   previous_view_ = std::move(view);
   if (session_start) session_starts_.push_back(f.index);
   session_pending_ = false;
+  session_replayed_ = false;
   frames_.push_back(std::move(f));
   return frames_.back();
 }

@@ -32,6 +32,10 @@ const OdometryFrame& DepthSlam::addFrame(double timestamp, const RangeScan& swee
   return added(odometry_.addFrame(timestamp, sweep, std::move(segmented)));  // throws: nothing added
 }
 
+const OdometryFrame& DepthSlam::addTracked(TrackedFrame tracked) {
+  return added(odometry_.addTracked(std::move(tracked)));  // throws: nothing added
+}
+
 const OdometryFrame& DepthSlam::added(const OdometryFrame& f) {
   const std::vector<OdometryFrame>& frames = odometry_.frames();
   if (f.tracked && f.reference != f.index) {

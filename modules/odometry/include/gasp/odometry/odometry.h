@@ -71,6 +71,15 @@ struct OdometryFrame {
   double registration_ms = 0.0;  ///< all registration attempts
 };
 
+/// One frame as a DepthOdometry tracked it, for another one to take (DepthOdometry::addTracked()):
+/// a session tracked in one process and replayed, unchanged, in another (a map-building job
+/// spread over processes, depth_slam.h). Bytes: trackedFrameBytes() (tracked_frame_bytes.h).
+struct TrackedFrame {
+  OdometryFrame frame;                       ///< numbered as the odometry that tracked it numbered it
+  std::optional<PoseConstraint> constraint;  ///< the constraint ending in it (tracked, not its session's origin)
+  std::optional<DepthView> keyframe_view;    ///< its view, when it became the keyframe
+};
+
 class DepthOdometry {
  public:
   /// Throws gasp::Error for invalid parameters. T_world_first: the first frame's pose.
@@ -96,6 +105,20 @@ class DepthOdometry {
   /// made ahead (ViewAhead::start(const RangeScan&)).
   const OdometryFrame& addFrame(double timestamp, const RangeScan& sweep,
                                 std::optional<SegmentedDepth> segmented = std::nullopt);
+
+  /// The last frame added (frames().back()) with its constraint and, when it became the keyframe,
+  /// its view: what addTracked() of another odometry takes. Throws gasp::Error before any frame.
+  TrackedFrame lastTracked() const;
+  /// Adds a frame another DepthOdometry tracked (lastTracked()), as it tracked it: the same pose,
+  /// constraint, keyframe and reasons, renumbered after this odometry's frames. That odometry had
+  /// the same parameters, started the frame's session at the T_world_first this session has, and
+  /// tracked nothing but that session (its frames since the session's start are this session's,
+  /// in order); then the frames are those addFrame() would have made. A session's frames come all
+  /// from addFrame() or all from addTracked(): a replayed session has no views to track the next
+  /// frame against. Throws gasp::Error, and does not add the frame, when it breaks any of this
+  /// (its timestamp as addFrame(), a reference or constraint outside its session, a keyframe
+  /// without its view).
+  const OdometryFrame& addTracked(TrackedFrame tracked);
 
   /// Starts a new session (another recording, with no known relation to the frames before): the
   /// next frame with patches is its origin, at T_world_first, as the first frame is the first
@@ -135,8 +158,9 @@ class DepthOdometry {
   bool track(const DepthView& view, const DepthView& ref, std::size_t ref_index, OdometryFrame& f,
              const char* attempt, const PairParams& pair, const std::optional<Isometry3>& T_ref_predicted = std::nullopt,
              bool* visibility_refused = nullptr, const std::optional<Isometry3>& T_ref_motion = std::nullopt);
-  /// Throws gasp::Error for a timestamp addFrame() refuses.
-  void checkTimestamp(double timestamp) const;
+  /// Throws gasp::Error for a timestamp addFrame() refuses, and for a frame to track here or
+  /// replayed (`tracked_elsewhere`) when the current session's frames are the other kind.
+  void checkNext(double timestamp, bool tracked_elsewhere) const;
   /// addFrame() once the frame's view is made.
   const OdometryFrame& addView(double timestamp, DepthView view, double segmentation_ms, bool deskewed);
   /// track() with the registration `r` (T_ref_frame) already made.
@@ -159,6 +183,9 @@ class DepthOdometry {
   std::optional<CameraTwist> velocity_;
   std::vector<std::size_t> session_starts_;  ///< as sessionStarts()
   bool session_pending_ = false;             ///< startSession() called: the next frame starts one
+  bool session_replayed_ = false;            ///< the current session's frames came from addTracked()
+  /// addTracked(): the first frame of the current session as its own odometry numbered it.
+  std::size_t replay_offset_ = 0;
 };
 
 }  // namespace gasp

@@ -65,6 +65,10 @@ class DepthSlam {
   /// registrations.
   const OdometryFrame& addFrame(double timestamp, const RangeScan& sweep,
                                 std::optional<SegmentedDepth> segmented = std::nullopt);
+  /// Adds a frame that a DepthOdometry of another process tracked (DepthOdometry::addTracked(),
+  /// same errors), then does what addFrame() does after the tracking: its pose in the graph and, for
+  /// a keyframe, the loop search. A session replayed so gives the graph that tracking it here would.
+  const OdometryFrame& addTracked(TrackedFrame tracked);
   /// Starts a new session (DepthOdometry::startSession()): its frames are tracked on their own,
   /// from T_world_first, and its keyframes searched for loops like any others, so relocalisation
   /// (agreeing votes, relocalisation.h) joins it to the sessions before when they share places,
