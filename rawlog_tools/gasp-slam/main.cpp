@@ -345,8 +345,8 @@ int main(int argc, char** argv) {
       pool.emplace(*mpi, gasp::paramsYaml(params), sweeps, n_sessions, context.take());
       registrar = pool->registrar();
       if (mpi->size() > 1)
-        std::printf("mpi: %d ranks: the sessions tracked on ranks 1-%d, the loop registrations on whichever rank is "
-                    "free\n", mpi->size(), mpi->size() - 1);
+        std::printf("mpi: %d ranks: the sessions tracked on rank%s, the loop registrations on whichever rank is free\n",
+                    mpi->size(), mpi->size() == 2 ? " 1" : ("s 1-" + std::to_string(mpi->size() - 1)).c_str());
       else
         std::printf("mpi: 1 rank (not started by mpirun -np N?), the loop registrations in this process\n");
     }
@@ -532,8 +532,8 @@ int main(int argc, char** argv) {
 #ifdef GASP_WITH_MPI
     if (pool)
       std::printf("mpi: %zu pairs registered on the other ranks and %zu on rank 0 while none was free, %zu views sent "
-                  "(%.1f MB)\n",
-                  pool->pairsSent(), pool->pairsHere(), pool->viewsSent(), pool->megabytesSent());
+                  "(%.1f MB); rank 0 waited %.1f s for tracked frames\n",
+                  pool->pairsSent(), pool->pairsHere(), pool->viewsSent(), pool->megabytesSent(), pool->trackedWaitS());
 #endif
     std::printf("graph_pieces: %zu (odometry alone: %zu)\n", slam->pieceCount(), slam->odometry().componentCount());
     const std::size_t tracked = slam->odometry().trackedCount();

@@ -44,8 +44,8 @@ TEST(GaspSlamMpi, TwoAndThreeRanksWriteTheSingleProcessGraph) {
     const std::string name = "ranks" + std::to_string(ranks);
     const auto mpi = mpirun(ranks, job(name) + (ranks == 2 ? " --checkpoint " + out + "/half.journal" : ""));
     EXPECT_EQ(mpi.exit_code, single.exit_code) << mpi.output;
-    EXPECT_TRUE(contains(mpi.output, "mpi: " + std::to_string(ranks) + " ranks: the sessions tracked on ranks 1-" +
-                                         std::to_string(ranks - 1)))
+    EXPECT_TRUE(contains(mpi.output, "mpi: " + std::to_string(ranks) + " ranks: the sessions tracked on rank" +
+                                         (ranks == 2 ? " 1," : "s 1-2,")))
         << mpi.output;
     // "mpi: N pairs registered on the other ranks and M on rank 0 while none was free": which rank
     // registers a pair depends on timing, not the pairs.

@@ -208,7 +208,9 @@ bool RegistrarPool::nextTracked(std::size_t s, std::string& message) {
   if (!tracksElsewhere() || s >= sessions_) throw JobError("MPI: session " + std::to_string(s) + " is not tracked elsewhere");
   const int from = trackerOf(s, session_.size());
   MPI_Status status;
+  const auto t0 = std::chrono::steady_clock::now();
   const std::string bytes = receive(from, kTracked, status, &session_.calls());
+  tracked_wait_ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   ByteReader r(bytes, "MPI: rank " + std::to_string(from) + "'s tracked frame");
   std::size_t session = 0;
   std::uint8_t kind = 0;

@@ -110,6 +110,9 @@ class RegistrarPool {
 
   std::size_t pairsSent() const { return pairs_; }
   std::size_t pairsHere() const { return pairs_here_; }  ///< registered on rank 0 while no rank was free
+  /// Wall time rank 0 waited for tracked frames in nextTracked() [s]: the job's time less this is
+  /// rank 0's own (the replay, its searches and optimisations, its outputs).
+  double trackedWaitS() const { return tracked_wait_ms_ / 1000.0; }
   std::size_t viewsSent() const { return views_; }
   double megabytesSent() const { return static_cast<double>(bytes_) / 1e6; }
 
@@ -124,6 +127,7 @@ class RegistrarPool {
   std::vector<std::set<std::size_t>> held_;  ///< the views each rank holds
   std::vector<bool> ready_;                  ///< the ranks that have tracked their sessions
   std::size_t pairs_ = 0, pairs_here_ = 0, views_ = 0, bytes_ = 0;
+  double tracked_wait_ms_ = 0.0;
 };
 
 /// Another rank's side: receives the job (throws gasp::Error when its fingerprint is not
