@@ -20,6 +20,12 @@ struct HandedFrame {
   std::optional<RgbdFrame> keyframe;
 };
 
+inline bool getFlag(ByteReader& r, const char* what) {
+  const auto b = r.get<std::uint8_t>(what);
+  if (b > 1) r.fail(std::string(what) + ": neither 0 nor 1");
+  return b == 1;
+}
+
 inline std::string handedFrameBytes(const TrackedFrame& tracked, const RgbdFrame* keyframe) {
   ByteWriter w;
   w.putString(trackedFrameBytes(tracked));
@@ -32,21 +38,25 @@ inline HandedFrame handedFrameFromBytes(std::string_view bytes, const SlamParams
   ByteReader r(bytes, "a tracked frame from another rank");
   HandedFrame h;
   h.tracked = trackedFrameFromBytes(r.getString("the frame"), params.odometry.pair.segment, params.odometry.pair.returns);
-  if (r.get<std::uint8_t>("the keyframe's flag") == 1) h.keyframe = rgbdFrameFromBytes(r.getString("the keyframe"));
+  if (getFlag(r, "the keyframe's flag")) h.keyframe = rgbdFrameFromBytes(r.getString("the keyframe"));
   r.expectEnd();
   return h;
 }
 
 /// How a session tracked on another rank ended: as forEachFrameWithViewAhead() returned (`end`),
-/// or with the error it threw (`threw`; `end.error` is its message).
+/// or with the error it threw (`threw`; `end.error` is its message). `reached`: a frame of it got
+/// past the mounting check, so that one process would have started the session in the graph
+/// (made the graph, for the first) even when that frame's tracking threw.
 struct HandedEnd {
   bool threw = false;
+  bool reached = false;
   SequenceEnd end;
 };
 
 inline std::string handedEndBytes(const HandedEnd& e) {
   ByteWriter w;
   w.put(static_cast<std::uint8_t>(e.threw ? 1 : 0));
+  w.put(static_cast<std::uint8_t>(e.reached ? 1 : 0));
   w.put(static_cast<std::uint8_t>(e.end.complete ? 1 : 0));
   w.putString(e.end.error);
   w.putSize(e.end.frames);
@@ -56,8 +66,9 @@ inline std::string handedEndBytes(const HandedEnd& e) {
 inline HandedEnd handedEndFromBytes(std::string_view bytes) {
   ByteReader r(bytes, "a session's end from another rank");
   HandedEnd e;
-  e.threw = r.get<std::uint8_t>("its error's flag") == 1;
-  e.end.complete = r.get<std::uint8_t>("its end") == 1;
+  e.threw = getFlag(r, "its error's flag");
+  e.reached = getFlag(r, "its first frame's flag");
+  e.end.complete = getFlag(r, "its end");
   e.end.error = r.getString("its error");
   e.end.frames = r.getSize(0, "its frames");
   r.expectEnd();

@@ -86,8 +86,8 @@ std::string trackForRankZero(const gasp::DepthSequenceOptions& options, const st
   if (sweeps) params = gasp::lidarSlamParams(params);
   gasp::DepthSequence sequence(options);
   gasp::tools::HandedEnd end;
+  std::optional<gasp::DepthOdometry> odometry;  // made once a frame passes the mounting check
   try {
-    std::optional<gasp::DepthOdometry> odometry;
     end.end = gasp::tools::forEachFrameWithViewAhead(sequence, params.odometry, sequential, [&](const gasp::RgbdFrame& frame, auto segmented) {
       if (!odometry) {
         if (!frame.T_robot_camera.isApprox(T_robot_camera, 1e-9)) throw gasp::Error(kOtherMounting);
@@ -104,6 +104,7 @@ std::string trackForRankZero(const gasp::DepthSequenceOptions& options, const st
     end.threw = true;
     end.end.error = e.what();
   }
+  end.reached = odometry.has_value();
   return gasp::tools::handedEndBytes(end);
 }
 #endif
@@ -420,6 +421,9 @@ int main(int argc, char** argv) {
           } catch (const gasp::Error& e) {
             throw gasp::JobError(e.what());
           }
+          // A first frame that passed the mounting check and then threw: one process had started
+          // the session (made the graph) before it threw.
+          if (end.reached && !session_started) beforeFrame(first_mounting);
           if (end.threw) throw gasp::Error(end.end.error);
           run.end = end.end;
         } else

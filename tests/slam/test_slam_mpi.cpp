@@ -34,7 +34,8 @@ gasp::test::ProgramRun mpirun(int ranks, const std::string& args) {
 TEST(GaspSlamMpi, TwoAndThreeRanksWriteTheSingleProcessGraph) {
   const std::string out = gasp::test::scratchDir();
   const gasp::test::TwoSessionJob two = gasp::test::twoSessionJob(out);
-  const auto job = [&](const std::string& name) { return two.args(name); };
+  // With the keyframes' simple map: their frames cross from the tracking ranks too.
+  const auto job = [&](const std::string& name) { return two.args(name) + " --simplemap " + out + "/" + name + ".simplemap"; };
   const auto single = runProgram("gasp-slam", job("single"));
   ASSERT_TRUE(single.exit_code == 0 || single.exit_code == 3) << single.output;
   const std::size_t tried = printedCount(single.output, "loop_closures: ");
@@ -55,7 +56,7 @@ TEST(GaspSlamMpi, TwoAndThreeRanksWriteTheSingleProcessGraph) {
     const std::size_t elsewhere = std::stoul(mpi.output.substr(line + 5, at - line - 5));
     const std::size_t here = std::stoul(mpi.output.substr(at + 41));
     EXPECT_GE(elsewhere + here, 4u) << mpi.output;
-    for (const std::string file : {".session1.txt", ".session2.txt", ".graph"}) {
+    for (const std::string file : {".session1.txt", ".session2.txt", ".graph", ".simplemap"}) {
       const std::string a = fileText(out + "/single" + file), b = fileText(out + "/" + name + file);
       EXPECT_FALSE(a.empty()) << file;
       EXPECT_EQ(a, b) << name << file;

@@ -87,6 +87,7 @@ class Outbox {
  public:
   void post(std::string bytes) {
     const int n = count(bytes);
+    held_ += bytes.size();
     sent_.push_back({std::move(bytes), MPI_REQUEST_NULL});
     MPI_Isend(sent_.back().bytes.data(), n, MPI_BYTE, 0, kTracked, MPI_COMM_WORLD, &sent_.back().request);
   }
@@ -95,13 +96,16 @@ class Outbox {
     for (auto it = sent_.begin(); it != sent_.end();) {
       int done = 0;
       MPI_Test(&it->request, &done, MPI_STATUS_IGNORE);
+      if (done) held_ -= it->bytes.size();
       it = done ? sent_.erase(it) : std::next(it);
     }
   }
+  std::size_t held() const { return held_; }  ///< bytes rank 0 has not taken yet
   /// Waits for rank 0 to take every message (it does, up to the rank's last: Session::stopWorkers()).
   void flush() {
     for (Message& m : sent_) MPI_Wait(&m.request, MPI_STATUS_IGNORE);
     sent_.clear();
+    held_ = 0;
   }
 
  private:
@@ -110,7 +114,12 @@ class Outbox {
     MPI_Request request;
   };
   std::list<Message> sent_;  // a list: the buffers stay put while MPI sends them
+  std::size_t held_ = 0;
 };
+
+/// At most this many bytes of tracked frames wait on a rank for rank 0 to take them (about 400
+/// keyframe views at 640 x 480); a rank further ahead waits.
+constexpr std::size_t kMaxHeldBytes = std::size_t{1} << 30;
 
 std::string tracked(std::size_t session, Kind kind, const std::string& payload) {
   ByteWriter w;
@@ -288,7 +297,8 @@ std::vector<LoopRegistration> RegistrarPool::spread(std::size_t k, const DepthVi
       // takes what has come back.
       const std::size_t i = waiting.front();
       waiting.pop_front();
-      out[i] = std::move(registerCandidates(k, view_k, {candidates[i]}, relocalisation, pair, loop).front());
+      out[i] = registerCandidate(k, view_k, candidates[i].first, *candidates[i].second, relocalisation, pair, loop,
+                                 " on rank 0");
       ++pairs_here_;
       while (tryReceive(MPI_ANY_SOURCE, kRegistration, status, record, calls)) take(record, status.MPI_SOURCE);
       continue;
@@ -327,18 +337,26 @@ std::size_t serveRegistrations(Session& session, const std::string& job_fingerpr
   // 0 ends the tracking at the next frame.
   if (sessions > 0) {
     if (!track) throw Error("MPI: rank 0 asks for sessions to be tracked, and this program tracks none");
-    std::string stop;
+    const auto stop_asked = [&] {
+      MPI_Status st;
+      std::string none;
+      return tryReceive(0, kStop, st, none, nullptr);
+    };
     try {
       for (std::size_t s = 0; s < sessions; ++s) {
         if (trackerOf(s, session.size()) != session.rank()) continue;
+        if (stop_asked()) throw JobStopped();
         const std::string end = track(s, context, [&](std::string frame) {
-          MPI_Status st;
-          if (tryReceive(0, kStop, st, stop, nullptr)) throw JobStopped();
-          outbox.collect();
+          for (outbox.collect(); outbox.held() > kMaxHeldBytes; outbox.collect()) {
+            if (stop_asked()) throw JobStopped();
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+          }
+          if (stop_asked()) throw JobStopped();
           outbox.post(tracked(s, kFrame, frame));
         });
         outbox.post(tracked(s, kEnd, end));
       }
+      if (stop_asked()) throw JobStopped();
     } catch (const JobStopped&) {
       return stopped();
     }
@@ -360,21 +378,10 @@ std::size_t serveRegistrations(Session& session, const std::string& job_fingerpr
     const std::size_t k = m.getSize(0, "the pair");
     const std::size_t candidate = m.getSize(0, "the pair");
     const bool relocalisation = m.get<std::uint8_t>("the pair") != 0;
-    LoopRegistration reg;
-    try {
-      const auto from = views.find(candidate), to = views.find(k);
-      if (from == views.end() || to == views.end()) throw Error("its views were not sent");
-      reg.attempt = registerLoopClosure(from->second, to->second, candidate, k, relocalisation, p.odometry.pair, p.loop,
-                                        reg.constraint);
-    } catch (const std::exception& e) {  // reported, and the job goes on
-      reg = LoopRegistration{};
-      reg.attempt.from = reg.constraint.from = candidate;
-      reg.attempt.to = reg.constraint.to = k;
-      reg.attempt.relocalisation = relocalisation;
-      reg.constraint.loop_closure = true;
-      reg.attempt.reason =
-          std::string(kRegistrationFailed) + " on rank " + std::to_string(session.rank()) + ": " + e.what();
-    }
+    const auto from = views.find(candidate), to = views.find(k);
+    if (from == views.end() || to == views.end()) throw Error("MPI: a pair whose views were not sent");
+    const LoopRegistration reg = registerCandidate(k, to->second, candidate, from->second, relocalisation,
+                                                   p.odometry.pair, p.loop, " on rank " + std::to_string(session.rank()));
     send(registrationRecord(k, candidate, relocalisation, reg), 0, kRegistration);
     ++served;
   }

@@ -81,7 +81,16 @@ const OdometryFrame& DepthOdometry::addTracked(TrackedFrame t) {
       (t.constraint && (t.constraint->to != f.index || t.constraint->from != f.reference)))
     throw Error(what + ": its constraint is not the one from its reference to it");
   if (f.keyframe != t.keyframe_view.has_value()) throw Error(what + ": a keyframe comes with its view, and only a keyframe");
+  if (f.keyframe && !f.tracked) throw Error(what + ": a keyframe that was not tracked");
   if (measured && !keyframe_view_) throw Error(what + ": tracked before its session's origin");
+  // The origin: the session's first tracked frame, a keyframe at T_world_first (as addView() makes it).
+  if (f.tracked && !measured &&
+      (keyframe_view_ || !f.keyframe || !(f.T_world_camera.matrix() == T_world_first_.matrix())))
+    throw Error(what + ": a second origin, or one elsewhere than the session's start");
+  if (!f.T_world_camera.matrix().allFinite() ||
+      (t.constraint && (t.constraint->loop_closure || !t.constraint->T_from_to.matrix().allFinite() ||
+                        !t.constraint->information.allFinite())))
+    throw Error(what + ": a pose or constraint that is not the odometry's (not finite, or a loop closure)");
   f.index = index;
   f.reference = here(f.reference);
   f.session = session_start ? session_starts_.size() : frames_.back().session;

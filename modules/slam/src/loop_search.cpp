@@ -91,11 +91,28 @@ std::vector<LoopRegistration> registerCandidates(std::size_t k, const DepthView&
                                                  const std::vector<std::pair<std::size_t, const DepthView*>>& candidates,
                                                  bool relocalisation, const PairParams& pair,
                                                  const LoopClosureParams& loop) {
-  std::vector<LoopRegistration> out(candidates.size());
-  for (std::size_t i = 0; i < candidates.size(); ++i)
-    out[i].attempt = registerLoopClosure(*candidates[i].second, view_k, candidates[i].first, k, relocalisation, pair,
-                                         loop, out[i].constraint);
+  std::vector<LoopRegistration> out;
+  out.reserve(candidates.size());
+  for (const auto& [candidate, view] : candidates)
+    out.push_back(registerCandidate(k, view_k, candidate, *view, relocalisation, pair, loop));
   return out;
+}
+
+LoopRegistration registerCandidate(std::size_t k, const DepthView& view_k, std::size_t candidate,
+                                   const DepthView& view_candidate, bool relocalisation, const PairParams& pair,
+                                   const LoopClosureParams& loop, const std::string& where) {
+  LoopRegistration r;
+  try {
+    r.attempt = registerLoopClosure(view_candidate, view_k, candidate, k, relocalisation, pair, loop, r.constraint);
+  } catch (const std::exception& e) {  // reported, and the job goes on
+    r = LoopRegistration{};
+    r.attempt.from = r.constraint.from = candidate;
+    r.attempt.to = r.constraint.to = k;
+    r.attempt.relocalisation = relocalisation;
+    r.constraint.loop_closure = true;
+    r.attempt.reason = std::string(kRegistrationFailed) + where + ": " + e.what();
+  }
+  return r;
 }
 
 bool takeNearLoops(std::size_t k, const LoopSearchGraph& g, std::vector<LoopRegistration> registered,

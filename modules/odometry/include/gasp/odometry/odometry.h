@@ -115,9 +115,11 @@ class DepthOdometry {
   /// tracked nothing but that session (its frames since the session's start are this session's,
   /// in order); then the frames are those addFrame() would have made. A session's frames come all
   /// from addFrame() or all from addTracked(): a replayed session has no views to track the next
-  /// frame against. Throws gasp::Error, and does not add the frame, when it breaks any of this
-  /// (its timestamp as addFrame(), a reference or constraint outside its session, a keyframe
-  /// without its view).
+  /// frame against. Throws gasp::Error, and does not add the frame, for what the odometry never
+  /// makes: a timestamp addFrame() refuses, a frame out of its session's order, a reference or
+  /// constraint outside its session, a keyframe without its view or not tracked, a second origin or
+  /// one away from T_world_first, a pose or constraint not finite or a loop closure. (That the
+  /// parameters were the same cannot be checked here.)
   const OdometryFrame& addTracked(TrackedFrame tracked);
 
   /// Starts a new session (another recording, with no known relation to the frames before): the

@@ -30,9 +30,9 @@ class JobError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// How a registration that threw where it ran (another process of the job) is returned: no
-/// estimate, its reason starting with this and naming where and why. The job goes on without it;
-/// a journal does not keep it, so a resumed job tries it again.
+/// How a registration that threw where it ran is returned (registerCandidate()): no estimate, its
+/// reason starting with this and naming where and why. The job goes on without it; a journal does
+/// not keep it, so a resumed job tries it again.
 inline constexpr const char* kRegistrationFailed = "the registration failed";
 
 /// Registers one phase's candidates to keyframe k, in the candidates' order: registerCandidates()
@@ -103,7 +103,13 @@ std::vector<std::size_t> nearLoopCandidates(std::size_t k, const LoopSearchGraph
 /// relocalisation_candidates of each kind, none twice); none when relocalisation is off.
 std::vector<std::size_t> relocalisationCandidatesOf(std::size_t k, const LoopSearchGraph& graph,
                                                     const LoopClosureParams& loop);
-/// Keyframe `k`'s view (`view_k`) registered to each candidate's (registerLoopClosure()).
+/// Keyframe `k`'s view (`view_k`) registered to a candidate's (registerLoopClosure()). What it
+/// throws comes back as a failed registration: its reason kRegistrationFailed, `where` (e.g. " on
+/// rank 2") and the error.
+LoopRegistration registerCandidate(std::size_t k, const DepthView& view_k, std::size_t candidate,
+                                   const DepthView& view_candidate, bool relocalisation, const PairParams& pair,
+                                   const LoopClosureParams& loop, const std::string& where = "");
+/// Keyframe `k`'s view (`view_k`) registered to each candidate's (registerCandidate()).
 std::vector<LoopRegistration> registerCandidates(std::size_t k, const DepthView& view_k,
                                                  const std::vector<std::pair<std::size_t, const DepthView*>>& candidates,
                                                  bool relocalisation, const PairParams& pair,
