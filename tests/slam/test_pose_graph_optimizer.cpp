@@ -170,6 +170,70 @@ TEST(PoseGraphOptimizer, ConsistentConstraintsAreAFixedPointAndPiecesKeepTheirPl
   for (std::size_t i = 0; i < 10; ++i) EXPECT_TRUE(r.T_world_node[i].isApprox(start[i], 1e-9)) << i;
 }
 
+TEST(PoseGraphOptimizer, NodesThatHangByOneEdgeArePlacedByItAtTheSameOptimum) {
+  // A loop of 12 poses with noisy odometry and a loop closure, and hanging off it frames as an
+  // odometry's between keyframes: single frames and a branch of three, each edge measured with
+  // noise and each frame started elsewhere. Peeled, they are placed by their edges: residual zero.
+  // The same graph with every hanging frame also tied to node 0 by a negligible edge (1e-12 of
+  // the information) keeps them all in the solve; started from the peeled answer moved by noise
+  // (1 cm, 0.5 deg a node), it comes back to it: the leaves' poses and the core's.
+  const std::size_t n = 12;
+  const std::vector<Isometry3> truth = circle(n);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  const auto noisy = [&](const Isometry3& T) {
+    Vector6d xi;
+    for (int j = 0; j < 3; ++j) xi(j) = 0.01 * noise(rng), xi(j + 3) = 0.5 * M_PI / 180 * noise(rng);
+    return expLeft(xi) * T;
+  };
+  const Matrix6d info = isotropicInformation(0.01, 0.5 * M_PI / 180);
+  std::vector<PoseConstraint> edges;
+  std::vector<Isometry3> start{truth[0]};
+  for (std::size_t i = 1; i < n; ++i) {
+    edges.push_back(edge(i - 1, i, noisy(truth[i - 1].inverse() * truth[i]), info));
+    start.push_back(start.back() * edges.back().T_from_to);
+  }
+  edges.push_back(edge(0, n - 1, truth[0].inverse() * truth[n - 1], isotropicInformation(0.001, 0.0005), true));
+  // Hanging frames: 12 off 3, 13 off 7, and the branch 14 <- 15 <- 16 off 10 (16 -> 15 reversed).
+  const std::vector<std::pair<std::size_t, std::size_t>> hanging{{3, 12}, {7, 13}, {10, 14}, {14, 15}, {16, 15}};
+  start.resize(17, Isometry3::Identity());
+  for (const auto& [from, to] : hanging) {
+    const Isometry3 T_world_to = noisy(Isometry3(Eigen::Translation3d(0.1 * static_cast<double>(to), 0, 0)) * truth[to % n]);
+    if (from == 16) {  // the branch's tip, as the edge's `from`
+      start[16] = noisy(truth[5]);
+      edges.push_back(edge(16, 15, noisy(start[16].inverse() * T_world_to), info));
+      continue;
+    }
+    if (to != 15) start[to] = T_world_to;
+    edges.push_back(edge(from, to, noisy(truth[from % n].inverse() * T_world_to), info));
+  }
+  const gasp::PoseGraphResult peeled = gasp::optimizePoseGraph(start, edges);
+  ASSERT_TRUE(peeled.converged) << peeled.message;
+  EXPECT_EQ(peeled.placed_nodes, 5u);
+  EXPECT_EQ(peeled.fixed_nodes, 1u);
+  for (std::size_t e = n; e < edges.size(); ++e)
+    EXPECT_LT(gasp::edgeChi2(peeled.T_world_node[edges[e].from], peeled.T_world_node[edges[e].to], edges[e]), 1e-16) << e;
+  std::vector<PoseConstraint> tied = edges;
+  for (const std::size_t i : {12, 13, 14, 15, 16})
+    tied.push_back(edge(0, i, start[0].inverse() * start[i], 1e-12 * info));
+  std::vector<Isometry3> moved = peeled.T_world_node;
+  for (std::size_t i = 1; i < moved.size(); ++i) moved[i] = noisy(moved[i]);
+  const gasp::PoseGraphResult whole = gasp::optimizePoseGraph(moved, tied);
+  ASSERT_TRUE(whole.converged) << whole.message << " (peeled: " << peeled.message << ")";
+  EXPECT_EQ(whole.placed_nodes, 0u);
+  for (std::size_t i = 0; i < start.size(); ++i) {
+    const Isometry3 d = peeled.T_world_node[i].inverse() * whole.T_world_node[i];
+    EXPECT_LT(gasp::translationNorm(d), 1e-6) << i;
+    EXPECT_LT(gasp::rotationAngle(d), 1e-6) << i;
+  }
+  // A tree is all placed: nothing to solve, every edge met.
+  const std::vector<PoseConstraint> tree(edges.begin(), edges.begin() + static_cast<std::ptrdiff_t>(n - 1));
+  const gasp::PoseGraphResult t = gasp::optimizePoseGraph(start, tree);
+  EXPECT_TRUE(t.converged);
+  EXPECT_EQ(t.placed_nodes, n - 1);
+  EXPECT_LT(t.final_chi2, 1e-16);
+}
+
 TEST(PoseGraphOptimizer, BadGraphsAreErrorsAndAnEmptyOneIsNothingToDo) {
   const std::vector<Isometry3> nodes(3, Isometry3::Identity());
   EXPECT_THROW(gasp::optimizePoseGraph(nodes, {edge(0, 3, Isometry3::Identity(), Matrix6d::Identity())}), gasp::Error);

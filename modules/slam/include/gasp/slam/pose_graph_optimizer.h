@@ -4,6 +4,10 @@
 ///   min sum_e xi_e^T Lambda_e xi_e,  T_from^-1 T_to = Exp(xi_e) T_from_to (pose_graph.h),
 /// with each rotation on the unit-quaternion manifold. The gauge: the lowest-index node of each
 /// connected piece is held fixed, so a piece keeps its place and pieces do not move each other.
+/// Nodes that hang by one edge (and the branches they end) are not unknowns: at the optimum each
+/// is where its edge puts it, so they are placed so once the rest is optimised (the same
+/// optimum; an odometry's frames between keyframes are such nodes, so a sequence's graph is
+/// optimised over its keyframes).
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -29,6 +33,7 @@ struct PoseGraphResult {
   double initial_chi2 = 0.0;  ///< sum of edgeChi2 over the edges at the input poses
   double final_chi2 = 0.0;    ///< the same at the output poses
   std::size_t fixed_nodes = 0;  ///< one per connected piece with an edge
+  std::size_t placed_nodes = 0;  ///< nodes placed by the one edge they hang by, not optimised
   std::string message;          ///< Ceres's summary line
 };
 
