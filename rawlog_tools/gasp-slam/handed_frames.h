@@ -20,16 +20,10 @@ struct HandedFrame {
   std::optional<RgbdFrame> keyframe;
 };
 
-inline bool getFlag(ByteReader& r, const char* what) {
-  const auto b = r.get<std::uint8_t>(what);
-  if (b > 1) r.fail(std::string(what) + ": neither 0 nor 1");
-  return b == 1;
-}
-
 inline std::string handedFrameBytes(const TrackedFrame& tracked, const RgbdFrame* keyframe) {
   ByteWriter w;
   w.putString(trackedFrameBytes(tracked));
-  w.put(static_cast<std::uint8_t>(keyframe ? 1 : 0));
+  w.putFlag(keyframe != nullptr);
   if (keyframe) w.putString(rgbdFrameBytes(*keyframe));
   return w.take();
 }
@@ -38,7 +32,7 @@ inline HandedFrame handedFrameFromBytes(std::string_view bytes, const SlamParams
   ByteReader r(bytes, "a tracked frame from another rank");
   HandedFrame h;
   h.tracked = trackedFrameFromBytes(r.getString("the frame"), params.odometry.pair.segment, params.odometry.pair.returns);
-  if (getFlag(r, "the keyframe's flag")) h.keyframe = rgbdFrameFromBytes(r.getString("the keyframe"));
+  if (r.getFlag("the keyframe's flag")) h.keyframe = rgbdFrameFromBytes(r.getString("the keyframe"));
   r.expectEnd();
   return h;
 }
@@ -55,9 +49,9 @@ struct HandedEnd {
 
 inline std::string handedEndBytes(const HandedEnd& e) {
   ByteWriter w;
-  w.put(static_cast<std::uint8_t>(e.threw ? 1 : 0));
-  w.put(static_cast<std::uint8_t>(e.reached ? 1 : 0));
-  w.put(static_cast<std::uint8_t>(e.end.complete ? 1 : 0));
+  w.putFlag(e.threw);
+  w.putFlag(e.reached);
+  w.putFlag(e.end.complete);
   w.putString(e.end.error);
   w.putSize(e.end.frames);
   return w.take();
@@ -66,9 +60,9 @@ inline std::string handedEndBytes(const HandedEnd& e) {
 inline HandedEnd handedEndFromBytes(std::string_view bytes) {
   ByteReader r(bytes, "a session's end from another rank");
   HandedEnd e;
-  e.threw = getFlag(r, "its error's flag");
-  e.reached = getFlag(r, "its first frame's flag");
-  e.end.complete = getFlag(r, "its end");
+  e.threw = r.getFlag("its error's flag");
+  e.reached = r.getFlag("its first frame's flag");
+  e.end.complete = r.getFlag("its end");
   e.end.error = r.getString("its error");
   e.end.frames = r.getSize(0, "its frames");
   r.expectEnd();

@@ -81,7 +81,7 @@ std::string trackForRankZero(const gasp::DepthSequenceOptions& options, const st
                              gasp::SlamParams params, bool sequential, bool keep_keyframes,
                              const std::function<void(std::string)>& emit) {
   gasp::ByteReader r(context, "MPI: rank 0's context");
-  const bool sweeps = r.get<std::uint8_t>("the sensor") == 1;
+  const bool sweeps = r.getFlag("the sensor");
   const gasp::Isometry3 T_robot_camera = r.getPose("the first session's mounting");
   if (sweeps) params = gasp::lidarSlamParams(params);
   gasp::DepthSequence sequence(options);
@@ -341,7 +341,7 @@ int main(int argc, char** argv) {
     std::optional<gasp::mpi::RegistrarPool> pool;
     if (mpi) {
       gasp::ByteWriter context;  // what a rank tracking a session needs beyond the command line
-      context.put(static_cast<std::uint8_t>(sweeps ? 1 : 0));
+      context.putFlag(sweeps);
       context.putPose(first_mounting);
       pool.emplace(*mpi, gasp::paramsYaml(params), sweeps, n_sessions, context.take());
       registrar = pool->registrar();
@@ -522,13 +522,17 @@ int main(int argc, char** argv) {
 
     gasp::tools::printOdometrySummary(slam->odometry());
     gasp::tools::printThroughput(frames, wall_s);
-    std::size_t tried = 0, relocalisations = 0;
+    std::size_t tried = 0, relocalisations = 0, failed = 0;
     for (const auto& a : slam->attempts()) {  // an attempt is accepted while its closure is in the graph
       tried += a.relocalisation ? 0 : 1;
       relocalisations += a.accepted && a.relocalisation ? 1 : 0;
+      failed += a.reason.rfind(gasp::kRegistrationFailed, 0) == 0 ? 1 : 0;
     }
     std::printf("loop_closures: %zu (%zu registrations tried; %zu relocalisations)\n",
                 slam->loopClosures().size() - relocalisations, tried, relocalisations);
+    // A registration that threw is not the job's end (loop_search.h), but it is not silent either.
+    if (failed > 0)
+      std::fprintf(stderr, "warning: %zu loop registrations failed with an error (their reasons: --loops-csv)\n", failed);
     std::printf("optimisations: %zu (%.1f ms in all)\n", slam->optimisationCount(), slam->optimisationMs());
     if (registrations)
       std::printf("checkpoint: %s (%zu registrations made, %zu answered from it)\n", checkpoint_path.c_str(),

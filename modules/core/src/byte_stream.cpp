@@ -43,6 +43,12 @@ void ByteWriter::writeHeader(const char (&magic)[5]) {
   put(kDoubleProbe);
 }
 
+bool ByteReader::getFlag(const char* what) {
+  const auto b = get<std::uint8_t>(what);
+  if (b > 1) fail(std::string(what) + ": a flag neither 0 nor 1");
+  return b == 1;
+}
+
 std::size_t ByteReader::getSize(std::size_t item_bytes, const char* what) {
   const std::uint64_t n = get<std::uint64_t>(what);
   if (item_bytes > 0 && n > (in_.size() - at_) / item_bytes) fail(std::string(what) + ": a count past the bytes' end");

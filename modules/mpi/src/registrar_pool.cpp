@@ -188,7 +188,7 @@ RegistrarPool::RegistrarPool(Session& session, const std::string& job_fingerprin
       ready_(static_cast<std::size_t>(session.size()), sessions == 0) {
   if (session.rank() != 0) throw Error("MPI: the registrar pool is rank 0's");
   ByteWriter w;
-  w.put(static_cast<std::uint8_t>(sweeps ? 1 : 0));
+  w.putFlag(sweeps);
   w.putSize(sessions);
   w.putString(context);
   w.putString(job_fingerprint);
@@ -269,7 +269,7 @@ std::vector<LoopRegistration> RegistrarPool::spread(std::size_t k, const DepthVi
     ByteWriter w;
     w.putSize(k);
     w.putSize(candidates[i].first);
-    w.put(static_cast<std::uint8_t>(relocalisation ? 1 : 0));
+    w.putFlag(relocalisation);
     send(w.take(), rank, kPair, calls);
     ++pairs_;
     busy[rank] = i;
@@ -325,7 +325,7 @@ std::size_t serveRegistrations(Session& session, const std::string& job_fingerpr
   if (status.MPI_TAG == kStop) return stopped();
   if (status.MPI_TAG != kJob) throw Error("MPI: rank 0 sent no job");
   ByteReader r(job, "MPI: rank 0's job");
-  const bool sweeps = r.get<std::uint8_t>("its sensor") == 1;
+  const bool sweeps = r.getFlag("its sensor");
   const std::size_t sessions = r.getSize(1, "its sessions");
   const std::string context = r.getString("its context");
   if (r.getString("its fingerprint") != (sweeps ? job_fingerprint_sweeps : job_fingerprint))
@@ -377,7 +377,7 @@ std::size_t serveRegistrations(Session& session, const std::string& job_fingerpr
     if (status.MPI_TAG != kPair) throw Error("MPI: an unknown message tag " + std::to_string(status.MPI_TAG));
     const std::size_t k = m.getSize(0, "the pair");
     const std::size_t candidate = m.getSize(0, "the pair");
-    const bool relocalisation = m.get<std::uint8_t>("the pair") != 0;
+    const bool relocalisation = m.getFlag("the pair");
     const auto from = views.find(candidate), to = views.find(k);
     if (from == views.end() || to == views.end()) throw Error("MPI: a pair whose views were not sent");
     const LoopRegistration reg = registerCandidate(k, to->second, candidate, from->second, relocalisation,

@@ -8,17 +8,6 @@
 
 namespace gasp {
 
-namespace {
-
-void putFlag(ByteWriter& w, bool b) { w.put(static_cast<std::uint8_t>(b ? 1 : 0)); }
-bool getFlag(ByteReader& r, const char* what) {
-  const auto b = r.get<std::uint8_t>(what);
-  if (b > 1) r.fail(std::string(what) + ": a flag neither 0 nor 1");
-  return b == 1;
-}
-
-}  // namespace
-
 std::string trackedFrameBytes(const TrackedFrame& t) {
   ByteWriter w;
   w.writeHeader("GTF1");
@@ -27,31 +16,31 @@ std::string trackedFrameBytes(const TrackedFrame& t) {
   w.putSize(f.session);
   w.put(f.timestamp);
   w.putPose(f.T_world_camera);
-  putFlag(w, f.tracked);
-  putFlag(w, f.keyframe);
+  w.putFlag(f.tracked);
+  w.putFlag(f.keyframe);
   w.putSize(f.reference);
   w.putString(f.reason);
   w.put(static_cast<std::int32_t>(f.patches));
   w.put(static_cast<std::int32_t>(f.inliers));
-  putFlag(w, f.scene_change);
-  putFlag(w, f.partial);
+  w.putFlag(f.scene_change);
+  w.putFlag(f.partial);
   w.put(static_cast<std::int32_t>(f.free_directions));
-  putFlag(w, f.tracking_path);
-  putFlag(w, f.deskewed);
+  w.putFlag(f.tracking_path);
+  w.putFlag(f.deskewed);
   w.put(f.segmentation_ms);
   w.put(f.registration_ms);
-  putFlag(w, t.constraint.has_value());
+  w.putFlag(t.constraint.has_value());
   if (const auto& c = t.constraint) {
     w.putSize(c->from);
     w.putSize(c->to);
     w.putPose(c->T_from_to);
     w.putMatrix(c->information);
     w.put(static_cast<std::int32_t>(c->inliers));
-    putFlag(w, c->loop_closure);
-    putFlag(w, c->scene_change);
+    w.putFlag(c->loop_closure);
+    w.putFlag(c->scene_change);
     w.put(static_cast<std::int32_t>(c->free_directions));
   }
-  putFlag(w, t.keyframe_view.has_value());
+  w.putFlag(t.keyframe_view.has_value());
   if (t.keyframe_view) w.putString(viewBytes(*t.keyframe_view));
   return w.take();
 }
@@ -66,32 +55,32 @@ TrackedFrame trackedFrameFromBytes(std::string_view bytes, const SuperpixelParam
   f.session = r.getSize(0, "the frame");
   f.timestamp = r.get<double>("the frame");
   f.T_world_camera = r.getPose("the frame's pose");
-  f.tracked = getFlag(r, "the frame");
-  f.keyframe = getFlag(r, "the frame");
+  f.tracked = r.getFlag("the frame");
+  f.keyframe = r.getFlag("the frame");
   f.reference = r.getSize(0, "the frame");
   f.reason = r.getString("the frame's reason");
   f.patches = r.get<std::int32_t>("the frame");
   f.inliers = r.get<std::int32_t>("the frame");
-  f.scene_change = getFlag(r, "the frame");
-  f.partial = getFlag(r, "the frame");
+  f.scene_change = r.getFlag("the frame");
+  f.partial = r.getFlag("the frame");
   f.free_directions = r.get<std::int32_t>("the frame");
-  f.tracking_path = getFlag(r, "the frame");
-  f.deskewed = getFlag(r, "the frame");
+  f.tracking_path = r.getFlag("the frame");
+  f.deskewed = r.getFlag("the frame");
   f.segmentation_ms = r.get<double>("the frame");
   f.registration_ms = r.get<double>("the frame");
-  if (getFlag(r, "the constraint")) {
+  if (r.getFlag("the constraint")) {
     PoseConstraint c;
     c.from = r.getSize(0, "the constraint");
     c.to = r.getSize(0, "the constraint");
     c.T_from_to = r.getPose("the constraint's pose");
     c.information = r.getMatrix<Matrix6d>("the constraint's information");
     c.inliers = r.get<std::int32_t>("the constraint");
-    c.loop_closure = getFlag(r, "the constraint");
-    c.scene_change = getFlag(r, "the constraint");
+    c.loop_closure = r.getFlag("the constraint");
+    c.scene_change = r.getFlag("the constraint");
     c.free_directions = r.get<std::int32_t>("the constraint");
     t.constraint = std::move(c);
   }
-  if (getFlag(r, "the keyframe view")) t.keyframe_view = viewFromBytes(r.getString("the keyframe view"), superpixels, returns);
+  if (r.getFlag("the keyframe view")) t.keyframe_view = viewFromBytes(r.getString("the keyframe view"), superpixels, returns);
   r.expectEnd();
   return t;
 }

@@ -42,7 +42,7 @@ std::string viewBytes(const DepthView& view) {
   w.putSize(seg.stats.valid_pixels);
   w.putSize(seg.stats.assigned_pixels);
   w.putSize(seg.stats.dropped_pixels);
-  w.put(static_cast<std::uint8_t>(view.returns ? 1 : 0));
+  w.putFlag(view.returns != nullptr);
   if (view.returns) w.putScan(view.returns->scan());
   return w.take();
 }
@@ -102,9 +102,7 @@ DepthView viewFromBytes(std::string_view bytes, const SuperpixelParams& superpix
         if (const int l = seg.labels.at<int>(row, col); l < -1 || (l >= 0 && static_cast<std::size_t>(l) >= n))
           r.fail("a label names no patch");
   }
-  const auto has_returns = r.get<std::uint8_t>("the sweep");
-  if (has_returns > 1) r.fail("the sweep's flag is neither 0 nor 1");
-  if (has_returns == 1) v.returns = std::make_shared<const SweepReturns>(r.getScan(), returns);  // validates the scan
+  if (r.getFlag("the sweep")) v.returns = std::make_shared<const SweepReturns>(r.getScan(), returns);  // validates the scan
   r.expectEnd();
   v.superpixels = superpixels;
   return v;

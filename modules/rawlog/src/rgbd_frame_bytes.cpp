@@ -20,7 +20,7 @@ std::string rgbdFrameBytes(const RgbdFrame& f) {
   w.putPose(f.T_depth_rgb);
   w.putPose(f.T_robot_camera);
   w.putString(f.sensor_label);
-  w.put(static_cast<std::uint8_t>(f.sweep ? 1 : 0));
+  w.putFlag(f.sweep.has_value());
   if (f.sweep) w.putScan(*f.sweep);
   return w.take();
 }
@@ -39,9 +39,7 @@ RgbdFrame rgbdFrameFromBytes(std::string_view bytes) {
   f.T_depth_rgb = r.getPose("the colour camera's pose");
   f.T_robot_camera = r.getPose("the camera's mounting");
   f.sensor_label = r.getString("the sensor label");
-  const auto has_sweep = r.get<std::uint8_t>("the sweep");
-  if (has_sweep > 1) r.fail("the sweep's flag is neither 0 nor 1");
-  if (has_sweep == 1) f.sweep = r.getScan();
+  if (r.getFlag("the sweep")) f.sweep = r.getScan();
   r.expectEnd();
   return f;
 }

@@ -31,6 +31,7 @@ class ByteWriter {
     out_.append(reinterpret_cast<const char*>(&v), sizeof v);
   }
   void putSize(std::size_t n) { put(static_cast<std::uint64_t>(n)); }
+  void putFlag(bool b) { put(static_cast<std::uint8_t>(b ? 1 : 0)); }
   void putString(std::string_view s) {
     putSize(s.size());
     out_ += s;
@@ -72,6 +73,8 @@ class ByteReader {
     at_ += sizeof v;
     return v;
   }
+  /// A byte that must be 0 or 1 (ByteWriter::putFlag()).
+  bool getFlag(const char* what);
   /// A count of items of `item_bytes` each, at most what is left.
   std::size_t getSize(std::size_t item_bytes, const char* what);
   std::string getString(const char* what);
