@@ -125,3 +125,30 @@ TEST(GaspSlamMpi, ASessionEndingInAnErrorOnItsRankEndsAsInOneProcess) {
     EXPECT_EQ(a, fileText(out + "/ranks3" + file)) << file;
   }
 }
+
+TEST(GaspSlamMpi, LidarSessionsOverThreeRanksWriteTheSingleProcessGraph) {
+  // Sweeps cross between the ranks as views with their returns and, for the point map, as frames
+  // with their scans: two sessions of a simulated 16-laser sweep sequence, tracked on ranks 1
+  // and 2, give the single process's trajectories, graph and point map.
+  SKIP_WITHOUT_MPIRUN();
+  const std::string out = gasp::test::scratchDir();
+  const auto sim = runProgram("gasp-simulate", "--sensor lidar16 --frames 36 --rate 10 --out " + out + "/lidar");
+  ASSERT_EQ(sim.exit_code, 0) << sim.output;
+  std::ofstream(out + "/inplace.yaml") << "loop_closure:\n  background: false\n";
+  const auto job = [&](const std::string& name) {
+    const std::string rawlog = out + "/lidar/lidar.rawlog";
+    return "--session " + rawlog + "@0-20 --session " + rawlog + "@15-35 --params " + out + "/inplace.yaml --out " +
+           out + "/" + name + ".txt --graph " + out + "/" + name + ".graph --cloud " + out + "/" + name +
+           ".ply --voxel 0.1";
+  };
+  const auto single = runProgram("gasp-slam", job("single"));
+  ASSERT_TRUE(single.exit_code == 0 || single.exit_code == 3) << single.output;
+  const auto mpi = mpirun(3, job("ranks3"));
+  EXPECT_EQ(mpi.exit_code, single.exit_code) << mpi.output;
+  EXPECT_TRUE(contains(mpi.output, "the sessions tracked on ranks 1-2,")) << mpi.output;
+  for (const std::string file : {".session1.txt", ".session2.txt", ".graph", ".ply"}) {
+    const std::string a = fileText(out + "/single" + file);
+    EXPECT_FALSE(a.empty()) << file;
+    EXPECT_EQ(a, fileText(out + "/ranks3" + file)) << file;
+  }
+}
