@@ -1,5 +1,7 @@
 #include "gasp/mrpt/keyframe_map.h"
 
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservation3DRangeScan_project3D_impl.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/obs/CObservationRotatingScan.h>
 #include <mrpt/obs/CSensoryFrame.h>
@@ -35,7 +37,7 @@ mrpt::obs::CObservation::Ptr sweepObservation(const RgbdFrame& f) {
 
 mrpt::maps::CSimpleMap keyframeSimpleMap(const std::vector<RgbdFrame>& keyframes,
                                          const std::vector<Isometry3>& T_world_camera,
-                                         const std::vector<Matrix6>& covariance_world_camera) {
+                                         const std::vector<Matrix6>& covariance_world_camera, bool with_points) {
   if (keyframes.size() != T_world_camera.size())
     throw Error("keyframe map: " + std::to_string(keyframes.size()) + " keyframes but " +
                 std::to_string(T_world_camera.size()) + " poses");
@@ -53,7 +55,13 @@ mrpt::maps::CSimpleMap keyframeSimpleMap(const std::vector<RgbdFrame>& keyframes
       *gaussian = poseWithCovariance(T_world_robot, covariance_world_camera[i]);
     const mrpt::poses::CPose3DPDF::Ptr pose = gaussian;
     auto sf = mrpt::obs::CSensoryFrame::Create();
-    sf->insert(f.isSweep() ? sweepObservation(f) : mrpt::obs::CObservation::Ptr(observationFromFrame(f)));
+    if (f.isSweep()) {
+      sf->insert(sweepObservation(f));
+    } else {
+      const mrpt::obs::CObservation3DRangeScan::Ptr obs = observationFromFrame(f);
+      if (with_points) obs->unprojectInto(*obs);  // its points, in its own frame: hasPoints3D set
+      sf->insert(obs);
+    }
     map.insert(pose, sf);
   }
   return map;

@@ -16,6 +16,7 @@ namespace gasp::tools {
 
 struct MapOutputOptions {
   std::string simplemap_path;  ///< MRPT simple map to write; empty: none
+  bool simplemap_points = false;  ///< the depth images' 3D points stored in the simple map too
   std::string cloud_path;      ///< voxel point cloud (PLY) to write; empty: none
   double voxel_m = 0.01;
   double cloud_max_depth_m = 4.0;
@@ -23,7 +24,7 @@ struct MapOutputOptions {
   bool wanted() const { return !simplemap_path.empty() || !cloud_path.empty(); }
 };
 
-/// Adds the four options; `scans` names what the map holds in the help ("keyframes", "nodes").
+/// Adds the five options; `scans` names what the map holds in the help ("keyframes", "nodes").
 void addMapOutputOptions(CLI::App& app, MapOutputOptions& options, const std::string& scans);
 
 /// The outputs of addMapOutputOptions(), for RunOutputs: {"--simplemap", path}, {"--cloud", path}.

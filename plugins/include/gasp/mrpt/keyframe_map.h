@@ -22,11 +22,15 @@ namespace gasp {
 /// own rays: toRotatingScan(), toPointCloud()). Its
 /// covariance is covariance_world_camera[i] (the left perturbation [t r] of T_world_camera[i],
 /// which is also the robot pose's: pose_graph_marginals.h) in [x y z yaw pitch roll]
-/// (poseWithCovariance()), or zero when covariance_world_camera is empty. Throws gasp::Error
-/// when the sizes differ, a covariance is not finite and symmetric or a frame cannot be converted.
+/// (poseWithCovariance()), or zero when covariance_world_camera is empty. `with_points`: each
+/// depth image's 3D points are stored in its observation too (in the camera's frame, as MRPT
+/// unprojects them), which MRPT 2.5's points maps need to insert it -- about 3.7 MB more for a
+/// 640x480 keyframe; a sweep is stored as without it. Throws gasp::Error when the sizes differ, a
+/// covariance is not finite and symmetric or a frame cannot be converted.
 mrpt::maps::CSimpleMap keyframeSimpleMap(const std::vector<RgbdFrame>& keyframes,
                                          const std::vector<Isometry3>& T_world_camera,
-                                         const std::vector<Matrix6>& covariance_world_camera = {});
+                                         const std::vector<Matrix6>& covariance_world_camera = {},
+                                         bool with_points = false);
 
 /// The keyframe as GASP registered it, for the map: `frame` with the depth of `view`, the
 /// keyframe's segmented view (DepthOdometry::keyframeView()). With rolling_shutter_readout_s the

@@ -1,0 +1,79 @@
+// MRPT's own maps from GASP's output: observations2map, with GASP's plugin preloaded, over a
+// gasp-slam simple map written with --simplemap-points builds MRPT's points map beside GASP's
+// superpixel map, and the points lie where gasp-slam --cloud puts them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <set>
+#include <tuple>
+#include <vector>
+
+#include "gasp_test_data.h"
+#include "program_run.h"
+
+namespace {
+
+using Voxel = std::tuple<std::int64_t, std::int64_t, std::int64_t>;
+
+Voxel voxelOf(double x, double y, double z, double size) {
+  return {static_cast<std::int64_t>(std::floor(x / size)), static_cast<std::int64_t>(std::floor(y / size)),
+          static_cast<std::int64_t>(std::floor(z / size))};
+}
+
+/// The points of a text file of "x y z" lines, or of an ASCII PLY's vertices (after end_header).
+std::vector<Voxel> voxelsOfPoints(const std::string& path, double size, bool ply) {
+  std::ifstream in(path);
+  std::string line;
+  if (ply)
+    while (std::getline(in, line) && line != "end_header") {
+    }
+  std::vector<Voxel> voxels;
+  double x = 0, y = 0, z = 0;
+  while (std::getline(in, line))
+    if (std::istringstream(line) >> x >> y >> z) voxels.push_back(voxelOf(x, y, z, size));
+  return voxels;
+}
+
+}  // namespace
+
+TEST(Observations2Map, APointsMapBesideTheSuperpixelMapAgreesWithTheCloud) {
+  const std::string tool = "/usr/bin/observations2map";
+  if (!std::filesystem::exists(tool)) GTEST_SKIP() << "skipped: no " << tool << " (Debian: mrpt-apps)";
+  const std::string out = gasp::test::scratchDir();
+  const auto sim = gasp::test::runProgram("gasp-simulate", "--out " + out + "/room --frames 20 --rate 10");
+  ASSERT_EQ(sim.exit_code, 0) << sim.output;
+  const double voxel = 0.05;
+  for (const bool points : {false, true}) {
+    const std::string name = out + (points ? "/with" : "/without");
+    const auto slam = gasp::test::runProgram(
+        "gasp-slam", "--tum " + out + "/room --out " + name + ".txt --simplemap " + name + ".simplemap --cloud " + name +
+                         ".ply --voxel 0.05" + (points ? " --simplemap-points" : ""));
+    ASSERT_TRUE(slam.exit_code == 0 || slam.exit_code == 3) << slam.output;
+    std::ofstream(name + ".ini") << "[MappingApplication]\npointsMap_count=1\nsuperpixelMap_count=1\n";
+    const auto run = gasp::test::runCommand("LD_PRELOAD=" + std::string(GASP_MRPT_PLUGIN) + " " + tool + " " + name +
+                                            ".ini " + name + ".simplemap " + name + "_map < /dev/null 2>&1");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    // GASP's map is built either way.
+    EXPECT_GT(std::filesystem::file_size(name + "_map_gasp__CSuperpixelMap_01_patches.txt"), 0u) << run.output;
+    const std::vector<Voxel> map = voxelsOfPoints(name + "_map_mrpt__maps__CSimplePointsMap_00.txt", voxel, false);
+    if (!points) {  // the range images alone: MRPT's points map takes nothing from them
+      EXPECT_TRUE(map.empty()) << map.size();
+      continue;
+    }
+    ASSERT_GT(map.size(), 10000u);
+    // Every voxel of gasp-slam's cloud (depth up to 4 m) holds points of MRPT's map: the same
+    // frames at the same poses.
+    const std::set<Voxel> occupied(map.begin(), map.end());
+    const std::vector<Voxel> cloud = voxelsOfPoints(name + ".ply", voxel, true);
+    ASSERT_GT(cloud.size(), 1000u);
+    std::size_t covered = 0;
+    for (const Voxel& v : cloud) covered += occupied.count(v);
+    EXPECT_GT(static_cast<double>(covered), 0.99 * static_cast<double>(cloud.size()))
+        << covered << " of " << cloud.size() << " voxels";
+  }
+}
