@@ -66,6 +66,14 @@ constexpr const char* kOtherMounting =
     "its depth camera sits on the robot (sensorPose) otherwise than the first session's: the sessions of one map must "
     "share one camera mounting";
 
+/// `frame` added to `tracker` (DepthOdometry or DepthSlam): a sweep, or a depth image.
+template <class Tracker>
+const gasp::OdometryFrame& addTo(Tracker& tracker, const gasp::RgbdFrame& frame,
+                                 std::optional<gasp::SegmentedDepth> segmented) {
+  return frame.isSweep() ? tracker.addFrame(frame.timestamp, *frame.sweep, std::move(segmented))
+                         : tracker.addFrame(frame.timestamp, frame.depth_m, frame.depth_intrinsics, std::move(segmented));
+}
+
 /// A keyframe as the map outputs keep it: depth only; deskewed as it was registered (keyframe_map.h).
 gasp::RgbdFrame mapKeyframe(const gasp::RgbdFrame& frame, const gasp::OdometryFrame& f, const gasp::DepthView* view) {
   gasp::RgbdFrame kept = frame;
@@ -93,9 +101,7 @@ std::string trackForRankZero(const gasp::DepthSequenceOptions& options, const st
         if (!frame.T_robot_camera.isApprox(T_robot_camera, 1e-9)) throw gasp::Error(kOtherMounting);
         odometry.emplace(params.odometry, T_robot_camera);
       }
-      const gasp::OdometryFrame& f =
-          frame.isSweep() ? odometry->addFrame(frame.timestamp, *frame.sweep, std::move(segmented))
-                          : odometry->addFrame(frame.timestamp, frame.depth_m, frame.depth_intrinsics, std::move(segmented));
+      const gasp::OdometryFrame& f = addTo(*odometry, frame, std::move(segmented));
       std::optional<gasp::RgbdFrame> kept;
       if (f.keyframe && keep_keyframes) kept = mapKeyframe(frame, f, odometry->keyframeView());
       emit(gasp::tools::handedFrameBytes(odometry->lastTracked(), kept ? &*kept : nullptr));
@@ -432,9 +438,7 @@ int main(int argc, char** argv) {
           // Each frame is segmented while the one before it is registered (frames_ahead.h).
           run.end = gasp::tools::forEachFrameWithViewAhead(sequence, params.odometry, sequential, [&](const gasp::RgbdFrame& frame, auto segmented) {
             beforeFrame(frame.T_robot_camera);
-            const gasp::OdometryFrame& f =
-                frame.isSweep() ? slam->addFrame(frame.timestamp, *frame.sweep, std::move(segmented))
-                                : slam->addFrame(frame.timestamp, frame.depth_m, frame.depth_intrinsics, std::move(segmented));
+            const gasp::OdometryFrame& f = addTo(*slam, frame, std::move(segmented));
             if (f.keyframe && keep_keyframes) keyframes.push_back(mapKeyframe(frame, f, slam->odometry().keyframeView()));
             afterFrame(f);
           });

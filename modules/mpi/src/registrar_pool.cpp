@@ -25,6 +25,8 @@ namespace {
 enum Tag : int { kJob = 1, kView = 2, kPair = 3, kRegistration = 4, kStop = 5, kTracked = 6, kReady = 7 };
 /// A kTracked message's kind: a frame, a session's end, the rank's last message.
 enum Kind : std::uint8_t { kFrame = 0, kEnd = 1, kLast = 2 };
+/// A kTracked message's head: its session (8 bytes), then its kind (1 byte).
+constexpr std::size_t kTrackedHead = sizeof(std::uint64_t) + 1;
 
 /// Held around one MPI call on rank 0 (nullptr elsewhere: one thread calls MPI).
 class Calls {
@@ -178,7 +180,8 @@ void Session::stopWorkers() {
     for (;;) {
       MPI_Status status;
       const std::string bytes = receive(r, MPI_ANY_TAG, status, &calls_);
-      if (status.MPI_TAG == kTracked && bytes.size() >= 9 && static_cast<std::uint8_t>(bytes[8]) == kLast) break;
+      if (status.MPI_TAG == kTracked && bytes.size() >= kTrackedHead &&
+          static_cast<std::uint8_t>(bytes[kTrackedHead - 1]) == kLast) break;
     }
 }
 
@@ -231,7 +234,7 @@ bool RegistrarPool::nextTracked(std::size_t s, std::string& message) {
   }
   if (session != s || kind > kEnd)
     throw JobError("MPI: rank " + std::to_string(from) + " sent another session's frame than " + std::to_string(s));
-  message = bytes.substr(9);
+  message = bytes.substr(kTrackedHead);
   return kind == kEnd;
 }
 
@@ -370,7 +373,7 @@ std::size_t serveRegistrations(Session& session, const std::string& job_fingerpr
     ByteReader m(message, "MPI: rank 0's message");
     if (status.MPI_TAG == kView) {
       const std::size_t index = m.getSize(0, "the view's keyframe");
-      views.insert_or_assign(index, viewFromBytes(std::string_view(message).substr(8), p.odometry.pair.segment,
+      views.insert_or_assign(index, viewFromBytes(std::string_view(message).substr(sizeof(std::uint64_t)), p.odometry.pair.segment,
                                                   p.odometry.pair.returns));
       continue;
     }
