@@ -18,6 +18,8 @@ PACKAGES=(
   libgtest-dev libgmock-dev         # tests
   libbenchmark-dev                  # benchmarks
   python3                           # the summary scripts (scripts/*.py) and their test
+  pybind11-dev python3-dev          # the Python module gasp (GASP_PYTHON)
+  python3-numpy python3-pytest      # its arrays, and its tests
 )
 
 missing=()
