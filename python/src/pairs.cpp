@@ -1,6 +1,5 @@
 // Intrinsics, views (a depth image segmented into surface patches), the registration of two views,
 // and TUM folders, bound for Python. The pipeline decides; this file converts and checks.
-#include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
 #include <array>
