@@ -26,8 +26,9 @@ void CSuperpixelMap::insertFrame(const RgbdFrame& frame, const Isometry3& T_map_
 
 bool CSuperpixelMap::internal_insertObservation(const mrpt::obs::CObservation& obs,
                                                 const std::optional<const mrpt::poses::CPose3D>& robotPose) {
-  const auto* scan = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&obs);
-  if (!scan && !isSweepObservation(obs)) return false;
+  const bool sweep = isSweepObservation(obs);  // first: a 3D scan of points alone is a sweep
+  const auto* scan = sweep ? nullptr : dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&obs);
+  if (!scan && !sweep) return false;
   RgbdFrame frame;
   try {
     frame = scan ? frameFromObservation(*scan, "CObservation3DRangeScan '" + scan->sensorLabel + "'")

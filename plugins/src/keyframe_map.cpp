@@ -24,10 +24,14 @@ namespace {
 
 /// A sweep as it was read: a rotating scan (its range image and layout), or a point cloud when
 /// its returns carry their own rays (a cloud or a Velodyne's calibrated points, which MRPT 2.5's
-/// rotating scan has no place for). The LiDAR's sensorPose is the frame's mounting.
-mrpt::obs::CObservation::Ptr sweepObservation(const RgbdFrame& f) {
+/// rotating scan has no place for). With `with_points`, a 3D range scan of its points
+/// (toPointsScan()): MRPT 2.5's points maps insert no rotating scan and place a point cloud at its
+/// sensorPose without the robot's pose; GASP finds the layout of the points again. The LiDAR's
+/// sensorPose is the frame's mounting.
+mrpt::obs::CObservation::Ptr sweepObservation(const RgbdFrame& f, bool with_points) {
   RangeScan scan = *f.sweep;
   scan.T_robot_sensor = f.T_robot_camera;
+  if (with_points) return std::make_shared<mrpt::obs::CObservation3DRangeScan>(toPointsScan(scan, f.sensor_label));
   if (!scan.ray.empty())
     return std::make_shared<mrpt::obs::CObservationPointCloud>(toPointCloud(scan, f.sensor_label));
   return std::make_shared<mrpt::obs::CObservationRotatingScan>(toRotatingScan(scan, f.sensor_label));
@@ -56,7 +60,7 @@ mrpt::maps::CSimpleMap keyframeSimpleMap(const std::vector<RgbdFrame>& keyframes
     const mrpt::poses::CPose3DPDF::Ptr pose = gaussian;
     auto sf = mrpt::obs::CSensoryFrame::Create();
     if (f.isSweep()) {
-      sf->insert(sweepObservation(f));
+      sf->insert(sweepObservation(f, with_points));
     } else {
       const mrpt::obs::CObservation3DRangeScan::Ptr obs = observationFromFrame(f);
       if (with_points) obs->unprojectInto(*obs);  // its points, in its own frame: hasPoints3D set

@@ -142,8 +142,9 @@ struct CSuperpixelMap::LikelihoodCache::Entry {
 };
 
 bool CSuperpixelMap::holdsViewsFor(const mrpt::obs::CObservation& obs) const {
-  const bool depth = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&obs) != nullptr;
-  if (!depth && !isSweepObservation(obs)) return false;
+  const bool sweep = isSweepObservation(obs);  // a 3D scan of points alone is a sweep
+  const bool depth = !sweep && dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&obs) != nullptr;
+  if (!depth && !sweep) return false;
   for (const auto& view : views_)
     if ((view.view.returns == nullptr) == depth) return true;
   return false;
@@ -156,7 +157,7 @@ bool CSuperpixelMap::internal_canComputeObservationLikelihood(const mrpt::obs::C
 std::shared_ptr<const CSuperpixelMap::LikelihoodCache::Entry> CSuperpixelMap::likelihoodEntry(
     const mrpt::obs::CObservation& obs) const {
   const auto* scan = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&obs);
-  if (!scan) return sweepLikelihoodEntry(obs);
+  if (!scan || isSweepObservation(obs)) return sweepLikelihoodEntry(obs);
   // A scan whose range image is not in memory yet (stored externally) is converted first, which
   // loads and checks it; any other scan is converted only when the cache misses.
   std::optional<RgbdFrame> frame;

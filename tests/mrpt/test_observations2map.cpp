@@ -39,6 +39,15 @@ std::vector<Voxel> voxelsOfPoints(const std::string& path, double size, bool ply
   return voxels;
 }
 
+/// The first line of a superpixel map's patches file: "# gasp::CSuperpixelMap: V views, N patches ...".
+std::size_t patchesOf(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  const auto at = line.find("views, ");
+  return at == std::string::npos ? 0 : std::stoul(line.substr(at + 7));
+}
+
 }  // namespace
 
 TEST(Observations2Map, APointsMapBesideTheSuperpixelMapAgreesWithTheCloud) {
@@ -76,4 +85,47 @@ TEST(Observations2Map, APointsMapBesideTheSuperpixelMapAgreesWithTheCloud) {
     EXPECT_GT(static_cast<double>(covered), 0.99 * static_cast<double>(cloud.size()))
         << covered << " of " << cloud.size() << " voxels";
   }
+}
+
+// A LiDAR's keyframes: MRPT 2.5's points maps insert no rotating scan, and place a point cloud at
+// its sensorPose without the robot's pose; with --simplemap-points each sweep is a 3D range scan of
+// its points, which they insert at the keyframe's pose and GASP's map reads as the same sweep.
+TEST(Observations2Map, ALidarsPointsMapAgreesWithTheCloudAndGaspReadsTheSameSweeps) {
+  const std::string tool = "/usr/bin/observations2map";
+  if (!std::filesystem::exists(tool)) GTEST_SKIP() << "skipped: no " << tool << " (Debian: mrpt-apps)";
+  const std::string out = gasp::test::scratchDir();
+  const auto sim = gasp::test::runProgram("gasp-simulate", "--sensor lidar16 --frames 60 --rate 10 --out " + out + "/lidar");
+  ASSERT_EQ(sim.exit_code, 0) << sim.output;
+  const double voxel = 0.1;
+  std::size_t patches[2] = {0, 0};
+  for (const bool points : {false, true}) {
+    const std::string name = out + (points ? "/with" : "/without");
+    const auto slam = gasp::test::runProgram(
+        "gasp-slam", "--rawlog " + out + "/lidar/lidar.rawlog --out " + name + ".txt --simplemap " + name +
+                         ".simplemap --cloud " + name + ".ply --voxel 0.1" + (points ? " --simplemap-points" : ""));
+    ASSERT_TRUE(slam.exit_code == 0 || slam.exit_code == 3) << slam.output;
+    std::ofstream(name + ".ini") << "[MappingApplication]\npointsMap_count=1\nsuperpixelMap_count=1\n";
+    const auto run = gasp::test::runCommand("LD_PRELOAD=" + std::string(GASP_MRPT_PLUGIN) + " " + tool + " " + name +
+                                            ".ini " + name + ".simplemap " + name + "_map < /dev/null 2>&1");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    patches[points] = patchesOf(name + "_map_gasp__CSuperpixelMap_01_patches.txt");
+    const std::vector<Voxel> map = voxelsOfPoints(name + "_map_mrpt__maps__CSimplePointsMap_00.txt", voxel, false);
+    if (!points) {  // rotating scans: MRPT's points map takes nothing from them
+      EXPECT_TRUE(map.empty()) << map.size();
+      continue;
+    }
+    ASSERT_GT(map.size(), 100000u);
+    const std::set<Voxel> occupied(map.begin(), map.end());
+    const std::vector<Voxel> cloud = voxelsOfPoints(name + ".ply", voxel, true);
+    ASSERT_GT(cloud.size(), 5000u);
+    std::size_t covered = 0;
+    for (const Voxel& v : cloud) covered += occupied.count(v);
+    // A voxel of the cloud holds the mean of its returns, which can fall where no single sparse
+    // return of MRPT's map lies: 98 %, not all (points misplaced by the keyframes' poses cover a third).
+    EXPECT_GT(static_cast<double>(covered), 0.98 * static_cast<double>(cloud.size()))
+        << covered << " of " << cloud.size() << " voxels";
+  }
+  // GASP's map from the sweeps' points: their layout found again, the same surfaces.
+  ASSERT_GT(patches[0], 500u);
+  EXPECT_NEAR(static_cast<double>(patches[1]), static_cast<double>(patches[0]), 0.02 * static_cast<double>(patches[0]));
 }

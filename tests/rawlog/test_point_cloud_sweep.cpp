@@ -75,6 +75,45 @@ gasp::Isometry3 motion(double x, double y, double yaw_deg) {
 
 }  // namespace
 
+// A sweep stored as a 3D range scan of its points alone (toPointsScan(), what gasp-slam
+// --simplemap-points writes for MRPT's points maps): written, read back through MRPT's
+// serialization, it is a sweep, read as its point cloud is, with its mounting and time.
+TEST(PointCloudSweep, ASweepAsA3DScanOfPointsReadsBackAsItsPointCloud) {
+  gasp::Isometry3 T = gasp::Isometry3::Identity();
+  T.translation() = Eigen::Vector3d(0.5, 0.0, 1.0);
+  gasp::RangeScan scan = gasp::sim::simulateLidarScan(gasp::sim::makeScene("room"), gasp::sim::lidarSensor(16), T, 3, 0);
+  scan.timestamp = 1234.5;
+  scan.T_robot_sensor.translation() = Eigen::Vector3d(0.1, 0.0, 0.8);
+  const mrpt::obs::CObservation3DRangeScan stored = gasp::toPointsScan(scan, "LIDAR");
+  EXPECT_FALSE(stored.hasRangeImage);
+  EXPECT_TRUE(stored.hasPoints3D);
+  EXPECT_TRUE(gasp::isSweepObservation(stored));
+  mrpt::obs::CObservation3DRangeScan camera;  // a depth camera's scan is not one
+  camera.hasRangeImage = true;
+  EXPECT_FALSE(gasp::isSweepObservation(camera));
+
+  const std::string path = gasp::test::scratchDir() + "/points.bin";
+  {
+    mrpt::io::CFileGZOutputStream out(path);
+    mrpt::serialization::archiveFrom(out) << stored;
+  }
+  mrpt::io::CFileGZInputStream in(path);
+  mrpt::serialization::CSerializable::Ptr obj;
+  mrpt::serialization::archiveFrom(in) >> obj;
+  const auto read = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obj);
+  ASSERT_TRUE(read);
+  const gasp::RgbdFrame frame = gasp::sweepFrameFromObservation(*read, "stored");
+  const gasp::RangeScan cloud = gasp::rangeScanFrom(gasp::toPointCloud(scan, "LIDAR"));
+  ASSERT_TRUE(frame.isSweep());
+  EXPECT_EQ(frame.sensor_label, "LIDAR");
+  EXPECT_NEAR(frame.timestamp, 1234.5, 1e-6);
+  EXPECT_TRUE(frame.T_robot_camera.isApprox(scan.T_robot_sensor, 1e-6));
+  EXPECT_EQ(frame.sweep->returnCount(), cloud.returnCount());
+  EXPECT_EQ(frame.sweep->range_m.rows, cloud.range_m.rows);
+  EXPECT_EQ(frame.sweep->range_m.cols, cloud.range_m.cols);
+  EXPECT_EQ(cv::norm(frame.sweep->range_m, cloud.range_m, cv::NORM_INF), 0.0);
+}
+
 TEST(PointCloudSweep, ASimulatedSweepAsPointsGetsItsRingsColumnsAndEveryReturn) {
   for (const int lasers : {16, 64}) {
     const gasp::sim::LidarSensor sensor = gasp::sim::lidarSensor(lasers);

@@ -98,6 +98,31 @@ class CellFiller final : public mrpt::obs::CObservationVelodyneScan::PointCloudS
 
 }  // namespace
 
+namespace {
+
+/// A 3D range scan that holds its points and no range image: a sweep stored by toPointsScan().
+const mrpt::obs::CObservation3DRangeScan* pointsOnlyScan(const mrpt::obs::CObservation& observation) {
+  const auto* scan = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&observation);
+  return scan && !scan->hasRangeImage && scan->hasPoints3D ? scan : nullptr;
+}
+
+/// A sweep handed over as its points in the sensor frame: the layout they show (rangeScanFromPoints()).
+template <class Vec>
+RangeScan sweepFromPoints(const Vec& xs, const Vec& ys, const Vec& zs, const std::string& who,
+                          const mrpt::obs::CObservation& observation) {
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(xs.size());
+  for (std::size_t i = 0; i < xs.size() && i < ys.size() && i < zs.size(); ++i) points.emplace_back(xs[i], ys[i], zs[i]);
+  RangeScan out = rangeScanFromPoints(points, who);
+  out.timestamp = mrpt::Clock::toDouble(observation.timestamp);
+  mrpt::poses::CPose3D sensor_pose;
+  observation.getSensorPose(sensor_pose);
+  out.T_robot_sensor = fromCPose3D(sensor_pose);
+  return out;
+}
+
+}  // namespace
+
 RangeScan rangeScanFrom(const mrpt::obs::CObservation& observation) {
   if (const auto* rotating = dynamic_cast<const mrpt::obs::CObservationRotatingScan*>(&observation))
     return rangeScanFrom(*rotating);
@@ -106,17 +131,12 @@ RangeScan rangeScanFrom(const mrpt::obs::CObservation& observation) {
     const std::string who = "point cloud '" + cloud->sensorLabel + "'";
     if (!cloud->pointcloud && cloud->isExternallyStored()) cloud->load();  // its points in a file beside the rawlog
     if (!cloud->pointcloud) throw Error(who + ": holds no points map");
-    const auto& xs = cloud->pointcloud->getPointsBufferRef_x();
-    const auto& ys = cloud->pointcloud->getPointsBufferRef_y();
-    const auto& zs = cloud->pointcloud->getPointsBufferRef_z();
-    std::vector<Eigen::Vector3d> points;
-    points.reserve(xs.size());
-    for (std::size_t i = 0; i < xs.size() && i < ys.size() && i < zs.size(); ++i) points.emplace_back(xs[i], ys[i], zs[i]);
-    RangeScan out = rangeScanFromPoints(points, who);
-    out.timestamp = mrpt::Clock::toDouble(cloud->timestamp);
-    out.T_robot_sensor = fromCPose3D(cloud->sensorPose);
-    return out;
+    return sweepFromPoints(cloud->pointcloud->getPointsBufferRef_x(), cloud->pointcloud->getPointsBufferRef_y(),
+                           cloud->pointcloud->getPointsBufferRef_z(), who, observation);
   }
+  if (const auto* points = pointsOnlyScan(observation))
+    return sweepFromPoints(points->points3D_x, points->points3D_y, points->points3D_z,
+                           "3D points scan '" + points->sensorLabel + "'", observation);
   mrpt::obs::CObservationRotatingScan converted;
   if (!converted.fromGeneric(observation))
     throw Error(std::string("observation '") + observation.sensorLabel + "' of class " +
@@ -139,13 +159,15 @@ RangeScan rangeScanFrom(const mrpt::obs::CObservation& observation) {
 bool isSweepObservation(const mrpt::obs::CObservation& observation) {
   return dynamic_cast<const mrpt::obs::CObservationRotatingScan*>(&observation) != nullptr ||
          dynamic_cast<const mrpt::obs::CObservationVelodyneScan*>(&observation) != nullptr ||
-         dynamic_cast<const mrpt::obs::CObservationPointCloud*>(&observation) != nullptr;
+         dynamic_cast<const mrpt::obs::CObservationPointCloud*>(&observation) != nullptr ||
+         pointsOnlyScan(observation) != nullptr;
 }
 
 RgbdFrame sweepFrameFromObservation(const mrpt::obs::CObservation& observation, const std::string& what) {
   if (!isSweepObservation(observation))
     throw Error(what + ": a " + observation.GetRuntimeClass()->className +
-                " is not a LiDAR sweep (CObservationRotatingScan, CObservationVelodyneScan or CObservationPointCloud)");
+                " is not a LiDAR sweep (CObservationRotatingScan, CObservationVelodyneScan, CObservationPointCloud, or "
+                "a CObservation3DRangeScan of points without a range image)");
   RgbdFrame frame;
   try {
     frame.sweep = rangeScanFrom(observation);
@@ -207,6 +229,25 @@ mrpt::obs::CObservationPointCloud toPointCloud(const RangeScan& scan, const std:
   for (const Eigen::Vector3d& p : points)
     map->insertPointFast(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()));
   out.pointcloud = map;
+  return out;
+}
+
+mrpt::obs::CObservation3DRangeScan toPointsScan(const RangeScan& scan, const std::string& sensor_label) {
+  validateLayout(scan, "3D points scan '" + sensor_label + "'");
+  mrpt::obs::CObservation3DRangeScan out;
+  out.sensorLabel = sensor_label;
+  out.timestamp = mrpt::Clock::fromDouble(scan.timestamp);
+  out.sensorPose = toCPose3D(scan.T_robot_sensor);
+  out.hasRangeImage = false;
+  out.hasIntensityImage = false;
+  const std::vector<Eigen::Vector3d> points = scan.points();
+  out.resizePoints3DVectors(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    out.points3D_x[i] = static_cast<float>(points[i].x());
+    out.points3D_y[i] = static_cast<float>(points[i].y());
+    out.points3D_z[i] = static_cast<float>(points[i].z());
+  }
+  out.hasPoints3D = true;
   return out;
 }
 

@@ -25,7 +25,9 @@ namespace gasp {
 /// (poseWithCovariance()), or zero when covariance_world_camera is empty. `with_points`: each
 /// depth image's 3D points are stored in its observation too (in the camera's frame, as MRPT
 /// unprojects them), which MRPT 2.5's points maps need to insert it -- about 3.7 MB more for a
-/// 640x480 keyframe; a sweep is stored as without it. Throws gasp::Error when the sizes differ, a
+/// 640x480 keyframe; a sweep is stored as a CObservation3DRangeScan of its points alone
+/// (toPointsScan(): in the LiDAR's frame; MRPT 2.5's points maps insert it at the robot's pose, and
+/// GASP reads it as a sweep, finding its layout again). Throws gasp::Error when the sizes differ, a
 /// covariance is not finite and symmetric or a frame cannot be converted.
 mrpt::maps::CSimpleMap keyframeSimpleMap(const std::vector<RgbdFrame>& keyframes,
                                          const std::vector<Isometry3>& T_world_camera,

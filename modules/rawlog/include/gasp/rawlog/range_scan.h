@@ -13,6 +13,7 @@
 #include "gasp/core/range_scan.h"
 #include "gasp/rawlog/rgbd_frame.h"
 
+#include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/obs/CObservationRotatingScan.h>
 
@@ -36,8 +37,9 @@ RangeScan rangeScanFrom(const mrpt::obs::CObservationRotatingScan& scan);
 RangeScan rangeScanFrom(const mrpt::obs::CObservation& observation);
 
 /// Whether GASP reads `observation` as a rotating LiDAR's sweep: a CObservationRotatingScan, a
-/// CObservationVelodyneScan or a CObservationPointCloud (2D scans convert too, but one row is no
-/// surface).
+/// CObservationVelodyneScan, a CObservationPointCloud, or a CObservation3DRangeScan that holds 3D
+/// points and no range image (toPointsScan(); a depth camera's scan has its range image). 2D scans
+/// convert too, but one row is no surface.
 bool isSweepObservation(const mrpt::obs::CObservation& observation);
 /// The sweep as a frame (RgbdFrame::sweep; its timestamp, sensor label, and its sensorPose as
 /// T_robot_camera, the LiDAR's own frame). Throws gasp::Error starting with `what` for a sweep
@@ -58,5 +60,12 @@ mrpt::obs::CObservationRotatingScan toRotatingScan(const RangeScan& scan, const 
 /// its layout. rangeScanFrom() finds the layout again. Throws gasp::Error for a scan without a
 /// layout (validateLayout).
 mrpt::obs::CObservationPointCloud toPointCloud(const RangeScan& scan, const std::string& sensor_label);
+
+/// `scan`'s returns as a CObservation3DRangeScan holding only its 3D points (hasPoints3D, no range
+/// image; in the sensor frame, T_robot_sensor as sensorPose), which rangeScanFrom() reads as a
+/// point cloud. The form of a sweep MRPT 2.5's points maps insert at the robot's pose: they insert
+/// no rotating scan, and place a CObservationPointCloud at its sensorPose alone. Throws gasp::Error
+/// for a scan without a layout (validateLayout).
+mrpt::obs::CObservation3DRangeScan toPointsScan(const RangeScan& scan, const std::string& sensor_label);
 
 }  // namespace gasp
