@@ -11,6 +11,7 @@ defaults. ``default_params()`` lists every key; docs/parameters.md explains each
 The reference: docs/python.md.
 """
 
+import numbers as _numbers
 import os as _os
 import re as _re
 
@@ -36,33 +37,25 @@ TUM_DEPTH_UNITS_PER_METRE = 5000.0
 
 # ---- parameters: dicts <-> the params file's YAML text (read and checked by the C++ side)
 
-_NAME = _re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
-_WORD = _re.compile(r"^[A-Za-z0-9_.+-]+$")
-_INT = _re.compile(r"^[+-]?[0-9]+$")
+_NAME = _re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+_WORD = _re.compile(r"[A-Za-z0-9_.+-]+")
+_INT = _re.compile(r"[+-]?[0-9]+")
 
 
 def _yaml_value(section, key, value):
     where = "params: %s.%s" % (section, key)
-    if isinstance(value, bool):
+    if isinstance(value, bool) or (type(value).__module__ == "numpy" and type(value).__name__ in ("bool_", "bool")):
         return "true" if value else "false"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, float):
-        return repr(value)  # shortest text that reads back to the same double; inf, nan
+    if isinstance(value, _numbers.Integral):  # int, numpy integers
+        return str(int(value))
+    if isinstance(value, _numbers.Real):  # float, numpy floats
+        return repr(float(value))  # the shortest text that reads back to the same double; inf, nan
     if isinstance(value, str):
-        if not _WORD.match(value):
+        if not _WORD.fullmatch(value):
             raise ValueError("%s: %r is not a value (a name such as 'huber')" % (where, value))
         return value
     if isinstance(value, (list, tuple)):
         return "[" + ", ".join(_yaml_value(section, key, v) for v in value) + "]"
-    try:  # numpy scalars
-        import numbers
-        if isinstance(value, numbers.Integral):
-            return str(int(value))
-        if isinstance(value, numbers.Real):
-            return repr(float(value))
-    except ImportError:
-        pass
     raise TypeError("%s: a value of type %s; expected bool, int, float, str or a list"
                     % (where, type(value).__name__))
 
@@ -70,13 +63,13 @@ def _yaml_value(section, key, value):
 def _dict_yaml(params):
     lines = []
     for section, keys in params.items():
-        if not isinstance(section, str) or not _NAME.match(section):
+        if not isinstance(section, str) or not _NAME.fullmatch(section):
             raise ValueError("params: %r is not a section name" % (section,))
         if not isinstance(keys, dict):
             raise TypeError("params: section '%s' must be a dict of keys, got %s" % (section, type(keys).__name__))
         lines.append(section + ":")
         for key, value in keys.items():
-            if not isinstance(key, str) or not _NAME.match(key):
+            if not isinstance(key, str) or not _NAME.fullmatch(key):
                 raise ValueError("params: %r in section '%s' is not a key name" % (key, section))
             lines.append("  %s: %s" % (key, _yaml_value(section, key, value)))
     return "\n".join(lines) + "\n"
@@ -85,7 +78,7 @@ def _dict_yaml(params):
 def _scalar(text):
     if text in ("true", "false"):
         return text == "true"
-    if _INT.match(text):
+    if _INT.fullmatch(text):
         return int(text)
     try:
         return float(text)
@@ -118,7 +111,7 @@ def _params_text(params):
     if params is None:
         return ""
     if isinstance(params, (str, bytes, _os.PathLike)):
-        return _gasp._read_params_file(_os.fsdecode(params))
+        return _gasp._read_params_file(params)
     if isinstance(params, dict):
         text = _dict_yaml(params)
         _gasp._effective_params_yaml(text)  # checked here: errors name the key
@@ -134,7 +127,7 @@ def default_params():
 
 def load_params(path):
     """The params file at `path` read over the defaults: every parameter, as a dict of sections."""
-    return _yaml_dict(_gasp._read_params_file(_os.fsdecode(path)))
+    return _yaml_dict(_gasp._read_params_file(path))
 
 
 def params_yaml(params=None):
@@ -146,7 +139,7 @@ def params_yaml(params=None):
 def save_params(params, path):
     """Writes every parameter (`params` over the defaults) as a params file: a temporary file in
     the same folder, checked, then renamed. Programs read it with --params."""
-    _gasp._write_params_file(_params_text(params), _os.fsdecode(path))
+    _gasp._write_params_file(_params_text(params), path)
 
 
 # ---- pairs
@@ -172,15 +165,15 @@ def register(source, target, intrinsics=None, params=None, depth_units_per_metre
 def _run(path, slam, params, first, every, max_frames, sensor, intrinsics, depth_units_per_metre, ground_truth):
     if isinstance(intrinsics, Intrinsics):
         raise TypeError("intrinsics: give a preset name (fr1, fr2, fr3, ros) or an intrinsics file's path here")
-    return _gasp._run_sequence(_os.fsdecode(path), slam, _params_text(params), int(first), int(every),
-                               int(max_frames), sensor or "", intrinsics or "", float(depth_units_per_metre),
-                               _os.fsdecode(ground_truth) if ground_truth else "")
+    return _gasp._run_sequence(path, slam, _params_text(params), int(first), int(every), int(max_frames),
+                               sensor or "", _os.fsdecode(intrinsics) if intrinsics else "",
+                               float(depth_units_per_metre), ground_truth)
 
 
 def odometry(path, params=None, first=0, every=1, max_frames=0, sensor=None, intrinsics=None,
              depth_units_per_metre=TUM_DEPTH_UNITS_PER_METRE, ground_truth=None):
     """Odometry over a TUM folder or a rawlog (as gasp-odometry): each frame registered to the
-    current keyframe. Returns a gasp.SequenceRun (trajectory, tracked, keyframe, reasons,
+    current keyframe, the first frame at the origin. Returns a gasp.SequenceRun (trajectory, tracked, keyframe, reasons,
     ground_truth, ate()). `intrinsics`: a preset name or file for a TUM folder (default: from the
     folder's name); `sensor`: a rawlog's sensor label; `ground_truth`: a TUM trajectory file to
     score against (default: a TUM folder's groundtruth.txt)."""
@@ -191,7 +184,8 @@ def odometry(path, params=None, first=0, every=1, max_frames=0, sensor=None, int
 def slam(path, params=None, first=0, every=1, max_frames=0, sensor=None, intrinsics=None,
          depth_units_per_metre=TUM_DEPTH_UNITS_PER_METRE, ground_truth=None):
     """SLAM over a TUM folder or a rawlog (as gasp-slam with one session): odometry, loop
-    closures, the pose graph optimised. Returns a gasp.SequenceRun with loop_closures. The
+    closures, the pose graph optimised; the world is the first frame's robot frame (a rawlog's
+    first camera sits at its sensorPose). Returns a gasp.SequenceRun with loop_closures. The
     arguments are odometry()'s."""
     return _run(path, True, params, first, every, max_frames, sensor, intrinsics, depth_units_per_metre,
                 ground_truth)

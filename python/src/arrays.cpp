@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <new>
 
 #include "gasp/core/depth_image.h"
 
@@ -31,7 +32,7 @@ py::array asArray(const py::handle& h, const std::string& what) {
 template <class T>
 void copyMetres(const py::array& array, cv::Mat& out, const std::string& what) {
   const auto a = py::array_t<T, py::array::c_style>::ensure(array);  // a copy only when strided
-  if (!a) throw py::error_already_set();
+  if (!a) throw std::bad_alloc();  // ensure() clears its error: the copy could not be allocated (MemoryError)
   const T* data = a.data();
   std::size_t nan = 0, inf = 0, negative = 0, too_far = 0;
   const auto n = static_cast<std::size_t>(a.size());
@@ -63,17 +64,22 @@ cv::Mat depthFromArray(const py::handle& handle, const CameraIntrinsics& intrins
     throw py::value_error(what + ": shape " + shapeText(array) + " does not match the intrinsics' (height, width) = (" +
                           std::to_string(intrinsics.height) + ", " + std::to_string(intrinsics.width) + ")");
   cv::Mat depth(intrinsics.height, intrinsics.width, CV_32FC1);
-  if (array.dtype().is(py::dtype::of<std::uint16_t>())) {
+  // isinstance<array_t<T>>: numpy's equivalence of dtypes (a pickled array's dtype is another object).
+  if (py::isinstance<py::array_t<std::uint16_t>>(array)) {
     if (!(units_per_metre > 0) || !std::isfinite(units_per_metre))
       throw py::value_error(what + ": depth_units_per_metre must be positive and finite, got " +
                             std::to_string(units_per_metre));
     const auto a = py::array_t<std::uint16_t, py::array::c_style>::ensure(array);
-    if (!a) throw py::error_already_set();
+    if (!a) throw std::bad_alloc();  // ensure() clears its error: the copy could not be allocated (MemoryError)
     const cv::Mat raw(intrinsics.height, intrinsics.width, CV_16UC1, const_cast<std::uint16_t*>(a.data()));
-    return depthFromRaw(raw, units_per_metre);  // a new matrix: the array is not kept
+    cv::Mat metres = depthFromRaw(raw, units_per_metre);  // a new matrix: the array is not kept
+    if (!cv::checkRange(metres))
+      throw py::value_error(what + ": depth_units_per_metre " + py::repr(py::float_(units_per_metre)).cast<std::string>() +
+                            " makes depths beyond float32's range");
+    return metres;
   }
-  if (array.dtype().is(py::dtype::of<float>())) copyMetres<float>(array, depth, what);
-  else if (array.dtype().is(py::dtype::of<double>())) copyMetres<double>(array, depth, what);
+  if (py::isinstance<py::array_t<float>>(array)) copyMetres<float>(array, depth, what);
+  else if (py::isinstance<py::array_t<double>>(array)) copyMetres<double>(array, depth, what);
   else
     throw py::type_error(what + ": dtype " + dtypeName(array) +
                          "; expected uint16 (raw units, depth_units_per_metre per metre) or float32 / float64 (metres)");
@@ -84,10 +90,10 @@ Isometry3 poseFromArray(const py::handle& handle, const std::string& what) {
   const py::array array = asArray(handle, what);
   if (array.ndim() != 2 || array.shape(0) != 4 || array.shape(1) != 4)
     throw py::value_error(what + ": expected a 4x4 array, got shape " + shapeText(array));
-  if (!array.dtype().is(py::dtype::of<double>()) && !array.dtype().is(py::dtype::of<float>()))
+  if (!py::isinstance<py::array_t<double>>(array) && !py::isinstance<py::array_t<float>>(array))
     throw py::type_error(what + ": dtype " + dtypeName(array) + "; expected float64 or float32");
   const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(array);
-  if (!a) throw py::error_already_set();
+  if (!a) throw std::bad_alloc();  // ensure() clears its error: the copy could not be allocated (MemoryError)
   const auto v = a.unchecked<2>();
   Eigen::Matrix4d m;
   for (int r = 0; r < 4; ++r)

@@ -1,8 +1,11 @@
 // Intrinsics, views (a depth image segmented into surface patches), the registration of two views,
 // and TUM folders, bound for Python. The pipeline decides; this file converts and checks.
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <array>
+#include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -109,8 +112,10 @@ void bindPairs(py::module_& m) {
            py::arg("distortion") = std::array<double, 5>{})
       .def_static("preset", &CameraIntrinsics::fromPreset, py::arg("name"),
                   "A preset by name: fr1, fr2, fr3 (TUM RGB-D's Freiburg cameras) or ros (525, 319.5, 239.5).")
-      .def_static("load", &CameraIntrinsics::load, py::arg("path"), "Reads an intrinsics file (docs/formats.md).")
-      .def("save", py::overload_cast<const std::string&>(&CameraIntrinsics::save, py::const_), py::arg("path"))
+      .def_static("load", [](const std::filesystem::path& path) { return CameraIntrinsics::load(path.string()); },
+                  py::arg("path"), "Reads an intrinsics file (docs/formats.md).")
+      .def("save", [](const CameraIntrinsics& k, const std::filesystem::path& path) { k.save(path.string()); },
+           py::arg("path"))
       .def_readonly("fx", &CameraIntrinsics::fx)
       .def_readonly("fy", &CameraIntrinsics::fy)
       .def_readonly("cx", &CameraIntrinsics::cx)
@@ -123,11 +128,13 @@ void bindPairs(py::module_& m) {
         K << k.fx, 0, k.cx, 0, k.fy, k.cy, 0, 0, 1;
         return matrixArray(K);
       }, "The 3x3 camera matrix.")
-      .def("__eq__", [](const CameraIntrinsics& a, const CameraIntrinsics& b) { return a == b; })
+      .def("__eq__", [](const CameraIntrinsics& a, const CameraIntrinsics& b) { return a == b; }, py::is_operator())
+      .def("__ne__", [](const CameraIntrinsics& a, const CameraIntrinsics& b) { return a != b; }, py::is_operator())
       .def("__repr__", [](const CameraIntrinsics& k) {
-        return "gasp.Intrinsics(fx=" + std::to_string(k.fx) + ", fy=" + std::to_string(k.fy) + ", cx=" +
-               std::to_string(k.cx) + ", cy=" + std::to_string(k.cy) + ", width=" + std::to_string(k.width) +
-               ", height=" + std::to_string(k.height) + ")";
+        char text[256];
+        std::snprintf(text, sizeof text, "gasp.Intrinsics(fx=%.17g, fy=%.17g, cx=%.17g, cy=%.17g, width=%d, height=%d)",
+                      k.fx, k.fy, k.cx, k.cy, k.width, k.height);
+        return std::string(text);
       });
 
   py::class_<View>(m, "View",
@@ -231,10 +238,11 @@ void bindPairs(py::module_& m) {
   py::class_<TumDataset>(m, "TumFolder",
                          "A TUM RGB-D folder (depth.txt, and groundtruth.txt when present). Depth is resampled to "
                          "the pinhole camera when the intrinsics carry lens distortion; `intrinsics` is that camera.")
-      .def(py::init([](const std::string& path, const std::optional<CameraIntrinsics>& intrinsics) {
+      .def(py::init([](const std::filesystem::path& path, const std::optional<CameraIntrinsics>& intrinsics) {
              TumDataset::Options o;
              o.intrinsics = intrinsics;
-             return TumDataset::open(path, o);
+             py::gil_scoped_release release;
+             return TumDataset::open(path.string(), o);
            }),
            py::arg("path"), py::arg("intrinsics") = std::nullopt)
       .def("__len__", &TumDataset::size)
@@ -245,7 +253,12 @@ void bindPairs(py::module_& m) {
         return out;
       })
       .def("depth", [](const TumDataset& d, std::size_t i) {
-        return imageArray<float>(d.loadDepth(i));
+        cv::Mat depth;
+        {
+          py::gil_scoped_release release;  // the PNG decoded and resampled
+          depth = d.loadDepth(i);
+        }
+        return imageArray<float>(depth);
       }, py::arg("index"), "(height, width) float32: frame `index`'s depth [m], 0 where none")
       .def("ground_truth", [](const TumDataset& d, std::size_t i, double offset_s) -> std::optional<py::array_t<double>> {
         const auto T = d.groundTruthOf(i, offset_s);

@@ -2,6 +2,10 @@
 // YAML text and back; reading, checking and writing are the params module's.
 #include "gasp/params/params_file.h"
 
+#include <pybind11/stl/filesystem.h>
+
+#include <filesystem>
+
 #include "bindings.h"
 
 namespace gasp::python {
@@ -15,10 +19,13 @@ void bindParams(py::module_& m) {
         "The params file of the defaults (YAML text).");
   m.def("_effective_params_yaml", [](const std::string& yaml_text) { return paramsYaml(paramsFromYaml(yaml_text)); },
         py::arg("yaml_text"), "Every parameter after `yaml_text` is read over the defaults (checked).");
-  m.def("_read_params_file", [](const std::string& path) { return paramsYaml(readParamsFile(path)); }, py::arg("path"),
+  m.def("_read_params_file", [](const std::filesystem::path& path) { return paramsYaml(readParamsFile(path.string())); },
+        py::arg("path"),
         "Every parameter after the params file at `path` is read over the defaults (checked).");
   m.def("_write_params_file",
-        [](const std::string& yaml_text, const std::string& path) { writeParamsFile(paramsFromYaml(yaml_text), path); },
+        [](const std::string& yaml_text, const std::filesystem::path& path) {
+          writeParamsFile(paramsFromYaml(yaml_text), path.string());
+        },
         py::arg("yaml_text"), py::arg("path"),
         "Writes every parameter (`yaml_text` over the defaults) to `path`: a temporary file in the same folder, "
         "checked, then renamed.");

@@ -2,6 +2,7 @@
 // The frame loop is the programs' (gasp-odometry, gasp-slam with one session): frames added in
 // order, a LiDAR's sweeps with the params' lidar section.
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <Python.h>
 
@@ -70,7 +71,9 @@ struct SequenceRun {
 };
 
 /// Adds the sequence's frames in order to `tracker` (DepthOdometry or DepthSlam), the GIL released
-/// while a frame is read and tracked; Ctrl-C between frames raises KeyboardInterrupt.
+/// while a frame is read and tracked; Ctrl-C between frames raises KeyboardInterrupt. An input
+/// that breaks after some frames (a frame that cannot be read, or one the odometry refuses, which
+/// it then does not add) ends the run there: partial, with the error.
 template <class Tracker>
 void addFrames(DepthSequence& sequence, Tracker& tracker, SequenceRun& run) {
   py::gil_scoped_release release;
@@ -79,17 +82,16 @@ void addFrames(DepthSequence& sequence, Tracker& tracker, SequenceRun& run) {
       py::gil_scoped_acquire acquire;
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();
     }
-    std::optional<RgbdFrame> frame;
     try {
-      frame = sequence.next();
+      std::optional<RgbdFrame> frame = sequence.next();
+      if (!frame) return;
+      if (frame->isSweep()) tracker.addFrame(frame->timestamp, *frame->sweep);
+      else tracker.addFrame(frame->timestamp, frame->depth_m, frame->depth_intrinsics);
     } catch (const Error& e) {
       if (tracker.odometry().frames().empty()) throw;
       run.error = exceptionMessage(e);  // keep what was tracked: the result says it is partial
       return;
     }
-    if (!frame) return;
-    if (frame->isSweep()) tracker.addFrame(frame->timestamp, *frame->sweep);
-    else tracker.addFrame(frame->timestamp, frame->depth_m, frame->depth_intrinsics);
   }
 }
 
@@ -102,41 +104,51 @@ struct OdometryTracker {
   void addFrame(A&&... a) { odometry_.addFrame(std::forward<A>(a)...); }
 };
 
-DepthSequence openSequence(const std::string& path, std::size_t first, std::size_t every, std::size_t max_frames,
-                           const std::string& sensor, const std::string& intrinsics, double units_per_metre) {
+DepthSequence openSequence(const std::filesystem::path& path, std::size_t first, std::size_t every,
+                           std::size_t max_frames, const std::string& sensor, const std::string& intrinsics,
+                           double units_per_metre) {
   DepthSequenceOptions in;
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) in.tum_dir = path;
-  else in.rawlog_path = path;
+  if (std::filesystem::is_directory(path, ec)) in.tum_dir = path.string();
+  else in.rawlog_path = path.string();
   in.sweeps = true;  // a rawlog's LiDAR sweeps are frames too, as in the programs
   in.first = first, in.every = every, in.max_frames = max_frames, in.sensor_label = sensor;
   in.intrinsics = intrinsics, in.depth_units_per_metre = units_per_metre;
-  if (every == 0) throw py::value_error("every must be at least 1");
   return DepthSequence(in);
 }
 
-SequenceRun runSequence(const std::string& path, bool slam, const std::string& params_yaml, std::size_t first,
-                        std::size_t every, std::size_t max_frames, const std::string& sensor,
-                        const std::string& intrinsics, double units_per_metre, const std::string& gt_path) {
+SequenceRun runSequence(const std::filesystem::path& path, bool slam, const std::string& params_yaml,
+                        std::size_t first, std::size_t every, std::size_t max_frames, const std::string& sensor,
+                        const std::string& intrinsics, double units_per_metre,
+                        const std::optional<std::filesystem::path>& gt_path) {
   SlamParams params = paramsFromYaml(params_yaml);
-  DepthSequence sequence = openSequence(path, first, every, max_frames, sensor, intrinsics, units_per_metre);
+  if (every == 0) throw py::value_error("every must be at least 1");
   SequenceRun run;
-  const RgbdFrame* head = sequence.peek();
-  if (!head) throw Error(path + ": no depth frame in the input");
-  run.sweeps = head->isSweep();
-  run.ground_truth = gt_path.empty() ? sequence.groundTruth() : readTumTrajectory(gt_path);
+  std::optional<DepthSequence> sequence;
+  Isometry3 T_robot_camera = Isometry3::Identity();
+  {
+    py::gil_scoped_release release;  // opening reads the input up to its first frame
+    sequence.emplace(openSequence(path, first, every, max_frames, sensor, intrinsics, units_per_metre));
+    const RgbdFrame* head = sequence->peek();
+    if (!head) throw Error(path.string() + ": no depth frame in the input");
+    run.sweeps = head->isSweep();
+    T_robot_camera = head->T_robot_camera;
+    run.ground_truth = gt_path ? readTumTrajectory(gt_path->string()) : sequence->groundTruth();
+  }
   if (slam) {
     if (run.sweeps) params = lidarSlamParams(params);
-    DepthSlam tracker(params);
-    addFrames(sequence, tracker, run);
+    // As gasp-slam: world = the first frame's robot frame (the first camera at its sensorPose).
+    DepthSlam tracker(params, T_robot_camera);
+    addFrames(*sequence, tracker, run);
     py::gil_scoped_release release;
     tracker.finishLoops();
     run.trajectory = tracker.trajectory();
     run.frames = tracker.odometry().frames();
     run.loop_closures = tracker.loopClosures();
   } else {
+    // As gasp-odometry: the first frame at the origin.
     OdometryTracker tracker(run.sweeps ? lidarOdometryParams(params.lidar, params.odometry) : params.odometry);
-    addFrames(sequence, tracker, run);
+    addFrames(*sequence, tracker, run);
     run.trajectory = tracker.odometry_.trajectory();
     run.frames = tracker.odometry_.frames();
   }
@@ -167,8 +179,10 @@ void bindSequences(py::module_& m) {
   py::class_<Trajectory>(m, "Trajectory", "Timestamped poses T_world_camera, sorted by time.")
       .def(py::init(&trajectoryFromArrays), py::arg("timestamps"), py::arg("poses"),
            "From timestamps (N,) [s], strictly increasing, and poses (N, 4, 4).")
-      .def_static("read", &readTumTrajectory, py::arg("path"), "Reads a TUM trajectory file.")
-      .def("save", [](const Trajectory& t, const std::string& path) { writeTumTrajectory(path, t); }, py::arg("path"),
+      .def_static("read", [](const std::filesystem::path& path) { return readTumTrajectory(path.string()); },
+                  py::arg("path"), "Reads a TUM trajectory file.")
+      .def("save", [](const Trajectory& t, const std::filesystem::path& path) { writeTumTrajectory(path.string(), t); },
+           py::arg("path"),
            "Writes the TUM format (timestamp tx ty tz qx qy qz qw): a temporary file in the same folder, then renamed.")
       .def("__len__", &Trajectory::size)
       .def_property_readonly("timestamps", &timestampsArray, "(N,) float64 [s]")

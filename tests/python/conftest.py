@@ -21,7 +21,9 @@ def build_dir():
 
 @pytest.fixture(scope="session")
 def fr1_xyz():
-    d = os.path.join(os.environ.get("GASP_DATA_DIR", ""), "tum", "fr1_xyz")
+    # GASP_DATA_DIR at run time, as the C++ tests read it, else the build's default
+    root = os.environ.get("GASP_DATA_DIR") or os.environ.get("GASP_DATA_DIR_DEFAULT", "")
+    d = os.path.join(root, "tum", "fr1_xyz")
     if not os.path.isfile(os.path.join(d, "depth.txt")):
         pytest.skip("real data absent: %s (see ../shared/data/README)" % d)
     return d

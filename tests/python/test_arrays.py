@@ -42,6 +42,13 @@ def test_uint16_units_and_float_metres_give_the_same_patches():
     assert np.allclose(mm.depth, d, rtol=0, atol=1e-6) and len(mm) == len(a)
 
 
+def test_an_array_through_pickle_keeps_its_dtype():
+    import pickle
+    d = np.round(wall_and_box() * 5000).astype(np.uint16)
+    back = pickle.loads(pickle.dumps(d))  # its dtype is another object, an equivalent one
+    assert np.array_equal(gasp.segment(back, K).labels, gasp.segment(d, K).labels)
+
+
 def test_a_strided_array_is_read_as_its_values():
     big = np.zeros((480, 1280), dtype=np.float32)
     big[:, ::2] = wall_and_box()
@@ -82,6 +89,8 @@ def test_not_an_array_is_a_type_error():
 def test_a_bad_scale_is_a_value_error():
     with pytest.raises(ValueError, match="depth_units_per_metre"):
         gasp.segment(np.ones((480, 640), np.uint16), K, depth_units_per_metre=0)
+    with pytest.raises(ValueError, match="beyond float32"):
+        gasp.segment(np.ones((480, 640), np.uint16), K, depth_units_per_metre=1e-40)
 
 
 def test_intrinsics_are_checked_and_presets_load():
@@ -92,3 +101,4 @@ def test_intrinsics_are_checked_and_presets_load():
     assert fr1.K.shape == (3, 3)
     with pytest.raises(gasp.Error, match="nope"):
         gasp.Intrinsics.preset("nope")
+    assert fr1 == gasp.Intrinsics.preset("fr1") and fr1 != K and fr1 != None and None not in [fr1]  # noqa: E711

@@ -35,6 +35,14 @@ def test_a_dict_is_read_over_the_defaults_and_saved_and_loaded_back(tmp_path):
     assert gasp.load_params(path) == gasp._yaml_dict(gasp.params_yaml(back))
 
 
+def test_numpy_scalars_are_values():
+    import numpy as np
+    text = gasp.params_yaml({"segment": {"target_patch_area_m2": np.float64(0.006),
+                                         "crease_borders": np.bool_(False), "seed": np.int64(3)}})
+    back = gasp._yaml_dict(text)["segment"]
+    assert back["target_patch_area_m2"] == 0.006 and back["crease_borders"] is False and back["seed"] == 3
+
+
 def test_params_change_what_a_function_does():
     import numpy as np
     K = gasp.Intrinsics(fx=525.0, fy=525.0, cx=319.5, cy=239.5, width=640, height=480)
@@ -50,6 +58,7 @@ def test_params_change_what_a_function_does():
     ({"segment": {"min_patch_pixels": 2.5}}, gasp.Error, "min_patch_pixels"),
     ({"segment": {"crease_borders": "maybe"}}, gasp.Error, "crease_borders"),
     ({"associate": {"candidate_key": "x: y"}}, ValueError, "candidate_key"),
+    ({"associate": {"candidate_key": "mean\n"}}, ValueError, "candidate_key"),
     ({"segment": 3}, TypeError, "section 'segment' must be a dict"),
     ({"segment": {"seed": object()}}, TypeError, "segment.seed"),
     (42, TypeError, "params: expected None"),

@@ -1,6 +1,8 @@
 """gasp.odometry() and gasp.slam() over TUM folders and rawlogs; trajectories and the ATE."""
 import os
+import pathlib
 import shutil
+import subprocess
 
 import numpy as np
 import pytest
@@ -21,8 +23,44 @@ def test_odometry_over_a_simulated_folder_tracks_every_frame(sim_room):
 def test_slam_over_a_simulated_folder(sim_room):
     run = gasp.slam(sim_room, max_frames=20)
     assert len(run.trajectory) == 20 and run.tracked.all()
-    assert run.loop_closures.shape[1] == 2
+    assert run.loop_closures.shape == (len(run.loop_closures), 2) and run.loop_closures.dtype == np.int64
+    assert np.all(run.loop_closures[:, 0] != run.loop_closures[:, 1])
     assert run.ate()["rmse_m"] < 0.03
+
+
+def run_program(build_dir, *args):
+    r = subprocess.run([os.path.join(build_dir, "bin", args[0]), *args[1:]], capture_output=True, text=True)
+    assert r.returncode in (0, 3), r.stdout + r.stderr
+    return r
+
+
+@pytest.fixture(scope="module")
+def room_rawlog(build_dir, sim_room, tmp_path_factory):
+    out = str(tmp_path_factory.mktemp("rawlog") / "room.rawlog")
+    run_program(build_dir, "gasp-tum2rawlog", sim_room, out)
+    return out
+
+
+@pytest.mark.parametrize("program", ["gasp-odometry", "gasp-slam"])
+@pytest.mark.parametrize("kind", ["tum", "rawlog"])
+def test_a_run_gives_the_programs_trajectory(build_dir, sim_room, room_rawlog, tmp_path, program, kind):
+    """The same frames, parameters and world frame as the program (gasp-slam: the first robot
+    frame, where a rawlog's camera sits at its sensorPose; gasp-odometry: the first frame)."""
+    path = sim_room if kind == "tum" else room_rawlog
+    out = str(tmp_path / "program.txt")
+    run_program(build_dir, program, "--" + kind, path, "--out", out, "--max-frames", "15")
+    run = (gasp.slam if program == "gasp-slam" else gasp.odometry)(pathlib.Path(path), max_frames=15)
+    expected = gasp.Trajectory.read(out)
+    assert np.allclose(run.trajectory.timestamps, expected.timestamps, rtol=0, atol=1e-4)
+    assert np.allclose(run.trajectory.poses, expected.poses, rtol=0, atol=1e-5)
+
+
+def test_a_frame_the_odometry_refuses_ends_a_partial_run(room_rawlog, tmp_path):
+    twice = tmp_path / "twice.rawlog"  # the frames again: time goes back at the second copy
+    data = open(room_rawlog, "rb").read()
+    twice.write_bytes(data + data)
+    run = gasp.odometry(twice)
+    assert run.partial and "timestamp" in run.error and len(run.trajectory) == 30 and run.tracked.all()
 
 
 def test_odometry_over_a_lidar_rawlog(sim_lidar):
