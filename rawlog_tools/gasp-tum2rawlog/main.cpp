@@ -41,6 +41,10 @@ int main(int argc, char** argv) {
   app.add_flag("--no-undistort", no_undistort, "resample depth (and rgb) to the pinhole camera when the intrinsics have lens distortion (fr1, fr2: default); this flag uses the images as stored");
   app.add_option("--max-frames", max_frames, "convert at most N frames (0 = all)")->check(gasp::tools::atLeast(0));
   app.add_flag("--external", external, "store depth and rgb in OUT_Images/ (MRPT external storage)");
+  bool points = false;
+  app.add_flag("--points", points,
+               "store each frame's 3D points too, which MRPT's points maps need (about 3.7 MB more per 640x480 frame "
+               "before compression; as rawlog-edit --generate-3d-pointclouds)");
   if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;
 
   try {
@@ -53,6 +57,7 @@ int main(int argc, char** argv) {
     if (!intrinsics.empty()) options.intrinsics = gasp::CameraIntrinsics::fromPresetOrFile(intrinsics);
     options.writer.format = gasp::rawlogFormatFromNumber(format);
     options.writer.external_storage = external;
+    options.writer.points = points;
     options.with_rgb = !no_rgb;
     options.undistort = !no_undistort;
     options.max_frames = max_frames;

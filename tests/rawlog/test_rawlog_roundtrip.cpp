@@ -1,6 +1,14 @@
 // Writing and reading rawlogs: synthetic frames (always) and the real fr1_desk9 folder, in both
 // formats and with external storage; rawlog-edit's view of the result.
 #include <gtest/gtest.h>
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/maps/CSimplePointsMap.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/poses/CPose3D.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <algorithm>
+#include <cmath>
 
 #include <fstream>
 
@@ -89,6 +97,66 @@ TEST(RawlogRoundTrip, SyntheticFramesAllVariants) {
       EXPECT_EQ(reader.skipped().at("CActionCollection"), 3u);
     } else {
       EXPECT_TRUE(reader.skipped().empty()) << reader.skippedSummary();
+    }
+  }
+}
+
+// RawlogWriterOptions::points (gasp-tum2rawlog --points): each scan carries its 3D points, which
+// MRPT's points maps insert (one point per valid pixel, x along the optical axis in MRPT's
+// convention: the depth itself), and GASP reads the frames as without them.
+TEST(RawlogRoundTrip, PointsStoredForMrptsPointsMapsAndFramesReadAsWithout) {
+  const std::string dir = gasp::test::scratchDir();
+  std::vector<gasp::RgbdFrame> frames;
+  for (int i = 0; i < 2; ++i) frames.push_back(gasp::test::syntheticFrame(100.0 + 0.033 * i));
+  frames[1].depth_raw(cv::Rect(0, 0, 10, 10)).setTo(0);  // pixels without depth: no points
+  frames[1].depth_m = gasp::depthFromRaw(frames[1].depth_raw, frames[1].depth_units_per_metre);
+  for (const bool external : {false, true}) {
+    SCOPED_TRACE(external ? "external" : "inline");
+    const std::string path = dir + (external ? "/ext.rawlog" : "/inline.rawlog");
+    gasp::RawlogWriterOptions options;
+    options.external_storage = external;
+    options.points = true;
+    {
+      gasp::RawlogWriter writer(path, options);
+      for (const auto& f : frames) writer.write(f);
+    }
+    gasp::RawlogReader reader(path);
+    std::size_t i = 0;
+    while (auto g = reader.next()) {
+      ASSERT_LT(i, frames.size());
+      EXPECT_TRUE(gasp::test::sameMat(g->depth_raw, frames[i].depth_raw));
+      EXPECT_TRUE(gasp::test::sameMat(g->depth_m, frames[i].depth_m));
+      ++i;
+    }
+    EXPECT_EQ(i, frames.size());
+    if (external) continue;
+    // MRPT alone: the rawlog's scans and a points map from them.
+    mrpt::io::CFileGZInputStream in(path);
+    auto archive = mrpt::serialization::archiveFrom(in);
+    for (const auto& f : frames) {
+      mrpt::serialization::CSerializable::Ptr obj;
+      archive >> obj;
+      const auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obj);
+      ASSERT_TRUE(scan);
+      EXPECT_TRUE(scan->hasPoints3D);
+      mrpt::maps::CSimplePointsMap map;
+      ASSERT_TRUE(map.insertObservation(*scan, mrpt::poses::CPose3D()));
+      // Each point at its pixel's distance from the camera (the frame has no mounting offset),
+      // whatever MRPT's axes: the multiset of distances is the image's.
+      std::vector<double> mrpt_range, image_range;
+      for (std::size_t k = 0; k < map.size(); ++k) {
+        float px = 0, py = 0, pz = 0;
+        map.getPoint(k, px, py, pz);
+        mrpt_range.push_back(std::sqrt(double(px) * px + double(py) * py + double(pz) * pz));
+      }
+      for (int v = 0; v < f.depth_m.rows; ++v)
+        for (int u = 0; u < f.depth_m.cols; ++u)
+          if (const float d = f.depth_m.at<float>(v, u); d > 0.0f)
+            image_range.push_back(f.depth_intrinsics.unproject(u, v, d).norm());
+      ASSERT_EQ(mrpt_range.size(), image_range.size());
+      std::sort(mrpt_range.begin(), mrpt_range.end());
+      std::sort(image_range.begin(), image_range.end());
+      for (std::size_t k = 0; k < mrpt_range.size(); ++k) ASSERT_NEAR(mrpt_range[k], image_range[k], 1e-4) << k;
     }
   }
 }

@@ -1,6 +1,8 @@
 #include "gasp/rawlog/rawlog_writer.h"
 
 #include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservation3DRangeScan_project3D_impl.h>  // unprojectInto
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
 
@@ -67,6 +69,7 @@ void RawlogWriter::checkOpen() const {
 void RawlogWriter::write(const RgbdFrame& frame) {
   checkOpen();
   auto obs = observationFromFrame(frame);
+  if (options_.points) obs->unprojectInto(*obs);  // from the range image in memory: before it goes external
 
   if (options_.external_storage) {
     char stem[64];
@@ -91,7 +94,10 @@ void RawlogWriter::write(const RgbdFrame& frame) {
 
 void RawlogWriter::write(const RangeScan& sweep, const std::string& sensor_label) {
   checkOpen();
-  append(std::make_shared<mrpt::obs::CObservationRotatingScan>(toRotatingScan(sweep, sensor_label)));
+  if (options_.points)
+    append(std::make_shared<mrpt::obs::CObservation3DRangeScan>(toPointsScan(sweep, sensor_label)));
+  else
+    append(std::make_shared<mrpt::obs::CObservationRotatingScan>(toRotatingScan(sweep, sensor_label)));
 }
 
 void RawlogWriter::writePointCloud(const RangeScan& sweep, const std::string& sensor_label) {

@@ -24,6 +24,12 @@ struct RawlogWriterOptions {
   bool external_storage = false;
   /// gzip level of the rawlog itself (0 = plain, 1..9); MRPT reads both.
   int compress_level = 1;
+  /// Store each depth image's 3D points in its observation too (MRPT's unprojection, in the
+  /// camera's frame; inline, also with external_storage: about 3.7 MB per 640x480 frame before
+  /// compression), which MRPT's points maps need to insert a scan (what `rawlog-edit
+  /// --generate-3d-pointclouds` adds to a rawlog); a sweep as a 3D range scan of its points
+  /// (toPointsScan()) instead of a rotating scan. GASP reads them as without.
+  bool points = false;
 };
 
 /// Writes a rawlog, whole or not at all: the frames go to a temporary file in the rawlog's folder
