@@ -1,7 +1,12 @@
 // MRPT's own maps from GASP's output: observations2map, with GASP's plugin preloaded, over a
 // gasp-slam simple map written with --simplemap-points builds MRPT's points map beside GASP's
-// superpixel map, and the points lie where gasp-slam --cloud puts them.
+// superpixel map, and the points lie where gasp-slam --cloud puts them; MRPT's voxel map
+// (COccupancyGridMap3D) takes the same simple map.
 #include <gtest/gtest.h>
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/maps/COccupancyGridMap3D.h>
+#include <mrpt/maps/CSimpleMap.h>
+#include <mrpt/serialization/CArchive.h>
 
 #include <cmath>
 #include <cstdint>
@@ -84,6 +89,43 @@ TEST(Observations2Map, APointsMapBesideTheSuperpixelMapAgreesWithTheCloud) {
     for (const Voxel& v : cloud) covered += occupied.count(v);
     EXPECT_GT(static_cast<double>(covered), 0.99 * static_cast<double>(cloud.size()))
         << covered << " of " << cloud.size() << " voxels";
+
+    // MRPT 2.5's octomap-free voxel map, COccupancyGridMap3D, in the same run: observations2map
+    // takes the three together and GASP's map is the same file. (The grid unprojects each scan at
+    // its decimation, which cuts the points the scan stores, so the points map beside it gets
+    // fewer: docs/mrpt.md.)
+    std::ofstream(name + "_3.ini") << "[MappingApplication]\npointsMap_count=1\nsuperpixelMap_count=1\n"
+                                      "mrpt::maps::COccupancyGridMap3D_count=1\n";
+    const auto three = gasp::test::runCommand("LD_PRELOAD=" + std::string(GASP_MRPT_PLUGIN) + " " + tool + " " + name +
+                                              "_3.ini " + name + ".simplemap " + name + "_3map < /dev/null 2>&1");
+    ASSERT_EQ(three.exit_code, 0) << three.output;
+    EXPECT_EQ(gasp::test::fileText(name + "_3map_gasp__CSuperpixelMap_02_patches.txt"),
+              gasp::test::fileText(name + "_map_gasp__CSuperpixelMap_01_patches.txt"));
+    EXPECT_GT(std::filesystem::file_size(name + "_3map_mrpt__maps__CSimplePointsMap_01.txt"), 0u);
+    // The voxel map of the same simple map (observations2map writes no file of it): the cloud's
+    // surfaces are its occupied voxels, but where rays of other keyframes graze them and the
+    // grid's own free-space update clears them.
+    mrpt::maps::CSimpleMap simple;
+    {
+      mrpt::io::CFileGZInputStream in(name + ".simplemap");
+      mrpt::serialization::archiveFrom(in) >> simple;
+    }
+    mrpt::maps::COccupancyGridMap3D grid(mrpt::math::TPoint3D(-8, -8, -4), mrpt::math::TPoint3D(8, 8, 4), 0.25f);
+    grid.loadFromSimpleMap(simple);
+    std::ifstream ply(name + ".ply");
+    std::string line;
+    while (std::getline(ply, line) && line != "end_header") {
+    }
+    std::size_t points_in = 0, occupied_at = 0;
+    double x = 0, y = 0, z = 0;
+    while (std::getline(ply, line))
+      if (std::istringstream(line) >> x >> y >> z) {
+        ++points_in;
+        occupied_at += grid.getFreenessByPos(x, y, z) < 0.5f;
+      }
+    ASSERT_GT(points_in, 1000u);
+    EXPECT_GT(static_cast<double>(occupied_at), 0.7 * static_cast<double>(points_in))
+        << occupied_at << " of " << points_in << " cloud points in occupied voxels";
   }
 }
 
