@@ -152,8 +152,8 @@ mrpt::poses::CPose3DPDFGaussian::Ptr CGaspAligner::alignObservations(
                         map_a.isEmpty() ? "a" : "b", bad.GetRuntimeClass()->className);
   }
   if (isSweepObservation(a) != isSweepObservation(b))
-    THROW_EXCEPTION_FMT("gasp::CGaspAligner: observation a is a %s, b a %s: both must be depth images or both LiDAR sweeps",
-                        a.GetRuntimeClass()->className, b.GetRuntimeClass()->className);
+    THROW_EXCEPTION_FMT("gasp::CGaspAligner: observation a is %s, b %s: both must be depth images or both LiDAR sweeps",
+                        observationKind(a).c_str(), observationKind(b).c_str());
   const auto pdf = Align3DPDF(&map_a, &map_b, mrpt::poses::CPose3DPDFGaussian(), outInfo);
   return std::dynamic_pointer_cast<mrpt::poses::CPose3DPDFGaussian>(pdf);
 }

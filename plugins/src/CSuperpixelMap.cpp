@@ -34,8 +34,8 @@ bool CSuperpixelMap::internal_insertObservation(const mrpt::obs::CObservation& o
     frame = scan ? frameFromObservation(*scan, "CObservation3DRangeScan '" + scan->sensorLabel + "'")
                  : sweepFrameFromObservation(obs, std::string(obs.GetRuntimeClass()->className) + " '" + obs.sensorLabel + "'");
   } catch (const Error& e) {
-    // A point cloud that is not one LiDAR's sweep is another sensor's: not for this map.
-    if (dynamic_cast<const mrpt::obs::CObservationPointCloud*>(&obs)) return false;
+    // Bare points that are not one LiDAR's sweep are another sensor's: not for this map.
+    if (isPointsObservation(obs)) return false;
     THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());
   }
   insertFrame(frame, robotPose ? fromCPose3D(*robotPose) : Isometry3::Identity());

@@ -45,9 +45,8 @@ MatchInput matchInput(const mrpt::obs::CObservation& a, const mrpt::obs::CObserv
   MatchInput in;
   const bool sweep_a = isSweepObservation(a), sweep_b = isSweepObservation(b);
   if (sweep_a != sweep_b)
-    THROW_EXCEPTION_FMT("ObservationMatcher_GASP: observation %s is a LiDAR sweep (%s), %s a %s: both must be of one kind",
-                        sweep_a ? "a" : "b", (sweep_a ? a : b).GetRuntimeClass()->className, sweep_a ? "b" : "a",
-                        (sweep_a ? b : a).GetRuntimeClass()->className);
+    THROW_EXCEPTION_FMT("ObservationMatcher_GASP: observation a is %s, b %s: both must be of one kind",
+                        observationKind(a).c_str(), observationKind(b).c_str());
   // The observations' conversion errors as MRPT's; the views' (gasp::Error) as they are.
   try {
     if (sweep_a) {

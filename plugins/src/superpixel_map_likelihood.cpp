@@ -51,7 +51,7 @@ std::size_t rangeImageHash(const mrpt::math::CMatrix_u16& range) {
 }
 
 /// A hash of a sweep's raw data as stored (isSweepObservation()): the range image of a rotating
-/// scan, the packets of a Velodyne scan, the points of a point cloud.
+/// scan, the packets of a Velodyne scan, the points of a point cloud or of a 3D scan of points.
 std::size_t sweepHash(const mrpt::obs::CObservation& obs) {
   if (const auto* r = dynamic_cast<const mrpt::obs::CObservationRotatingScan*>(&obs)) {
     const std::array<double, 5> layout = {r->rangeResolution, r->startAzimuth, r->azimuthSpan, r->minRange, r->maxRange};
@@ -65,6 +65,9 @@ std::size_t sweepHash(const mrpt::obs::CObservation& obs) {
   if (const auto* c = dynamic_cast<const mrpt::obs::CObservationPointCloud*>(&obs); c && c->pointcloud)
     for (const auto* xs : {&c->pointcloud->getPointsBufferRef_x(), &c->pointcloud->getPointsBufferRef_y(),
                            &c->pointcloud->getPointsBufferRef_z()})
+      h = bytesHash(h ^ xs->size(), xs->data(), xs->size() * sizeof(float));
+  if (const auto* s = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&obs))
+    for (const auto* xs : {&s->points3D_x, &s->points3D_y, &s->points3D_z})
       h = bytesHash(h ^ xs->size(), xs->data(), xs->size() * sizeof(float));
   return h;
 }
@@ -213,10 +216,15 @@ std::shared_ptr<const CSuperpixelMap::LikelihoodCache::Entry> CSuperpixelMap::sw
   // A point cloud kept in an external file is loaded first (MRPT's load() fills the const
   // observation in place), one call at a time, as the depth scans' images.
   const auto* cloud = dynamic_cast<const mrpt::obs::CObservationPointCloud*>(&obs);
+  const auto* points = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&obs);  // of points alone
   std::unique_lock<std::mutex> load_lock(likelihood_cache_.load_mutex, std::defer_lock);
   if (cloud && cloud->isExternallyStored()) {
     load_lock.lock();
     cloud->load();
+  }
+  if (points && points->points3D_isExternallyStored()) {
+    load_lock.lock();
+    points->load();
   }
   auto entry = keyOf(obs, sweepHash(obs));
   if (auto hit = cached(*entry)) return hit;
@@ -225,8 +233,8 @@ std::shared_ptr<const CSuperpixelMap::LikelihoodCache::Entry> CSuperpixelMap::sw
     frame = sweepFrameFromObservation(obs, std::string(obs.GetRuntimeClass()->className) + " '" + obs.sensorLabel + "'");
     entry->max_distance_scale = lidarCentroidScale(creationOptions.lidar);
   } catch (const Error& e) {
-    if (!cloud) THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());
-    entry->usable = false;  // another sensor's cloud, not a sweep
+    if (!isPointsObservation(obs)) THROW_EXCEPTION_FMT("gasp::CSuperpixelMap: %s", e.what());
+    entry->usable = false;  // another sensor's points, not a sweep
     return stored(std::move(entry));
   }
   return associated(frame, std::move(entry));

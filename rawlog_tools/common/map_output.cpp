@@ -14,7 +14,7 @@ void addMapOutputOptions(CLI::App& app, MapOutputOptions& o, const std::string& 
   app.add_flag("--simplemap-points", o.simplemap_points,
                "store each depth image's 3D points in the simple map too, for MRPT's points maps (observations2map "
                "with pointsMap_count; about 3.7 MB more per 640x480 " + scans.substr(0, scans.size() - 1) +
-                   "; a LiDAR's sweeps as 3D scans of their points)")
+                   "; a LiDAR's sweeps, where the program takes them, as 3D scans of their points)")
       ->needs(simplemap);
   app.add_option("--cloud", o.cloud_path, "a point map of the " + scans + "' scans at their optimised poses (PLY, one point per voxel)");
   app.add_option("--voxel", o.voxel_m, "voxel size of --cloud [m], 0.001 to 10")

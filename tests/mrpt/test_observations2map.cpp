@@ -44,6 +44,27 @@ std::vector<Voxel> voxelsOfPoints(const std::string& path, double size, bool ply
   return voxels;
 }
 
+constexpr const char* kTool = "/usr/bin/observations2map";
+
+/// observations2map with GASP's plugin preloaded: the maps of `ini_keys` ([MappingApplication]
+/// lines) built from `simplemap`, written to PREFIX_<class>_<index>...
+gasp::test::ProgramRun observations2map(const std::string& ini_keys, const std::string& simplemap,
+                                        const std::string& prefix) {
+  std::ofstream(prefix + ".ini") << "[MappingApplication]\n" << ini_keys;
+  return gasp::test::runCommand("LD_PRELOAD=" + std::string(GASP_MRPT_PLUGIN) + " " + kTool + " " + prefix + ".ini " +
+                                simplemap + " " + prefix + " < /dev/null 2>&1");
+}
+
+/// The share of the cloud's voxels (PLY) that hold points of the map (text "x y z" lines).
+double cloudVoxelsCovered(const std::vector<Voxel>& map, const std::string& ply, double voxel) {
+  const std::set<Voxel> occupied(map.begin(), map.end());
+  const std::vector<Voxel> cloud = voxelsOfPoints(ply, voxel, true);
+  if (cloud.empty()) return 0.0;
+  std::size_t covered = 0;
+  for (const Voxel& v : cloud) covered += occupied.count(v);
+  return static_cast<double>(covered) / static_cast<double>(cloud.size());
+}
+
 /// The first line of a superpixel map's patches file: "# gasp::CSuperpixelMap: V views, N patches ...".
 std::size_t patchesOf(const std::string& path) {
   std::ifstream in(path);
@@ -56,8 +77,7 @@ std::size_t patchesOf(const std::string& path) {
 }  // namespace
 
 TEST(Observations2Map, APointsMapBesideTheSuperpixelMapAgreesWithTheCloud) {
-  const std::string tool = "/usr/bin/observations2map";
-  if (!std::filesystem::exists(tool)) GTEST_SKIP() << "skipped: no " << tool << " (Debian: mrpt-apps)";
+  if (!std::filesystem::exists(kTool)) GTEST_SKIP() << "skipped: no " << kTool << " (Debian: mrpt-apps)";
   const std::string out = gasp::test::scratchDir();
   const auto sim = gasp::test::runProgram("gasp-simulate", "--out " + out + "/room --frames 20 --rate 10");
   ASSERT_EQ(sim.exit_code, 0) << sim.output;
@@ -68,9 +88,7 @@ TEST(Observations2Map, APointsMapBesideTheSuperpixelMapAgreesWithTheCloud) {
         "gasp-slam", "--tum " + out + "/room --out " + name + ".txt --simplemap " + name + ".simplemap --cloud " + name +
                          ".ply --voxel 0.05" + (points ? " --simplemap-points" : ""));
     ASSERT_TRUE(slam.exit_code == 0 || slam.exit_code == 3) << slam.output;
-    std::ofstream(name + ".ini") << "[MappingApplication]\npointsMap_count=1\nsuperpixelMap_count=1\n";
-    const auto run = gasp::test::runCommand("LD_PRELOAD=" + std::string(GASP_MRPT_PLUGIN) + " " + tool + " " + name +
-                                            ".ini " + name + ".simplemap " + name + "_map < /dev/null 2>&1");
+    const auto run = observations2map("pointsMap_count=1\nsuperpixelMap_count=1\n", name + ".simplemap", name + "_map");
     ASSERT_EQ(run.exit_code, 0) << run.output;
     // GASP's map is built either way.
     EXPECT_GT(std::filesystem::file_size(name + "_map_gasp__CSuperpixelMap_01_patches.txt"), 0u) << run.output;
@@ -80,24 +98,18 @@ TEST(Observations2Map, APointsMapBesideTheSuperpixelMapAgreesWithTheCloud) {
       continue;
     }
     ASSERT_GT(map.size(), 10000u);
+    ASSERT_GT(voxelsOfPoints(name + ".ply", voxel, true).size(), 1000u);
     // Every voxel of gasp-slam's cloud (depth up to 4 m) holds points of MRPT's map: the same
     // frames at the same poses.
-    const std::set<Voxel> occupied(map.begin(), map.end());
-    const std::vector<Voxel> cloud = voxelsOfPoints(name + ".ply", voxel, true);
-    ASSERT_GT(cloud.size(), 1000u);
-    std::size_t covered = 0;
-    for (const Voxel& v : cloud) covered += occupied.count(v);
-    EXPECT_GT(static_cast<double>(covered), 0.99 * static_cast<double>(cloud.size()))
-        << covered << " of " << cloud.size() << " voxels";
+    EXPECT_GT(cloudVoxelsCovered(map, name + ".ply", voxel), 0.99);
 
     // MRPT 2.5's octomap-free voxel map, COccupancyGridMap3D, in the same run: observations2map
     // takes the three together and GASP's map is the same file. (The grid unprojects each scan at
     // its decimation, which cuts the points the scan stores, so the points map beside it gets
     // fewer: docs/mrpt.md.)
-    std::ofstream(name + "_3.ini") << "[MappingApplication]\npointsMap_count=1\nsuperpixelMap_count=1\n"
-                                      "mrpt::maps::COccupancyGridMap3D_count=1\n";
-    const auto three = gasp::test::runCommand("LD_PRELOAD=" + std::string(GASP_MRPT_PLUGIN) + " " + tool + " " + name +
-                                              "_3.ini " + name + ".simplemap " + name + "_3map < /dev/null 2>&1");
+    const auto three = observations2map(
+        "pointsMap_count=1\nsuperpixelMap_count=1\nmrpt::maps::COccupancyGridMap3D_count=1\n", name + ".simplemap",
+        name + "_3map");
     ASSERT_EQ(three.exit_code, 0) << three.output;
     EXPECT_EQ(gasp::test::fileText(name + "_3map_gasp__CSuperpixelMap_02_patches.txt"),
               gasp::test::fileText(name + "_map_gasp__CSuperpixelMap_01_patches.txt"));
@@ -133,8 +145,7 @@ TEST(Observations2Map, APointsMapBesideTheSuperpixelMapAgreesWithTheCloud) {
 // its sensorPose without the robot's pose; with --simplemap-points each sweep is a 3D range scan of
 // its points, which they insert at the keyframe's pose and GASP's map reads as the same sweep.
 TEST(Observations2Map, ALidarsPointsMapAgreesWithTheCloudAndGaspReadsTheSameSweeps) {
-  const std::string tool = "/usr/bin/observations2map";
-  if (!std::filesystem::exists(tool)) GTEST_SKIP() << "skipped: no " << tool << " (Debian: mrpt-apps)";
+  if (!std::filesystem::exists(kTool)) GTEST_SKIP() << "skipped: no " << kTool << " (Debian: mrpt-apps)";
   const std::string out = gasp::test::scratchDir();
   const auto sim = gasp::test::runProgram("gasp-simulate", "--sensor lidar16 --frames 60 --rate 10 --out " + out + "/lidar");
   ASSERT_EQ(sim.exit_code, 0) << sim.output;
@@ -146,9 +157,7 @@ TEST(Observations2Map, ALidarsPointsMapAgreesWithTheCloudAndGaspReadsTheSameSwee
         "gasp-slam", "--rawlog " + out + "/lidar/lidar.rawlog --out " + name + ".txt --simplemap " + name +
                          ".simplemap --cloud " + name + ".ply --voxel 0.1" + (points ? " --simplemap-points" : ""));
     ASSERT_TRUE(slam.exit_code == 0 || slam.exit_code == 3) << slam.output;
-    std::ofstream(name + ".ini") << "[MappingApplication]\npointsMap_count=1\nsuperpixelMap_count=1\n";
-    const auto run = gasp::test::runCommand("LD_PRELOAD=" + std::string(GASP_MRPT_PLUGIN) + " " + tool + " " + name +
-                                            ".ini " + name + ".simplemap " + name + "_map < /dev/null 2>&1");
+    const auto run = observations2map("pointsMap_count=1\nsuperpixelMap_count=1\n", name + ".simplemap", name + "_map");
     ASSERT_EQ(run.exit_code, 0) << run.output;
     patches[points] = patchesOf(name + "_map_gasp__CSuperpixelMap_01_patches.txt");
     const std::vector<Voxel> map = voxelsOfPoints(name + "_map_mrpt__maps__CSimplePointsMap_00.txt", voxel, false);
@@ -157,15 +166,10 @@ TEST(Observations2Map, ALidarsPointsMapAgreesWithTheCloudAndGaspReadsTheSameSwee
       continue;
     }
     ASSERT_GT(map.size(), 100000u);
-    const std::set<Voxel> occupied(map.begin(), map.end());
-    const std::vector<Voxel> cloud = voxelsOfPoints(name + ".ply", voxel, true);
-    ASSERT_GT(cloud.size(), 5000u);
-    std::size_t covered = 0;
-    for (const Voxel& v : cloud) covered += occupied.count(v);
+    ASSERT_GT(voxelsOfPoints(name + ".ply", voxel, true).size(), 5000u);
     // A voxel of the cloud holds the mean of its returns, which can fall where no single sparse
     // return of MRPT's map lies: 98 %, not all (points misplaced by the keyframes' poses cover a third).
-    EXPECT_GT(static_cast<double>(covered), 0.98 * static_cast<double>(cloud.size()))
-        << covered << " of " << cloud.size() << " voxels";
+    EXPECT_GT(cloudVoxelsCovered(map, name + ".ply", voxel), 0.98);
   }
   // GASP's map from the sweeps' points: their layout found again, the same surfaces.
   ASSERT_GT(patches[0], 500u);

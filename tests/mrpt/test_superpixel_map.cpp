@@ -8,6 +8,7 @@
 #include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/opengl/CPointCloudColoured.h>
@@ -559,8 +560,11 @@ TEST(SuperpixelMap, LikelihoodOfALidarSweepPrefersTheTruePose) {
   rotating.setSensorPose(toCPose3D(S));
   auto cloud = toPointCloud(seen, "CLOUD");
   cloud.setSensorPose(toCPose3D(S));
+  auto points = toPointsScan(seen, "POINTS");  // a 3D scan of the sweep's points alone
+  points.setSensorPose(toCPose3D(S));
   for (const mrpt::obs::CObservation* obs : {static_cast<const mrpt::obs::CObservation*>(&rotating),
-                                             static_cast<const mrpt::obs::CObservation*>(&cloud)}) {
+                                             static_cast<const mrpt::obs::CObservation*>(&cloud),
+                                             static_cast<const mrpt::obs::CObservation*>(&points)}) {
     EXPECT_TRUE(map.canComputeObservationLikelihood(*obs));
     const auto before = map.likelihoodCacheStats();
     const double right = map.computeObservationLikelihood(*obs, toCPose3D(P));
@@ -584,6 +588,13 @@ TEST(SuperpixelMap, LikelihoodOfALidarSweepPrefersTheTruePose) {
   const double other_ll = map.computeObservationLikelihood(other, toCPose3D(P));
   EXPECT_EQ(map.likelihoodCacheStats().misses, before.misses + 1);
   EXPECT_NE(other_ll, map.computeObservationLikelihood(cloud, toCPose3D(P)));
+  auto other_points = toPointsScan(sim::simulateLidarScan(room, lidar, robotAt(-0.4, 0.5, -60.0) * S, 1, frame + 1), "POINTS");
+  other_points.setSensorPose(toCPose3D(S));
+  other_points.timestamp = points.timestamp;
+  const auto misses = map.likelihoodCacheStats().misses;
+  EXPECT_NE(map.computeObservationLikelihood(other_points, toCPose3D(P)),
+            map.computeObservationLikelihood(points, toCPose3D(P)));
+  EXPECT_EQ(map.likelihoodCacheStats().misses, misses + 2);
   // Another sensor's cloud (no rings) is not for this map: not inserted, no information.
   auto blob = mrpt::maps::CSimplePointsMap::Create();
   std::mt19937 rng(5);
@@ -595,6 +606,15 @@ TEST(SuperpixelMap, LikelihoodOfALidarSweepPrefersTheTruePose) {
   EXPECT_FALSE(unchanged.insertObservation(stereo));
   EXPECT_EQ(unchanged.views().size(), 3u);
   EXPECT_EQ(map.computeObservationLikelihood(stereo, toCPose3D(P)), 0.0);
+  mrpt::obs::CObservation3DRangeScan stereo_points;  // the same as a 3D scan of points alone
+  stereo_points.hasRangeImage = false;
+  stereo_points.resizePoints3DVectors(blob->size());
+  for (std::size_t i = 0; i < blob->size(); ++i)
+    blob->getPoint(i, stereo_points.points3D_x[i], stereo_points.points3D_y[i], stereo_points.points3D_z[i]);
+  stereo_points.hasPoints3D = true;
+  EXPECT_FALSE(unchanged.insertObservation(stereo_points));
+  EXPECT_EQ(unchanged.views().size(), 3u);
+  EXPECT_EQ(map.computeObservationLikelihood(stereo_points, toCPose3D(P)), 0.0);
   // Depth scans get no information from a map of sweeps, and sweeps none from a map of depth images.
   RgbdFrame f;
   f.depth_m = cv::Mat(480, 640, CV_32FC1, cv::Scalar(2.0f));

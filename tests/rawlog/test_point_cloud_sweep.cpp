@@ -88,9 +88,13 @@ TEST(PointCloudSweep, ASweepAsA3DScanOfPointsReadsBackAsItsPointCloud) {
   EXPECT_FALSE(stored.hasRangeImage);
   EXPECT_TRUE(stored.hasPoints3D);
   EXPECT_TRUE(gasp::isSweepObservation(stored));
+  EXPECT_TRUE(gasp::isPointsObservation(stored));
+  EXPECT_EQ(gasp::observationKind(stored), "a LiDAR sweep as 3D points (CObservation3DRangeScan without a range image)");
   mrpt::obs::CObservation3DRangeScan camera;  // a depth camera's scan is not one
   camera.hasRangeImage = true;
   EXPECT_FALSE(gasp::isSweepObservation(camera));
+  EXPECT_FALSE(gasp::isPointsObservation(camera));
+  EXPECT_EQ(gasp::observationKind(camera), "a depth image (CObservation3DRangeScan)");
 
   const std::string path = gasp::test::scratchDir() + "/points.bin";
   {

@@ -464,7 +464,7 @@ TEST(RawlogReader, ObservationClassesOfMrptMapsAreKnownToEveryReader) {
   const std::string path = "/usr/share/mrpt/datasets/rot_scan_2d.rawlog";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is not installed (Debian package mrpt-common)";
   const std::string msg = readError(path);
-  EXPECT_TRUE(contains(msg, "no CObservation3DRangeScan in the file (it holds 1 x CObservationRotatingScan)")) << msg;
+  EXPECT_TRUE(contains(msg, "no CObservation3DRangeScan of depth in the file (it holds 1 x CObservationRotatingScan)")) << msg;
   EXPECT_FALSE(contains(msg, "does not know")) << msg;
 }
 
@@ -743,10 +743,11 @@ TEST(RawlogErrors, ScansOfEveryVersionMrptReadsAreFollowedToTheirEnd) {
     }
     const std::string path = dir + "/old_scan.rawlog";
     std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
-    // The check lets it through and GASP reads the frame (version 0 has no range image, version 1
-    // no camera).
+    // The check lets it through and GASP reads the frame (version 0 has only 3D points, which a
+    // reader of depth images leaves out as it leaves out a sweep; version 1 has no camera).
     if (s.version == 0) {
-      EXPECT_PRED2(contains, readError(path), "'old_scan' has no range image") << label;
+      EXPECT_PRED2(contains, readError(path), "it holds 1 x CObservation3DRangeScan of 3D points without a range image")
+          << label;
     } else if (s.version == 1) {
       EXPECT_PRED2(contains, readError(path), "cameraParams: camera intrinsics: focal lengths must be positive") << label;
     } else {

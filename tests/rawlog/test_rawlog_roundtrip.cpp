@@ -25,6 +25,8 @@
 #include "gasp/rawlog/rawlog_writer.h"
 #include "gasp/rawlog/rgbd_frame_bytes.h"
 #include "gasp/rawlog/tum_to_rawlog.h"
+#include "gasp/sim/lidar.h"
+#include "gasp/sim/scene.h"
 #include "gasp_test_data.h"
 #include "rawlog_test_frames.h"
 
@@ -102,8 +104,9 @@ TEST(RawlogRoundTrip, SyntheticFramesAllVariants) {
 }
 
 // RawlogWriterOptions::points (gasp-tum2rawlog --points): each scan carries its 3D points, which
-// MRPT's points maps insert (one point per valid pixel, x along the optical axis in MRPT's
-// convention: the depth itself), and GASP reads the frames as without them.
+// MRPT's points maps insert (one point per valid pixel, at its pixel's distance), and GASP reads
+// the frames as without them; a LiDAR's sweep in the same rawlog is a 3D scan of its points alone,
+// which a reader of depth images leaves out and a reader of sweeps takes.
 TEST(RawlogRoundTrip, PointsStoredForMrptsPointsMapsAndFramesReadAsWithout) {
   const std::string dir = gasp::test::scratchDir();
   std::vector<gasp::RgbdFrame> frames;
@@ -119,6 +122,20 @@ TEST(RawlogRoundTrip, PointsStoredForMrptsPointsMapsAndFramesReadAsWithout) {
     {
       gasp::RawlogWriter writer(path, options);
       for (const auto& f : frames) writer.write(f);
+      gasp::Isometry3 T = gasp::Isometry3::Identity();
+      T.translation().z() = 1.0;
+      writer.write(gasp::sim::simulateLidarScan(gasp::sim::makeScene("room"), gasp::sim::lidarSensor(16), T, 1, 0),
+                   "LIDAR");
+    }
+    {  // a reader of sweeps takes it (and the depth images too)
+      gasp::RawlogReader all(path, true, "LIDAR");
+      std::size_t sweeps = 0;
+      while (auto f = all.next())
+        if (f->isSweep()) {
+          ++sweeps;
+          EXPECT_EQ(f->sweep->range_m.rows, 16);
+        }
+      EXPECT_EQ(sweeps, 1u);
     }
     gasp::RawlogReader reader(path);
     std::size_t i = 0;
@@ -129,6 +146,8 @@ TEST(RawlogRoundTrip, PointsStoredForMrptsPointsMapsAndFramesReadAsWithout) {
       ++i;
     }
     EXPECT_EQ(i, frames.size());
+    EXPECT_EQ(reader.skipped().at("CObservation3DRangeScan of 3D points without a range image"), 1u)
+        << reader.skippedSummary();
     if (external) continue;
     // MRPT alone: the rawlog's scans and a points map from them.
     mrpt::io::CFileGZInputStream in(path);

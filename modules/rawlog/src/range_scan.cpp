@@ -134,9 +134,11 @@ RangeScan rangeScanFrom(const mrpt::obs::CObservation& observation) {
     return sweepFromPoints(cloud->pointcloud->getPointsBufferRef_x(), cloud->pointcloud->getPointsBufferRef_y(),
                            cloud->pointcloud->getPointsBufferRef_z(), who, observation);
   }
-  if (const auto* points = pointsOnlyScan(observation))
+  if (const auto* points = pointsOnlyScan(observation)) {
+    if (points->points3D_isExternallyStored()) points->load();  // its points in a file beside the rawlog
     return sweepFromPoints(points->points3D_x, points->points3D_y, points->points3D_z,
                            "3D points scan '" + points->sensorLabel + "'", observation);
+  }
   mrpt::obs::CObservationRotatingScan converted;
   if (!converted.fromGeneric(observation))
     throw Error(std::string("observation '") + observation.sensorLabel + "' of class " +
@@ -161,6 +163,20 @@ bool isSweepObservation(const mrpt::obs::CObservation& observation) {
          dynamic_cast<const mrpt::obs::CObservationVelodyneScan*>(&observation) != nullptr ||
          dynamic_cast<const mrpt::obs::CObservationPointCloud*>(&observation) != nullptr ||
          pointsOnlyScan(observation) != nullptr;
+}
+
+bool isPointsObservation(const mrpt::obs::CObservation& observation) {
+  return dynamic_cast<const mrpt::obs::CObservationPointCloud*>(&observation) != nullptr ||
+         pointsOnlyScan(observation) != nullptr;
+}
+
+std::string observationKind(const mrpt::obs::CObservation& observation) {
+  const std::string name = observation.GetRuntimeClass()->className;
+  const std::string cls = name.substr(name.rfind(':') == std::string::npos ? 0 : name.rfind(':') + 1);
+  if (pointsOnlyScan(observation)) return "a LiDAR sweep as 3D points (" + cls + " without a range image)";
+  if (isSweepObservation(observation)) return "a LiDAR sweep (" + cls + ")";
+  if (dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&observation)) return "a depth image (" + cls + ")";
+  return "a " + cls;
 }
 
 RgbdFrame sweepFrameFromObservation(const mrpt::obs::CObservation& observation, const std::string& what) {
@@ -217,12 +233,23 @@ mrpt::obs::CObservationRotatingScan toRotatingScan(const RangeScan& scan, const 
   return out;
 }
 
-mrpt::obs::CObservationPointCloud toPointCloud(const RangeScan& scan, const std::string& sensor_label) {
-  validateLayout(scan, "point cloud '" + sensor_label + "'");
-  mrpt::obs::CObservationPointCloud out;
+namespace {
+
+/// An observation of `scan`'s returns, labelled, stamped with its time and its mounting as sensorPose.
+template <class Observation>
+Observation sweepObservationHead(const RangeScan& scan, const std::string& sensor_label, const std::string& kind) {
+  validateLayout(scan, kind + " '" + sensor_label + "'");
+  Observation out;
   out.sensorLabel = sensor_label;
   out.timestamp = mrpt::Clock::fromDouble(scan.timestamp);
   out.sensorPose = toCPose3D(scan.T_robot_sensor);
+  return out;
+}
+
+}  // namespace
+
+mrpt::obs::CObservationPointCloud toPointCloud(const RangeScan& scan, const std::string& sensor_label) {
+  auto out = sweepObservationHead<mrpt::obs::CObservationPointCloud>(scan, sensor_label, "point cloud");
   auto map = mrpt::maps::CSimplePointsMap::Create();
   const std::vector<Eigen::Vector3d> points = scan.points();
   map->reserve(points.size());
@@ -233,11 +260,7 @@ mrpt::obs::CObservationPointCloud toPointCloud(const RangeScan& scan, const std:
 }
 
 mrpt::obs::CObservation3DRangeScan toPointsScan(const RangeScan& scan, const std::string& sensor_label) {
-  validateLayout(scan, "3D points scan '" + sensor_label + "'");
-  mrpt::obs::CObservation3DRangeScan out;
-  out.sensorLabel = sensor_label;
-  out.timestamp = mrpt::Clock::fromDouble(scan.timestamp);
-  out.sensorPose = toCPose3D(scan.T_robot_sensor);
+  auto out = sweepObservationHead<mrpt::obs::CObservation3DRangeScan>(scan, sensor_label, "3D points scan");
   out.hasRangeImage = false;
   out.hasIntensityImage = false;
   const std::vector<Eigen::Vector3d> points = scan.points();

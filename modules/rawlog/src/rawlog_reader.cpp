@@ -63,8 +63,8 @@ std::optional<RgbdFrame> RawlogReader::next() {
         return frame;
       }
       auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation3DRangeScan>(obs);
-      if (!scan) {
-        ++skipped_[rawlogClassName(*obs)];
+      if (!scan || isSweepObservation(*obs)) {  // a sweep not asked for: a 3D scan of points alone too
+        ++skipped_[scan ? rawlogClassName(*obs) + " of 3D points without a range image" : rawlogClassName(*obs)];
         continue;
       }
       const std::string what = "rawlog '" + path_ + "', 3D scan #" + std::to_string(scans_read_);
@@ -97,7 +97,7 @@ std::optional<RgbdFrame> RawlogReader::next() {
     }
   }
   if (scans_read_ == 0)
-    throw Error("rawlog '" + path_ + "': no CObservation3DRangeScan" +
+    throw Error("rawlog '" + path_ + "': no CObservation3DRangeScan of depth" +
                 (read_sweeps_ ? ", CObservationRotatingScan or CObservationVelodyneScan" : "") + " in the file (it holds " +
                 skippedSummary() + ")");
   return std::nullopt;

@@ -6,14 +6,17 @@
 
 #include <iterator>
 
+#include "gasp/rawlog/range_scan.h"
+
 namespace gasp::graphslam {
 
 mrpt::obs::CObservation3DRangeScan::Ptr depthScanOf(const mrpt::obs::CSensoryFrame::Ptr& observations,
                                                     const mrpt::obs::CObservation::Ptr& observation,
                                                     const std::string& sensor_label) {
   using mrpt::obs::CObservation3DRangeScan;
+  // A LiDAR's sweep stored as a 3D scan of its points alone is no depth scan.
   const auto matches = [&](const CObservation3DRangeScan::Ptr& s) {
-    return s && (sensor_label.empty() || s->sensorLabel == sensor_label);
+    return s && !isSweepObservation(*s) && (sensor_label.empty() || s->sensorLabel == sensor_label);
   };
   if (observation) {
     auto scan = std::dynamic_pointer_cast<CObservation3DRangeScan>(observation);

@@ -41,6 +41,14 @@ RangeScan rangeScanFrom(const mrpt::obs::CObservation& observation);
 /// points and no range image (toPointsScan(); a depth camera's scan has its range image). 2D scans
 /// convert too, but one row is no surface.
 bool isSweepObservation(const mrpt::obs::CObservation& observation);
+/// Whether `observation` hands a sweep over as bare points (a CObservationPointCloud, or a
+/// CObservation3DRangeScan of points alone): points that may be another sensor's, not a rotating
+/// LiDAR's rings, which rangeScanFrom() then refuses and a map leaves out.
+bool isPointsObservation(const mrpt::obs::CObservation& observation);
+/// What GASP takes `observation` for, in messages: "a depth image (CObservation3DRangeScan)", "a
+/// LiDAR sweep (CObservationRotatingScan)", "a LiDAR sweep as 3D points (CObservation3DRangeScan
+/// without a range image)", or "a CObservationFoo".
+std::string observationKind(const mrpt::obs::CObservation& observation);
 /// The sweep as a frame (RgbdFrame::sweep; its timestamp, sensor label, and its sensorPose as
 /// T_robot_camera, the LiDAR's own frame). Throws gasp::Error starting with `what` for a sweep
 /// rangeScanFrom() refuses or an observation that is not one.
