@@ -657,6 +657,19 @@ TEST(GraphTypes, BreakEdgesAndDepthScansAreTold) {
   EXPECT_EQ(gasp::graphslam::depthScanOf(sf, nullptr, "OTHER"), nullptr);
   EXPECT_EQ(gasp::graphslam::depthScanOf(nullptr, scan, ""), scan);
   EXPECT_EQ(gasp::graphslam::depthScanOf(nullptr, nullptr, ""), nullptr);
+  // A LiDAR's sweep stored as a 3D scan of its points alone (gasp-tum2rawlog --points,
+  // toPointsScan()) is no depth scan, before or after the camera's in the frame.
+  auto points = std::make_shared<mrpt::obs::CObservation3DRangeScan>();
+  points->sensorLabel = "LIDAR";
+  points->hasRangeImage = false;
+  points->resizePoints3DVectors(3);
+  points->hasPoints3D = true;
+  auto mixed = std::make_shared<mrpt::obs::CSensoryFrame>();
+  mixed->insert(points);
+  mixed->insert(scan);
+  EXPECT_EQ(gasp::graphslam::depthScanOf(mixed, nullptr, ""), scan);
+  EXPECT_EQ(gasp::graphslam::depthScanOf(nullptr, points, ""), nullptr);
+  EXPECT_EQ(gasp::graphslam::depthScanOf(nullptr, points, "LIDAR"), nullptr);
 }
 
 TEST(ScanSelection, UsesFirstEveryAndMax) {
