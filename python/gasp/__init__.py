@@ -163,8 +163,13 @@ def register(source, target, intrinsics=None, params=None, depth_units_per_metre
 
 
 def _run(path, slam, params, first, every, max_frames, sensor, intrinsics, depth_units_per_metre, ground_truth):
-    if isinstance(intrinsics, Intrinsics):
-        raise TypeError("intrinsics: give a preset name (fr1, fr2, fr3, ros) or an intrinsics file's path here")
+    if isinstance(intrinsics, Intrinsics):  # the sequence reader takes a preset or a file: a file of them
+        import tempfile
+        with tempfile.TemporaryDirectory() as folder:
+            written = _os.path.join(folder, "intrinsics.txt")
+            intrinsics.save(written)
+            return _run(path, slam, params, first, every, max_frames, sensor, written, depth_units_per_metre,
+                        ground_truth)
     return _gasp._run_sequence(path, slam, _params_text(params), int(first), int(every), int(max_frames),
                                sensor or "", _os.fsdecode(intrinsics) if intrinsics else "",
                                float(depth_units_per_metre), ground_truth)
@@ -173,10 +178,11 @@ def _run(path, slam, params, first, every, max_frames, sensor, intrinsics, depth
 def odometry(path, params=None, first=0, every=1, max_frames=0, sensor=None, intrinsics=None,
              depth_units_per_metre=TUM_DEPTH_UNITS_PER_METRE, ground_truth=None):
     """Odometry over a TUM folder or a rawlog (as gasp-odometry): each frame registered to the
-    current keyframe, the first frame at the origin. Returns a gasp.SequenceRun (trajectory, tracked, keyframe, reasons,
-    ground_truth, ate()). `intrinsics`: a preset name or file for a TUM folder (default: from the
-    folder's name); `sensor`: a rawlog's sensor label; `ground_truth`: a TUM trajectory file to
-    score against (default: a TUM folder's groundtruth.txt)."""
+    current keyframe, the first frame at the origin. Returns a gasp.SequenceRun (trajectory,
+    tracked, keyframe, reasons, ground_truth, ate()). `intrinsics`, for a TUM folder: a
+    gasp.Intrinsics, a preset name or an intrinsics file (default: the folder's own); `sensor`: a
+    rawlog's sensor label; `ground_truth`: a TUM trajectory file to score against (default: a TUM
+    folder's groundtruth.txt)."""
     return _run(path, False, params, first, every, max_frames, sensor, intrinsics, depth_units_per_metre,
                 ground_truth)
 

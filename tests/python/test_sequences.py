@@ -71,6 +71,18 @@ def test_odometry_over_a_lidar_rawlog(sim_lidar):
     assert run.ate()["rmse_m"] < 0.02
 
 
+def test_intrinsics_are_given_as_an_object_a_file_or_a_preset(sim_room, tmp_path):
+    own = gasp.TumFolder(sim_room).intrinsics
+    reference = gasp.odometry(sim_room, max_frames=4)
+    for given in (own, os.path.join(sim_room, "intrinsics.txt")):
+        run = gasp.odometry(sim_room, max_frames=4, intrinsics=given)
+        assert np.array_equal(run.trajectory.poses, reference.trajectory.poses)
+    other = gasp.odometry(sim_room, max_frames=4, intrinsics="fr1")  # another camera: other poses
+    assert not np.array_equal(other.trajectory.poses, reference.trajectory.poses)
+    with pytest.raises(gasp.Error, match="nope"):
+        gasp.odometry(sim_room, intrinsics="nope")
+
+
 def test_trajectories_save_read_and_score(sim_room, tmp_path):
     run = gasp.odometry(sim_room, every=2)
     path = tmp_path / "t.txt"
