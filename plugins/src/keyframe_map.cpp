@@ -1,7 +1,6 @@
 #include "gasp/mrpt/keyframe_map.h"
 
 #include <mrpt/obs/CObservation3DRangeScan.h>
-#include <mrpt/obs/CObservation3DRangeScan_project3D_impl.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/obs/CObservationRotatingScan.h>
 #include <mrpt/obs/CSensoryFrame.h>
@@ -63,7 +62,7 @@ mrpt::maps::CSimpleMap keyframeSimpleMap(const std::vector<RgbdFrame>& keyframes
       sf->insert(sweepObservation(f, with_points));
     } else {
       const mrpt::obs::CObservation3DRangeScan::Ptr obs = observationFromFrame(f);
-      if (with_points) obs->unprojectInto(*obs);  // its points, in its own frame: hasPoints3D set
+      if (with_points) storePoints3D(*obs);
       sf->insert(obs);
     }
     map.insert(pose, sf);

@@ -107,15 +107,14 @@ def _yaml_dict(text):
 
 
 def _params_text(params):
-    """The YAML text of `params` (None, a path or a dict), checked; '' for the defaults."""
+    """The YAML text of `params` (None, a path or a dict); '' for the defaults. The C++ side reads
+    and checks it (errors name the key)."""
     if params is None:
         return ""
     if isinstance(params, (str, bytes, _os.PathLike)):
         return _gasp._read_params_file(params)
     if isinstance(params, dict):
-        text = _dict_yaml(params)
-        _gasp._effective_params_yaml(text)  # checked here: errors name the key
-        return text
+        return _dict_yaml(params)
     raise TypeError("params: expected None, a params file's path or a dict of sections, got %s"
                     % type(params).__name__)
 

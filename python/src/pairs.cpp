@@ -70,13 +70,18 @@ View makeView(const py::handle& depth, const CameraIntrinsics& intrinsics, const
   return View{std::make_shared<const DepthView>(makeDepthView(depth_m, intrinsics, params))};
 }
 
-/// `x` as a view: a View as it is, else a depth array segmented with the intrinsics.
-View viewOf(const py::object& x, const std::optional<CameraIntrinsics>& intrinsics, const SuperpixelParams& params,
-            double units_per_metre, const std::string& what) {
-  if (py::isinstance<View>(x)) return x.cast<View>();
+/// One side of a pair: a View as given, or a depth image [m] still to segment.
+struct PairSide {
+  std::optional<View> view;
+  cv::Mat depth_m;
+};
+
+PairSide pairSide(const py::object& x, const std::optional<CameraIntrinsics>& intrinsics, double units_per_metre,
+                  const std::string& what) {
+  if (py::isinstance<View>(x)) return {x.cast<View>(), {}};
   if (!intrinsics)
     throw py::value_error(what + ": a depth array needs intrinsics (gasp.Intrinsics); a gasp.View does not");
-  return makeView(x, *intrinsics, params, units_per_metre, what + " depth");
+  return {std::nullopt, depthFromArray(x, *intrinsics, units_per_metre, what + " depth")};
 }
 
 py::dict timingsDict(const PairTimings& t) {
@@ -219,12 +224,20 @@ void bindPairs(py::module_& m) {
            const std::string& params_yaml, double units_per_metre) {
           const SlamParams params = paramsFromYaml(params_yaml);
           const PairParams& pair = params.odometry.pair;
-          const View s = viewOf(source, intrinsics, pair.segment, units_per_metre, "source");
-          const View t = viewOf(target, intrinsics, pair.segment, units_per_metre, "target");
-          Registration g{{}, s, t};
+          PairSide s = pairSide(source, intrinsics, units_per_metre, "source");
+          PairSide t = pairSide(target, intrinsics, units_per_metre, "target");
+          Registration g;
           {
             py::gil_scoped_release release;
-            g.r = registerViews(*s.view, *t.view, pair);
+            const auto shared = [](DepthView v) { return View{std::make_shared<const DepthView>(std::move(v))}; };
+            if (!s.view && !t.view) {  // both segmented at once, as registerDepthImages() does
+              auto views = makeDepthViews(s.depth_m, t.depth_m, *intrinsics, pair.segment);
+              s.view = shared(std::move(views.first)), t.view = shared(std::move(views.second));
+            }
+            if (!s.view) s.view = shared(makeDepthView(s.depth_m, *intrinsics, pair.segment));
+            if (!t.view) t.view = shared(makeDepthView(t.depth_m, *intrinsics, pair.segment));
+            g.source = *s.view, g.target = *t.view;
+            g.r = registerViews(*g.source.view, *g.target.view, pair);
           }
           if (g.r.retry_views) {  // the indices refer to the retry's views, which the result keeps
             g.source.view = std::shared_ptr<const DepthView>(g.r.retry_views, &g.r.retry_views->first);

@@ -29,7 +29,6 @@ void bindParams(py::module_& m) {
         py::arg("yaml_text"), py::arg("path"),
         "Writes every parameter (`yaml_text` over the defaults) to `path`: a temporary file in the same folder, "
         "checked, then renamed.");
-  m.def("_params_sections", &paramsSections, "The params file's sections, in order.");
 }
 
 }  // namespace gasp::python

@@ -8,7 +8,6 @@
 
 #include <filesystem>
 #include <optional>
-#include <utility>
 
 #include "arrays.h"
 #include "bindings.h"
@@ -70,6 +69,10 @@ struct SequenceRun {
   std::string error;  ///< the input ended with this error after some frames (the run is partial)
 };
 
+/// The odometry of a tracker: itself, or a DepthSlam's.
+const DepthOdometry& odometryOf(const DepthOdometry& odometry) { return odometry; }
+const DepthOdometry& odometryOf(const DepthSlam& slam) { return slam.odometry(); }
+
 /// Adds the sequence's frames in order to `tracker` (DepthOdometry or DepthSlam), the GIL released
 /// while a frame is read and tracked; Ctrl-C between frames raises KeyboardInterrupt. An input
 /// that breaks after some frames (a frame that cannot be read, or one the odometry refuses, which
@@ -88,21 +91,12 @@ void addFrames(DepthSequence& sequence, Tracker& tracker, SequenceRun& run) {
       if (frame->isSweep()) tracker.addFrame(frame->timestamp, *frame->sweep);
       else tracker.addFrame(frame->timestamp, frame->depth_m, frame->depth_intrinsics);
     } catch (const Error& e) {
-      if (tracker.odometry().frames().empty()) throw;
+      if (odometryOf(tracker).frames().empty()) throw;
       run.error = exceptionMessage(e);  // keep what was tracked: the result says it is partial
       return;
     }
   }
 }
-
-/// DepthOdometry has no odometry(): itself.
-struct OdometryTracker {
-  explicit OdometryTracker(const OdometryParams& params) : odometry_(params) {}
-  DepthOdometry odometry_;
-  const DepthOdometry& odometry() const { return odometry_; }
-  template <class... A>
-  void addFrame(A&&... a) { odometry_.addFrame(std::forward<A>(a)...); }
-};
 
 DepthSequence openSequence(const std::filesystem::path& path, std::size_t first, std::size_t every,
                            std::size_t max_frames, const std::string& sensor, const std::string& intrinsics,
@@ -147,10 +141,10 @@ SequenceRun runSequence(const std::filesystem::path& path, bool slam, const std:
     run.loop_closures = tracker.loopClosures();
   } else {
     // As gasp-odometry: the first frame at the origin.
-    OdometryTracker tracker(run.sweeps ? lidarOdometryParams(params.lidar, params.odometry) : params.odometry);
+    DepthOdometry tracker(run.sweeps ? lidarOdometryParams(params.lidar, params.odometry) : params.odometry);
     addFrames(*sequence, tracker, run);
-    run.trajectory = tracker.odometry_.trajectory();
-    run.frames = tracker.odometry_.frames();
+    run.trajectory = tracker.trajectory();
+    run.frames = tracker.frames();
   }
   return run;
 }

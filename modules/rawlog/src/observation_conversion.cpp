@@ -1,6 +1,7 @@
 #include "gasp/rawlog/observation_conversion.h"
 
 #include <mrpt/core/Clock.h>
+#include <mrpt/obs/CObservation3DRangeScan_project3D_impl.h>  // unprojectInto
 #include <mrpt/img/CImage.h>
 
 #include <algorithm>
@@ -294,5 +295,7 @@ mrpt::obs::CObservation3DRangeScan::Ptr observationFromFrame(const RgbdFrame& fr
   obs->sensorPose = toCPose3D(frame.T_robot_camera * T_mrpt_optical.inverse());
   return obs;
 }
+
+void storePoints3D(mrpt::obs::CObservation3DRangeScan& obs) { obs.unprojectInto(obs); }
 
 }  // namespace gasp

@@ -96,10 +96,6 @@ class CellFiller final : public mrpt::obs::CObservationVelodyneScan::PointCloudS
 };
 #pragma GCC diagnostic pop
 
-}  // namespace
-
-namespace {
-
 /// A 3D range scan that holds its points and no range image: a sweep stored by toPointsScan().
 const mrpt::obs::CObservation3DRangeScan* pointsOnlyScan(const mrpt::obs::CObservation& observation) {
   const auto* scan = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&observation);
@@ -118,6 +114,17 @@ RangeScan sweepFromPoints(const Vec& xs, const Vec& ys, const Vec& zs, const std
   mrpt::poses::CPose3D sensor_pose;
   observation.getSensorPose(sensor_pose);
   out.T_robot_sensor = fromCPose3D(sensor_pose);
+  return out;
+}
+
+/// An observation of `scan`'s returns, labelled, stamped with its time and its mounting as sensorPose.
+template <class Observation>
+Observation sweepObservationHead(const RangeScan& scan, const std::string& sensor_label, const std::string& kind) {
+  validateLayout(scan, kind + " '" + sensor_label + "'");
+  Observation out;
+  out.sensorLabel = sensor_label;
+  out.timestamp = mrpt::Clock::fromDouble(scan.timestamp);
+  out.sensorPose = toCPose3D(scan.T_robot_sensor);
   return out;
 }
 
@@ -232,21 +239,6 @@ mrpt::obs::CObservationRotatingScan toRotatingScan(const RangeScan& scan, const 
     }
   return out;
 }
-
-namespace {
-
-/// An observation of `scan`'s returns, labelled, stamped with its time and its mounting as sensorPose.
-template <class Observation>
-Observation sweepObservationHead(const RangeScan& scan, const std::string& sensor_label, const std::string& kind) {
-  validateLayout(scan, kind + " '" + sensor_label + "'");
-  Observation out;
-  out.sensorLabel = sensor_label;
-  out.timestamp = mrpt::Clock::fromDouble(scan.timestamp);
-  out.sensorPose = toCPose3D(scan.T_robot_sensor);
-  return out;
-}
-
-}  // namespace
 
 mrpt::obs::CObservationPointCloud toPointCloud(const RangeScan& scan, const std::string& sensor_label) {
   auto out = sweepObservationHead<mrpt::obs::CObservationPointCloud>(scan, sensor_label, "point cloud");

@@ -2,7 +2,6 @@
 
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
-#include <mrpt/obs/CObservation3DRangeScan_project3D_impl.h>  // unprojectInto
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
 
@@ -69,7 +68,7 @@ void RawlogWriter::checkOpen() const {
 void RawlogWriter::write(const RgbdFrame& frame) {
   checkOpen();
   auto obs = observationFromFrame(frame);
-  if (options_.points) obs->unprojectInto(*obs);  // from the range image in memory: before it goes external
+  if (options_.points) storePoints3D(*obs);  // from the range image in memory: before it goes external
 
   if (options_.external_storage) {
     char stem[64];
