@@ -168,7 +168,7 @@ TEST(Observations2Map, ALidarsPointsMapAgreesWithTheCloudAndGaspReadsTheSameSwee
     ASSERT_GT(map.size(), 100000u);
     ASSERT_GT(voxelsOfPoints(name + ".ply", voxel, true).size(), 5000u);
     // A voxel of the cloud holds the mean of its returns, which can fall where no single sparse
-    // return of MRPT's map lies: 98 %, not all (points misplaced by the keyframes' poses cover a third).
+    // return of MRPT's map lies: 98 %, not all.
     EXPECT_GT(cloudVoxelsCovered(map, name + ".ply", voxel), 0.98);
   }
   // GASP's map from the sweeps' points: their layout found again, the same surfaces.
