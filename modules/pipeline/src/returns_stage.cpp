@@ -24,17 +24,24 @@ void validate(const ReturnsRefineParams& r) {
           "returns_column_step must be >= 1 and returns_max_rounds in [1, 1000]");
   require(r.look_up_columns >= 0 && r.look_up_columns <= 100, "returns_look_up_columns must be in [0, 100]");
   require(r.converged_m >= 0 && std::isfinite(r.converged_m), "returns_converged_m must be >= 0 and finite");
-  require(r.normal_half_width >= 1 && r.normal_half_width <= 100 && r.max_flatness > 0 && r.max_flatness <= 1,
-          "returns_normal_half_width must be in [1, 100] and returns_max_flatness in (0, 1]");
+  require(r.normal_half_width >= 0 && r.normal_half_width <= 100 && r.max_flatness > 0 && r.max_flatness <= 1,
+          "returns_normal_half_width must be in [0, 100] (0: square in view angle) and returns_max_flatness in (0, 1]");
   require(r.basin_offset_m > 0 && std::isfinite(r.basin_offset_m) && r.basin_tolerance_m > 0 &&
               r.basin_tolerance_m < r.basin_offset_m,
           "the returns' basin tolerance must be > 0 and below their offset (a restart that did not move would pass)");
+}
+
+int squareNormalHalfWidth(const RangeScan& scan) {
+  validateLayout(scan, "sweep returns");
+  const double ratio = rowPitch(scan) / std::abs(azimuthStep(scan));
+  return static_cast<int>(std::clamp(std::lround(ratio), 1L, 100L));
 }
 
 SweepReturns::SweepReturns(const RangeScan& scan, const ReturnsRefineParams& p)
     : scan_(scan), normal_half_width_(p.normal_half_width), max_flatness_(p.max_flatness) {
   validate(p);
   validateLayout(scan_, "sweep returns");
+  if (normal_half_width_ == 0) normal_half_width_ = squareNormalHalfWidth(scan_);
   // Its own copy of the images: a driver may reuse its buffers for the next sweep.
   scan_.range_m = scan.range_m.clone();
   if (!scan.ray.empty()) scan_.ray = scan.ray.clone();

@@ -46,7 +46,7 @@ struct LidarParams {
   int returns_look_up_columns = 2;
   int returns_max_rounds = 10;
   double returns_converged_m = 0.0005;
-  int returns_normal_half_width = 3;
+  int returns_normal_half_width = 0;  ///< 0: square in view angle (ReturnsRefineParams)
   double returns_max_flatness = 0.3;
   /// The certificate's symmetry test for sweeps (CertifyParams::symmetry_test): a sweep sees all
   /// around, so in a near-square room a pose turned a quarter matches walls to walls.

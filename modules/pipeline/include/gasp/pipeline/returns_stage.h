@@ -34,7 +34,10 @@ struct ReturnsRefineParams {
   double converged_m = 0.0005;  ///< RMS displacement of the source returns that ends the rounds [m]
   /// A return's normal: a plane fitted to the 3 x (2 half_width + 1) returns around it, kept when
   /// its thinnest spread is below max_flatness of the next (a surface, not an edge or foliage).
-  int normal_half_width = 3;
+  /// 0: the columns that span the rows' pitch either side, so the window is square in view angle
+  /// and the plane's tilt is determined as well along the rows as across them
+  /// (squareNormalHalfWidth(): 10 for a VLP-16's 2 deg rows and 0.2 deg columns, 2 for 64 lasers).
+  int normal_half_width = 0;
   double max_flatness = 0.3;
   /// The returns fix a direction the cells left free (returnsBasin) when their rounds reach their
   /// pose again from starts basin_offset_m either side of it along its weakest translation, each
@@ -71,7 +74,8 @@ class SweepReturns {
   const Eigen::Vector3d& normal(int i) const { return normal_[static_cast<std::size_t>(i)]; }
   /// Half the diagonal of a cell [rad]: how far in angle a point can lie from the return it fell on.
   double halfCellRad() const { return half_cell_rad_; }
-  /// The normal half-width and flatness the normals were fitted with.
+  /// The normal half-width (the effective one: squareNormalHalfWidth() for 0) and flatness the
+  /// normals were fitted with.
   int normalHalfWidth() const { return normal_half_width_; }
   double maxFlatness() const { return max_flatness_; }
 
@@ -87,6 +91,10 @@ class SweepReturns {
   double max_flatness_ = 0.3;
   std::vector<Eigen::Vector3d> point_, normal_;
 };
+
+/// The normal window's half-width in columns that is square in view angle: round(rowPitch /
+/// |azimuthStep|), in [1, 100]. Throws gasp::Error for a scan that is not a range image.
+int squareNormalHalfWidth(const RangeScan& scan);
 
 /// One round's point-to-plane terms: each source point (sensor frame) mapped by T_target_source
 /// takes the target's return of nearest direction with a normal (SweepReturns::lookUp within
