@@ -700,8 +700,8 @@ TEST(GroundSearch, FindsARealSweepMovedTwoMetresAndTurnedAHalfTurnAndNeedsAGroun
 // of the cells' samples violate seen from both views (limit 5 %): a cell is the mean of the
 // returns in its bin, and 9 m apart the bins fall elsewhere. The returns' rounds from it hold
 // their basin and pass the free-space test on the returns, so their pose is claimed. The room's
-// 30 -> 40, across the occluder's appearance, stays refused: on the returns too, over a quarter of
-// the later sweep lies where the earlier one saw through.
+// 30 -> 40 spans the occluder's appearance: its returns lie where the earlier sweep saw through,
+// one way only, so the pair is either refused or claimed right, never wrong.
 TEST(RangeScan, AfterAFreeSpaceRefusalTheReturnsDecideWhereTheCellsBinsDisagree) {
   const SimulatedSweepPair s = simulatedSweeps("street", 16, 8, 18);
   const gasp::RangePairResult r = gasp::registerRangeScans(s.a, s.b, gasp::lidarPairParams());
@@ -713,14 +713,19 @@ TEST(RangeScan, AfterAFreeSpaceRefusalTheReturnsDecideWhereTheCellsBinsDisagree)
 
   const SimulatedSweepPair occluder = simulatedSweeps("room", 16, 30, 40);
   const gasp::RangePairResult q = gasp::registerRangeScans(occluder.a, occluder.b, gasp::lidarPairParams());
-  EXPECT_FALSE(q.pair.pose.success) << errorCm(occluder.T_b_a, q.pair.pose.T_target_source) << " cm";
+  if (q.pair.pose.success) {
+    EXPECT_LT(errorCm(occluder.T_b_a, q.pair.pose.T_target_source), 5.0);
+    EXPECT_LT(errorDeg(occluder.T_b_a, q.pair.pose.T_target_source), 0.5);
+    EXPECT_GT(q.pair.visibility.violation_ratio, 0.05);  // the occluder, seen from one sweep
+    EXPECT_LT(q.pair.visibility.violation_ratio_lesser, 0.05);
+  }
 
   // The test itself: at the truth the street pair passes on the returns.
   const gasp::ReturnsRefineParams returns = gasp::returnsRefineParams();
   const gasp::SweepReturns a(s.a, returns), b(s.b, returns);
   const gasp::VisibilityCheck truth = gasp::returnsFreeSpace(a, b, s.T_b_a, gasp::VisibilityCheckParams{}, 0.02);
   EXPECT_TRUE(truth.passed) << truth.reason;
-  EXPECT_LT(truth.violation_ratio, 0.05);
+  EXPECT_LT(truth.violation_ratio_lesser, 0.05);
   const gasp::VisibilityCheck far = gasp::returnsFreeSpace(a, b, gasp::Isometry3::Identity(), gasp::VisibilityCheckParams{}, 0.02);
   EXPECT_FALSE(far.passed);
   EXPECT_TRUE(far.free_space_refused) << far.reason;

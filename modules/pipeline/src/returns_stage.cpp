@@ -56,8 +56,19 @@ SweepReturns::SweepReturns(const RangeScan& scan, const ReturnsRefineParams& p)
     for (int c = 0; c < cols_; ++c)
       if (const float d = scan_.range_m.at<float>(r, c); d > 0.0f && std::isfinite(d))
         point_[index(r, c)] = static_cast<double>(d) * scan_.direction(r, c);
-  for (int r = 0; r < rows_; ++r)
-    for (int c = 0; c < cols_; ++c) normal_[index(r, c)] = fitNormal(r, c);
+  // Each row's running sums of the returns' moments, so a window's sums are two look-ups where
+  // every return in it lies on the centre's surface (the common case on a wide window).
+  std::vector<Moments> prefix(static_cast<std::size_t>(rows_) * static_cast<std::size_t>(cols_ + 1));
+  for (int r = 0; r < rows_; ++r) {
+    Moments* row = &prefix[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_ + 1)];
+    for (int c = 0; c < cols_; ++c) {
+      row[c + 1] = row[c];
+      if (const Eigen::Vector3d& q = point_[index(r, c)]; q.allFinite()) row[c + 1].add(q);
+    }
+  }
+  tbb::parallel_for(0, rows_, [&](int r) {
+    for (int c = 0; c < cols_; ++c) normal_[index(r, c)] = fitNormal(r, c, prefix);
+  });
 }
 
 int SweepReturns::lookUp(const Eigen::Vector3d& q, int reach) const {
@@ -76,26 +87,34 @@ int SweepReturns::lookUp(const Eigen::Vector3d& q, int reach) const {
 }
 
 /// The plane of the returns around (r, c) on the same surface (ranges within 5 % + 0.1 m of the
-/// centre's), over at least two rows; zero when there is none or it is not flat.
-Eigen::Vector3d SweepReturns::fitNormal(int r, int c) const {
+/// centre's), over at least two rows; zero when there is none or it is not flat. `prefix`: each
+/// row's running sums of its returns' moments (cols + 1 per row).
+Eigen::Vector3d SweepReturns::fitNormal(int r, int c, const std::vector<Moments>& prefix) const {
   const Eigen::Vector3d& centre = point_[index(r, c)];
   if (!centre.allFinite()) return Eigen::Vector3d::Zero();
-  const double range = centre.norm(), reach = 0.1 + 0.05 * range;
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
-  int n = 0, rows_used = 0;
+  const float range = scan_.range_m.at<float>(r, c);
+  const float reach = 0.1f + 0.05f * range;
+  const int lo = std::max(0, c - normal_half_width_), hi = std::min(cols_ - 1, c + normal_half_width_);
+  Moments m;
+  int rows_used = 0;
   for (int rr = std::max(0, r - 1); rr <= std::min(rows_ - 1, r + 1); ++rr) {
-    bool used = false;
-    for (int cc = std::max(0, c - normal_half_width_); cc <= std::min(cols_ - 1, c + normal_half_width_); ++cc) {
-      const Eigen::Vector3d& q = point_[index(rr, cc)];
-      if (!q.allFinite() || std::abs(q.norm() - range) > reach) continue;
-      sum += q, outer += q * q.transpose(), ++n, used = true;
+    const float* ranges = scan_.range_m.ptr<float>(rr);
+    bool all_on_surface = true;
+    for (int cc = lo; cc <= hi && all_on_surface; ++cc)
+      all_on_surface = !point_[index(rr, cc)].allFinite() || std::abs(ranges[cc] - range) <= reach;
+    const double before = m.n;
+    if (all_on_surface) {
+      const Moments* row = &prefix[static_cast<std::size_t>(rr) * static_cast<std::size_t>(cols_ + 1)];
+      m.addDifference(row[hi + 1], row[lo]);
+    } else {
+      for (int cc = lo; cc <= hi; ++cc)
+        if (const Eigen::Vector3d& q = point_[index(rr, cc)]; q.allFinite() && std::abs(ranges[cc] - range) <= reach) m.add(q);
     }
-    rows_used += used ? 1 : 0;
+    rows_used += m.n > before ? 1 : 0;
   }
-  if (n < 5 || rows_used < 2) return Eigen::Vector3d::Zero();
-  const Eigen::Vector3d mean = sum / n;
-  const Eigen::Matrix3d cov = outer / n - mean * mean.transpose();
+  if (m.n < 5 || rows_used < 2) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d mean = m.s / m.n;
+  const Eigen::Matrix3d cov = m.ss / m.n - mean * mean.transpose();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
   const Eigen::Vector3d lambda = eig.eigenvalues().cwiseMax(0.0);
   if (!(lambda(1) > 0.0) || std::sqrt(lambda(0) / lambda(1)) > max_flatness_) return Eigen::Vector3d::Zero();

@@ -81,7 +81,17 @@ class SweepReturns {
 
  private:
   std::size_t index(int r, int c) const { return static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(c); }
-  Eigen::Vector3d fitNormal(int r, int c) const;
+  /// Sums of points and of their outer products (a plane fit's moments).
+  struct Moments {
+    double n = 0.0;
+    Eigen::Vector3d s = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d ss = Eigen::Matrix3d::Zero();
+    void add(const Eigen::Vector3d& q) { n += 1.0, s += q, ss += q * q.transpose(); }
+    void addDifference(const Moments& upper, const Moments& lower) {
+      n += upper.n - lower.n, s += upper.s - lower.s, ss += upper.ss - lower.ss;
+    }
+  };
+  Eigen::Vector3d fitNormal(int r, int c, const std::vector<Moments>& prefix) const;
 
   RangeScan scan_;
   int rows_ = 0, cols_ = 0;
