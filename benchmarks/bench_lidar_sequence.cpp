@@ -23,7 +23,10 @@
 // distinct surfaces fixing
 // it (surfacesAlongWeakest), the rounds on the source's odd and even rows alone
 // (printSplitHalves), and association against the truth (printAssociationOracle: true partners,
-// true associations, the partner's edit-distance rank).
+// true associations, the partner's edit-distance rank); for a claimed pose, the returns' rounds
+// started at the truth (is their cost's minimum off it?), the truth's Gauss-Newton step split by
+// the target patch the terms lie on, and the claimed error's NEES under the rounds' information,
+// a per-term and a per-surface (cluster-robust) covariance (printTruthStart).
 // --dense-step N (gasp): the dense rounds sample at least every N-th binned cell each way (their
 // step is the larger of N and the sample spacing's, lidar.dense_sample_spacing_deg; every cell
 // takes --params with lidar: {dense_sample_spacing_deg: 0}).
@@ -196,6 +199,99 @@ SurfaceCount surfacesAlongWeakest(const gasp::DepthView& va, const gasp::DepthVi
   for (double x : w) sum += x, sum2 += x * x, largest = std::max(largest, x);
   if (sum2 > 0) out.effective = sum * sum / sum2, out.largest_share = largest / sum;
   return out;
+}
+
+/// --pair: is the returns' cost minimum itself off the truth? The returns' rounds started at the
+/// truth, and at the claimed pose a cluster-robust covariance of the returns' terms (the terms
+/// grouped by the target patch their plane lies on; Liang & Zeger's sandwich H^-1 (sum_g s_g
+/// s_g^T) H^-1) beside the rounds' own J^T J / sigma^2, with the claimed error's NEES under each.
+void printTruthStart(const gasp::DepthView& va, const gasp::DepthView& vb, const gasp::RegistrationResult& pose,
+                     const gasp::Isometry3& T_true, const gasp::PairParams& params) {
+  if (!va.returns || !vb.returns) return;
+  const gasp::RegistrationResult q = gasp::refineOnReturns(*va.returns, *vb.returns, T_true, params.returns,
+                                                          params.refine.solver, vb.superpixels.max_incidence_deg);
+  const gasp::Isometry3 eq = T_true.inverse() * q.T_target_source;
+  std::printf("the returns' rounds from the truth: success %d (%s), end %.2f cm %.3f deg off\n", q.success, q.reason.c_str(),
+              100.0 * eq.translation().norm(), Eigen::AngleAxisd(eq.linear()).angle() * 180.0 / M_PI);
+  std::vector<Eigen::Vector3d> points;
+  for (int r = 0; r < va.returns->rows(); ++r)
+    for (int c = 0; c < va.returns->cols(); ++c)
+      if (const Eigen::Vector3d& p = va.returns->point(r, c); p.allFinite()) points.push_back(p);
+  for (const auto& [name, T] : {std::pair<const char*, gasp::Isometry3>{"claimed", pose.T_target_source}, {"truth", T_true}}) {
+    const std::vector<gasp::PointToPlane> terms = gasp::returnTerms(points, *vb.returns, T, params.returns.gates_m.back(),
+                                                                    params.returns.look_up_columns, vb.superpixels.max_incidence_deg);
+    const std::size_t groups = vb.segmentation.patches.size() + 1;
+    std::vector<gasp::Vector6d> score(groups, gasp::Vector6d::Zero());
+    std::vector<int> count(groups, 0);
+    std::vector<double> mean_r(groups, 0.0), mean_inc(groups, 0.0), mean_d(groups, 0.0);
+    std::vector<Eigen::Vector3d> mean_n(groups, Eigen::Vector3d::Zero()), mean_q(groups, Eigen::Vector3d::Zero());
+    gasp::Matrix6d H = gasp::Matrix6d::Zero(), hc0 = gasp::Matrix6d::Zero();
+    const double a = params.refine.solver.loss_scale_m;
+    for (const gasp::PointToPlane& t : terms) {
+      const Eigen::Vector3d p = T * t.p_source;
+      const double r = t.n_target.dot(p - t.q_target);
+      const double w = t.weight * (std::abs(r) <= a ? 1.0 : a / std::abs(r));  // Huber's rho'
+      gasp::Vector6d J;
+      J << t.n_target, p.cross(t.n_target);
+      H += w * J * J.transpose();
+      const gasp::Vector6d s = w * r * J;
+      hc0 += s * s.transpose();
+      double u = 0, v = 0;
+      int label = -1;
+      if (vb.projection.project(t.q_target, u, v)) {
+        const int ui = static_cast<int>(std::lround(u)), vi = static_cast<int>(std::lround(v));
+        if (ui >= 0 && vi >= 0 && ui < vb.segmentation.labels.cols && vi < vb.segmentation.labels.rows)
+          label = vb.segmentation.labels.at<int>(vi, ui);
+      }
+      const std::size_t g = label >= 0 ? static_cast<std::size_t>(label) : groups - 1;
+      score[g] += s, ++count[g];
+      if (std::strcmp(name, "truth") == 0) {
+        mean_r[g] += r, mean_n[g] += t.n_target, mean_q[g] += t.q_target;
+        const Eigen::Vector3d ray = t.q_target.normalized();
+        mean_inc[g] += std::acos(std::min(1.0, std::abs(ray.dot(t.n_target)))) * 180.0 / M_PI;
+        mean_d[g] += (p - t.q_target).norm();
+      }
+    }
+    if (std::strcmp(name, "truth") == 0) {  // which surfaces pull the truth towards the claimed pose
+      const gasp::Vector6d g_all = [&] { gasp::Vector6d x = gasp::Vector6d::Zero(); for (auto& y : score) x += y; return x; }();
+      const gasp::Vector6d step = -H.ldlt().solve(g_all);  // Gauss-Newton step from the truth
+      std::printf("  Gauss-Newton step from the truth: t (%.2f, %.2f, %.2f) cm, r (%.3f, %.3f, %.3f) deg\n", 100 * step(0),
+                  100 * step(1), 100 * step(2), step(3) * 180 / M_PI, step(4) * 180 / M_PI, step(5) * 180 / M_PI);
+      std::vector<std::pair<double, std::size_t>> pull;
+      for (std::size_t g = 0; g < groups; ++g)
+        if (count[g] > 0) pull.push_back({-(H.ldlt().solve(score[g])).head<3>().dot(step.head<3>().normalized()), g});
+      std::sort(pull.begin(), pull.end(), [](auto& x, auto& y) { return std::abs(x.first) > std::abs(y.first); });
+      for (std::size_t k = 0; k < std::min<std::size_t>(10, pull.size()); ++k) {
+        const std::size_t g = pull[k].second;
+        const double n = count[g];
+        const Eigen::Vector3d nn = (mean_n[g] / n).normalized(), qq = mean_q[g] / n;
+        std::printf("    surface %zu: %d terms, pulls %.2f cm along the step, mean residual %.2f cm, normal (%.2f, %.2f, %.2f), "
+                    "at (%.2f, %.2f, %.2f), incidence %.0f deg, point-to-return %.1f cm\n",
+                    g, count[g], 100 * pull[k].first, 100 * mean_r[g] / n, nn.x(), nn.y(), nn.z(), qq.x(), qq.y(), qq.z(),
+                    mean_inc[g] / n, 100 * mean_d[g] / n);
+      }
+    }
+    gasp::Matrix6d meat = gasp::Matrix6d::Zero();
+    int used = 0;
+    for (std::size_t g = 0; g < groups; ++g)
+      if (count[g] > 0) meat += score[g] * score[g].transpose(), ++used;
+    const gasp::Matrix6d Hinv = H.inverse();
+    const gasp::Matrix6d C_cluster = Hinv * meat * Hinv, C_hc0 = Hinv * hc0 * Hinv;
+    const double sigma = params.refine.solver.noise_sigma_m;
+    const gasp::Matrix6d C_model = Hinv * sigma * sigma;
+    const gasp::eval::Vector6 xi = gasp::eval::leftPerturbation(pose.T_target_source, T_true);
+    auto nees = [&](const gasp::Matrix6d& C) { return xi.dot(C.ldlt().solve(xi)); };
+    auto tstd = [&](const gasp::Matrix6d& C) {
+      return 100.0 * std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C.topLeftCorner<3, 3>()).eigenvalues()(2));
+    };
+    auto rstd = [&](const gasp::Matrix6d& C) {
+      return 180.0 / M_PI * std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C.bottomRightCorner<3, 3>()).eigenvalues()(2));
+    };
+    std::printf("  at the %s pose: %zu terms on %d surfaces; largest translation sigma / rotation sigma and the claimed "
+                "error's NEES: model %.2f cm %.3f deg %.1f, per term %.2f cm %.3f deg %.1f, per surface %.2f cm %.3f deg %.1f\n",
+                name, terms.size(), used, tstd(C_model), rstd(C_model), nees(C_model), tstd(C_hc0), rstd(C_hc0), nees(C_hc0),
+                tstd(C_cluster), rstd(C_cluster), nees(C_cluster));
+  }
 }
 
 /// --pair: the returns' rounds again from the pose moved +-`offset_m` along its weakest translation
@@ -500,6 +596,7 @@ int main(int argc, char** argv) {
         printSplitHalves(sweeps[i], vb, r.pair.pose.T_target_source, T_true, params);
         printReturnsFreeSpace(va, vb, r.pair.pose.T_target_source, "the claimed pose", params);
       }
+      if (r.pair.pose.success) printTruthStart(va, vb, r.pair.pose, T_true, params);
       if (r.pair.pose.success && r.pair.edge_information.determinant() > 0.0) {  // is the claimed certainty consistent with the error? (chi-square, 6 dof)
         const gasp::eval::NeesParts edge = gasp::eval::neesParts(r.pair.pose.T_target_source, T_true, r.pair.edge_information);
         gasp::eval::NeesParts own;
