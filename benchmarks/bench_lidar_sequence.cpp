@@ -161,6 +161,24 @@ void printSplitHalves(const gasp::RangeScan& source, const gasp::DepthView& vb, 
   std::printf("\n");
 }
 
+/// The label of the target patch whose binned cell a point (target frame) falls in; -1 for none.
+int patchLabelAt(const gasp::DepthView& view, const Eigen::Vector3d& q) {
+  double u = 0, v = 0;
+  if (!view.projection.project(q, u, v)) return -1;
+  const int ui = static_cast<int>(std::lround(u)), vi = static_cast<int>(std::lround(v));
+  if (ui < 0 || vi < 0 || ui >= view.segmentation.labels.cols || vi >= view.segmentation.labels.rows) return -1;
+  return view.segmentation.labels.at<int>(vi, ui);
+}
+
+/// Every return of a sweep (sensor frame).
+std::vector<Eigen::Vector3d> returnPoints(const gasp::SweepReturns& sweep) {
+  std::vector<Eigen::Vector3d> points;
+  for (int r = 0; r < sweep.rows(); ++r)
+    for (int c = 0; c < sweep.cols(); ++c)
+      if (const Eigen::Vector3d& p = sweep.point(r, c); p.allFinite()) points.push_back(p);
+  return points;
+}
+
 /// How many distinct surfaces fix the weakest translation of a returns' pose: the returns' last-gate
 /// terms at the pose grouped by the target patch their plane point lies in (the binned target
 /// view's labels), each group weighing (n . d)^2 summed over its terms for the weakest direction
@@ -177,21 +195,12 @@ SurfaceCount surfacesAlongWeakest(const gasp::DepthView& va, const gasp::DepthVi
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(pose.information.topLeftCorner<3, 3>());
   const Eigen::Vector3d d = eig.eigenvectors().col(0);
   out.direction = d;
-  std::vector<Eigen::Vector3d> points;
-  for (int r = 0; r < va.returns->rows(); ++r)
-    for (int c = 0; c < va.returns->cols(); ++c)
-      if (const Eigen::Vector3d& p = va.returns->point(r, c); p.allFinite()) points.push_back(p);
+  const std::vector<Eigen::Vector3d> points = returnPoints(*va.returns);
   const std::vector<gasp::PointToPlane> terms = gasp::returnTerms(points, *vb.returns, pose.T_target_source, params.returns.gates_m.back(),
                                                                   params.returns.look_up_columns, vb.superpixels.max_incidence_deg);
   std::vector<double> w(vb.segmentation.patches.size() + 1, 0.0);  // the last: no patch
   for (const gasp::PointToPlane& t : terms) {
-    double u = 0, v = 0;
-    int label = -1;
-    if (vb.projection.project(t.q_target, u, v)) {
-      const int ui = static_cast<int>(std::lround(u)), vi = static_cast<int>(std::lround(v));
-      if (ui >= 0 && vi >= 0 && ui < vb.segmentation.labels.cols && vi < vb.segmentation.labels.rows)
-        label = vb.segmentation.labels.at<int>(vi, ui);
-    }
+    const int label = patchLabelAt(vb, t.q_target);
     const double x = t.n_target.dot(d);
     w[label >= 0 ? static_cast<std::size_t>(label) : w.size() - 1] += x * x;
   }
@@ -213,10 +222,7 @@ void printTruthStart(const gasp::DepthView& va, const gasp::DepthView& vb, const
   const gasp::Isometry3 eq = T_true.inverse() * q.T_target_source;
   std::printf("the returns' rounds from the truth: success %d (%s), end %.2f cm %.3f deg off\n", q.success, q.reason.c_str(),
               100.0 * eq.translation().norm(), Eigen::AngleAxisd(eq.linear()).angle() * 180.0 / M_PI);
-  std::vector<Eigen::Vector3d> points;
-  for (int r = 0; r < va.returns->rows(); ++r)
-    for (int c = 0; c < va.returns->cols(); ++c)
-      if (const Eigen::Vector3d& p = va.returns->point(r, c); p.allFinite()) points.push_back(p);
+  const std::vector<Eigen::Vector3d> points = returnPoints(*va.returns);
   for (const auto& [name, T] : {std::pair<const char*, gasp::Isometry3>{"claimed", pose.T_target_source}, {"truth", T_true}}) {
     const std::vector<gasp::PointToPlane> terms = gasp::returnTerms(points, *vb.returns, T, params.returns.gates_m.back(),
                                                                     params.returns.look_up_columns, vb.superpixels.max_incidence_deg);
@@ -236,13 +242,7 @@ void printTruthStart(const gasp::DepthView& va, const gasp::DepthView& vb, const
       H += w * J * J.transpose();
       const gasp::Vector6d s = w * r * J;
       hc0 += s * s.transpose();
-      double u = 0, v = 0;
-      int label = -1;
-      if (vb.projection.project(t.q_target, u, v)) {
-        const int ui = static_cast<int>(std::lround(u)), vi = static_cast<int>(std::lround(v));
-        if (ui >= 0 && vi >= 0 && ui < vb.segmentation.labels.cols && vi < vb.segmentation.labels.rows)
-          label = vb.segmentation.labels.at<int>(vi, ui);
-      }
+      const int label = patchLabelAt(vb, t.q_target);
       const std::size_t g = label >= 0 ? static_cast<std::size_t>(label) : groups - 1;
       score[g] += s, ++count[g];
       if (std::strcmp(name, "truth") == 0) {
@@ -398,10 +398,7 @@ std::array<double, 9> slideProfile(const gasp::DepthView& va, const gasp::DepthV
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(pose.information.topLeftCorner<3, 3>());
   const Eigen::Vector3d d = eig.eigenvectors().col(0);
   const double gate = params.returns.gates_m.back();
-  std::vector<Eigen::Vector3d> points;
-  for (int r = 0; r < va.returns->rows(); ++r)
-    for (int c = 0; c < va.returns->cols(); ++c)
-      if (const Eigen::Vector3d& p = va.returns->point(r, c); p.allFinite()) points.push_back(p);
+  const std::vector<Eigen::Vector3d> points = returnPoints(*va.returns);
   if (print) std::printf("the returns' cost slid along (%.2f, %.2f, %.2f) [m: cost/terms]:", d.x(), d.y(), d.z());
   for (std::size_t slide = 0; slide < kSlides.size(); ++slide) {
     const double delta = kSlides[slide];

@@ -311,8 +311,8 @@ void CSuperpixelMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t ve
           ReturnsRefineParams returns;
           std::int32_t half_width;
           in >> half_width >> returns.max_flatness;
-          if (half_width < 1 || half_width > 20)  // a stored view's, within what makeRangeView fits quickly
-            THROW_EXCEPTION_FMT("the returns' normal half width %d out of range [1, 20]", half_width);
+          if (half_width < 1 || half_width > 100)  // the effective one a view was made with (validate()'s range)
+            THROW_EXCEPTION_FMT("the returns' normal half width %d out of range [1, 100]", half_width);
           returns.normal_half_width = half_width;
           try {  // the scan's layout and the parameters are checked here
             v.view = makeRangeView(scan, segmentation.superpixels, returns);
