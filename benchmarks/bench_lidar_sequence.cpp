@@ -236,7 +236,12 @@ void printTruthStart(const gasp::DepthView& va, const gasp::DepthView& vb, const
     for (const gasp::PointToPlane& t : terms) {
       const Eigen::Vector3d p = T * t.p_source;
       const double r = t.n_target.dot(p - t.q_target);
-      const double w = t.weight * (std::abs(r) <= a ? 1.0 : a / std::abs(r));  // Huber's rho'
+      // The robust loss's rho' (refinement.h), as the rounds weigh the term.
+      const gasp::RobustLoss loss = params.refine.solver.loss;
+      const double rho1 = loss == gasp::RobustLoss::kHuber    ? (std::abs(r) <= a ? 1.0 : a / std::abs(r))
+                          : loss == gasp::RobustLoss::kCauchy ? 1.0 / (1.0 + r * r / (a * a))
+                                                              : 1.0;
+      const double w = t.weight * rho1;
       gasp::Vector6d J;
       J << t.n_target, p.cross(t.n_target);
       H += w * J * J.transpose();
