@@ -786,7 +786,7 @@ TEST(RangeScan, AfterAFreeSpaceRefusalTheReturnsDecideWhereTheCellsBinsDisagree)
 
   const SimulatedSweepPair occluder = simulatedSweeps("room", 16, 30, 40);
   const gasp::RangePairResult q = gasp::registerRangeScans(occluder.a, occluder.b, gasp::lidarPairParams());
-  if (q.pair.pose.success) {  // claimed since the returns' normals are fitted over square windows
+  if (q.pair.pose.success) {  // within the one-way limit: right, the occluder seen from one sweep only
     EXPECT_LT(errorCm(occluder.T_b_a, q.pair.pose.T_target_source), 5.0);
     EXPECT_LT(errorDeg(occluder.T_b_a, q.pair.pose.T_target_source), 0.5);
     EXPECT_GT(q.pair.visibility.violation_ratio, 0.05);  // the occluder, seen from one sweep
