@@ -232,12 +232,13 @@ void printTruthStart(const gasp::DepthView& va, const gasp::DepthView& vb, const
     std::vector<double> mean_r(groups, 0.0), mean_inc(groups, 0.0), mean_d(groups, 0.0);
     std::vector<Eigen::Vector3d> mean_n(groups, Eigen::Vector3d::Zero()), mean_q(groups, Eigen::Vector3d::Zero());
     gasp::Matrix6d H = gasp::Matrix6d::Zero(), hc0 = gasp::Matrix6d::Zero();
+    const bool at_truth = std::strcmp(name, "truth") == 0;
     const double a = params.refine.solver.loss_scale_m;
+    const gasp::RobustLoss loss = params.refine.solver.loss;
     for (const gasp::PointToPlane& t : terms) {
       const Eigen::Vector3d p = T * t.p_source;
       const double r = t.n_target.dot(p - t.q_target);
       // The robust loss's rho' (refinement.h), as the rounds weigh the term.
-      const gasp::RobustLoss loss = params.refine.solver.loss;
       const double rho1 = loss == gasp::RobustLoss::kHuber    ? (std::abs(r) <= a ? 1.0 : a / std::abs(r))
                           : loss == gasp::RobustLoss::kCauchy ? 1.0 / (1.0 + r * r / (a * a))
                                                               : 1.0;
@@ -250,21 +251,23 @@ void printTruthStart(const gasp::DepthView& va, const gasp::DepthView& vb, const
       const int label = patchLabelAt(vb, t.q_target);
       const std::size_t g = label >= 0 ? static_cast<std::size_t>(label) : groups - 1;
       score[g] += s, ++count[g];
-      if (std::strcmp(name, "truth") == 0) {
+      if (at_truth) {
         mean_r[g] += r, mean_n[g] += t.n_target, mean_q[g] += t.q_target;
         const Eigen::Vector3d ray = t.q_target.normalized();
         mean_inc[g] += std::acos(std::min(1.0, std::abs(ray.dot(t.n_target)))) * 180.0 / M_PI;
         mean_d[g] += (p - t.q_target).norm();
       }
     }
-    if (std::strcmp(name, "truth") == 0) {  // which surfaces pull the truth towards the claimed pose
-      const gasp::Vector6d g_all = [&] { gasp::Vector6d x = gasp::Vector6d::Zero(); for (auto& y : score) x += y; return x; }();
-      const gasp::Vector6d step = -H.ldlt().solve(g_all);  // Gauss-Newton step from the truth
+    if (at_truth) {  // which surfaces pull the truth towards the claimed pose
+      gasp::Vector6d g_all = gasp::Vector6d::Zero();
+      for (const gasp::Vector6d& y : score) g_all += y;
+      const Eigen::LDLT<gasp::Matrix6d> H_ldlt(H);
+      const gasp::Vector6d step = -H_ldlt.solve(g_all);  // Gauss-Newton step from the truth
       std::printf("  Gauss-Newton step from the truth: t (%.2f, %.2f, %.2f) cm, r (%.3f, %.3f, %.3f) deg\n", 100 * step(0),
                   100 * step(1), 100 * step(2), step(3) * 180 / M_PI, step(4) * 180 / M_PI, step(5) * 180 / M_PI);
       std::vector<std::pair<double, std::size_t>> pull;
       for (std::size_t g = 0; g < groups; ++g)
-        if (count[g] > 0) pull.push_back({-(H.ldlt().solve(score[g])).head<3>().dot(step.head<3>().normalized()), g});
+        if (count[g] > 0) pull.push_back({-H_ldlt.solve(score[g]).head<3>().dot(step.head<3>().normalized()), g});
       std::sort(pull.begin(), pull.end(), [](auto& x, auto& y) { return std::abs(x.first) > std::abs(y.first); });
       for (std::size_t k = 0; k < std::min<std::size_t>(10, pull.size()); ++k) {
         const std::size_t g = pull[k].second;

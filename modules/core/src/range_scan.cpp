@@ -87,6 +87,10 @@ double azimuthStep(const RangeScan& scan) {
 
 double rowPitch(const RangeScan& scan) { return meanElevationStep(scan.elevation_rad, std::abs(azimuthStep(scan))); }
 
+int columnsPerRowPitch(const RangeScan& scan) {
+  return std::max(1, static_cast<int>(std::lround(rowPitch(scan) / std::abs(azimuthStep(scan)))));
+}
+
 bool coversWholeTurn(const RangeScan& scan) { return coversWholeTurn(scan.range_m.cols, azimuthStep(scan)); }
 
 bool nearestCell(const RangeScan& scan, const Eigen::Vector3d& direction, int& row, int& col) {

@@ -17,7 +17,7 @@ namespace gasp {
 
 int rangeBinColumns(const RangeScan& scan) {
   validateLayout(scan, "range scan");
-  return std::max(1, static_cast<int>(std::lround(rowPitch(scan) / std::abs(azimuthStep(scan)))));
+  return columnsPerRowPitch(scan);
 }
 
 std::pair<cv::Mat, ViewProjection> binRangeScan(const RangeScan& scan, const SuperpixelParams& params) {

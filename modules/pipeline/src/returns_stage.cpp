@@ -33,8 +33,7 @@ void validate(const ReturnsRefineParams& r) {
 
 int squareNormalHalfWidth(const RangeScan& scan) {
   validateLayout(scan, "sweep returns");
-  const double ratio = rowPitch(scan) / std::abs(azimuthStep(scan));
-  return static_cast<int>(std::clamp(std::lround(ratio), 1L, 100L));
+  return std::min(columnsPerRowPitch(scan), 100);
 }
 
 SweepReturns::SweepReturns(const RangeScan& scan, const ReturnsRefineParams& p)

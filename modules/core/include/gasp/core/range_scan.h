@@ -50,6 +50,9 @@ void validateLayout(const RangeScan& scan, const std::string& who);
 double azimuthStep(const RangeScan& scan);
 /// The rows' mean elevation step [rad]; a single row: |azimuthStep|.
 double rowPitch(const RangeScan& scan);
+/// The columns that span one row pitch: rowPitch / |azimuthStep|, rounded, at least 1 (a window
+/// of that many columns per row is about square in view angle).
+int columnsPerRowPitch(const RangeScan& scan);
 /// True when the columns cover a whole turn (within half a step): azimuths wrap around.
 bool coversWholeTurn(const RangeScan& scan);
 /// The cell nearest a direction in the sensor frame: the row of the nearest elevation (false
