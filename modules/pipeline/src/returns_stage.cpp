@@ -85,6 +85,50 @@ int SweepReturns::lookUp(const Eigen::Vector3d& q, int reach) const {
   return -1;
 }
 
+Eigen::Vector3d SweepReturns::surfaceNear(int i, const Eigen::Vector3d& q, double tolerance) const {
+  const int r = i / cols_, c = i % cols_;
+  const Eigen::Vector3d& p0 = point_[static_cast<std::size_t>(i)];
+  const Eigen::Vector3d& n = normal_[static_cast<std::size_t>(i)];
+  // The weights come from the directions alone (the returns' rays carry no range noise), so
+  // they do not depend on the noise of the offsets they weigh: a direction's gnomonic offset
+  // from return i's on the plane tangent to the unit sphere there.
+  const Eigen::Vector3d u0 = p0.normalized();
+  const auto gnomonic = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return p / p.dot(u0) - u0; };
+  const Eigen::Vector3d g = gnomonic(q);
+  // Return i's neighbour toward q along one axis that lies on its plane: its offset from return
+  // i and its direction's gnomonic offset; zeros where there is none.
+  const auto toward = [&](int r1, int c1, int r2, int c2) -> std::pair<Eigen::Vector3d, Eigen::Vector3d> {
+    std::pair<Eigen::Vector3d, Eigen::Vector3d> best{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+    double best_along = 0.0;
+    for (const auto& [rr, cc0] : {std::pair{r1, c1}, std::pair{r2, c2}}) {
+      int cc = cc0;
+      if (whole_turn_) cc = ((cc % cols_) + cols_) % cols_;
+      if (rr < 0 || rr >= rows_ || cc < 0 || cc >= cols_) continue;
+      const Eigen::Vector3d& p = point_[index(rr, cc)];
+      if (!p.allFinite() || !(p.dot(u0) > 0.0)) continue;
+      const Eigen::Vector3d e = p - p0, ge = gnomonic(p);
+      const double along = g.dot(ge) / ge.squaredNorm();
+      if (std::abs(n.dot(e)) <= tolerance && along > best_along) best = {e, ge}, best_along = along;
+    }
+    return best;
+  };
+  const auto [across, g_across] = toward(r - 1, c, r + 1, c);
+  const auto [along, g_along] = toward(r, c - 1, r, c + 1);
+  const bool has_across = !g_across.isZero(), has_along = !g_along.isZero();
+  if (has_across && has_along) {
+    Eigen::Matrix<double, 3, 2> G;
+    G << g_across, g_along;
+    const Eigen::Matrix2d GtG = G.transpose() * G;
+    if (GtG.determinant() > 1e-6 * GtG(0, 0) * GtG(1, 1)) {
+      const Eigen::Vector2d a = GtG.ldlt().solve(G.transpose() * g).cwiseMax(0.0).cwiseMin(1.0);
+      return p0 + a(0) * across + a(1) * along;
+    }
+  }
+  if (has_across) return p0 + std::clamp(g.dot(g_across) / g_across.squaredNorm(), 0.0, 1.0) * across;
+  if (has_along) return p0 + std::clamp(g.dot(g_along) / g_along.squaredNorm(), 0.0, 1.0) * along;
+  return p0;
+}
+
 /// The plane of the returns around (r, c) on the same surface (ranges within 5 % + 0.1 m of the
 /// centre's), over at least two rows; zero when there is none or it is not flat. `prefix`: each
 /// row's running sums of its returns' moments (cols + 1 per row).
@@ -137,7 +181,9 @@ std::vector<PointToPlane> returnTerms(const std::vector<Eigen::Vector3d>& source
     if (cos_i < min_cos || std::abs(n.dot(pt - q)) > gate) continue;
     // In the plane, the point can be a cell's footprint away from the return it fell on.
     if ((pt - q).norm() > gate + range * target.halfCellRad() / cos_i) continue;
-    terms.push_back(PointToPlane{ps, q, n, 1.0});
+    // Against the surface between the returns around the point (those within the gate of the
+    // return's plane: the same standard the point itself meets).
+    terms.push_back(PointToPlane{ps, target.surfaceNear(i, pt, gate), n, 1.0});
   }
   return terms;
 }

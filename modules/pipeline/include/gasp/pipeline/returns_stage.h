@@ -72,6 +72,12 @@ class SweepReturns {
   int lookUp(const Eigen::Vector3d& q, int reach) const;
   const Eigen::Vector3d& point(int i) const { return point_[static_cast<std::size_t>(i)]; }
   const Eigen::Vector3d& normal(int i) const { return normal_[static_cast<std::size_t>(i)]; }
+  /// The point of return i's surface nearest `q` (sensor frame): on the parallelogram of return i
+  /// and its neighbours toward q in its column (the next row) and in its row (the next column),
+  /// those of them that lie within `tolerance` [m] of its plane; return i itself where neither does.
+  /// A point between two rows is thus compared with the surface measured there, not with return
+  /// i's plane extended a row's spacing, where a normal's error would multiply that spacing.
+  Eigen::Vector3d surfaceNear(int i, const Eigen::Vector3d& q, double tolerance) const;
   /// Half the diagonal of a cell [rad]: how far in angle a point can lie from the return it fell on.
   double halfCellRad() const { return half_cell_rad_; }
   /// The normal half-width (the effective one: squareNormalHalfWidth() for 0) and flatness the
@@ -109,7 +115,9 @@ int squareNormalHalfWidth(const RangeScan& scan);
 /// One round's point-to-plane terms: each source point (sensor frame) mapped by T_target_source
 /// takes the target's return of nearest direction with a normal (SweepReturns::lookUp within
 /// look_up_columns) when that return is seen within max_incidence_deg, the point lies within `gate`
-/// of its plane and within the gate plus a cell's footprint of the return across it.
+/// of its plane and within the gate plus a cell's footprint of the return across it. The term's
+/// plane is the return's normal through the surface between the returns around the point
+/// (SweepReturns::surfaceNear, neighbours within `gate` of the return's plane).
 std::vector<PointToPlane> returnTerms(const std::vector<Eigen::Vector3d>& source_points, const SweepReturns& target,
                                       const Isometry3& T_target_source, double gate, int look_up_columns,
                                       double max_incidence_deg);
