@@ -576,7 +576,7 @@ TEST(RangeScan, AMappedPointIsMeasuredAgainstTheSurfaceBetweenTheReturnsAroundIt
       if (a.point(r, c).allFinite()) points.push_back(a.point(r, c));
   const double gate = params.returns.gates_m.back();
   const std::vector<gasp::PointToPlane> terms =
-      gasp::returnTerms(points, b, s.T_b_a, gate, params.returns.look_up_columns, params.segment.max_incidence_deg);
+      gasp::returnTerms(points, b, s.T_b_a, gate, params.returns.look_up_columns, params.segment.max_incidence_deg, gate);
   ASSERT_GT(terms.size(), 5000u);
   // The same terms against the nearest return's plane, as the looked-up return gives it.
   std::vector<double> between, nearest;

@@ -37,7 +37,7 @@ int squareNormalHalfWidth(const RangeScan& scan) {
 }
 
 SweepReturns::SweepReturns(const RangeScan& scan, const ReturnsRefineParams& p)
-    : scan_(scan), normal_half_width_(p.normal_half_width), max_flatness_(p.max_flatness) {
+    : scan_(scan), normal_half_width_(p.normal_half_width), max_flatness_(p.max_flatness), plane_tolerance_(p.gates_m.back()) {
   validate(p);
   validateLayout(scan_, "sweep returns");
   if (normal_half_width_ == 0) normal_half_width_ = squareNormalHalfWidth(scan_);
@@ -91,9 +91,10 @@ Eigen::Vector3d SweepReturns::surfaceNear(int i, const Eigen::Vector3d& q, doubl
   const Eigen::Vector3d& n = normal_[static_cast<std::size_t>(i)];
   // The weights come from the directions alone (the returns' rays carry no range noise), so
   // they do not depend on the noise of the offsets they weigh: a direction's gnomonic offset
-  // from return i's on the plane tangent to the unit sphere there.
-  const Eigen::Vector3d u0 = p0.normalized();
-  const auto gnomonic = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return p / p.dot(u0) - u0; };
+  // from return i's on the plane tangent to the sphere there (all scaled by 1 / |p0|, which
+  // leaves the weights as they are).
+  const double inv_p0 = 1.0 / p0.squaredNorm();
+  const auto gnomonic = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return p / p.dot(p0) - inv_p0 * p0; };
   const Eigen::Vector3d g = gnomonic(q);
   // Return i's neighbour toward q along one axis that lies on its plane: its offset from return
   // i and its direction's gnomonic offset; zeros where there is none.
@@ -105,7 +106,7 @@ Eigen::Vector3d SweepReturns::surfaceNear(int i, const Eigen::Vector3d& q, doubl
       if (whole_turn_) cc = ((cc % cols_) + cols_) % cols_;
       if (rr < 0 || rr >= rows_ || cc < 0 || cc >= cols_) continue;
       const Eigen::Vector3d& p = point_[index(rr, cc)];
-      if (!p.allFinite() || !(p.dot(u0) > 0.0)) continue;
+      if (!p.allFinite() || !(p.dot(p0) > 0.0)) continue;
       const Eigen::Vector3d e = p - p0, ge = gnomonic(p);
       const double along = g.dot(ge) / ge.squaredNorm();
       if (std::abs(n.dot(e)) <= tolerance && along > best_along) best = {e, ge}, best_along = along;
@@ -116,12 +117,13 @@ Eigen::Vector3d SweepReturns::surfaceNear(int i, const Eigen::Vector3d& q, doubl
   const auto [along, g_along] = toward(r, c - 1, r, c + 1);
   const bool has_across = !g_across.isZero(), has_along = !g_along.isZero();
   if (has_across && has_along) {
-    Eigen::Matrix<double, 3, 2> G;
-    G << g_across, g_along;
-    const Eigen::Matrix2d GtG = G.transpose() * G;
-    if (GtG.determinant() > 1e-6 * GtG(0, 0) * GtG(1, 1)) {
-      const Eigen::Vector2d a = GtG.ldlt().solve(G.transpose() * g).cwiseMax(0.0).cwiseMin(1.0);
-      return p0 + a(0) * across + a(1) * along;
+    // The least-squares weights of g on the two directions (the 2 x 2 normal equations).
+    const double aa = g_across.squaredNorm(), bb = g_along.squaredNorm(), ab = g_across.dot(g_along);
+    const double det = aa * bb - ab * ab;
+    if (det > 1e-6 * aa * bb) {
+      const double ga = g.dot(g_across), gb = g.dot(g_along);
+      const double wa = std::clamp((bb * ga - ab * gb) / det, 0.0, 1.0), wb = std::clamp((aa * gb - ab * ga) / det, 0.0, 1.0);
+      return p0 + wa * across + wb * along;
     }
   }
   if (has_across) return p0 + std::clamp(g.dot(g_across) / g_across.squaredNorm(), 0.0, 1.0) * across;
@@ -129,45 +131,75 @@ Eigen::Vector3d SweepReturns::surfaceNear(int i, const Eigen::Vector3d& q, doubl
   return p0;
 }
 
-/// The plane of the returns around (r, c) on the same surface (ranges within 5 % + 0.1 m of the
-/// centre's), over at least two rows; zero when there is none or it is not flat. `prefix`: each
-/// row's running sums of its returns' moments (cols + 1 per row).
+bool SweepReturns::addRow(int row, int lo, int hi, float range, const std::vector<Moments>& prefix, Moments& m) const {
+  const float reach = 0.1f + 0.05f * range;
+  const float* ranges = scan_.range_m.ptr<float>(row);
+  bool all_on_surface = true;
+  for (int cc = lo; cc <= hi && all_on_surface; ++cc)
+    all_on_surface = !point_[index(row, cc)].allFinite() || std::abs(ranges[cc] - range) <= reach;
+  const double before = m.n;
+  if (all_on_surface) {
+    const Moments* sums = &prefix[static_cast<std::size_t>(row) * static_cast<std::size_t>(cols_ + 1)];
+    m.addDifference(sums[hi + 1], sums[lo]);
+  } else {
+    for (int cc = lo; cc <= hi; ++cc)
+      if (const Eigen::Vector3d& q = point_[index(row, cc)]; q.allFinite() && std::abs(ranges[cc] - range) <= reach) m.add(q);
+  }
+  return m.n > before;
+}
+
+/// The plane of the returns around (r, c) on the same surface, over at least two rows; zero when
+/// there is none or it is not flat. `prefix`: each row's running sums of its returns' moments
+/// (cols + 1 per row).
+/// - The same surface is first the returns whose ranges lie within 5 % + 0.1 m of the centre's.
+/// - Where no other row's do (a surface seen at grazing incidence across the rows, as the ground
+///   is: a VLP-16's rings on it lie metres apart in range), each of the three rows nearest r (r's
+///   own and the two beside it, or the two inside it at the first and last row) contributes the
+///   returns on its own centre column's surface (within the same reach of that return's range),
+///   and the plane of the three is kept only when every one of them lies within plane_tolerance_
+///   of it: three rows on one plane, not a row of the ground under a row of a facade.
 Eigen::Vector3d SweepReturns::fitNormal(int r, int c, const std::vector<Moments>& prefix) const {
   const Eigen::Vector3d& centre = point_[index(r, c)];
   if (!centre.allFinite()) return Eigen::Vector3d::Zero();
-  const float range = scan_.range_m.at<float>(r, c);
-  const float reach = 0.1f + 0.05f * range;
   const int lo = std::max(0, c - normal_half_width_), hi = std::min(cols_ - 1, c + normal_half_width_);
+  const auto flatNormal = [&](const Moments& m, Eigen::Vector3d& mean) -> Eigen::Vector3d {
+    mean = m.s / m.n;
+    const Eigen::Matrix3d cov = m.ss / m.n - mean * mean.transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    const Eigen::Vector3d lambda = eig.eigenvalues().cwiseMax(0.0);
+    if (!(lambda(1) > 0.0) || std::sqrt(lambda(0) / lambda(1)) > max_flatness_) return Eigen::Vector3d::Zero();
+    const Eigen::Vector3d normal = eig.eigenvectors().col(0);
+    return normal.dot(centre) > 0.0 ? -normal : normal;
+  };
+  const float range = scan_.range_m.at<float>(r, c);
   Moments m;
   int rows_used = 0;
-  for (int rr = std::max(0, r - 1); rr <= std::min(rows_ - 1, r + 1); ++rr) {
-    const float* ranges = scan_.range_m.ptr<float>(rr);
-    bool all_on_surface = true;
-    for (int cc = lo; cc <= hi && all_on_surface; ++cc)
-      all_on_surface = !point_[index(rr, cc)].allFinite() || std::abs(ranges[cc] - range) <= reach;
-    const double before = m.n;
-    if (all_on_surface) {
-      const Moments* row = &prefix[static_cast<std::size_t>(rr) * static_cast<std::size_t>(cols_ + 1)];
-      m.addDifference(row[hi + 1], row[lo]);
-    } else {
-      for (int cc = lo; cc <= hi; ++cc)
-        if (const Eigen::Vector3d& q = point_[index(rr, cc)]; q.allFinite() && std::abs(ranges[cc] - range) <= reach) m.add(q);
-    }
-    rows_used += m.n > before ? 1 : 0;
+  for (int rr = std::max(0, r - 1); rr <= std::min(rows_ - 1, r + 1); ++rr) rows_used += addRow(rr, lo, hi, range, prefix, m) ? 1 : 0;
+  Eigen::Vector3d mean;
+  if (rows_used >= 2) return m.n < 5 ? Eigen::Vector3d::Zero() : flatNormal(m, mean);
+  if (rows_ < 3) return Eigen::Vector3d::Zero();
+  const int first = std::clamp(r - 1, 0, rows_ - 3);  // the three rows nearest r (r's own at the ends)
+  Moments rows3;
+  for (int rr = first; rr <= first + 2; ++rr) {
+    const float own = scan_.range_m.at<float>(rr, c);
+    if (!point_[index(rr, c)].allFinite() || !addRow(rr, lo, hi, own, prefix, rows3)) return Eigen::Vector3d::Zero();
   }
-  if (m.n < 5 || rows_used < 2) return Eigen::Vector3d::Zero();
-  const Eigen::Vector3d mean = m.s / m.n;
-  const Eigen::Matrix3d cov = m.ss / m.n - mean * mean.transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-  const Eigen::Vector3d lambda = eig.eigenvalues().cwiseMax(0.0);
-  if (!(lambda(1) > 0.0) || std::sqrt(lambda(0) / lambda(1)) > max_flatness_) return Eigen::Vector3d::Zero();
-  Eigen::Vector3d normal = eig.eigenvectors().col(0);
-  return normal.dot(centre) > 0.0 ? -normal : normal;
+  const Eigen::Vector3d normal = flatNormal(rows3, mean);
+  if (normal.isZero()) return normal;
+  for (int rr = first; rr <= first + 2; ++rr) {
+    const float own = scan_.range_m.at<float>(rr, c), reach = 0.1f + 0.05f * own;
+    const float* ranges = scan_.range_m.ptr<float>(rr);
+    for (int cc = lo; cc <= hi; ++cc)
+      if (const Eigen::Vector3d& q = point_[index(rr, cc)];
+          q.allFinite() && std::abs(ranges[cc] - own) <= reach && std::abs(normal.dot(q - mean)) > plane_tolerance_)
+        return Eigen::Vector3d::Zero();
+  }
+  return normal;
 }
 
 std::vector<PointToPlane> returnTerms(const std::vector<Eigen::Vector3d>& source_points, const SweepReturns& target,
                                       const Isometry3& T_target_source, double gate, int look_up_columns,
-                                      double max_incidence_deg) {
+                                      double max_incidence_deg, double surface_tolerance_m) {
   const double min_cos = std::cos(max_incidence_deg * M_PI / 180.0);
   std::vector<PointToPlane> terms;
   for (const Eigen::Vector3d& ps : source_points) {
@@ -181,9 +213,7 @@ std::vector<PointToPlane> returnTerms(const std::vector<Eigen::Vector3d>& source
     if (cos_i < min_cos || std::abs(n.dot(pt - q)) > gate) continue;
     // In the plane, the point can be a cell's footprint away from the return it fell on.
     if ((pt - q).norm() > gate + range * target.halfCellRad() / cos_i) continue;
-    // Against the surface between the returns around the point (those within the gate of the
-    // return's plane: the same standard the point itself meets).
-    terms.push_back(PointToPlane{ps, target.surfaceNear(i, pt, gate), n, 1.0});
+    terms.push_back(PointToPlane{ps, target.surfaceNear(i, pt, surface_tolerance_m), n, 1.0});
   }
   return terms;
 }
@@ -202,7 +232,8 @@ RegistrationResult refineOnReturns(const SweepReturns& source, const SweepReturn
   Isometry3 T = T_target_source;
   for (int round = 0; round < p.max_rounds; ++round) {
     const double gate = p.gates_m[std::min(static_cast<std::size_t>(round), p.gates_m.size() - 1)];
-    const std::vector<PointToPlane> terms = returnTerms(points, target, T, gate, p.look_up_columns, max_incidence_deg);
+    const std::vector<PointToPlane> terms = returnTerms(points, target, T, gate, p.look_up_columns, max_incidence_deg,
+                                                           p.gates_m.back());
     if (terms.size() < 6) {
       result.reason = "returns refinement: " + std::to_string(terms.size()) + " point-to-plane terms in round " +
                       std::to_string(round + 1) + " (at least 6 needed)";

@@ -98,6 +98,9 @@ class SweepReturns {
     }
   };
   Eigen::Vector3d fitNormal(int r, int c, const std::vector<Moments>& prefix) const;
+  /// Adds the returns of `row` in columns [lo, hi] whose ranges lie within 0.1 m + 5 % of `range`
+  /// to m; true when it added any.
+  bool addRow(int row, int lo, int hi, float range, const std::vector<Moments>& prefix, Moments& m) const;
 
   RangeScan scan_;
   int rows_ = 0, cols_ = 0;
@@ -105,6 +108,7 @@ class SweepReturns {
   double half_cell_rad_ = 0.0;
   int normal_half_width_ = 3;
   double max_flatness_ = 0.3;
+  double plane_tolerance_ = 0.08;  ///< the rounds' last gate [m]
   std::vector<Eigen::Vector3d> point_, normal_;
 };
 
@@ -117,10 +121,11 @@ int squareNormalHalfWidth(const RangeScan& scan);
 /// look_up_columns) when that return is seen within max_incidence_deg, the point lies within `gate`
 /// of its plane and within the gate plus a cell's footprint of the return across it. The term's
 /// plane is the return's normal through the surface between the returns around the point
-/// (SweepReturns::surfaceNear, neighbours within `gate` of the return's plane).
+/// (SweepReturns::surfaceNear, with the neighbours within surface_tolerance_m of the return's
+/// plane; the rounds pass their last gate, the finest standard of "on the plane" they apply).
 std::vector<PointToPlane> returnTerms(const std::vector<Eigen::Vector3d>& source_points, const SweepReturns& target,
                                       const Isometry3& T_target_source, double gate, int look_up_columns,
-                                      double max_incidence_deg);
+                                      double max_incidence_deg, double surface_tolerance_m);
 
 /// Refines T_target_source between the two sweeps (point-to-plane, the target's normals;
 /// `solver`: loss, noise and degeneracy test; returns seen beyond max_incidence_deg give no term).
