@@ -13,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <random>
@@ -610,6 +611,67 @@ TEST(RangeScan, AMappedPointIsMeasuredAgainstTheSurfaceBetweenTheReturnsAroundIt
   expectRightPose(simulatedSweeps("street", 16, 20, 30));  // with the sensor's noise, no prior
 }
 
+// The ground's returns get normals (SweepReturns::fitNormal). A VLP-16 at 1.8 m sees a flat
+// ground in rings 7.0, 8.0, 9.4 and 11.5 m away: adjacent rows' ranges differ by more than the
+// same-surface reach (0.1 m + 5 %), so a window of one surface held one row and gave no normal, and
+// the returns' rounds had almost no term on the ground to fix pitch and height. Where no other
+// row lies within the reach, the three rows nearest the return, each on its own centre's surface,
+// give the plane when every one of their returns lies within the last gate of it along its ray.
+// A ground in front of a wall 8.5 m ahead, exact: rows at -15 and -13 deg meet the ground, the
+// row at -11 deg the wall 15 cm above it. The -13 deg row's returns facing the wall get no normal
+// (ground, ground and wall are not one plane); facing away, the ground's.
+TEST(RangeScan, TheGroundsRingsGetNormalsFromTheThreeRowsAroundThem) {
+  std::vector<double> az;
+  for (int k = 0; k < 1800; ++k) az.push_back(-2.0 * M_PI * k / 1800.0);
+  gasp::RangeScan scan;
+  scan.model = "VLP16";
+  scan.setLayout(gasp::laserElevationsDeg("VLP-16", 16), az);
+  for (int r = 0; r < scan.range_m.rows; ++r)
+    for (int c = 0; c < scan.range_m.cols; ++c) {
+      const Eigen::Vector3d u = scan.direction(r, c);
+      double range = u.z() < 0.0 ? -1.8 / u.z() : 1e9;           // the ground, 1.8 m below
+      if (u.x() > 0.0) range = std::min(range, 8.5 / u.x());      // the wall at x = 8.5 m
+      if (range < 100.0) scan.range_m.at<float>(r, c) = static_cast<float>(range);
+    }
+  ASSERT_NEAR(scan.elevation_rad[1] * 180.0 / M_PI, -13.0, 1e-9);
+  const gasp::SweepReturns sweep(scan, gasp::returnsRefineParams());
+  int facing_wall = 0, facing_away = 0;
+  for (int c = 0; c < sweep.cols(); ++c) {
+    const Eigen::Vector3d& p = sweep.point(1, c);
+    const Eigen::Vector3d& n = sweep.normal(sweep.cols() + c);
+    const double azimuth = std::atan2(p.y(), p.x());
+    if (std::abs(azimuth) < 0.2) {  // the -11 deg row meets the wall here
+      ++facing_wall;
+      EXPECT_TRUE(n.isZero()) << "column " << c << ": a normal (" << n.transpose() << ") across the ground and the wall";
+    } else if (std::abs(azimuth) > M_PI - 0.2) {
+      ++facing_away;
+      EXPECT_GT(std::abs(n.z()), std::cos(0.01 * M_PI / 180.0)) << "column " << c;
+    }
+  }
+  EXPECT_GT(facing_wall, 50);
+  EXPECT_GT(facing_away, 50);
+
+  // The street's sweeps, with range noise: most of the near rings (within the 80 deg incidence the
+  // terms accept) get the ground's normal. The tilted ones are windows of the same-surface reach
+  // that meet a car or a facade's foot (311 of them, the same without the three-row rule).
+  const SimulatedSweepPair s = simulatedSweeps("street", 16, 10, 11);
+  const gasp::SweepReturns street(s.a, gasp::returnsRefineParams());
+  int ground = 0, with_normal = 0, tilted = 0;
+  for (int r = 0; r < street.rows(); ++r)
+    for (int c = 0; c < street.cols(); ++c) {
+      const Eigen::Vector3d& p = street.point(r, c);
+      if (!p.allFinite() || p.z() > -1.75 || p.norm() > 10.0) continue;  // the near ground of the level sensor
+      const Eigen::Vector3d& n = street.normal(r * street.cols() + c);
+      ++ground;
+      with_normal += n.isZero() ? 0 : 1;
+      tilted += !n.isZero() && std::abs(n.z()) < std::cos(3.0 * M_PI / 180.0) ? 1 : 0;
+    }
+  std::printf("the street's near ground: %d returns, %d with a normal, %d of those tilted by more than 3 deg\n", ground,
+              with_normal, tilted);
+  ASSERT_GT(ground, 2000);
+  EXPECT_GT(with_normal - tilted, 0.7 * ground);
+}
+
 // surfaceNear on a plane seen by a VLP-16 layout: the point it gives lies on the plane (a
 // combination of returns on it) at the mapped point's own direction, to second order, wherever
 // the point falls between the rows; with range noise its weights come from the rays alone, so
@@ -676,7 +738,8 @@ TEST(SweepReturns, SurfaceNearIsThePlaneBetweenTheReturnsAtThePointsDirection) {
 // The normals' running sums (SweepReturns: a row's window summed by two look-ups where all its
 // returns lie on the centre's surface, return by return elsewhere) give the planes a plain fit of
 // the same returns gives, on a room sweep whose furniture mixes both kinds of window and on a
-// street sweep reaching tens of metres (the sums' rounding grows with the range squared).
+// street sweep reaching tens of metres (the sums' rounding grows with the range squared). Returns
+// with no other row on their surface (the three-row rule's, TheGroundsRingsGetNormals...) are left out.
 class ReturnsNormalsRunningSums : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ReturnsNormalsRunningSums, GiveThePlainFitsPlanes) {
@@ -699,7 +762,8 @@ TEST_P(ReturnsNormalsRunningSums, GiveThePlainFitsPlanes) {
           q.push_back(p);
       rows_used += q.size() > before ? 1 : 0;
     }
-    if (q.size() < 5 || rows_used < 2) return Eigen::Vector3d::Zero();
+    if (rows_used < 2) return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());  // the three-row rule's
+    if (q.size() < 5) return Eigen::Vector3d::Zero();
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     for (const auto& p : q) mean += p;
     mean /= static_cast<double>(q.size());
@@ -716,6 +780,7 @@ TEST_P(ReturnsNormalsRunningSums, GiveThePlainFitsPlanes) {
   for (int r = 0; r < sweep.rows(); ++r)
     for (int c = 0; c < sweep.cols(); ++c) {
       const Eigen::Vector3d expected = plainFit(r, c);
+      if (expected.hasNaN()) continue;  // no other row on the surface: not fitted from the sums
       const Eigen::Vector3d& got = sweep.normal(r * sweep.cols() + c);
       if (expected.isZero() != got.isZero()) {
         ++one_only;

@@ -157,7 +157,8 @@ bool SweepReturns::addRow(int row, int lo, int hi, float range, const std::vecto
 ///   own and the two beside it, or the two inside it at the first and last row) contributes the
 ///   returns on its own centre column's surface (within the same reach of that return's range),
 ///   and the plane of the three is kept only when every one of them lies within plane_tolerance_
-///   of it: three rows on one plane, not a row of the ground under a row of a facade.
+///   of it along its own ray (where the range noise is): three rows on one plane, not a row of
+///   the ground under a row of a facade or a car.
 Eigen::Vector3d SweepReturns::fitNormal(int r, int c, const std::vector<Moments>& prefix) const {
   const Eigen::Vector3d& centre = point_[index(r, c)];
   if (!centre.allFinite()) return Eigen::Vector3d::Zero();
@@ -191,7 +192,8 @@ Eigen::Vector3d SweepReturns::fitNormal(int r, int c, const std::vector<Moments>
     const float* ranges = scan_.range_m.ptr<float>(rr);
     for (int cc = lo; cc <= hi; ++cc)
       if (const Eigen::Vector3d& q = point_[index(rr, cc)];
-          q.allFinite() && std::abs(ranges[cc] - own) <= reach && std::abs(normal.dot(q - mean)) > plane_tolerance_)
+          q.allFinite() && std::abs(ranges[cc] - own) <= reach &&
+          std::abs(normal.dot(q - mean)) * static_cast<double>(ranges[cc]) > plane_tolerance_ * std::abs(normal.dot(q)))
         return Eigen::Vector3d::Zero();
   }
   return normal;
@@ -322,8 +324,12 @@ ReturnLanding land(const SweepReturns& sweep, const Eigen::Vector3d& q, double r
   const double tan_i = std::min(max_tan, std::sqrt(std::max(0.0, 1.0 - cos_i * cos_i)) / std::max(cos_i, 1e-9));
   l.index = i;
   l.gate_m = 5.0 * range_sigma_m + range * sweep.halfCellRad() * tan_i;
-  l.beyond_m = q.norm() - range;
-  l.plane_m = n.dot(q - t);
+  // Against the surface between the returns around q, as a term is (on the ground a VLP-16's
+  // rings lie metres apart in range, and the nearest ring's range is not the surface's at q).
+  const Eigen::Vector3d x = sweep.surfaceNear(i, q, sweep.planeTolerance());
+  const double q_range = q.norm();
+  l.beyond_m = q_range - x.dot(q) / q_range;
+  l.plane_m = n.dot(q - x);
   return l;
 }
 

@@ -84,6 +84,9 @@ class SweepReturns {
   /// normals were fitted with.
   int normalHalfWidth() const { return normal_half_width_; }
   double maxFlatness() const { return max_flatness_; }
+  /// How far from a return's plane a neighbour or a three-row window's return may lie and still be
+  /// on it [m]: the rounds' last gate.
+  double planeTolerance() const { return plane_tolerance_; }
 
  private:
   std::size_t index(int r, int c) const { return static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(c); }
@@ -163,9 +166,10 @@ ReturnsBasin returnsBasin(const SweepReturns& source, const SweepReturns& target
                           double max_incidence_deg = 80.0);
 
 /// Where a point in a sweep's sensor frame lands on that sweep's returns: the return nearest its
-/// direction with a normal (SweepReturns::lookUp, no reach), how far the point lies beyond that
-/// return along its own ray (negative: in front of it, in the space the sweep saw empty), its
-/// distance from that return's plane, and the free-space gate there: 5 range_sigma_m plus the depth
+/// direction with a normal (SweepReturns::lookUp, no reach), how far the point lies beyond the
+/// surface between the returns around the point (SweepReturns::surfaceNear) along the point's ray
+/// (negative: in front of it, in the space the sweep saw empty), its distance from that return's
+/// plane through the same surface point, and the free-space gate there: 5 range_sigma_m plus the depth
 /// change of the return's surface across half a cell (the incidence clamped at max_incidence_deg).
 struct ReturnLanding {
   int index = -1;  ///< the return's (SweepReturns::point(i)); -1: it lands on none with a normal
