@@ -197,8 +197,7 @@ SurfaceCount surfacesAlongWeakest(const gasp::DepthView& va, const gasp::DepthVi
   out.direction = d;
   const std::vector<Eigen::Vector3d> points = returnPoints(*va.returns);
   const std::vector<gasp::PointToPlane> terms = gasp::returnTerms(points, *vb.returns, pose.T_target_source, params.returns.gates_m.back(),
-                                                                  params.returns.look_up_columns, vb.superpixels.max_incidence_deg,
-                                                                    params.returns.gates_m.back());
+                                                                  params.returns.look_up_columns, vb.superpixels.max_incidence_deg);
   std::vector<double> w(vb.segmentation.patches.size() + 1, 0.0);  // the last: no patch
   for (const gasp::PointToPlane& t : terms) {
     const int label = patchLabelAt(vb, t.q_target);
@@ -226,8 +225,7 @@ void printTruthStart(const gasp::DepthView& va, const gasp::DepthView& vb, const
   const std::vector<Eigen::Vector3d> points = returnPoints(*va.returns);
   for (const auto& [name, T] : {std::pair<const char*, gasp::Isometry3>{"claimed", pose.T_target_source}, {"truth", T_true}}) {
     const std::vector<gasp::PointToPlane> terms = gasp::returnTerms(points, *vb.returns, T, params.returns.gates_m.back(),
-                                                                    params.returns.look_up_columns, vb.superpixels.max_incidence_deg,
-                                                                    params.returns.gates_m.back());
+                                                                    params.returns.look_up_columns, vb.superpixels.max_incidence_deg);
     const std::size_t groups = vb.segmentation.patches.size() + 1;
     std::vector<gasp::Vector6d> score(groups, gasp::Vector6d::Zero());
     std::vector<int> count(groups, 0);
@@ -415,8 +413,7 @@ std::array<double, 9> slideProfile(const gasp::DepthView& va, const gasp::DepthV
     const gasp::Isometry3 T = Eigen::Translation3d(delta * d) * pose.T_target_source;
     // The returns' rounds' last-gate terms; every return without one counts as the gate.
     const std::vector<gasp::PointToPlane> terms = gasp::returnTerms(points, *vb.returns, T, gate,
-                                                                    params.returns.look_up_columns, vb.superpixels.max_incidence_deg,
-                                                                    params.returns.gates_m.back());
+                                                                    params.returns.look_up_columns, vb.superpixels.max_incidence_deg);
     double cost = static_cast<double>(points.size() - terms.size());
     for (const gasp::PointToPlane& t : terms) {
       const double dist = t.n_target.dot(T * t.p_source - t.q_target);

@@ -577,7 +577,7 @@ TEST(RangeScan, AMappedPointIsMeasuredAgainstTheSurfaceBetweenTheReturnsAroundIt
       if (a.point(r, c).allFinite()) points.push_back(a.point(r, c));
   const double gate = params.returns.gates_m.back();
   const std::vector<gasp::PointToPlane> terms =
-      gasp::returnTerms(points, b, s.T_b_a, gate, params.returns.look_up_columns, params.segment.max_incidence_deg, gate);
+      gasp::returnTerms(points, b, s.T_b_a, gate, params.returns.look_up_columns, params.segment.max_incidence_deg);
   ASSERT_GT(terms.size(), 5000u);
   // The same terms against the nearest return's plane, as the looked-up return gives it.
   std::vector<double> between, nearest;
@@ -650,6 +650,16 @@ TEST(RangeScan, TheGroundsRingsGetNormalsFromTheThreeRowsAroundThem) {
   }
   EXPECT_GT(facing_wall, 50);
   EXPECT_GT(facing_away, 50);
+  // A point of the ground between two rings (metres apart in range) lands on the ground: the
+  // free-space test measures it against the plane between the returns around it along its ray.
+  for (const double horizontal : {7.5, 8.7, 10.4, 13.0})
+    for (const double azimuth : {M_PI - 0.1, M_PI + 0.013, -M_PI / 2.0}) {
+      const Eigen::Vector3d q(horizontal * std::cos(azimuth), horizontal * std::sin(azimuth), -1.8);
+      const gasp::ReturnLanding l = gasp::landOnReturns(sweep, q, 0.02, 80.0);
+      ASSERT_GE(l.index, 0) << horizontal << " m";
+      EXPECT_LT(std::abs(l.beyond_m), 0.01) << horizontal << " m at azimuth " << azimuth;
+      EXPECT_LT(std::abs(l.plane_m), 0.001) << horizontal << " m at azimuth " << azimuth;
+    }
 
   // The street's sweeps, with range noise: most of the near rings (within the 80 deg incidence the
   // terms accept) get the ground's normal. The tilted ones are windows of the same-surface reach
@@ -673,9 +683,10 @@ TEST(RangeScan, TheGroundsRingsGetNormalsFromTheThreeRowsAroundThem) {
 }
 
 // surfaceNear on a plane seen by a VLP-16 layout: the point it gives lies on the plane (a
-// combination of returns on it) at the mapped point's own direction, to second order, wherever
-// the point falls between the rows; with range noise its weights come from the rays alone, so
-// the terms' residuals at the truth stay centred and no larger than one return's noise.
+// combination of returns on it) near the mapped point, wherever the point falls between the rows
+// (not on its ray: the weights are linear in the directions); with range noise its weights come
+// from the rays alone, so the terms' residuals at the truth stay centred and no larger than one
+// return's noise.
 TEST(SweepReturns, SurfaceNearIsThePlaneBetweenTheReturnsAtThePointsDirection) {
   std::vector<double> az;
   for (int k = 0; k < 1800; ++k) az.push_back(-2.0 * M_PI * k / 1800.0);

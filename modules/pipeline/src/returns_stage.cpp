@@ -91,7 +91,7 @@ Eigen::Vector3d SweepReturns::surfaceNear(int i, const Eigen::Vector3d& q, doubl
   const Eigen::Vector3d& n = normal_[static_cast<std::size_t>(i)];
   // The weights come from the directions alone (the returns' rays carry no range noise), so
   // they do not depend on the noise of the offsets they weigh: a direction's gnomonic offset
-  // from return i's on the plane tangent to the sphere there (all scaled by 1 / |p0|, which
+  // from return i's on the plane tangent to the sphere there (all scaled by 1 / |p0|^2, which
   // leaves the weights as they are).
   const double inv_p0 = 1.0 / p0.squaredNorm();
   const auto gnomonic = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return p / p.dot(p0) - inv_p0 * p0; };
@@ -183,7 +183,9 @@ Eigen::Vector3d SweepReturns::fitNormal(int r, int c, const std::vector<Moments>
   Moments rows3;
   for (int rr = first; rr <= first + 2; ++rr) {
     const float own = scan_.range_m.at<float>(rr, c);
-    if (!point_[index(rr, c)].allFinite() || !addRow(rr, lo, hi, own, prefix, rows3)) return Eigen::Vector3d::Zero();
+    const double before = rows3.n;
+    if (!point_[index(rr, c)].allFinite() || !addRow(rr, lo, hi, own, prefix, rows3) || rows3.n - before < 2.0)
+      return Eigen::Vector3d::Zero();  // each row a segment, not a single return
   }
   const Eigen::Vector3d normal = flatNormal(rows3, mean);
   if (normal.isZero()) return normal;
@@ -201,7 +203,7 @@ Eigen::Vector3d SweepReturns::fitNormal(int r, int c, const std::vector<Moments>
 
 std::vector<PointToPlane> returnTerms(const std::vector<Eigen::Vector3d>& source_points, const SweepReturns& target,
                                       const Isometry3& T_target_source, double gate, int look_up_columns,
-                                      double max_incidence_deg, double surface_tolerance_m) {
+                                      double max_incidence_deg) {
   const double min_cos = std::cos(max_incidence_deg * M_PI / 180.0);
   std::vector<PointToPlane> terms;
   for (const Eigen::Vector3d& ps : source_points) {
@@ -212,10 +214,12 @@ std::vector<PointToPlane> returnTerms(const std::vector<Eigen::Vector3d>& source
     const Eigen::Vector3d& q = target.point(i);
     const double range = q.norm();
     const double cos_i = std::abs(n.dot(q)) / range;
-    if (cos_i < min_cos || std::abs(n.dot(pt - q)) > gate) continue;
+    if (cos_i < min_cos) continue;
+    const Eigen::Vector3d x = target.surfaceNear(i, pt, target.planeTolerance());
+    if (std::abs(n.dot(pt - x)) > gate) continue;
     // In the plane, the point can be a cell's footprint away from the return it fell on.
     if ((pt - q).norm() > gate + range * target.halfCellRad() / cos_i) continue;
-    terms.push_back(PointToPlane{ps, target.surfaceNear(i, pt, surface_tolerance_m), n, 1.0});
+    terms.push_back(PointToPlane{ps, x, n, 1.0});
   }
   return terms;
 }
@@ -234,8 +238,7 @@ RegistrationResult refineOnReturns(const SweepReturns& source, const SweepReturn
   Isometry3 T = T_target_source;
   for (int round = 0; round < p.max_rounds; ++round) {
     const double gate = p.gates_m[std::min(static_cast<std::size_t>(round), p.gates_m.size() - 1)];
-    const std::vector<PointToPlane> terms = returnTerms(points, target, T, gate, p.look_up_columns, max_incidence_deg,
-                                                           p.gates_m.back());
+    const std::vector<PointToPlane> terms = returnTerms(points, target, T, gate, p.look_up_columns, max_incidence_deg);
     if (terms.size() < 6) {
       result.reason = "returns refinement: " + std::to_string(terms.size()) + " point-to-plane terms in round " +
                       std::to_string(round + 1) + " (at least 6 needed)";
@@ -324,12 +327,15 @@ ReturnLanding land(const SweepReturns& sweep, const Eigen::Vector3d& q, double r
   const double tan_i = std::min(max_tan, std::sqrt(std::max(0.0, 1.0 - cos_i * cos_i)) / std::max(cos_i, 1e-9));
   l.index = i;
   l.gate_m = 5.0 * range_sigma_m + range * sweep.halfCellRad() * tan_i;
-  // Against the surface between the returns around q, as a term is (on the ground a VLP-16's
-  // rings lie metres apart in range, and the nearest ring's range is not the surface's at q).
+  // Against the plane a term would use (the return's normal through the surface between the
+  // returns around q): on the ground a VLP-16's rings lie metres apart in range, and the nearest
+  // ring's range is not the surface's at q. How far q lies beyond it along q's own ray: the
+  // plane's distance over the ray's cosine with it, the incidence clamped as the gate's.
   const Eigen::Vector3d x = sweep.surfaceNear(i, q, sweep.planeTolerance());
-  const double q_range = q.norm();
-  l.beyond_m = q_range - x.dot(q) / q_range;
   l.plane_m = n.dot(q - x);
+  const double q_range = q.norm(), cos_q = n.dot(q) / q_range;  // negative: n faces the sensor
+  const double min_cos = 1.0 / std::sqrt(1.0 + max_tan * max_tan);
+  l.beyond_m = l.plane_m / (cos_q < -min_cos ? cos_q : -min_cos);
   return l;
 }
 

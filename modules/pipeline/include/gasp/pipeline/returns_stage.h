@@ -72,11 +72,14 @@ class SweepReturns {
   int lookUp(const Eigen::Vector3d& q, int reach) const;
   const Eigen::Vector3d& point(int i) const { return point_[static_cast<std::size_t>(i)]; }
   const Eigen::Vector3d& normal(int i) const { return normal_[static_cast<std::size_t>(i)]; }
-  /// The point of return i's surface nearest `q` (sensor frame): on the parallelogram of return i
-  /// and its neighbours toward q in its column (the next row) and in its row (the next column),
-  /// those of them that lie within `tolerance` [m] of its plane; return i itself where neither does.
-  /// A point between two rows is thus compared with the surface measured there, not with return
-  /// i's plane extended a row's spacing, where a normal's error would multiply that spacing.
+  /// A point of the surface between the returns around `q` (sensor frame), for return i with a
+  /// normal that q looked up: return i plus the offsets to its neighbours toward q in its column
+  /// (the next row) and in its row (the next column) that lie within `tolerance` [m] of its plane,
+  /// weighted by q's direction on theirs (the rays: no range noise), each weight in [0, 1]; return
+  /// i itself where neither neighbour does. On a plane it lies on the plane near q, though not on
+  /// q's ray (the weights are linear in the directions, the plane's map to them projective), so a
+  /// point between two rows is compared with the surface measured there, not with return i's
+  /// plane extended a row's spacing, where a normal's error would multiply that spacing.
   Eigen::Vector3d surfaceNear(int i, const Eigen::Vector3d& q, double tolerance) const;
   /// Half the diagonal of a cell [rad]: how far in angle a point can lie from the return it fell on.
   double halfCellRad() const { return half_cell_rad_; }
@@ -84,8 +87,8 @@ class SweepReturns {
   /// normals were fitted with.
   int normalHalfWidth() const { return normal_half_width_; }
   double maxFlatness() const { return max_flatness_; }
-  /// How far from a return's plane a neighbour or a three-row window's return may lie and still be
-  /// on it [m]: the rounds' last gate.
+  /// How far from a return's plane a neighbour or a three-row window's return (along its ray) may
+  /// lie and still be on it [m]: the rounds' last gate.
   double planeTolerance() const { return plane_tolerance_; }
 
  private:
@@ -122,13 +125,12 @@ int squareNormalHalfWidth(const RangeScan& scan);
 /// One round's point-to-plane terms: each source point (sensor frame) mapped by T_target_source
 /// takes the target's return of nearest direction with a normal (SweepReturns::lookUp within
 /// look_up_columns) when that return is seen within max_incidence_deg, the point lies within `gate`
-/// of its plane and within the gate plus a cell's footprint of the return across it. The term's
-/// plane is the return's normal through the surface between the returns around the point
-/// (SweepReturns::surfaceNear, with the neighbours within surface_tolerance_m of the return's
-/// plane; the rounds pass their last gate, the finest standard of "on the plane" they apply).
+/// of the term's plane and within the gate plus a cell's footprint of the return across it. The
+/// term's plane is the return's normal through the surface between the returns around the point
+/// (SweepReturns::surfaceNear, the neighbours within target.planeTolerance() of the return's plane).
 std::vector<PointToPlane> returnTerms(const std::vector<Eigen::Vector3d>& source_points, const SweepReturns& target,
                                       const Isometry3& T_target_source, double gate, int look_up_columns,
-                                      double max_incidence_deg, double surface_tolerance_m);
+                                      double max_incidence_deg);
 
 /// Refines T_target_source between the two sweeps (point-to-plane, the target's normals;
 /// `solver`: loss, noise and degeneracy test; returns seen beyond max_incidence_deg give no term).
@@ -167,9 +169,9 @@ ReturnsBasin returnsBasin(const SweepReturns& source, const SweepReturns& target
 
 /// Where a point in a sweep's sensor frame lands on that sweep's returns: the return nearest its
 /// direction with a normal (SweepReturns::lookUp, no reach), how far the point lies beyond the
-/// surface between the returns around the point (SweepReturns::surfaceNear) along the point's ray
-/// (negative: in front of it, in the space the sweep saw empty), its distance from that return's
-/// plane through the same surface point, and the free-space gate there: 5 range_sigma_m plus the depth
+/// plane a term would use (the return's normal through SweepReturns::surfaceNear's point) along the
+/// point's ray, the incidence clamped at max_incidence_deg (negative: in front of it, in the space
+/// the sweep saw empty), its distance from that plane, and the free-space gate there: 5 range_sigma_m plus the depth
 /// change of the return's surface across half a cell (the incidence clamped at max_incidence_deg).
 struct ReturnLanding {
   int index = -1;  ///< the return's (SweepReturns::point(i)); -1: it lands on none with a normal
