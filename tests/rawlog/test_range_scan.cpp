@@ -467,6 +467,18 @@ double errorDeg(const gasp::Isometry3& T_true, const gasp::Isometry3& T) {
   return Eigen::AngleAxisd((T_true.inverse() * T).linear()).angle() * 180.0 / M_PI;
 }
 
+/// The returns' rounds started at the exact truth end within max_cm / max_deg of it.
+void expectTheRoundsStayNearTheTruth(const gasp::SweepReturns& a, const gasp::SweepReturns& b, const gasp::Isometry3& T_b_a,
+                                     const gasp::PairParams& params, double max_cm, double max_deg) {
+  const gasp::RegistrationResult q =
+      gasp::refineOnReturns(a, b, T_b_a, params.returns, params.refine.solver, params.segment.max_incidence_deg);
+  ASSERT_TRUE(q.success) << q.reason;
+  std::printf("the returns' rounds from the truth end %.2f cm, %.3f deg off\n", errorCm(T_b_a, q.T_target_source),
+              errorDeg(T_b_a, q.T_target_source));
+  EXPECT_LT(errorCm(T_b_a, q.T_target_source), max_cm);
+  EXPECT_LT(errorDeg(T_b_a, q.T_target_source), max_deg);
+}
+
 /// The pair registered with the LiDAR defaults, within the bound (5 cm, 0.5 deg).
 void expectRightPose(const SimulatedSweepPair& s) {
   const gasp::RangePairResult r = gasp::registerRangeScans(s.a, s.b, gasp::lidarPairParams());
@@ -536,13 +548,7 @@ TEST(RangeScan, TheReturnsNormalsAreFittedOverAWindowSquareInViewAngle) {
   EXPECT_EQ(params.returns.normal_half_width, 0);
   const gasp::SweepReturns a(s16.a, params.returns), b(s16.b, params.returns);
   EXPECT_EQ(b.normalHalfWidth(), 10);
-  const gasp::RegistrationResult q =
-      gasp::refineOnReturns(a, b, s16.T_b_a, params.returns, params.refine.solver, params.segment.max_incidence_deg);
-  ASSERT_TRUE(q.success) << q.reason;
-  std::printf("the returns' rounds from the truth end %.2f cm, %.3f deg off\n", errorCm(s16.T_b_a, q.T_target_source),
-              errorDeg(s16.T_b_a, q.T_target_source));
-  EXPECT_LT(errorCm(s16.T_b_a, q.T_target_source), 1.0);
-  EXPECT_LT(errorDeg(s16.T_b_a, q.T_target_source), 0.2);
+  expectTheRoundsStayNearTheTruth(a, b, s16.T_b_a, params, 1.0, 0.2);
 
   gasp::ReturnsRefineParams narrow = params.returns;  // the 3 x 7 window: the truth is not their minimum
   narrow.normal_half_width = 3;
@@ -600,13 +606,7 @@ TEST(RangeScan, AMappedPointIsMeasuredAgainstTheSurfaceBetweenTheReturnsAroundIt
   EXPECT_LT(mean(between), mean(nearest));
   EXPECT_LT(share_over(between, 0.005), share_over(nearest, 0.005));
 
-  const gasp::RegistrationResult q =
-      gasp::refineOnReturns(a, b, s.T_b_a, params.returns, params.refine.solver, params.segment.max_incidence_deg);
-  ASSERT_TRUE(q.success) << q.reason;
-  std::printf("the returns' rounds from the truth end %.2f cm, %.3f deg off\n", errorCm(s.T_b_a, q.T_target_source),
-              errorDeg(s.T_b_a, q.T_target_source));
-  EXPECT_LT(errorCm(s.T_b_a, q.T_target_source), 2.5);
-  EXPECT_LT(errorDeg(s.T_b_a, q.T_target_source), 0.15);
+  expectTheRoundsStayNearTheTruth(a, b, s.T_b_a, params, 2.5, 0.15);
 
   expectRightPose(simulatedSweeps("street", 16, 20, 30));  // with the sensor's noise, no prior
 }
