@@ -467,6 +467,16 @@ double errorDeg(const gasp::Isometry3& T_true, const gasp::Isometry3& T) {
   return Eigen::AngleAxisd((T_true.inverse() * T).linear()).angle() * 180.0 / M_PI;
 }
 
+/// A VLP-16's layout (its lasers, 1800 columns turning clockwise) with no returns yet.
+gasp::RangeScan emptyVlp16Sweep() {
+  std::vector<double> az;
+  for (int k = 0; k < 1800; ++k) az.push_back(-2.0 * M_PI * k / 1800.0);
+  gasp::RangeScan scan;
+  scan.model = "VLP16";
+  scan.setLayout(gasp::laserElevationsDeg("VLP-16", 16), az);
+  return scan;
+}
+
 /// The returns' rounds started at the exact truth end within max_cm / max_deg of it.
 void expectTheRoundsStayNearTheTruth(const gasp::SweepReturns& a, const gasp::SweepReturns& b, const gasp::Isometry3& T_b_a,
                                      const gasp::PairParams& params, double max_cm, double max_deg) {
@@ -621,11 +631,7 @@ TEST(RangeScan, AMappedPointIsMeasuredAgainstTheSurfaceBetweenTheReturnsAroundIt
 // row at -11 deg the wall 15 cm above it. The -13 deg row's returns facing the wall get no normal
 // (ground, ground and wall are not one plane); facing away, the ground's.
 TEST(RangeScan, TheGroundsRingsGetNormalsFromTheThreeRowsAroundThem) {
-  std::vector<double> az;
-  for (int k = 0; k < 1800; ++k) az.push_back(-2.0 * M_PI * k / 1800.0);
-  gasp::RangeScan scan;
-  scan.model = "VLP16";
-  scan.setLayout(gasp::laserElevationsDeg("VLP-16", 16), az);
+  gasp::RangeScan scan = emptyVlp16Sweep();
   for (int r = 0; r < scan.range_m.rows; ++r)
     for (int c = 0; c < scan.range_m.cols; ++c) {
       const Eigen::Vector3d u = scan.direction(r, c);
@@ -687,12 +693,8 @@ TEST(RangeScan, TheGroundsRingsGetNormalsFromTheThreeRowsAroundThem) {
 // (not on its ray: the weights are linear in the directions); with range noise its weights come
 // from the rays alone, so the terms' residuals at the truth stay centred and no larger than one
 // return's noise.
-TEST(SweepReturns, SurfaceNearIsThePlaneBetweenTheReturnsAtThePointsDirection) {
-  std::vector<double> az;
-  for (int k = 0; k < 1800; ++k) az.push_back(-2.0 * M_PI * k / 1800.0);
-  gasp::RangeScan clean;
-  clean.model = "VLP16";
-  clean.setLayout(gasp::laserElevationsDeg("VLP-16", 16), az);
+TEST(SweepReturns, SurfaceNearIsThePlaneBetweenTheReturnsNearThePoint) {
+  gasp::RangeScan clean = emptyVlp16Sweep();
   const Eigen::Vector3d n_plane = Eigen::Vector3d(0.2, -0.9, 0.35).normalized();  // n . x = -6
   const double offset = -6.0;
   gasp::RangeScan noisy = clean;
