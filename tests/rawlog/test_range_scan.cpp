@@ -579,10 +579,10 @@ TEST(RangeScan, TheReturnsNormalsAreFittedOverAWindowSquareInViewAngle) {
 // returns around it (SweepReturns::surfaceNear), not against the nearest return's plane extended
 // to it. At 11 m a VLP-16's rows are 38 cm apart, so a point can fall 15-19 cm from the return it
 // looks up; a normal 3 deg off (a window spanning a parked car's body and its cabin behind)
-// then puts the point 1 cm off a plane it lies on. On the street's 16-laser sweeps 20 and 30
-// (9 m apart) such terms moved the returns' minimum 5.5 cm / 0.26 deg from the exact truth
-// without any noise. The truth is exact here, the sweeps noise-free: at the truth every term of a
-// plane seen by both lies on it, and the rounds started at the truth stay near it.
+// then puts the point 1 cm off a plane it lies on, and on the street's 16-laser sweeps 20 and 30
+// (9 m apart) such terms move the returns' minimum centimetres off the exact truth without any
+// noise. The truth is exact here, the sweeps noise-free: at the truth the terms lie nearer their
+// planes than the looked-up returns' planes, and the rounds started at the truth stay near it.
 TEST(RangeScan, AMappedPointIsMeasuredAgainstTheSurfaceBetweenTheReturnsAroundIt) {
   const SimulatedSweepPair s = simulatedSweeps("street", 16, 20, 30, /*noise=*/false);
   const gasp::PairParams params = gasp::lidarPairParams();
@@ -669,7 +669,7 @@ TEST(RangeScan, TheGroundsRingsGetNormalsFromTheThreeRowsAroundThem) {
 
   // The street's sweeps, with range noise: most of the near rings (within the 80 deg incidence the
   // terms accept) get the ground's normal. The tilted ones are windows of the same-surface reach
-  // that meet a car or a facade's foot (311 of them, the same without the three-row rule).
+  // that meet a car or a facade's foot, which the three-row rule does not judge.
   const SimulatedSweepPair s = simulatedSweeps("street", 16, 10, 11);
   const gasp::SweepReturns street(s.a, gasp::returnsRefineParams());
   int ground = 0, with_normal = 0, tilted = 0;
