@@ -7,7 +7,10 @@ the same frames), the error of the estimated step in translation [m] and rotatio
                          [--min-m 0.01] [--min-deg 0.3]
 
 Prints the steps whose error reaches either limit, then the sum of the printed errors and the
-largest. Only the Python standard library; the two files must list the same frames in order.
+largest, then the mean step error about the estimate's own axes (rotation as small angles about
+x, y, z [deg], translation [m]): a shared sign there is a bias (a LiDAR's pitch is about y) that
+a trajectory adds up. Only the Python standard library; the two files must list the same frames
+in order.
 """
 import argparse
 import math
@@ -60,6 +63,7 @@ def main():
         raise SystemExit(f'error: {a.gt} has {len(gt)} poses, {a.est} {len(est)}: the same frames are expected')
     last = len(gt) - 1 if a.last < 0 else min(a.last, len(gt) - 1)
     sum_m = sum_deg = worst_m = worst_deg = 0.0
+    mean_rot, mean_t, steps = [0.0, 0.0, 0.0], [0.0, 0.0, 0.0], 0
     for i in range(a.first, last):
         g = compose(inverse(pose(gt[i])), pose(gt[i + 1]))
         e = compose(inverse(pose(est[i])), pose(est[i + 1]))
@@ -71,7 +75,16 @@ def main():
             print(f'{i} -> {i + 1}: {m:.4f} m, {deg:.3f} deg')
             sum_m, sum_deg = sum_m + m, sum_deg + deg
         worst_m, worst_deg = max(worst_m, m), max(worst_deg, deg)
+        R = d[0]  # small angles: the skew part of the error's rotation
+        for k, (p, q) in enumerate(((2, 1), (0, 2), (1, 0))):
+            mean_rot[k] += math.degrees(0.5 * (R[p][q] - R[q][p]))
+            mean_t[k] += d[1][k]
+        steps += 1
     print(f'printed steps: {sum_m:.3f} m, {sum_deg:.2f} deg in all; largest step error {worst_m:.4f} m, {worst_deg:.3f} deg')
+    if steps:
+        r = ', '.join(f'{x / steps:.4f}' for x in mean_rot)
+        t = ', '.join(f'{x / steps:.5f}' for x in mean_t)
+        print(f'mean step error: rotation about x, y, z ({r}) deg, translation ({t}) m over {steps} steps')
 
 
 if __name__ == '__main__':
