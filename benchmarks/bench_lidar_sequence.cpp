@@ -233,16 +233,10 @@ void printTruthStart(const gasp::DepthView& va, const gasp::DepthView& vb, const
     std::vector<Eigen::Vector3d> mean_n(groups, Eigen::Vector3d::Zero()), mean_q(groups, Eigen::Vector3d::Zero());
     gasp::Matrix6d H = gasp::Matrix6d::Zero(), hc0 = gasp::Matrix6d::Zero();
     const bool at_truth = std::strcmp(name, "truth") == 0;
-    const double a = params.refine.solver.loss_scale_m;
-    const gasp::RobustLoss loss = params.refine.solver.loss;
     for (const gasp::PointToPlane& t : terms) {
       const Eigen::Vector3d p = T * t.p_source;
       const double r = t.n_target.dot(p - t.q_target);
-      // The robust loss's rho' (refinement.h), as the rounds weigh the term.
-      const double rho1 = loss == gasp::RobustLoss::kHuber    ? (std::abs(r) <= a ? 1.0 : a / std::abs(r))
-                          : loss == gasp::RobustLoss::kCauchy ? 1.0 / (1.0 + r * r / (a * a))
-                                                              : 1.0;
-      const double w = t.weight * rho1;
+      const double w = t.weight * gasp::robustWeight(params.refine.solver, r);  // as the rounds weigh the term
       gasp::Vector6d J;
       J << t.n_target, p.cross(t.n_target);
       H += w * J * J.transpose();

@@ -131,8 +131,15 @@ Eigen::Vector3d SweepReturns::surfaceNear(int i, const Eigen::Vector3d& q, doubl
   return p0;
 }
 
+namespace {
+
+/// How far in range a return may lie from another's and be on its surface [m]: 0.1 m + 5 %.
+float sameSurfaceReach(float range) { return 0.1f + 0.05f * range; }
+
+}  // namespace
+
 bool SweepReturns::addRow(int row, int lo, int hi, float range, const std::vector<Moments>& prefix, Moments& m) const {
-  const float reach = 0.1f + 0.05f * range;
+  const float reach = sameSurfaceReach(range);
   const float* ranges = scan_.range_m.ptr<float>(row);
   bool all_on_surface = true;
   for (int cc = lo; cc <= hi && all_on_surface; ++cc)
@@ -190,7 +197,7 @@ Eigen::Vector3d SweepReturns::fitNormal(int r, int c, const std::vector<Moments>
   const Eigen::Vector3d normal = flatNormal(rows3, mean);
   if (normal.isZero()) return normal;
   for (int rr = first; rr <= first + 2; ++rr) {
-    const float own = scan_.range_m.at<float>(rr, c), reach = 0.1f + 0.05f * own;
+    const float own = scan_.range_m.at<float>(rr, c), reach = sameSurfaceReach(own);
     const float* ranges = scan_.range_m.ptr<float>(rr);
     for (int cc = lo; cc <= hi; ++cc)
       if (const Eigen::Vector3d& q = point_[index(rr, cc)];
@@ -214,11 +221,10 @@ std::vector<PointToPlane> returnTerms(const std::vector<Eigen::Vector3d>& source
     const Eigen::Vector3d& q = target.point(i);
     const double range = q.norm();
     const double cos_i = std::abs(n.dot(q)) / range;
-    if (cos_i < min_cos) continue;
+    // In the plane, the point can be a cell's footprint away from the return it fell on.
+    if (cos_i < min_cos || (pt - q).norm() > gate + range * target.halfCellRad() / cos_i) continue;
     const Eigen::Vector3d x = target.surfaceNear(i, pt, target.planeTolerance());
     if (std::abs(n.dot(pt - x)) > gate) continue;
-    // In the plane, the point can be a cell's footprint away from the return it fell on.
-    if ((pt - q).norm() > gate + range * target.halfCellRad() / cos_i) continue;
     terms.push_back(PointToPlane{ps, x, n, 1.0});
   }
   return terms;

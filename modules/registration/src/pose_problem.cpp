@@ -244,3 +244,13 @@ void PoseProblem::sceneExtent(Eigen::Vector3d& centre, double& radius_m) const {
 }
 
 }  // namespace gasp::detail
+
+namespace gasp {
+
+double robustWeight(const RefinementParams& params, double residual_m) {
+  double rho = 0.0, rho1 = 0.0;
+  detail::robust(params, residual_m * residual_m, rho, rho1);
+  return rho1;
+}
+
+}  // namespace gasp

@@ -52,6 +52,11 @@ struct RefinementParams {
 /// Throws gasp::Error naming the first invalid parameter.
 void validate(const RefinementParams& params);
 
+/// The weight the solver's robust loss gives a term of residual `residual_m` [m]: rho'(r^2) of
+/// params.loss at params.loss_scale_m, as Ceres' HuberLoss and CauchyLoss compute it (1 within
+/// Huber's scale and without a loss).
+double robustWeight(const RefinementParams& params, double residual_m);
+
 /// Refines T_init on all the given patch correspondences (their indices are the result's
 /// inliers) and the optional dense terms; either list may be empty, not both. Invalid input or
 /// a failed solve gives success = false with a reason; never throws for data.
