@@ -84,6 +84,12 @@ int main(int argc, char** argv) {
     const Isometry3 e0 = T_true.inverse() * r.pose.T_target_source;
     std::printf("pair %d -> %d: claimed %d, %.1f cm %.2f deg off\n", i, j, r.pose.success, 100 * e0.translation().norm(), deg(e0));
     if (!r.pose.success) continue;
+    {
+      const Eigen::AngleAxisd aa(r.pose.T_target_source.linear() * T_true.linear().transpose());
+      std::printf("  error rotation in the target's frame: %.2f deg about (%.3f, %.3f, %.3f)\n", aa.angle() * 180 / M_PI, aa.axis().x(), aa.axis().y(), aa.axis().z());
+      for (const gasp::SymmetricTurn& turn : gasp::symmetricTurns(vs, vt, r.pose.T_target_source))
+        std::printf("  turn %d about (%.3f, %.3f, %.3f)\n", turn.degrees, turn.axis.x(), turn.axis.y(), turn.axis.z());
+    }
     if (std::getenv("PROBE_DISTINCT")) {
       // The verified associations each symmetric turn also explains (its source patch lands on a
       // target patch facing the same way within a loose gate), and the fewest left over.
