@@ -429,13 +429,102 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
   return searchable ? claimFromGroundSearch(source, target, p, views, a, std::move(r)) : r;
 }
 
+/// The returns' pose `q` of a claimed pose judged by its basin (returnsBasin): restarted half the
+/// first gate either side along their weakest translation, each restart's end is compared with it
+/// on the returns (compareAlternativeOnReturns).
+/// - A restart drawn farther from the pose than it started has found another minimum: the pose
+///   stands only when that minimum explains the returns no better.
+/// - A restart that ends nearer than it started was drawn back (the returns hold the pose, or
+///   leave that direction flat, where the cells' fix stands); a failed restart found no minimum.
+/// - The end that explains the returns best, when better by the uniqueness test's margin, is taken
+///   instead (refined again, as the restarts stop coarser): its own basin must hold and it must pass
+///   the free-space test on the returns (`limits`).
+/// Otherwise (another minimum better by less than the margin, a taken end that fails): nullopt,
+/// the reason in `why`.
+std::optional<RegistrationResult> heldBasin(const DepthView& source, const DepthView& target, const PairParams& p,
+                                            const VisibilityCheckParams& limits, RegistrationResult q, std::string& why) {
+  const double incidence = target.superpixels.max_incidence_deg, other_minimum_m = p.returns.gates_m.back();
+  // The restarts only tell which minimum the rounds end in: every other return, converged when
+  // they move less than a tenth of the basin's tolerance (a taken end is refined again in full).
+  ReturnsRefineParams restart = p.returns;
+  restart.return_step = 2;
+  restart.converged_m = std::max(restart.converged_m, 0.1 * restart.basin_tolerance_m);
+  for (int taken = 0; taken < 2; ++taken) {
+    const ReturnsBasin basin = returnsBasin(*source.returns, *target.returns, q, restart, p.refine.solver, incidence);
+    if (basin.held) return q;
+    why = (taken > 0 ? "their pose taken from a restart: " : "") + basin.reason;
+    if (taken > 0) return std::nullopt;
+    std::optional<RegistrationResult> better;
+    double best_ratio = 0.0;
+    for (const RegistrationResult& end : basin.ends) {
+      if (!end.success) continue;  // found no minimum (a degenerate solve where the returns leave a direction flat)
+      const Uniqueness v = compareAlternativeOnReturns(source, target, q, end, other_minimum_m, p.certify,
+                                                       p.refine.solver.noise_sigma_m, incidence);
+      const bool drawn_away =
+          (end.T_target_source.translation() - q.T_target_source.translation()).norm() > restart.basin_offset_m;
+      if (!v.tested && (!drawn_away || v.distance_m <= other_minimum_m)) continue;  // the same minimum
+      if (!v.tested) {
+        why += "; no return lands under both poses";
+        return std::nullopt;
+      }
+      if (v.take_alternative) {
+        if (v.log_ratio < best_ratio) best_ratio = v.log_ratio, better = end;
+        continue;
+      }
+      if (!drawn_away || !(v.log_ratio < 0.0)) continue;  // drawn back, or explains the returns no better
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    "; that end explains the returns better (log-likelihood ratio %.1f +- %.1f), short of the "
+                    "uniqueness test's margin",
+                    v.log_ratio, v.standard_error);
+      why += text;
+      return std::nullopt;
+    }
+    if (!better) return q;  // the likeliest of the minima found
+    q = refineOnReturns(*source.returns, *target.returns, better->T_target_source, p.returns, p.refine.solver,
+                        incidence);
+    if (!q.success) {
+      why += "; the rounds from the likelier end: " + q.reason;
+      return std::nullopt;
+    }
+    const VisibilityCheck free_space = returnsFreeSpace(*source.returns, *target.returns, q.T_target_source, limits,
+                                                        p.refine.solver.noise_sigma_m, incidence);
+    if (!free_space.passed) {
+      why += "; the likelier end: " + free_space.reason;
+      return std::nullopt;
+    }
+  }
+  return std::nullopt;
+}
+
 /// Stage 7 in the result: when a full pose is claimed and both views carry their returns, the
-/// returns' rounds from it; their pose and information replace the cells' when they succeed.
-void refineOnTheReturns(const DepthView& source, const DepthView& target, const PairParams& p, PairResult& r) {
+/// returns' rounds from it; their pose and information replace the cells' when they succeed. With
+/// `judge_basin` (a pose found without a prior), their pose must be the likeliest of the minima
+/// their restarts find (heldBasin), or there is no estimate: the cells' claimed pose can lie off
+/// the truth by more than the returns' first gate along a direction the cells barely fix (a floor
+/// at grazing incidence), and the returns' rounds then settle in a minimum of their own there.
+void refineOnTheReturns(const DepthView& source, const DepthView& target, const PairParams& p, bool judge_basin,
+                        PairResult& r) {
   if (!r.pose.success || r.returns_refined || !source.returns || !target.returns) return;
   const auto t0 = std::chrono::steady_clock::now();
-  const RegistrationResult refined = refineOnReturns(*source.returns, *target.returns, r.pose.T_target_source, p.returns,
-                                                     p.refine.solver, target.superpixels.max_incidence_deg);
+  RegistrationResult refined = refineOnReturns(*source.returns, *target.returns, r.pose.T_target_source, p.returns,
+                                               p.refine.solver, target.superpixels.max_incidence_deg);
+  if (refined.success && judge_basin && p.certify.min_likelihood_ratio > 0.0) {
+    std::string why;
+    const std::optional<RegistrationResult> held =
+        heldBasin(source, target, p, visibilityLimits(p.certify, r.used_one_way || r.retried), refined, why);
+    if (!held) {
+      r.timings.returns_ms += msSince(t0);
+      r.returns_reason = why;
+      r.pose.success = false;
+      r.pose.partial = false;
+      r.pose.reason = "the returns' rounds from the claimed pose: " + why;
+      r.edge_information.setZero();
+      r.verified.clear();
+      return;
+    }
+    refined = *held;
+  }
   r.timings.returns_ms += msSince(t0);
   if (!refined.success) {
     r.returns_reason = refined.reason;
@@ -490,7 +579,7 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
   validate(params);
   PairResult r = registerAtScale(source, target, params, false);
   if (retryApplies(r, source, target, params)) r = retryAtFinerScale(source, target, params, std::move(r));
-  refineOnTheReturns(source, target, params, r);  // a retry's views carry the same returns
+  refineOnTheReturns(source, target, params, true, r);  // a retry's views carry the same returns
   return r;
 }
 
@@ -521,7 +610,7 @@ PairResult trackViews(const DepthView& source, const DepthView& target, const Is
   r.timings.certify_ms = msSince(t1);
   // A free-space refusal stands here: odometry reads it as a scene change.
   fixOnTheReturns(source, target, p, free_space, views, certificate, std::nullopt, r);
-  refineOnTheReturns(source, target, p, r);
+  refineOnTheReturns(source, target, p, false, r);  // from a prediction
   return r;
 }
 
@@ -620,9 +709,16 @@ ViewSetResult registerViewSets(const std::vector<const DepthView*>& sources,
   // Stage 7 for the one to use only (a finer-scale view carries its view's returns); the returns'
   // rounds from a refused pose ran in each pair's registerAtScale, since they decide which pairs
   // give an estimate.
-  if (out.best >= 0) {
+  // A pose the returns' basin refuses gives way to the next best.
+  while (out.best >= 0) {
     ViewSetRegistration& best = out.registrations[static_cast<std::size_t>(out.best)];
-    refineOnTheReturns(*sources[best.source], *targets[best.target], params, best.result);
+    if (!best.result.pose.success) break;
+    refineOnTheReturns(*sources[best.source], *targets[best.target], params, true, best.result);
+    if (best.result.pose.success) break;
+    out.best = -1;
+    for (std::size_t k = 0; k < out.registrations.size(); ++k)
+      if (better(out.registrations[k], out.best < 0 ? nullptr : &out.registrations[static_cast<std::size_t>(out.best)]))
+        out.best = static_cast<int>(k);
   }
   return out;
 }

@@ -20,8 +20,8 @@ void validate(const ReturnsRefineParams& r) {
     if (!ok) throw Error(std::string("lidar parameters: ") + what);
   };
   for (const double g : r.gates_m) require(g > 0 && std::isfinite(g), "the returns' gates must be > 0 and finite");
-  require(r.column_step >= 1 && r.max_rounds >= 1 && r.max_rounds <= 1000,
-          "returns_column_step must be >= 1 and returns_max_rounds in [1, 1000]");
+  require(r.column_step >= 1 && r.return_step >= 1 && r.max_rounds >= 1 && r.max_rounds <= 1000,
+          "returns_column_step and the return step must be >= 1 and returns_max_rounds in [1, 1000]");
   require(r.look_up_columns >= 0 && r.look_up_columns <= 100, "returns_look_up_columns must be in [0, 100]");
   require(r.converged_m >= 0 && std::isfinite(r.converged_m), "returns_converged_m must be >= 0 and finite");
   require(r.normal_half_width >= 0 && r.normal_half_width <= 100 && r.max_flatness > 0 && r.max_flatness <= 1,
@@ -238,9 +238,11 @@ RegistrationResult refineOnReturns(const SweepReturns& source, const SweepReturn
   if (!(max_incidence_deg > 0.0 && max_incidence_deg < 90.0))
     throw Error("returns refinement: max_incidence_deg must be in (0, 90)");
   std::vector<Eigen::Vector3d> points;
+  long valid = 0;
   for (int r = 0; r < source.rows(); ++r)
     for (int c = 0; c < source.cols(); c += p.column_step)
-      if (const Eigen::Vector3d& q = source.point(r, c); q.allFinite()) points.push_back(q);
+      if (const Eigen::Vector3d& q = source.point(r, c); q.allFinite() && valid++ % p.return_step == 0)
+        points.push_back(q);
   Isometry3 T = T_target_source;
   for (int round = 0; round < p.max_rounds; ++round) {
     const double gate = p.gates_m[std::min(static_cast<std::size_t>(round), p.gates_m.size() - 1)];
@@ -297,7 +299,8 @@ ReturnsBasin returnsBasin(const SweepReturns& source, const SweepReturns& target
   tbb::parallel_for(0, 2, [&](int k) {
     const double offset = k == 0 ? -params.basin_offset_m : params.basin_offset_m;
     const Isometry3 start = Eigen::Translation3d(offset * b.direction) * pose.T_target_source;
-    const RegistrationResult q = refineOnReturns(source, target, start, params, solver, max_incidence_deg);
+    RegistrationResult& q = b.ends[static_cast<std::size_t>(k)];
+    q = refineOnReturns(source, target, start, params, solver, max_incidence_deg);
     end_m[static_cast<std::size_t>(k)] = q.success ? (q.T_target_source.translation() - pose.T_target_source.translation()).norm()
                                                    : std::numeric_limits<double>::infinity();
   });

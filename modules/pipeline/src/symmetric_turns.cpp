@@ -53,12 +53,16 @@ std::pair<double, Eigen::Vector3d> faceAlong(const std::vector<SurfacePatch>& pa
 
 }  // namespace
 
-Eigen::Matrix3d sceneAxes(const std::vector<SurfacePatch>& patches) {
+Eigen::Matrix3d sceneAxes(const std::vector<SurfacePatch>& all) {
   const double cos_face = std::cos(20.0 * M_PI / 180.0), sin_face = std::sin(20.0 * M_PI / 180.0);
+  std::vector<SurfacePatch> patches;
+  for (const SurfacePatch& t : all)
+    if (t.normal.allFinite() && std::isfinite(t.area_m2) && t.area_m2 > 0.0) patches.push_back(t);
   Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
   for (const SurfacePatch& t : patches) S += t.area_m2 * t.normal * t.normal.transpose();
   Eigen::Matrix3d axes = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(S).eigenvectors();
   if (!axes.allFinite()) return Eigen::Matrix3d::Identity();
+  if (axes.determinant() < 0.0) axes.col(2) = -axes.col(2);  // a rotation
   // The largest face: the patch normal with the most area within 20 deg of it either way.
   double best = 0.0;
   Eigen::Vector3d first = Eigen::Vector3d::Zero();

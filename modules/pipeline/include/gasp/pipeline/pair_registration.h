@@ -17,7 +17,9 @@
 ///                   claimed pose (returns_stage.h); from a pose refused for a direction the
 ///                   cells leave free that the views fix, or on the cells' free-space test,
 ///                   when the returns fix it (their basin) and their pose passes the
-///                   certificate (after a free-space refusal, its test on the returns)
+///                   certificate (after a free-space refusal, its test on the returns); in
+///                   registerViews and registerViewSets a claimed pose's returns' pose must be
+///                   the likeliest of the minima their restarts find (no estimate otherwise)
 /// The result is what a SLAM system consumes: T_target_source with its information matrix, or
 /// no estimate with the reason (too few associations, no consensus, degenerate geometry,
 /// contradicted free space).
@@ -150,7 +152,10 @@ struct PairResult {
   /// Stage 7 (LiDAR views): the returns' rounds refined the claimed pose, whose pose.T_target_source,
   /// pose.information and edge_information are then theirs (the other fields -- inliers, dense
   /// terms, and visibility unless returns_fixed_free -- describe the cells' pose). When they ran
-  /// and failed, the cells' pose stays and returns_reason says why.
+  /// and failed, the cells' pose stays and returns_reason says why; when, in registerViews or
+  /// registerViewSets, a restart of theirs found a minimum that explains the returns better
+  /// (docs/lidar.md "A claimed pose's basin"), there is no estimate: pose.success is false,
+  /// edge_information zero, verified empty, and returns_reason and pose.reason say why.
   bool returns_refined = false;
   std::string returns_reason;
   /// Stage 7 answered the cells' refusal: the certificate refused the cells' pose for a direction

@@ -29,7 +29,8 @@ struct SymmetricTurn {
 /// within 20 deg of perpendicular to it, the third their cross product; then refined to the
 /// normals within 20 deg of each (orthogonal Procrustes, area-weighted) while two or more axes
 /// have such normals. Without a second face, the principal axis of the area-weighted sum of
-/// n n^T least aligned with the first stands in. Why not those principal axes alone: where two
+/// n n^T least aligned with the first stands in; without any face (no patch with a finite normal
+/// and a positive area), those principal axes. Why not those principal axes alone: where two
 /// faces have about the same area (a near-square room's floor and wall) they are arbitrary within
 /// those faces' plane.
 Eigen::Matrix3d sceneAxes(const std::vector<SurfacePatch>& patches);
