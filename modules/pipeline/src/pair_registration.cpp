@@ -454,8 +454,11 @@ std::optional<RegistrationResult> heldBasin(const DepthView& source, const Depth
     if (basin.held) return q;
     why = (taken > 0 ? "their pose taken from a restart: " : "") + basin.reason;
     if (taken > 0) return std::nullopt;
+    // Both ends compared first: the likeliest by the margin is taken; otherwise a likelier
+    // minimum that a restart was drawn away to refuses the pose.
     std::optional<RegistrationResult> better;
     double best_ratio = 0.0;
+    std::string refusal;
     for (const RegistrationResult& end : basin.ends) {
       if (!end.success) continue;  // found no minimum (a degenerate solve where the returns leave a direction flat)
       const Uniqueness v = compareAlternativeOnReturns(source, target, q, end, other_minimum_m, p.certify,
@@ -464,20 +467,20 @@ std::optional<RegistrationResult> heldBasin(const DepthView& source, const Depth
           (end.T_target_source.translation() - q.T_target_source.translation()).norm() > restart.basin_offset_m;
       if (!v.tested && (!drawn_away || v.distance_m <= other_minimum_m)) continue;  // the same minimum
       if (!v.tested) {
-        why += "; no return lands under both poses";
-        return std::nullopt;
-      }
-      if (v.take_alternative) {
+        refusal = "; no return lands under both poses";
+      } else if (v.take_alternative) {
         if (v.log_ratio < best_ratio) best_ratio = v.log_ratio, better = end;
-        continue;
+      } else if (drawn_away && v.log_ratio < 0.0) {
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      "; that end explains the returns better (log-likelihood ratio %.1f +- %.1f), short of the "
+                      "uniqueness test's margin",
+                      v.log_ratio, v.standard_error);
+        refusal = text;
       }
-      if (!drawn_away || !(v.log_ratio < 0.0)) continue;  // drawn back, or explains the returns no better
-      char text[200];
-      std::snprintf(text, sizeof text,
-                    "; that end explains the returns better (log-likelihood ratio %.1f +- %.1f), short of the "
-                    "uniqueness test's margin",
-                    v.log_ratio, v.standard_error);
-      why += text;
+    }
+    if (!better && !refusal.empty()) {
+      why += refusal;
       return std::nullopt;
     }
     if (!better) return q;  // the likeliest of the minima found

@@ -152,10 +152,11 @@ struct PairResult {
   /// Stage 7 (LiDAR views): the returns' rounds refined the claimed pose, whose pose.T_target_source,
   /// pose.information and edge_information are then theirs (the other fields -- inliers, dense
   /// terms, and visibility unless returns_fixed_free -- describe the cells' pose). When they ran
-  /// and failed, the cells' pose stays and returns_reason says why; when, in registerViews or
-  /// registerViewSets, a restart of theirs found a minimum that explains the returns better
-  /// (docs/lidar.md "A claimed pose's basin"), there is no estimate: pose.success is false,
-  /// edge_information zero, verified empty, and returns_reason and pose.reason say why.
+  /// and failed, the cells' pose stays and returns_reason says why. In registerViews and
+  /// registerViewSets a restart of theirs may find a likelier minimum (docs/lidar.md "A claimed
+  /// pose's basin"): better by the uniqueness test's margin, it becomes the pose; better by less,
+  /// there is no estimate: pose.success is false, edge_information zero, verified empty, and
+  /// returns_reason and pose.reason say why.
   bool returns_refined = false;
   std::string returns_reason;
   /// Stage 7 answered the cells' refusal: the certificate refused the cells' pose for a direction
@@ -221,7 +222,9 @@ struct ViewSetResult {
   /// Views whose finer-scale segmentation failed ("source view 2: ..."); their pairs are not retried.
   std::vector<std::string> notes;
 };
-/// Stage 7 (LiDAR views) runs on the registration chosen as `best` only. Throws gasp::Error for
+/// Stage 7 (LiDAR views) runs on the registration chosen as `best`; when the claimed pose's basin
+/// refuses it (heldBasin, docs/lidar.md "A claimed pose's basin"), on the next best, which becomes
+/// `best`. Throws gasp::Error for
 /// invalid parameters or a null view pointer; never for data.
 ViewSetResult registerViewSets(const std::vector<const DepthView*>& sources,
                                const std::vector<const DepthView*>& targets, const PairParams& params = {});

@@ -8,9 +8,10 @@
 /// the other sweep's surface. When both views carry their returns (DepthView::returns) and a full
 /// pose is claimed, registerViews() and trackViews() end with these rounds; their pose and
 /// information replace the cells' (PairResult::returns_refined), or, when they fail, the cells'
-/// pose stays and PairResult::returns_reason says why. Without a prior (registerViews), their
-/// pose is also restarted along its weakest translation (returnsBasin), and a likelier minimum
-/// found so refuses it.
+/// pose stays and PairResult::returns_reason says why. Without a prior (registerViews,
+/// registerViewSets), their pose is also restarted along its weakest translation (returnsBasin):
+/// a likelier minimum found so replaces it when better by the uniqueness test's margin, and
+/// otherwise refuses it.
 #include <Eigen/Core>
 
 #include <array>
@@ -31,7 +32,7 @@ struct ReturnsRefineParams {
   /// -Wmaybe-uninitialized in the callers that copy one.)
   std::array<double, 3> gates_m = {0.3, 0.15, 0.08};
   int column_step = 1;          ///< every n-th column of the source sweep
-  int return_step = 1;          ///< then every n-th of those columns' valid returns (the basin's restarts: 2)
+  int return_step = 1;          ///< then every n-th of those columns' valid returns (a claimed pose's basin restarts with 2)
   int look_up_columns = 2;      ///< a point takes the nearest return with a normal within this many columns
   int max_rounds = 10;          ///< rounds in all (the last gate repeats until converged)
   double converged_m = 0.0005;  ///< RMS displacement of the source returns that ends the rounds [m]
