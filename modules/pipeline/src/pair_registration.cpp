@@ -442,62 +442,66 @@ PairResult registerAtScale(const DepthView& source, const DepthView& target, con
 /// Otherwise (another minimum better by less than the margin, a taken end that fails): nullopt,
 /// the reason in `why`.
 std::optional<RegistrationResult> heldBasin(const DepthView& source, const DepthView& target, const PairParams& p,
-                                            const VisibilityCheckParams& limits, RegistrationResult q, std::string& why) {
+                                            const VisibilityCheckParams& limits, const RegistrationResult& q,
+                                            std::string& why) {
   const double incidence = target.superpixels.max_incidence_deg, other_minimum_m = p.returns.gates_m.back();
   // The restarts only tell which minimum the rounds end in: every other return, converged when
   // they move less than a tenth of the basin's tolerance (a taken end is refined again in full).
   ReturnsRefineParams restart = p.returns;
   restart.return_step = 2;
   restart.converged_m = std::max(restart.converged_m, 0.1 * restart.basin_tolerance_m);
-  for (int taken = 0; taken < 2; ++taken) {
-    const ReturnsBasin basin = returnsBasin(*source.returns, *target.returns, q, restart, p.refine.solver, incidence);
-    if (basin.held) return q;
-    why = (taken > 0 ? "their pose taken from a restart: " : "") + basin.reason;
-    if (taken > 0) return std::nullopt;
-    // Both ends compared first: the likeliest by the margin is taken; otherwise a likelier
-    // minimum that a restart was drawn away to refuses the pose.
-    std::optional<RegistrationResult> better;
-    double best_ratio = 0.0;
-    std::string refusal;
-    for (const RegistrationResult& end : basin.ends) {
-      if (!end.success) continue;  // found no minimum (a degenerate solve where the returns leave a direction flat)
-      const Uniqueness v = compareAlternativeOnReturns(source, target, q, end, other_minimum_m, p.certify,
-                                                       p.refine.solver.noise_sigma_m, incidence);
-      const bool drawn_away =
-          (end.T_target_source.translation() - q.T_target_source.translation()).norm() > restart.basin_offset_m;
-      if (!v.tested && (!drawn_away || v.distance_m <= other_minimum_m)) continue;  // the same minimum
-      if (!v.tested) {
-        refusal = "; no return lands under both poses";
-      } else if (v.take_alternative) {
-        if (v.log_ratio < best_ratio) best_ratio = v.log_ratio, better = end;
-      } else if (drawn_away && v.log_ratio < 0.0) {
-        char text[200];
-        std::snprintf(text, sizeof text,
-                      "; that end explains the returns better (log-likelihood ratio %.1f +- %.1f), short of the "
-                      "uniqueness test's margin",
-                      v.log_ratio, v.standard_error);
-        refusal = text;
-      }
-    }
-    if (!better && !refusal.empty()) {
-      why += refusal;
-      return std::nullopt;
-    }
-    if (!better) return q;  // the likeliest of the minima found
-    q = refineOnReturns(*source.returns, *target.returns, better->T_target_source, p.returns, p.refine.solver,
-                        incidence);
-    if (!q.success) {
-      why += "; the rounds from the likelier end: " + q.reason;
-      return std::nullopt;
-    }
-    const VisibilityCheck free_space = returnsFreeSpace(*source.returns, *target.returns, q.T_target_source, limits,
-                                                        p.refine.solver.noise_sigma_m, incidence);
-    if (!free_space.passed) {
-      why += "; the likelier end: " + free_space.reason;
-      return std::nullopt;
+  const ReturnsBasin basin = returnsBasin(*source.returns, *target.returns, q, restart, p.refine.solver, incidence);
+  if (basin.held) return q;
+  why = basin.reason;
+  // Both ends compared first: the likeliest by the margin is taken; otherwise a likelier minimum
+  // that a restart was drawn away to refuses the pose.
+  std::optional<RegistrationResult> better;
+  double best_ratio = 0.0;
+  std::string refusal;
+  for (const RegistrationResult& end : basin.ends) {
+    if (!end.success) continue;  // found no minimum (a degenerate solve where the returns leave a direction flat)
+    const Uniqueness v = compareAlternativeOnReturns(source, target, q, end, other_minimum_m, p.certify,
+                                                     p.refine.solver.noise_sigma_m, incidence);
+    const bool drawn_away =
+        (end.T_target_source.translation() - q.T_target_source.translation()).norm() > restart.basin_offset_m;
+    if (!v.tested && (!drawn_away || v.distance_m <= other_minimum_m)) continue;  // the same minimum
+    if (!v.tested) {
+      refusal = "; no return lands under both poses";
+    } else if (v.take_alternative) {
+      if (v.log_ratio < best_ratio) best_ratio = v.log_ratio, better = end;
+    } else if (drawn_away && v.log_ratio < 0.0) {
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    "; that end explains the returns better (log-likelihood ratio %.1f +- %.1f), short of the "
+                    "uniqueness test's margin",
+                    v.log_ratio, v.standard_error);
+      refusal = text;
     }
   }
-  return std::nullopt;
+  if (!better) {
+    if (refusal.empty()) return q;  // the likeliest of the minima found
+    why += refusal;
+    return std::nullopt;
+  }
+  const RegistrationResult taken =
+      refineOnReturns(*source.returns, *target.returns, better->T_target_source, p.returns, p.refine.solver, incidence);
+  if (!taken.success) {
+    why += "; the rounds from the likelier end: " + taken.reason;
+    return std::nullopt;
+  }
+  const VisibilityCheck free_space = returnsFreeSpace(*source.returns, *target.returns, taken.T_target_source, limits,
+                                                      p.refine.solver.noise_sigma_m, incidence);
+  if (!free_space.passed) {
+    why += "; the likelier end: " + free_space.reason;
+    return std::nullopt;
+  }
+  const ReturnsBasin its_own =
+      returnsBasin(*source.returns, *target.returns, taken, restart, p.refine.solver, incidence);
+  if (!its_own.held) {
+    why = "their pose taken from a restart: " + its_own.reason;
+    return std::nullopt;
+  }
+  return taken;
 }
 
 /// Stage 7 in the result: when a full pose is claimed and both views carry their returns, the
@@ -706,22 +710,22 @@ ViewSetResult registerViewSets(const std::vector<const DepthView*>& sources,
       out.registrations.push_back(std::move(reg));
     }
   }
-  for (std::size_t k = 0; k < out.registrations.size(); ++k)
-    if (better(out.registrations[k], out.best < 0 ? nullptr : &out.registrations[static_cast<std::size_t>(out.best)]))
-      out.best = static_cast<int>(k);
+  const auto chooseBest = [&out] {
+    out.best = -1;
+    for (std::size_t k = 0; k < out.registrations.size(); ++k)
+      if (better(out.registrations[k], out.best < 0 ? nullptr : &out.registrations[static_cast<std::size_t>(out.best)]))
+        out.best = static_cast<int>(k);
+  };
+  chooseBest();
   // Stage 7 for the one to use only (a finer-scale view carries its view's returns); the returns'
   // rounds from a refused pose ran in each pair's registerAtScale, since they decide which pairs
-  // give an estimate.
-  // A pose the returns' basin refuses gives way to the next best.
+  // give an estimate. A pose the claimed pose's basin refuses gives way to the next best.
   while (out.best >= 0) {
     ViewSetRegistration& best = out.registrations[static_cast<std::size_t>(out.best)];
     if (!best.result.pose.success) break;
     refineOnTheReturns(*sources[best.source], *targets[best.target], params, true, best.result);
     if (best.result.pose.success) break;
-    out.best = -1;
-    for (std::size_t k = 0; k < out.registrations.size(); ++k)
-      if (better(out.registrations[k], out.best < 0 ? nullptr : &out.registrations[static_cast<std::size_t>(out.best)]))
-        out.best = static_cast<int>(k);
+    chooseBest();
   }
   return out;
 }
