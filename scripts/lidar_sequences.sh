@@ -44,8 +44,10 @@ for entry in "${sequences[@]}"; do
   rm -rf "$dir"
   "$build/bin/gasp-simulate" "${options[@]}" --frames 60 --rate 10 --out "$dir" > "$dir.simulate.log" 2>&1 \
     || { echo "error: gasp-simulate failed for $name (see $dir.simulate.log)" >&2; exit 1; }
-  "$build/bin/bench_lidar_sequence" "$dir" --method gasp ${bench_args[@]+"${bench_args[@]}"} > "$dir.table.txt" 2>&1 \
-    || { echo "error: bench_lidar_sequence failed for $name (see $dir.table.txt)" >&2; exit 1; }
+  # Written to a temporary file beside the table, renamed once the run succeeded.
+  "$build/bin/bench_lidar_sequence" "$dir" --method gasp ${bench_args[@]+"${bench_args[@]}"} > "$dir.table.txt.tmp" 2>&1 \
+    || { echo "error: bench_lidar_sequence failed for $name (see $dir.table.txt.tmp)" >&2; exit 1; }
+  mv "$dir.table.txt.tmp" "$dir.table.txt"
   # The table's rows: | skip | pairs | right | coarse | wrong | no estimate (sharing) | ...
   summary=$(awk -F'|' '/^\| [0-9]+ \|/ {gsub(/ /, "", $7); printf "%s/%s/%s/%s  ", $4+0, $5+0, $6+0, $7}' "$dir.table.txt")
   [ -n "$summary" ] || { echo "error: no table in $dir.table.txt" >&2; exit 1; }
