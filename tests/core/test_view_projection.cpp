@@ -154,4 +154,14 @@ TEST(ViewProjection, ATurnOfAFractionalNumberOfColumnsHasAGapAtTheSeam) {
   EXPECT_EQ(std::lround(u), 0);
 }
 
+TEST(ViewProjection, WrapToPiIsTheRemainderOfATurn) {
+  // The cheap path (already within [-pi, pi]) and the call it saves must agree everywhere,
+  // at the ends and many turns away included.
+  for (double a = -25.0; a <= 25.0; a += 0.001)
+    EXPECT_EQ(gasp::wrapToPi(a), std::remainder(a, 2.0 * M_PI)) << a;
+  for (const double a : {M_PI, -M_PI, std::nextafter(M_PI, 4.0), std::nextafter(-M_PI, -4.0), 3.0 * M_PI, 0.0, -0.0})
+    EXPECT_EQ(gasp::wrapToPi(a), std::remainder(a, 2.0 * M_PI)) << a;
+  EXPECT_TRUE(std::isnan(gasp::wrapToPi(std::nan(""))));
+}
+
 }  // namespace

@@ -82,7 +82,7 @@ void validateLayout(const RangeScan& scan, const std::string& who) {
 }
 
 double azimuthStep(const RangeScan& scan) {
-  return std::remainder(scan.azimuth_rad.at(1) - scan.azimuth_rad.at(0), 2.0 * M_PI);
+  return wrapToPi(scan.azimuth_rad.at(1) - scan.azimuth_rad.at(0));
 }
 
 double rowPitch(const RangeScan& scan) { return meanElevationStep(scan.elevation_rad, std::abs(azimuthStep(scan))); }
@@ -94,19 +94,23 @@ int columnsPerRowPitch(const RangeScan& scan) {
 bool coversWholeTurn(const RangeScan& scan) { return coversWholeTurn(scan.range_m.cols, azimuthStep(scan)); }
 
 bool nearestCell(const RangeScan& scan, const Eigen::Vector3d& direction, int& row, int& col) {
-  const double horizontal = std::hypot(direction.x(), direction.y());
+  // Called for every return a pose maps: plain sqrt (no overflow at a sweep's ranges) and the
+  // azimuth step computed once.
+  const double horizontal = std::sqrt(direction.x() * direction.x() + direction.y() * direction.y());
   if (!(horizontal > 0.0 || std::abs(direction.z()) > 0.0)) return false;
   const std::vector<double>& E = scan.elevation_rad;
-  const double el = std::atan2(direction.z(), horizontal), half_pitch = 0.5 * rowPitch(scan);
+  const double step = azimuthStep(scan);
+  const double el = std::atan2(direction.z(), horizontal),
+               half_pitch = 0.5 * meanElevationStep(E, std::abs(step));  // half of rowPitch(scan)
   if (!(el >= E.front() - half_pitch && el <= E.back() + half_pitch)) return false;
   const int rows = static_cast<int>(E.size()), cols = scan.range_m.cols;
   int r = static_cast<int>(std::lower_bound(E.begin(), E.end(), el) - E.begin());
   if (r == rows || (r > 0 && el - E[static_cast<std::size_t>(r - 1)] < E[static_cast<std::size_t>(r)] - el)) --r;
-  const double step = azimuthStep(scan), turn = 2.0 * M_PI / std::abs(step);  // columns per turn
-  double c = std::remainder(std::atan2(direction.y(), direction.x()) - scan.azimuth_rad[0], 2.0 * M_PI) / step;
+  const double turn = 2.0 * M_PI / std::abs(step);  // columns per turn
+  double c = wrapToPi(std::atan2(direction.y(), direction.x()) - scan.azimuth_rad[0]) / step;
   if (c < -0.5) c += turn;
   long k = std::lround(c);
-  if (coversWholeTurn(scan)) {
+  if (coversWholeTurn(cols, step)) {
     k %= cols;  // the few columns past a whole number of them fold onto column 0
     if (k < 0) k += cols;  // c exactly -0.5 rounds to -1
   } else if (k < 0 || k >= cols) {

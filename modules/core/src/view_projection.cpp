@@ -80,7 +80,7 @@ Eigen::Vector3d ViewProjection::ray(double u, double v) const {
 bool ViewProjection::project(const Eigen::Vector3d& p, double& u, double& v) const {
   if (!grid_) return pinhole_.project(p, u, v);
   const SphericalGrid& g = *grid_;
-  const double horizontal = std::hypot(p.x(), p.y());
+  const double horizontal = std::sqrt(p.x() * p.x() + p.y() * p.y());  // no overflow at a view's depths
   if (!(horizontal > 0.0 || std::abs(p.z()) > 0.0)) return false;
   const double el = std::atan2(p.z(), horizontal);
   const std::vector<double>& E = g.elevation_rad;

@@ -173,7 +173,10 @@ Eigen::Vector3d SweepReturns::fitNormal(int r, int c, const std::vector<Moments>
   const auto flatNormal = [&](const Moments& m, Eigen::Vector3d& mean) -> Eigen::Vector3d {
     mean = m.s / m.n;
     const Eigen::Matrix3d cov = m.ss / m.n - mean * mean.transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    // The closed form of a 3 x 3 solve: the smallest eigenvalue is far from the others wherever
+    // the flatness test can pass, where it is as accurate as the iterative solve.
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(cov);
     const Eigen::Vector3d lambda = eig.eigenvalues().cwiseMax(0.0);
     if (!(lambda(1) > 0.0) || std::sqrt(lambda(0) / lambda(1)) > max_flatness_) return Eigen::Vector3d::Zero();
     const Eigen::Vector3d normal = eig.eigenvectors().col(0);
@@ -212,21 +215,35 @@ std::vector<PointToPlane> returnTerms(const std::vector<Eigen::Vector3d>& source
                                       const Isometry3& T_target_source, double gate, int look_up_columns,
                                       double max_incidence_deg) {
   const double min_cos = std::cos(max_incidence_deg * M_PI / 180.0);
+  const auto termsOf = [&](std::size_t begin, std::size_t end, std::vector<PointToPlane>& terms) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const Eigen::Vector3d& ps = source_points[k];
+      const Eigen::Vector3d pt = T_target_source * ps;
+      const int i = target.lookUp(pt, look_up_columns);
+      if (i < 0) continue;
+      const Eigen::Vector3d& n = target.normal(i);
+      const Eigen::Vector3d& q = target.point(i);
+      const double range = q.norm();
+      const double cos_i = std::abs(n.dot(q)) / range;
+      // In the plane, the point can be a cell's footprint away from the return it fell on.
+      if (cos_i < min_cos || (pt - q).norm() > gate + range * target.halfCellRad() / cos_i) continue;
+      const Eigen::Vector3d x = target.surfaceNear(i, pt, target.planeTolerance());
+      if (std::abs(n.dot(pt - x)) > gate) continue;
+      terms.push_back(PointToPlane{ps, x, n, 1.0});
+    }
+  };
+  // Blocks of points looked up concurrently, their terms joined in the points' order.
+  constexpr std::size_t kPointsPerTask = 2048;
+  const std::size_t blocks = (source_points.size() + kPointsPerTask - 1) / kPointsPerTask;
+  std::vector<std::vector<PointToPlane>> per_block(blocks);
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    termsOf(b * kPointsPerTask, std::min(source_points.size(), (b + 1) * kPointsPerTask), per_block[b]);
+  });
   std::vector<PointToPlane> terms;
-  for (const Eigen::Vector3d& ps : source_points) {
-    const Eigen::Vector3d pt = T_target_source * ps;
-    const int i = target.lookUp(pt, look_up_columns);
-    if (i < 0) continue;
-    const Eigen::Vector3d& n = target.normal(i);
-    const Eigen::Vector3d& q = target.point(i);
-    const double range = q.norm();
-    const double cos_i = std::abs(n.dot(q)) / range;
-    // In the plane, the point can be a cell's footprint away from the return it fell on.
-    if (cos_i < min_cos || (pt - q).norm() > gate + range * target.halfCellRad() / cos_i) continue;
-    const Eigen::Vector3d x = target.surfaceNear(i, pt, target.planeTolerance());
-    if (std::abs(n.dot(pt - x)) > gate) continue;
-    terms.push_back(PointToPlane{ps, x, n, 1.0});
-  }
+  std::size_t total = 0;
+  for (const auto& block : per_block) total += block.size();
+  terms.reserve(total);
+  for (const auto& block : per_block) terms.insert(terms.end(), block.begin(), block.end());
   return terms;
 }
 

@@ -2,8 +2,11 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -153,16 +156,57 @@ PoseSolve PoseProblem::solveByCeres() {
   return out;
 }
 
-PoseProblem::NormalEquations PoseProblem::equationsAt(const Isometry3& T) const {
-  NormalEquations e;
-  Matrix6d lower = Matrix6d::Zero();
-  for (const Term& term : terms_) {
-    const Linearised l = linearise(term, T);
-    e.cost += 0.5 * l.rho;
-    lower.selfadjointView<Eigen::Lower>().rankUpdate(l.J, l.rho1);
-    e.g += l.rho1 * l.r * l.J;
+namespace {
+
+/// The normal equations' sums over a range of terms: H's lower triangle by columns (21 entries).
+struct EquationSums {
+  double cost = 0.0;
+  std::array<double, 21> lower{};
+  Vector6d g = Vector6d::Zero();
+  void join(const EquationSums& o) {
+    cost += o.cost;
+    for (std::size_t k = 0; k < lower.size(); ++k) lower[k] += o.lower[k];
+    g += o.g;
   }
-  e.H = lower.selfadjointView<Eigen::Lower>();
+};
+
+/// Terms per task of the normal equations' sums; fewer terms are summed in one pass. The split
+/// depends on the number of terms alone, so the sums are the same on any number of threads.
+constexpr std::size_t kTermsPerTask = 2048;
+
+}  // namespace
+
+PoseProblem::NormalEquations PoseProblem::equationsAt(const Isometry3& T) const {
+  const auto sum = [&](std::size_t begin, std::size_t end, EquationSums s) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const Linearised l = linearise(terms_[i], T);
+      s.cost += 0.5 * l.rho;
+      const Vector6d wJ = l.rho1 * l.J;
+      std::size_t k = 0;
+      for (int c = 0; c < 6; ++c)
+        for (int r = c; r < 6; ++r) s.lower[k++] += wJ(r) * l.J(c);
+      s.g += l.r * wJ;
+    }
+    return s;
+  };
+  EquationSums total;
+  if (terms_.size() <= kTermsPerTask) {
+    total = sum(0, terms_.size(), EquationSums{});
+  } else {
+    total = tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<std::size_t>(0, terms_.size(), kTermsPerTask), EquationSums{},
+        [&](const tbb::blocked_range<std::size_t>& range, EquationSums s) { return sum(range.begin(), range.end(), s); },
+        [](EquationSums a, const EquationSums& b) {
+          a.join(b);
+          return a;
+        });
+  }
+  NormalEquations e;
+  e.cost = total.cost;
+  e.g = total.g;
+  std::size_t k = 0;
+  for (int c = 0; c < 6; ++c)
+    for (int r = c; r < 6; ++r) e.H(r, c) = e.H(c, r) = total.lower[k++];
   return e;
 }
 

@@ -23,6 +23,10 @@ inline bool coversWholeTurn(int columns, double step_rad) {
   return columns * std::abs(step_rad) >= 2.0 * M_PI - 0.5 * std::abs(step_rad);
 }
 
+/// `a` wrapped to [-pi, pi] as std::remainder(a, 2 pi) gives it, without that call's cost where it
+/// already lies there (a difference of two azimuths in [-pi, pi] mostly does).
+inline double wrapToPi(double a) { return std::abs(a) <= M_PI ? a : std::remainder(a, 2.0 * M_PI); }
+
 /// A range image's layout. Sensor frame: x forward, y left, z up (MRPT's LiDAR frame); a ray at
 /// elevation e and azimuth a is (cos e cos a, cos e sin a, sin e).
 struct SphericalGrid {
