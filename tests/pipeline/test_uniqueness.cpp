@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "gasp/core/error.h"
 #include "gasp/pipeline/certify_stage.h"
 #include "gasp/pipeline/pose_likelihood.h"
 #include "synthetic_pairs.h"
@@ -46,6 +47,39 @@ TEST(PoseLikelihood, TheTruthExplainsTheViewsBetterThanPosesAFewCentimetresOff) 
   nan.translation().x() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(logLikelihoodRatio(p.a, p.b, nan, p.T_b_a).patches, 0);
   EXPECT_EQ(logLikelihoodRatio(DepthView{}, DepthView{}, p.T_b_a, p.T_b_a).patches, 0);
+}
+
+// One pose's samples kept (poseSamples) and compared with many others give the ratio computed
+// afresh to the bit, with the violation charge and the certificate's sampling; the certificate's
+// comparison with them gives the same verdict, and refuses samples of another pose.
+TEST(PoseLikelihood, OnePosesSamplesKeptGiveTheSameRatiosToTheBit) {
+  const Pair p = makePair("room", 10, 20);
+  CertifyParams certify;
+  certify.violation_nats = std::log(10.0);
+  PoseLikelihoodParams params;
+  params.violation_nats = certify.violation_nats;
+  params.pixel_step = 4;
+  const PoseSamples kept = poseSamples(p.a, p.b, p.T_b_a, params);
+  for (const Isometry3& off : {Isometry3(Eigen::Translation3d(0.05, 0, 0)), Isometry3(Eigen::Translation3d(0, 0, -0.3)),
+                               Isometry3(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY())), Isometry3::Identity()}) {
+    const LikelihoodRatio fresh = logLikelihoodRatio(p.a, p.b, p.T_b_a, off * p.T_b_a, params);
+    const LikelihoodRatio from_kept = logLikelihoodRatio(p.a, p.b, kept, off * p.T_b_a, params);
+    EXPECT_EQ(fresh.log_ratio, from_kept.log_ratio);
+    EXPECT_EQ(fresh.standard_error, from_kept.standard_error);
+    EXPECT_EQ(fresh.patches, from_kept.patches);
+    const RegistrationResult chosen = fullPose(p.T_b_a), alternative = fullPose(off * p.T_b_a);
+    const Uniqueness u = compareAlternative(p.a, p.b, chosen, alternative, kDistinct, certify);
+    const Uniqueness v = compareAlternative(p.a, p.b, chosen, alternative, kDistinct, certify,
+                                            samplesForComparison(p.a, p.b, chosen, certify));
+    EXPECT_EQ(u.tested, v.tested);
+    EXPECT_TRUE(u.log_ratio == v.log_ratio || (std::isnan(u.log_ratio) && std::isnan(v.log_ratio)));
+    EXPECT_EQ(u.take_alternative, v.take_alternative);
+    EXPECT_EQ(u.refused, v.refused);
+  }
+  EXPECT_GT(logLikelihoodRatio(p.a, p.b, kept, Eigen::Translation3d(0.05, 0, 0) * p.T_b_a, params).patches, 500);
+  EXPECT_THROW(compareAlternative(p.a, p.b, fullPose(p.T_b_a), fullPose(p.T_b_a), kDistinct, certify,
+                                  samplesForComparison(p.a, p.b, fullPose(Eigen::Translation3d(0.05, 0, 0) * p.T_b_a), certify)),
+               Error);
 }
 
 // A sample put in space the other view saw as empty costs violation_nats beyond an outlier; an

@@ -152,6 +152,16 @@ Certificate certify(const RegistrationResult& pose, std::optional<int> dense_ter
 
 namespace {
 
+/// The uniqueness test's likelihood: the free-space test's samples (every cell of a LiDAR's view)
+/// and its gate for the violations.
+PoseLikelihoodParams uniquenessLikelihood(const CertifyParams& params) {
+  PoseLikelihoodParams likelihood;
+  likelihood.pixel_step = params.visibility.pixel_step;
+  likelihood.violation_nats = params.violation_nats;
+  likelihood.free_space = params.visibility;
+  return likelihood;
+}
+
 /// compareAlternative() with the ratio `ratio`(T_chosen, T_alternative, likelihood params).
 template <typename Ratio>
 Uniqueness compareWith(const DepthView& source, const RegistrationResult& chosen, const RegistrationResult& alternative,
@@ -166,12 +176,7 @@ Uniqueness compareWith(const DepthView& source, const RegistrationResult& chosen
   const Isometry3 nearest = chosen.partial ? withPrediction(chosen, alternative.T_target_source) : chosen.T_target_source;
   u.distance_m = rmsDisplacement(nearest, alternative.T_target_source, pointSpread(centroids));
   if (!(u.distance_m > distinct_m)) return u;
-  // The free-space test's samples (every cell of a LiDAR's view) and its gate for the violations.
-  PoseLikelihoodParams likelihood;
-  likelihood.pixel_step = params.visibility.pixel_step;
-  likelihood.violation_nats = params.violation_nats;
-  likelihood.free_space = params.visibility;
-  const LikelihoodRatio lr = ratio(chosen.T_target_source, alternative.T_target_source, likelihood);
+  const LikelihoodRatio lr = ratio(chosen.T_target_source, alternative.T_target_source, uniquenessLikelihood(params));
   if (lr.patches == 0) return u;  // no sample lands under both poses: nothing to compare
   u.tested = true;
   u.log_ratio = lr.log_ratio;
@@ -199,6 +204,22 @@ Uniqueness compareAlternative(const DepthView& source, const DepthView& target, 
   return compareWith(source, chosen, alternative, distinct_m, params,
                      [&](const Isometry3& T_a, const Isometry3& T_b, const PoseLikelihoodParams& likelihood) {
                        return logLikelihoodRatio(source, target, T_a, T_b, likelihood);
+                     });
+}
+
+PoseSamples samplesForComparison(const DepthView& source, const DepthView& target, const RegistrationResult& chosen,
+                                 const CertifyParams& params) {
+  return poseSamples(source, target, chosen.T_target_source, uniquenessLikelihood(params));
+}
+
+Uniqueness compareAlternative(const DepthView& source, const DepthView& target, const RegistrationResult& chosen,
+                              const RegistrationResult& alternative, double distinct_m, const CertifyParams& params,
+                              const PoseSamples& chosen_samples) {
+  if (chosen_samples.T_target_source.matrix() != chosen.T_target_source.matrix())
+    throw Error("compareAlternative: the samples given are of another pose than the chosen one");
+  return compareWith(source, chosen, alternative, distinct_m, params,
+                     [&](const Isometry3&, const Isometry3& T_b, const PoseLikelihoodParams& likelihood) {
+                       return logLikelihoodRatio(source, target, chosen_samples, T_b, likelihood);
                      });
 }
 

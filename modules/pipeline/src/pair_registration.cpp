@@ -244,6 +244,8 @@ void testSymmetries(const DepthView& source, const DepthView& target, const Pair
   const double distinct_m = 2.0 * p.hypothesise.pose.ransac.inlier.distance_m;
   // The turns refined and compared concurrently (one TBB task each), then taken in their order.
   const std::vector<SymmetricTurn> turns = symmetricTurns(source, target, r.pose.T_target_source);
+  // The claimed pose's side of every comparison, computed once.
+  const PoseSamples claimed = turns.empty() ? PoseSamples{} : samplesForComparison(source, target, r.pose, p.certify);
   std::vector<Uniqueness> compared(turns.size());
   std::vector<RegistrationResult> refined(turns.size());
   tbb::parallel_for(std::size_t{0}, turns.size(), [&](std::size_t k) {
@@ -257,7 +259,7 @@ void testSymmetries(const DepthView& source, const DepthView& target, const Pair
     if (!a.T_target_source.matrix().allFinite()) return;
     a.success = true;  // compared whether its own certificate would claim it or not
     a.partial = false;
-    compared[k] = compareAlternative(source, target, r.pose, a, distinct_m, p.certify);
+    compared[k] = compareAlternative(source, target, r.pose, a, distinct_m, p.certify, claimed);
     refined[k] = a;
   });
   const bool on_returns = source.returns && target.returns;

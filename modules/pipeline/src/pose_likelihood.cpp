@@ -1,6 +1,7 @@
 #include "gasp/pipeline/pose_likelihood.h"
 
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -68,29 +69,62 @@ void addPatchMeans(const std::vector<double>& sum, const std::vector<int>& count
   }
 }
 
-/// Adds `from`'s patches' means of l(a) - l(b) over their counted samples, outside the dead band.
-void oneWay(const DepthView& from, const DepthView& to, const Isometry3& T_to_from_a, const Isometry3& T_to_from_b,
-            const PoseLikelihoodParams& p, LikelihoodRatio& out) {
+/// Calls visit(k, label, point) for every sample of `from` (every pixel_step-th pixel with valid
+/// depth on a patch), k its index in the grid of sampled pixels; false when `from` has none.
+template <typename Visit>
+bool forEachSample(const DepthView& from, const DepthView& to, const PoseLikelihoodParams& p, const Visit& visit) {
   const cv::Mat& d = from.depth_m;
   const cv::Mat& labels = from.segmentation.labels;
   const std::size_t n = from.segmentation.patches.size();
-  if (n == 0 || labels.size() != d.size() || to.depth_m.empty()) return;
-  std::vector<double> sum(n, 0.0);
-  std::vector<int> count(n, 0);
-  const SampleTerm term(to, p);
+  if (n == 0 || labels.size() != d.size() || to.depth_m.empty()) return false;
+  std::size_t k = 0;
   for (int v = 0; v < d.rows; v += p.pixel_step)
-    for (int u = 0; u < d.cols; u += p.pixel_step) {
+    for (int u = 0; u < d.cols; u += p.pixel_step, ++k) {
       const int label = labels.at<int>(v, u);
       const float z0 = d.at<float>(v, u);
       if (label < 0 || static_cast<std::size_t>(label) >= n || !isValidDepth(z0)) continue;
-      const Eigen::Vector3d point = from.projection.unproject(u, v, z0);
-      const auto la = term(point, T_to_from_a), lb = term(point, T_to_from_b);
-      if (!la || !lb) continue;
-      const std::size_t k = static_cast<std::size_t>(label);
-      sum[k] += *la - *lb;
-      ++count[k];
+      visit(k, static_cast<std::size_t>(label), from.projection.unproject(u, v, z0));
     }
-  addPatchMeans(sum, count, p, out);
+  return true;
+}
+
+/// `from`'s samples' l under T_to_from (NaN where one lands on no measured depth), by grid index.
+std::vector<double> samplesOneWay(const DepthView& from, const DepthView& to, const Isometry3& T_to_from,
+                                  const PoseLikelihoodParams& p) {
+  std::vector<double> l;
+  const SampleTerm term(to, p);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  forEachSample(from, to, p, [&](std::size_t k, std::size_t, const Eigen::Vector3d& point) {
+    if (l.size() <= k) l.resize(k + 1, nan);
+    l[k] = term(point, T_to_from).value_or(nan);
+  });
+  return l;
+}
+
+/// Adds `from`'s patches' means of l(a) - l(b) over their counted samples, outside the dead band;
+/// l(a) from `cached_a` (samplesOneWay under T_to_from_a) when given.
+void oneWay(const DepthView& from, const DepthView& to, const Isometry3& T_to_from_a, const Isometry3& T_to_from_b,
+            const PoseLikelihoodParams& p, const std::vector<double>* cached_a, LikelihoodRatio& out) {
+  const std::size_t n = from.segmentation.patches.size();
+  std::vector<double> sum(n, 0.0);
+  std::vector<int> count(n, 0);
+  const SampleTerm term(to, p);
+  const bool sampled = forEachSample(from, to, p, [&](std::size_t k, std::size_t label, const Eigen::Vector3d& point) {
+    double la = 0.0;
+    if (cached_a) {
+      if (k >= cached_a->size() || std::isnan((*cached_a)[k])) return;
+      la = (*cached_a)[k];
+    } else if (const auto a = term(point, T_to_from_a)) {
+      la = *a;
+    } else {
+      return;
+    }
+    const auto lb = term(point, T_to_from_b);
+    if (!lb) return;
+    sum[label] += la - *lb;
+    ++count[label];
+  });
+  if (sampled) addPatchMeans(sum, count, p, out);
 }
 
 /// oneWay() on the sweeps' returns (returnsLogLikelihoodRatio).
@@ -131,8 +165,29 @@ LikelihoodRatio logLikelihoodRatio(const DepthView& source, const DepthView& tar
                                    const Isometry3& T_b, const PoseLikelihoodParams& params) {
   LikelihoodRatio out;
   if (!T_a.matrix().allFinite() || !T_b.matrix().allFinite()) return out;
-  oneWay(source, target, T_a, T_b, params, out);
-  oneWay(target, source, T_a.inverse(), T_b.inverse(), params, out);
+  oneWay(source, target, T_a, T_b, params, nullptr, out);
+  oneWay(target, source, T_a.inverse(), T_b.inverse(), params, nullptr, out);
+  out.standard_error = std::sqrt(out.standard_error);
+  return out;
+}
+
+PoseSamples poseSamples(const DepthView& source, const DepthView& target, const Isometry3& T_a,
+                        const PoseLikelihoodParams& params) {
+  PoseSamples a;
+  a.T_target_source = T_a;
+  if (!T_a.matrix().allFinite()) return a;
+  a.source_to_target = samplesOneWay(source, target, T_a, params);
+  a.target_to_source = samplesOneWay(target, source, T_a.inverse(), params);
+  return a;
+}
+
+LikelihoodRatio logLikelihoodRatio(const DepthView& source, const DepthView& target, const PoseSamples& a,
+                                   const Isometry3& T_b, const PoseLikelihoodParams& params) {
+  LikelihoodRatio out;
+  const Isometry3& T_a = a.T_target_source;
+  if (!T_a.matrix().allFinite() || !T_b.matrix().allFinite()) return out;
+  oneWay(source, target, T_a, T_b, params, &a.source_to_target, out);
+  oneWay(target, source, T_a.inverse(), T_b.inverse(), params, &a.target_to_source, out);
   out.standard_error = std::sqrt(out.standard_error);
   return out;
 }

@@ -34,6 +34,7 @@
 #include "gasp/pipeline/depth_view.h"
 #include "gasp/pipeline/model_error.h"
 #include "gasp/pipeline/plane_hypothesis.h"
+#include "gasp/pipeline/pose_likelihood.h"
 #include "gasp/pipeline/view_degeneracy.h"
 #include "gasp/pipeline/visibility_check.h"
 #include "gasp/registration/registration_result.h"
@@ -146,6 +147,16 @@ struct Uniqueness {
 /// twice RANSAC's inlier distance. Not tested when the ratio is 0 or the two are not distinct.
 Uniqueness compareAlternative(const DepthView& source, const DepthView& target, const RegistrationResult& chosen,
                               const RegistrationResult& alternative, double distinct_m, const CertifyParams& params);
+/// The chosen pose's samples of the uniqueness test's likelihood, for comparing it with many
+/// alternatives (the symmetry test's turns) at the cost of one pose each.
+PoseSamples samplesForComparison(const DepthView& source, const DepthView& target, const RegistrationResult& chosen,
+                                 const CertifyParams& params);
+/// compareAlternative() with the chosen pose's samples from `chosen_samples` (samplesForComparison
+/// of the same views, pose and params; throws gasp::Error when they are of another pose): the
+/// same verdict to the bit.
+Uniqueness compareAlternative(const DepthView& source, const DepthView& target, const RegistrationResult& chosen,
+                              const RegistrationResult& alternative, double distinct_m, const CertifyParams& params,
+                              const PoseSamples& chosen_samples);
 /// The same on two sweeps' own returns (returnsLogLikelihoodRatio, pose_likelihood.h; both views
 /// carry DepthView::returns, else not tested): where binned cells, means of different returns in
 /// each sweep, cannot tell the two poses apart fairly, the returns can.

@@ -31,6 +31,8 @@
 /// patches (a sample or two each) still moves the sum by that much.
 /// A patch whose samples all land well counts about l(0), so a ratio of e^7 (about 1000) is two
 /// patches' worth of surface explained.
+#include <vector>
+
 #include "gasp/core/pose.h"
 #include "gasp/pipeline/depth_view.h"
 #include "gasp/pipeline/visibility_check.h"
@@ -68,6 +70,20 @@ struct LikelihoodRatio {
 LikelihoodRatio logLikelihoodRatio(const DepthView& source, const DepthView& target, const Isometry3& T_a,
                           const Isometry3& T_b, const PoseLikelihoodParams& params = {});
 
+/// The samples' l under one pose T_a, kept to compare it with many others at the cost of one pose
+/// each (the certificate's symmetry test compares a claimed pose with nine turns): each view's
+/// samples by their index in its grid of every pixel_step-th pixel, NaN where a sample lands on
+/// no measured depth or is not a sample.
+struct PoseSamples {
+  Isometry3 T_target_source = Isometry3::Identity();
+  std::vector<double> source_to_target, target_to_source;
+};
+PoseSamples poseSamples(const DepthView& source, const DepthView& target, const Isometry3& T_a,
+                        const PoseLikelihoodParams& params = {});
+/// logLikelihoodRatio(source, target, a.T_target_source, T_b, params), the same to the bit, with
+/// T_a's samples taken from `a` (poseSamples() of the same views and params).
+LikelihoodRatio logLikelihoodRatio(const DepthView& source, const DepthView& target, const PoseSamples& a,
+                                   const Isometry3& T_b, const PoseLikelihoodParams& params = {});
 /// The same ratio on two sweeps' own returns (both views carry DepthView::returns; zero otherwise),
 /// with no binned cell's mean of different returns in between: every return of each sweep mapped
 /// into the other lands on the return nearest its direction there (landOnReturns,
