@@ -17,6 +17,24 @@ namespace {
 using namespace gasp;
 using namespace gasp::test;
 
+/// `count` dense terms on the room corner's three planes under the motion T: a source point and a
+/// target point drawn on the same plane, the target point moved along the plane's normal by
+/// offset(i) [m].
+template <typename Offset>
+std::vector<PointToPlane> cornerTerms(const Isometry3& T, int count, std::mt19937& rng, const Offset& offset) {
+  const auto planes = roomCorner();
+  std::uniform_real_distribution<double> s(-1.0, 1.0);
+  std::vector<PointToPlane> dense;
+  for (int i = 0; i < count; ++i) {
+    const Plane& pl = planes[static_cast<std::size_t>(i % 3)];
+    const Eigen::Vector3d a = pl.centre + s(rng) * pl.half_u * pl.u + s(rng) * pl.half_v * pl.v;
+    const Eigen::Vector3d b = pl.centre + s(rng) * pl.half_u * pl.u + s(rng) * pl.half_v * pl.v;
+    const Eigen::Vector3d n = T.linear() * pl.normal;
+    dense.push_back({a, T * b + offset(i) * n, n, 1.0});
+  }
+  return dense;
+}
+
 Isometry3 perturbed(const Isometry3& T) {
   const Eigen::AngleAxisd rotation(3.0 * M_PI / 180, Eigen::Vector3d(1, -1, 2).normalized());
   return Eigen::Translation3d(0.03, -0.02, 0.04) * rotation * T;
@@ -155,24 +173,15 @@ TEST(Refinement, InformationIsConsistentUnderItsOwnNoiseModel) {
   // perturbation convention end to end. (Real pairs break the model: docs/pipeline.md "How far
   // the information can be trusted".)
   const Isometry3 T = testMotions()[3];
-  const auto planes = roomCorner();
   RefinementParams p;
   p.loss = RobustLoss::kNone;
   p.noise_sigma_m = 0.01;
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> s(-1.0, 1.0);
   std::normal_distribution<double> noise(0.0, p.noise_sigma_m);
   const int trials = 300;
   double mean = 0;
   for (int k = 0; k < trials; ++k) {
-    std::vector<PointToPlane> dense;
-    for (int i = 0; i < 300; ++i) {
-      const Plane& pl = planes[static_cast<std::size_t>(i % 3)];
-      const Eigen::Vector3d a = pl.centre + s(rng) * pl.half_u * pl.u + s(rng) * pl.half_v * pl.v;
-      const Eigen::Vector3d b = pl.centre + s(rng) * pl.half_u * pl.u + s(rng) * pl.half_v * pl.v;
-      const Eigen::Vector3d n = T.linear() * pl.normal;
-      dense.push_back({a, T * b + noise(rng) * n, n, 1.0});
-    }
+    const std::vector<PointToPlane> dense = cornerTerms(T, 300, rng, [&](int) { return noise(rng); });
     const RegistrationResult r = refinePose({}, perturbed(T), p, dense);
     ASSERT_TRUE(r.success) << r.reason;
     mean += eval::nees(r.T_target_source, T, r.information) / trials;
@@ -214,19 +223,12 @@ TEST(Refinement, ManyTermsGiveTheSamePoseOnOneThreadAsOnTwoAndAsCeres) {
   // split must not depend on the threads (the same pose to the bit on one as on two), and the
   // sums must be the cost's (the minimum Ceres reaches, as in BothSolversReachTheSameMinimum).
   const Isometry3 T = testMotions()[3];
-  const auto planes = roomCorner();
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> s(-1.0, 1.0);
   std::normal_distribution<double> noise(0.0, 0.005);
-  std::vector<PointToPlane> dense;
-  for (int i = 0; i < 9000; ++i) {
-    const Plane& pl = planes[static_cast<std::size_t>(i % 3)];
-    const Eigen::Vector3d a = pl.centre + s(rng) * pl.half_u * pl.u + s(rng) * pl.half_v * pl.v;
-    const Eigen::Vector3d b = pl.centre + s(rng) * pl.half_u * pl.u + s(rng) * pl.half_v * pl.v;
-    const Eigen::Vector3d n = T.linear() * pl.normal;
-    // One term in ten an outlier: the Huber loss's both branches in every task.
-    dense.push_back({a, T * b + (i % 10 == 0 ? 0.3 * s(rng) : noise(rng)) * n, n, 1.0});
-  }
+  // One term in ten an outlier: the Huber loss's both branches in every task.
+  const std::vector<PointToPlane> dense =
+      cornerTerms(T, 9000, rng, [&](int i) { return i % 10 == 0 ? 0.3 * s(rng) : noise(rng); });
   RefinementParams p;
   p.loss = RobustLoss::kHuber;
   const auto refineOn = [&](int threads) {
