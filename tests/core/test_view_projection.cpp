@@ -159,9 +159,13 @@ TEST(ViewProjection, WrapToPiIsTheRemainderOfATurn) {
   // at the ends and many turns away included.
   for (double a = -25.0; a <= 25.0; a += 0.001)
     EXPECT_EQ(gasp::wrapToPi(a), std::remainder(a, 2.0 * M_PI)) << a;
-  for (const double a : {M_PI, -M_PI, std::nextafter(M_PI, 4.0), std::nextafter(-M_PI, -4.0), 3.0 * M_PI, 0.0, -0.0})
+  for (const double a : {M_PI, -M_PI, std::nextafter(M_PI, 4.0), std::nextafter(-M_PI, -4.0), 3.0 * M_PI, 0.0, -0.0}) {
     EXPECT_EQ(gasp::wrapToPi(a), std::remainder(a, 2.0 * M_PI)) << a;
+    EXPECT_EQ(std::signbit(gasp::wrapToPi(a)), std::signbit(std::remainder(a, 2.0 * M_PI))) << a;
+  }
   EXPECT_TRUE(std::isnan(gasp::wrapToPi(std::nan(""))));
+  EXPECT_TRUE(std::isnan(gasp::wrapToPi(HUGE_VAL)));
+  EXPECT_TRUE(std::isnan(gasp::wrapToPi(-HUGE_VAL)));
 }
 
 }  // namespace

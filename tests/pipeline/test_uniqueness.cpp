@@ -77,6 +77,7 @@ TEST(PoseLikelihood, OnePosesSamplesKeptGiveTheSameRatiosToTheBit) {
     EXPECT_EQ(u.refused, v.refused);
   }
   EXPECT_GT(logLikelihoodRatio(p.a, p.b, kept, Eigen::Translation3d(0.05, 0, 0) * p.T_b_a, params).patches, 500);
+  EXPECT_THROW(logLikelihoodRatio(p.a, p.b, kept, p.T_b_a, PoseLikelihoodParams{}), Error);  // taken every 4, asked every 8
   EXPECT_THROW(compareAlternative(p.a, p.b, fullPose(p.T_b_a), fullPose(p.T_b_a), kDistinct, certify,
                                   samplesForComparison(p.a, p.b, fullPose(Eigen::Translation3d(0.05, 0, 0) * p.T_b_a), certify)),
                Error);

@@ -215,6 +215,8 @@ PoseSamples samplesForComparison(const DepthView& source, const DepthView& targe
 Uniqueness compareAlternative(const DepthView& source, const DepthView& target, const RegistrationResult& chosen,
                               const RegistrationResult& alternative, double distinct_m, const CertifyParams& params,
                               const PoseSamples& chosen_samples) {
+  if (!chosen.T_target_source.matrix().allFinite())  // no sample to keep: as the other overload
+    return compareAlternative(source, target, chosen, alternative, distinct_m, params);
   if (chosen_samples.T_target_source.matrix() != chosen.T_target_source.matrix())
     throw Error("compareAlternative: the samples given are of another pose than the chosen one");
   return compareWith(source, chosen, alternative, distinct_m, params,

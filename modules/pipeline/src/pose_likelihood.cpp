@@ -3,9 +3,11 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "gasp/core/depth_image.h"
+#include "gasp/core/error.h"
 #include "gasp/pipeline/range_view.h"
 #include "gasp/pipeline/returns_stage.h"
 
@@ -175,6 +177,7 @@ PoseSamples poseSamples(const DepthView& source, const DepthView& target, const 
                         const PoseLikelihoodParams& params) {
   PoseSamples a;
   a.T_target_source = T_a;
+  a.pixel_step = params.pixel_step;
   if (!T_a.matrix().allFinite()) return a;
   a.source_to_target = samplesOneWay(source, target, T_a, params);
   a.target_to_source = samplesOneWay(target, source, T_a.inverse(), params);
@@ -183,6 +186,9 @@ PoseSamples poseSamples(const DepthView& source, const DepthView& target, const 
 
 LikelihoodRatio logLikelihoodRatio(const DepthView& source, const DepthView& target, const PoseSamples& a,
                                    const Isometry3& T_b, const PoseLikelihoodParams& params) {
+  if (a.pixel_step != params.pixel_step)
+    throw Error("logLikelihoodRatio: the kept samples were taken every " + std::to_string(a.pixel_step) +
+                " pixels, the ratio asks for every " + std::to_string(params.pixel_step));
   LikelihoodRatio out;
   const Isometry3& T_a = a.T_target_source;
   if (!T_a.matrix().allFinite() || !T_b.matrix().allFinite()) return out;

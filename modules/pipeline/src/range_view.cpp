@@ -65,9 +65,19 @@ std::pair<cv::Mat, ViewProjection> binRangeScan(const RangeScan& scan, const Sup
 }
 
 DepthView makeRangeView(const RangeScan& scan, const SuperpixelParams& params, const ReturnsRefineParams& returns) {
-  auto [range, projection] = binRangeScan(scan, params);
-  DepthView view = makeDepthView(range, projection, params);
-  view.returns = std::make_shared<const SweepReturns>(scan, returns);
+  // Bad input is refused here, with one message, before the two halves run concurrently.
+  validateLayout(scan, "range scan");
+  validate(returns);
+  // The binned cells' segmentation and the returns' normals need nothing of each other.
+  DepthView view;
+  std::shared_ptr<const SweepReturns> sweep;
+  tbb::parallel_invoke(
+      [&] {
+        auto [range, projection] = binRangeScan(scan, params);
+        view = makeDepthView(range, projection, params);
+      },
+      [&] { sweep = std::make_shared<const SweepReturns>(scan, returns); });
+  view.returns = std::move(sweep);
   return view;
 }
 

@@ -76,12 +76,14 @@ LikelihoodRatio logLikelihoodRatio(const DepthView& source, const DepthView& tar
 /// no measured depth or is not a sample.
 struct PoseSamples {
   Isometry3 T_target_source = Isometry3::Identity();
+  int pixel_step = 0;  ///< of the params they were taken with
   std::vector<double> source_to_target, target_to_source;
 };
 PoseSamples poseSamples(const DepthView& source, const DepthView& target, const Isometry3& T_a,
                         const PoseLikelihoodParams& params = {});
 /// logLikelihoodRatio(source, target, a.T_target_source, T_b, params), the same to the bit, with
-/// T_a's samples taken from `a` (poseSamples() of the same views and params).
+/// T_a's samples taken from `a` (poseSamples() of the same views and params; throws gasp::Error
+/// when `a` was taken with another pixel_step).
 LikelihoodRatio logLikelihoodRatio(const DepthView& source, const DepthView& target, const PoseSamples& a,
                                    const Isometry3& T_b, const PoseLikelihoodParams& params = {});
 /// The same ratio on two sweeps' own returns (both views carry DepthView::returns; zero otherwise),
