@@ -209,7 +209,14 @@ Uniqueness compareAlternative(const DepthView& source, const DepthView& target, 
 
 PoseSamples samplesForComparison(const DepthView& source, const DepthView& target, const RegistrationResult& chosen,
                                  const CertifyParams& params) {
-  return poseSamples(source, target, chosen.T_target_source, uniquenessLikelihood(params));
+  const PoseLikelihoodParams likelihood = uniquenessLikelihood(params);
+  if (params.min_likelihood_ratio == 0.0) {  // the test is off: no comparison will read them
+    PoseSamples none;
+    none.T_target_source = chosen.T_target_source;
+    none.pixel_step = likelihood.pixel_step;
+    return none;
+  }
+  return poseSamples(source, target, chosen.T_target_source, likelihood);
 }
 
 Uniqueness compareAlternative(const DepthView& source, const DepthView& target, const RegistrationResult& chosen,

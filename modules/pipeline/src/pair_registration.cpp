@@ -245,9 +245,7 @@ void testSymmetries(const DepthView& source, const DepthView& target, const Pair
   // The turns refined and compared concurrently (one TBB task each), then taken in their order.
   const std::vector<SymmetricTurn> turns = symmetricTurns(source, target, r.pose.T_target_source);
   // The claimed pose's side of every comparison, computed once.
-  const PoseSamples claimed = turns.empty() || p.certify.min_likelihood_ratio == 0.0
-                                  ? PoseSamples{r.pose.T_target_source, 0, {}, {}}
-                                  : samplesForComparison(source, target, r.pose, p.certify);
+  const PoseSamples claimed = turns.empty() ? PoseSamples{} : samplesForComparison(source, target, r.pose, p.certify);
   std::vector<Uniqueness> compared(turns.size());
   std::vector<RegistrationResult> refined(turns.size());
   tbb::parallel_for(std::size_t{0}, turns.size(), [&](std::size_t k) {

@@ -148,7 +148,8 @@ struct Uniqueness {
 Uniqueness compareAlternative(const DepthView& source, const DepthView& target, const RegistrationResult& chosen,
                               const RegistrationResult& alternative, double distinct_m, const CertifyParams& params);
 /// The chosen pose's samples of the uniqueness test's likelihood, for comparing it with many
-/// alternatives (the symmetry test's turns) at the cost of one pose each.
+/// alternatives (the symmetry test's turns) at the cost of one pose each; none (only the pose)
+/// when the test is off (min_likelihood_ratio 0).
 PoseSamples samplesForComparison(const DepthView& source, const DepthView& target, const RegistrationResult& chosen,
                                  const CertifyParams& params);
 /// compareAlternative() with the chosen pose's samples from `chosen_samples` (samplesForComparison
