@@ -29,7 +29,7 @@ void refuseForeignRawlog(const std::string& rawlog, const std::string& groundtru
 }  // namespace
 
 LidarSequenceSummary writeLidarSequence(const sim::SimulationOptions& options, const sim::LidarSensor& sensor,
-                                        const std::string& out_dir, bool as_point_clouds) {
+                                        const std::string& out_dir, bool as_point_clouds, bool sweep_motion) {
   const sim::Simulation simulation(options);
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
@@ -44,7 +44,9 @@ LidarSequenceSummary writeLidarSequence(const sim::SimulationOptions& options, c
   for (int i = 0; i < simulation.size(); ++i) {
     const StampedPose& pose = simulation.path().poses[static_cast<std::size_t>(i)];
     const Isometry3 T_world_lidar = sim::lidarPoseOfCamera(pose.T_world_camera);
-    RangeScan sweep = sim::simulateLidarScan(simulation.scene(), sensor, T_world_lidar, options.seed, i);
+    const auto at = [&](double t) { return sim::lidarPoseOfCamera(sim::poseAtTime(simulation.path().poses, pose.timestamp + t)); };
+    RangeScan sweep = sweep_motion ? sim::simulateMovingLidarScan(simulation.scene(), sensor, at, options.seed, i)
+                                   : sim::simulateLidarScan(simulation.scene(), sensor, T_world_lidar, options.seed, i);
     sweep.timestamp = pose.timestamp;
     returns += static_cast<double>(sweep.returnCount());
     if (as_point_clouds)

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> moves;
   std::string sensor = "camera";
   bool point_clouds = false;
+  bool sweep_motion = false;
 
   CLI::App app{"Writes a synthetic depth sequence (ray-cast indoor scene, Kinect-like noise) with "
                "ground truth as a TUM RGB-D folder"};
@@ -65,6 +66,10 @@ int main(int argc, char** argv) {
   app.add_flag("--point-clouds", point_clouds,
                "with --sensor lidarN: write each sweep as a CObservationPointCloud (its points, no layout: how many "
                "drivers hand sweeps over) instead of a CObservationRotatingScan");
+  app.add_flag("--sweep-motion", sweep_motion,
+               "with --sensor lidarN: the sensor moves along the path during each sweep, each column fired from its "
+               "own pose (a real spinning LiDAR's sweeps are skewed so); the ground truth is each sweep's start pose "
+               "(docs/simulator.md)");
   app.add_flag("--no-noise", no_noise, "Exact ray-cast depth: no noise, quantisation or dropouts");
   app.add_flag("--list-scenes", list_scenes, "List the scenes and exit");
   if (const int code = gasp::tools::parseCommandLine(app, argc, argv); code >= 0) return code;
@@ -91,6 +96,10 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "error: --point-clouds is a LiDAR's output; give --sensor lidar16, lidar32 or lidar64\n");
       return 2;
     }
+    if (sweep_motion && sensor == "camera") {  // a usage error (exit 2)
+      std::fprintf(stderr, "error: --sweep-motion is a LiDAR's; give --sensor lidar16, lidar32 or lidar64\n");
+      return 2;
+    }
     if (sensor != "camera") {
       if (options.noise.radial_depth_bias != 0.0) {  // the camera's error: a usage error (exit 2)
         std::fprintf(stderr, "error: --depth-bias is the depth camera's; it does not apply to --sensor %s\n", sensor.c_str());
@@ -98,10 +107,10 @@ int main(int argc, char** argv) {
       }
       gasp::sim::LidarSensor lidar = gasp::sim::lidarSensor(std::stoi(sensor.substr(5)));
       if (no_noise) lidar.range_sigma_m = 0.0, lidar.dropout = 0.0;
-      const auto s = gasp::tools::writeLidarSequence(options, lidar, out_dir, point_clouds);
+      const auto s = gasp::tools::writeLidarSequence(options, lidar, out_dir, point_clouds, sweep_motion);
       std::printf("scene:       %s\n", options.scene.c_str());
-      std::printf("sweeps:      %d of %s%s (seed %llu, range noise %g m, %g %% dropouts), %.0f returns each on average\n",
-                  s.sweeps, lidar.model.c_str(), point_clouds ? " as point clouds" : "", static_cast<unsigned long long>(options.seed), lidar.range_sigma_m,
+      std::printf("sweeps:      %d of %s%s%s (seed %llu, range noise %g m, %g %% dropouts), %.0f returns each on average\n",
+                  s.sweeps, lidar.model.c_str(), point_clouds ? " as point clouds" : "", sweep_motion ? ", moving during each sweep" : "", static_cast<unsigned long long>(options.seed), lidar.range_sigma_m,
                   100.0 * lidar.dropout, s.returns_per_sweep);
       std::printf("written to:  %s\n             %s\n", s.rawlog.c_str(), s.groundtruth.c_str());
       return 0;

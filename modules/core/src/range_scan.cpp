@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <string>
 #include <utility>
+
+#include <Eigen/Geometry>
 
 #include "gasp/core/error.h"
 #include "gasp/core/median.h"
@@ -151,6 +154,40 @@ RangeScan movedScan(const RangeScan& scan, const Isometry3& T_new_old) {
       if (!(d > 0.0f) || !std::isfinite(d)) continue;
       placeReturn(out, T_new_old * (static_cast<double>(d) * scan.direction(r, c)));
     }
+  return out;
+}
+
+double columnTime(const RangeScan& scan, int col) {
+  return scan.sweep_duration_s * static_cast<double>(col) * std::abs(azimuthStep(scan)) / (2.0 * M_PI);
+}
+
+bool sweepTimed(const RangeScan& scan) {
+  return scan.sweep_duration_s > 0.0 && std::isfinite(scan.sweep_duration_s) && scan.model != kPointCloudModel;
+}
+
+RangeScan deskewSweep(const RangeScan& scan, const CameraTwist& twist) {
+  validateLayout(scan, "deskewSweep");
+  if (!sweepTimed(scan))
+    throw Error("deskewSweep: the sweep's columns carry no firing times (its duration is " +
+                std::to_string(scan.sweep_duration_s) + " s" +
+                (scan.model == kPointCloudModel ? ", and a point cloud's columns are azimuth bins)" : ")"));
+  if (!twist.v_mps.allFinite() || !twist.w_radps.allFinite()) throw Error("deskewSweep: the twist is not finite");
+  const int rows = scan.range_m.rows, cols = scan.range_m.cols;
+  RangeScan out = scan;
+  out.range_m = cv::Mat(rows, cols, CV_32FC1, cv::Scalar(0.0f));
+  out.ray = cv::Mat(rows, cols, CV_32FC3, cv::Scalar(0.0f, 0.0f, 0.0f));
+  const double w = twist.w_radps.norm();
+  for (int c = 0; c < cols; ++c) {
+    const double t = columnTime(scan, c);
+    const Eigen::Matrix3d R =
+        w > 0.0 ? Eigen::AngleAxisd(w * t, twist.w_radps / w).toRotationMatrix() : Eigen::Matrix3d::Identity();
+    const Eigen::Vector3d v_t = twist.v_mps * t;
+    for (int r = 0; r < rows; ++r) {
+      const float d = scan.range_m.at<float>(r, c);
+      if (!(d > 0.0f) || !std::isfinite(d)) continue;
+      placeReturn(out, R * (static_cast<double>(d) * scan.direction(r, c)) + v_t);
+    }
+  }
   return out;
 }
 

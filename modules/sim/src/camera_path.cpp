@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "gasp/core/error.h"
+#include "gasp/core/rolling_shutter.h"
 
 namespace gasp::sim {
 
@@ -183,6 +184,30 @@ CameraPath makeWalkPath(const std::vector<WalkWaypoint>& walk, const CameraPathO
     path.poses.push_back(p);
   }
   return path;
+}
+
+Isometry3 poseAtTime(const Trajectory& poses, double t) {
+  if (poses.size() < 2) throw Error("poseAtTime: a path of " + std::to_string(poses.size()) + " poses (at least 2)");
+  if (!std::isfinite(t)) throw Error("poseAtTime: the time is not finite");
+  if (t <= poses.front().timestamp) return poses.front().T_world_camera;
+  std::size_t i = 0;
+  while (i + 2 < poses.size() && t > poses[i + 1].timestamp) ++i;  // [i, i + 1] holds t, or is the last step
+  const StampedPose &a = poses[i], &b = poses[i + 1];
+  const double s = (t - a.timestamp) / (b.timestamp - a.timestamp);
+  if (s <= 1.0) {
+    const Eigen::Quaterniond qa(a.T_world_camera.linear()), qb(b.T_world_camera.linear());
+    Isometry3 T = Isometry3::Identity();
+    T.linear() = qa.slerp(s, qb).toRotationMatrix();
+    T.translation() = (1.0 - s) * a.T_world_camera.translation() + s * b.T_world_camera.translation();
+    return T;
+  }
+  // Past the last pose: the last step's twist continued from it.
+  const CameraTwist twist = twistBetween(a.T_world_camera, b.T_world_camera, b.timestamp - a.timestamp);
+  const double dt = t - b.timestamp, w = twist.w_radps.norm();
+  Isometry3 step = Isometry3::Identity();
+  if (w > 0.0) step.linear() = Eigen::AngleAxisd(w * dt, twist.w_radps / w).toRotationMatrix();
+  step.translation() = twist.v_mps * dt;
+  return b.T_world_camera * step;
 }
 
 }  // namespace gasp::sim

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <utility>
 #include <random>
 
@@ -25,8 +26,10 @@ LidarSensor lidarSensor(int lasers) {
   return s;
 }
 
-RangeScan simulateLidarScan(const Scene& scene, const LidarSensor& sensor, const Isometry3& T_world_sensor,
-                            std::uint64_t seed, int frame_index) {
+namespace {
+
+/// The sweep's layout (rows, columns, duration) for `sensor`, after checking the sensor.
+RangeScan sweepLayout(const LidarSensor& sensor) {
   if (sensor.elevation_deg.empty()) throw Error("lidar '" + sensor.model + "': no lasers");
   if (!(sensor.azimuth_step_deg > 0.0 && sensor.azimuth_step_deg <= 360.0))
     throw Error("lidar '" + sensor.model + "': azimuth_step_deg must be in (0, 360]");
@@ -36,12 +39,17 @@ RangeScan simulateLidarScan(const Scene& scene, const LidarSensor& sensor, const
   RangeScan scan;
   scan.model = sensor.model;
   scan.sweep_duration_s = sensor.sweep_s;
-  const int rows = static_cast<int>(sensor.elevation_deg.size());
   const int cols = static_cast<int>(std::lround(360.0 / sensor.azimuth_step_deg));
   std::vector<double> azimuths;
   for (int c = 0; c < cols; ++c) azimuths.push_back(-c * sensor.azimuth_step_deg * M_PI / 180.0);
   scan.setLayout(sensor.elevation_deg, std::move(azimuths));
-  const RenderedScan truth = renderRangeScan(scene, scan, T_world_sensor, frame_index);
+  return scan;
+}
+
+/// The sensor's noise and dropouts applied to the true ranges, into `scan` (its layout set).
+void measure(const LidarSensor& sensor, const RenderedScan& truth, std::uint64_t seed, int frame_index,
+             RangeScan& scan) {
+  const int rows = scan.range_m.rows, cols = scan.range_m.cols;
   // The noise: the same for the same (seed, frame), whatever else was simulated.
   std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ULL + static_cast<std::uint64_t>(frame_index));
   std::normal_distribution<double> noise(0.0, sensor.range_sigma_m);
@@ -55,6 +63,25 @@ RangeScan simulateLidarScan(const Scene& scene, const LidarSensor& sensor, const
       const double d = t + e;
       if (d >= sensor.min_range_m && d <= sensor.max_range_m) scan.range_m.at<float>(r, c) = static_cast<float>(d);
     }
+}
+
+}  // namespace
+
+RangeScan simulateLidarScan(const Scene& scene, const LidarSensor& sensor, const Isometry3& T_world_sensor,
+                            std::uint64_t seed, int frame_index) {
+  RangeScan scan = sweepLayout(sensor);
+  measure(sensor, renderRangeScan(scene, scan, T_world_sensor, frame_index), seed, frame_index, scan);
+  return scan;
+}
+
+RangeScan simulateMovingLidarScan(const Scene& scene, const LidarSensor& sensor,
+                                  const std::function<Isometry3(double)>& T_world_sensor_at, std::uint64_t seed,
+                                  int frame_index) {
+  if (!T_world_sensor_at) throw Error("lidar '" + sensor.model + "': no pose function");
+  RangeScan scan = sweepLayout(sensor);
+  const RenderedScan truth = renderMovingRangeScan(
+      scene, scan, [&](int col) { return T_world_sensor_at(columnTime(scan, col)); }, frame_index);
+  measure(sensor, truth, seed, frame_index, scan);
   return scan;
 }
 

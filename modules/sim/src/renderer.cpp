@@ -3,6 +3,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "gasp/core/error.h"
@@ -102,16 +103,23 @@ RenderedFrame emptyFrame(const CameraIntrinsics& K) {
 
 }  // namespace
 
-RenderedScan renderRangeScan(const Scene& scene, const RangeScan& layout, const Isometry3& T_world_sensor,
-                             int frame_index) {
+namespace {
+
+RenderedScan emptyScan(const RangeScan& layout, const char* who) {
   const int rows = static_cast<int>(layout.elevation_rad.size()), cols = static_cast<int>(layout.azimuth_rad.size());
-  if (rows == 0 || cols == 0) throw Error("renderRangeScan: the layout has no rows or no columns");
-  const std::vector<PreparedObject> prepared = prepareObjects(scene, T_world_sensor, frame_index);
+  if (rows == 0 || cols == 0) throw Error(std::string(who) + ": the layout has no rows or no columns");
   RenderedScan out;
   out.range = cv::Mat::zeros(rows, cols, CV_32FC1);
   out.surface_id = cv::Mat::zeros(rows, cols, CV_16UC1);
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < cols; ++c) {
+  return out;
+}
+
+/// Casts the columns [col_begin, col_end) of `out` (allocated) from the sensor pose T_world_sensor.
+void renderColumns(const Scene& scene, const RangeScan& layout, const Isometry3& T_world_sensor, int frame_index,
+                   int col_begin, int col_end, RenderedScan& out) {
+  const std::vector<PreparedObject> prepared = prepareObjects(scene, T_world_sensor, frame_index);
+  for (int r = 0; r < out.range.rows; ++r)
+    for (int c = col_begin; c < col_end; ++c) {
       const Eigen::Vector3d d = layout.direction(r, c);  // unit: t is the range
       double t = 0.0;
       RayHit hit;
@@ -120,6 +128,23 @@ RenderedScan renderRangeScan(const Scene& scene, const RangeScan& layout, const 
       out.range.at<float>(r, c) = static_cast<float>(t);
       out.surface_id.at<std::uint16_t>(r, c) = obj->object->surfaceId(hit.face);
     }
+}
+
+}  // namespace
+
+RenderedScan renderRangeScan(const Scene& scene, const RangeScan& layout, const Isometry3& T_world_sensor,
+                             int frame_index) {
+  RenderedScan out = emptyScan(layout, "renderRangeScan");
+  renderColumns(scene, layout, T_world_sensor, frame_index, 0, out.range.cols, out);
+  return out;
+}
+
+RenderedScan renderMovingRangeScan(const Scene& scene, const RangeScan& layout,
+                                   const std::function<Isometry3(int)>& T_world_sensor_of_column, int frame_index) {
+  if (!T_world_sensor_of_column) throw Error("renderMovingRangeScan: no pose function");
+  RenderedScan out = emptyScan(layout, "renderMovingRangeScan");
+  for (int c = 0; c < out.range.cols; ++c)
+    renderColumns(scene, layout, T_world_sensor_of_column(c), frame_index, c, c + 1, out);
   return out;
 }
 

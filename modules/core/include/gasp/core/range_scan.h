@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gasp/core/pose.h"
+#include "gasp/core/rolling_shutter.h"
 
 namespace gasp {
 
@@ -59,6 +60,25 @@ bool coversWholeTurn(const RangeScan& scan);
 /// beyond half a pitch from the end rows), the column of the nearest azimuth (wrapped on a whole
 /// turn; false outside a partial sweep). False for the zero vector.
 bool nearestCell(const RangeScan& scan, const Eigen::Vector3d& direction, int& row, int& col);
+
+/// The time of column `col`'s firing after the sweep's start [s]: the columns turn once in
+/// sweep_duration_s at a constant rate, in the order the sweep took them (col |azimuthStep| / 2 pi
+/// of the duration). 0 for every column when the duration is 0 (not known).
+double columnTime(const RangeScan& scan, int col);
+/// Whether the columns carry their firing times: a known sweep duration (> 0), and columns in the
+/// order the sweep took them -- not a point cloud's (rangeScanFromPoints(): azimuth bins counted
+/// from azimuth 0, wherever the sweep began).
+bool sweepTimed(const RangeScan& scan);
+/// The sweep carried to the sensor's pose at its start (RangeScan::timestamp), for a sensor moving
+/// at the constant twist `twist` (in its own frame, twistBetween()): the return of column c, fired
+/// at t = columnTime(c) from the pose exp([w t]), v t relative to the start's, becomes
+///   p(0) = exp([w t]) p(t) + v t
+/// and is put in the cell of its new direction with its own ray, as movedScan() does (the nearer
+/// where two share a cell; those beyond half a pitch from the end rows are lost). The same
+/// motion model as the camera's rolling-shutter deskew (rolling_shutter.h), over a sweep instead of
+/// a readout. A zero twist gives the returns unmoved. Throws gasp::Error for a scan that is not a
+/// range image, one whose columns carry no times (sweepTimed()), or a twist that is not finite.
+RangeScan deskewSweep(const RangeScan& scan, const CameraTwist& twist);
 
 /// The same returns seen by the sensor moved by T_new_old (a point p becomes T_new_old p): each
 /// put in the cell of its new direction (the row of the nearest elevation, the column of the

@@ -103,4 +103,11 @@ inline constexpr double kWalkMetresPerRadian = 0.5;
 Isometry3 lookAt(const Eigen::Vector3d& position, const Eigen::Vector3d& target, double roll_rad = 0.0,
                  const Eigen::Vector3d& up = Eigen::Vector3d::UnitZ());
 
+/// The pose on `poses` (sorted, strictly increasing timestamps) at time t [s]: between two poses
+/// the position interpolated linearly and the orientation by slerp (a constant velocity between
+/// frames); before the first pose, the first; past the last, the last step's motion continued at
+/// its velocity (a sensor still moving at the end of the path). Throws gasp::Error for fewer than
+/// two poses or a t that is not finite.
+Isometry3 poseAtTime(const Trajectory& poses, double t);
+
 }  // namespace gasp::sim

@@ -2,6 +2,7 @@
 /// \file lidar.h A spinning LiDAR in the simulator: its lasers' elevations, its azimuth step and
 /// its noise, and a sweep rendered from one pose as a RangeScan (gasp/core/range_scan.h).
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -37,5 +38,14 @@ Isometry3 lidarPoseOfCamera(const Isometry3& T_world_camera);
 /// that is not in (0, 360], or a range, noise or dropout out of its domain.
 RangeScan simulateLidarScan(const Scene& scene, const LidarSensor& sensor, const Isometry3& T_world_sensor,
                             std::uint64_t seed = 1, int frame_index = 0);
+
+/// One sweep taken while the sensor moves: column c is fired from T_world_sensor_at(t), t its time
+/// after the sweep's start (columnTime(), gasp/core/range_scan.h: the columns turn once in
+/// sensor.sweep_s), as a real spinning LiDAR's sweep is skewed by its motion. The same noise as
+/// simulateLidarScan() for the same (seed, frame_index). Throws as it does, and for an empty
+/// function.
+RangeScan simulateMovingLidarScan(const Scene& scene, const LidarSensor& sensor,
+                                  const std::function<Isometry3(double)>& T_world_sensor_at, std::uint64_t seed = 1,
+                                  int frame_index = 0);
 
 }  // namespace gasp::sim

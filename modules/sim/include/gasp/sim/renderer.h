@@ -47,4 +47,13 @@ struct RenderedScan {
 RenderedScan renderRangeScan(const Scene& scene, const RangeScan& layout, const Isometry3& T_world_sensor,
                              int frame_index = 0);
 
+/// A sweep taken while the sensor moves: column c is cast from the pose T_world_sensor_of_column(c)
+/// (ranges along that column's rays from that pose), as a spinning sensor fires its columns one
+/// after the other (RangeScan: columns in the order the sweep took them). The scene is prepared
+/// again for every column. Throws gasp::Error for an empty function or a layout without rows or
+/// columns.
+RenderedScan renderMovingRangeScan(const Scene& scene, const RangeScan& layout,
+                                   const std::function<Isometry3(int)>& T_world_sensor_of_column,
+                                   int frame_index = 0);
+
 }  // namespace gasp::sim
