@@ -30,6 +30,9 @@
 // --dense-step N (gasp): the dense rounds sample at least every N-th binned cell each way (their
 // step is the larger of N and the sample spacing's, lidar.dense_sample_spacing_deg; every cell
 // takes --params with lidar: {dense_sample_spacing_deg: 0}).
+// --deskew-truth: each sweep first carried to its start pose (deskewSweep) with the truth's
+// velocity to the next sweep: sweeps simulated with --sweep-motion as a deskew with an exact
+// velocity would leave them (the odometry deskews with its own last step's).
 // A claimed pose within 5 cm / 0.5 deg of the truth is right (the bound), one within
 // 20 cm / 5 deg is coarse (a start ICP converges from), any other claimed pose is wrong; the rest
 // give no estimate; in brackets, those of them whose sweeps share at least 30 % of their depth
@@ -458,7 +461,7 @@ int main(int argc, char** argv) {
   int threads = 2;
   int only_i = -1, only_j = -1;
   std::string method = "gasp";
-  bool shares = false, nees = false, slides = false;
+  bool shares = false, nees = false, slides = false, deskew_truth = false;
   gasp::PairParams params = gasp::lidarPairParams();
   std::string params_path;
   int dense_step = 0;
@@ -477,6 +480,8 @@ int main(int argc, char** argv) {
       shares = true;
     } else if (std::strcmp(argv[i], "--nees") == 0) {
       nees = true;
+    } else if (std::strcmp(argv[i], "--deskew-truth") == 0) {
+      deskew_truth = true;
     } else if (std::strcmp(argv[i], "--slides") == 0) {
       slides = true;
     } else if (std::strcmp(argv[i], "--pair") == 0 && i + 1 < argc) {
@@ -494,12 +499,12 @@ int main(int argc, char** argv) {
     } else if (dir.empty() && argv[i][0] != '-') {
       dir = argv[i];
     } else {
-      std::fprintf(stderr, "usage: bench_lidar_sequence DIR [--skips 1,5,10] [--threads N] [--params FILE] [--dense-step N] [--method gasp|fpfh] [--shares] [--nees] [--slides] [--pair I,J]\n");
+      std::fprintf(stderr, "usage: bench_lidar_sequence DIR [--skips 1,5,10] [--threads N] [--params FILE] [--dense-step N] [--method gasp|fpfh] [--shares] [--nees] [--slides] [--deskew-truth] [--pair I,J]\n");
       return 2;
     }
   }
   if (dir.empty() || std::any_of(skips.begin(), skips.end(), [](int k) { return k < 1; })) {
-    std::fprintf(stderr, "usage: bench_lidar_sequence DIR [--skips 1,5,10] [--threads N] [--params FILE] [--dense-step N] [--method gasp|fpfh] [--shares] [--nees] [--slides] [--pair I,J] (skips >= 1)\n");
+    std::fprintf(stderr, "usage: bench_lidar_sequence DIR [--skips 1,5,10] [--threads N] [--params FILE] [--dense-step N] [--method gasp|fpfh] [--shares] [--nees] [--slides] [--deskew-truth] [--pair I,J] (skips >= 1)\n");
     return 2;
   }
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
@@ -509,11 +514,19 @@ int main(int argc, char** argv) {
       params = gasp::lidarPairParams(file.lidar, file.odometry.pair);
     }
     if (dense_step > 0) params.refine.pixels.pixel_step = dense_step;
-    const std::vector<gasp::RangeScan> sweeps = readSweeps(dir + "/lidar.rawlog");
+    std::vector<gasp::RangeScan> sweeps = readSweeps(dir + "/lidar.rawlog");
     const gasp::Trajectory truth = gasp::readTumTrajectory(dir + "/lidar_groundtruth.txt");
     if (truth.size() != sweeps.size())
       throw gasp::Error(dir + ": " + std::to_string(sweeps.size()) + " sweeps but " + std::to_string(truth.size()) +
                         " ground-truth poses");
+    if (deskew_truth) {  // each sweep carried to its start pose with the truth's velocity to the next sweep
+      if (sweeps.size() < 2) throw gasp::Error("--deskew-truth: at least two sweeps");
+      for (std::size_t k = 0; k < sweeps.size(); ++k) {
+        const std::size_t a = k + 1 < sweeps.size() ? k : k - 1;
+        sweeps[k] = gasp::deskewSweep(sweeps[k], gasp::twistBetween(truth[a].T_world_camera, truth[a + 1].T_world_camera,
+                                                                   truth[a + 1].timestamp - truth[a].timestamp));
+      }
+    }
     std::printf("%s (%s): %zu sweeps of %s, %zu returns each on average\n\n", dir.c_str(), method.c_str(), sweeps.size(),
                 sweeps.front().model.c_str(), [&] {
                   std::size_t n = 0;

@@ -128,6 +128,46 @@ TEST(LidarOdometry, SegmentingAheadGivesTheSamePoses) {
     EXPECT_TRUE(in_place.frames()[i].T_world_camera.isApprox(ahead.frames()[i].T_world_camera, 1e-12)) << i;
 }
 
+// deskew_sweeps (off by default): a timed sweep becoming the keyframe is deskewed with the step
+// that measured it (the first sweep has none), the sweeps tracked against it with the same
+// velocity; a point cloud's columns carry no times and are not; the view made ahead (of the sweep
+// as read) is then not made.
+TEST(LidarOdometry, DeskewsTimedSweepsAsTheirKeyframeOnlyWhenAsked) {
+  const Sweeps& s = roomSweeps();
+  EXPECT_FALSE(gasp::lidarOdometryParams().deskew_sweeps);
+  gasp::OdometryParams p = gasp::lidarOdometryParams();
+  p.deskew_sweeps = true;
+  gasp::DepthOdometry plain(gasp::lidarOdometryParams()), deskewing(p), clouds(p);
+  gasp::ViewAhead views(p);
+  const std::size_t n = 8;
+  for (std::size_t i = 0; i < n; ++i) {
+    views.start(s.scans[i]);
+    EXPECT_FALSE(views.take().has_value()) << i;
+    plain.addFrame(s.truth[i].timestamp, s.scans[i]);
+    deskewing.addFrame(s.truth[i].timestamp, s.scans[i]);
+    gasp::RangeScan cloud = gasp::rangeScanFromPoints(s.scans[i].points(), "test");
+    cloud.sweep_duration_s = s.scans[i].sweep_duration_s;
+    clouds.addFrame(s.truth[i].timestamp, cloud);
+  }
+  bool keyframe_deskewed = false;
+  std::size_t deskewed = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const gasp::OdometryFrame& f = deskewing.frames()[i];
+    ASSERT_TRUE(f.tracked) << i;
+    // Every tracked frame after the first measured a step: a keyframe is deskewed with it.
+    const bool expected = keyframe_deskewed || (f.keyframe && i >= 1);
+    EXPECT_EQ(f.deskewed, expected) << i;
+    if (f.keyframe) keyframe_deskewed = expected;
+    deskewed += f.deskewed ? 1 : 0;
+    EXPECT_FALSE(plain.frames()[i].deskewed) << i;
+    EXPECT_FALSE(clouds.frames()[i].deskewed) << i;
+  }
+  EXPECT_GE(deskewed, n - 2);
+  // The simulated room's sweeps were taken standing still: deskewing them with the path's
+  // velocity moves them, and the poses differ.
+  EXPECT_FALSE(deskewing.frames()[n - 1].T_world_camera.isApprox(plain.frames()[n - 1].T_world_camera, 1e-9));
+}
+
 TEST(LidarOdometry, RefusesADeskewAndABadSweepWithoutAddingAFrame) {
   const Sweeps& s = roomSweeps();
   gasp::OdometryParams deskew = gasp::lidarOdometryParams();

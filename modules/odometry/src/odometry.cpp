@@ -50,6 +50,7 @@ void DepthOdometry::startSession(const Isometry3& T_world_first) {
   keyframe_index_ = 0;
   previous_view_.reset();
   velocity_.reset();
+  keyframe_deskew_.reset();
 }
 
 TrackedFrame DepthOdometry::lastTracked() const {
@@ -106,6 +107,7 @@ const OdometryFrame& DepthOdometry::addTracked(TrackedFrame t) {
   }
   previous_view_.reset();
   velocity_.reset();
+  keyframe_deskew_.reset();
   if (session_start) {
     session_starts_.push_back(index);
     replay_offset_ = offset;
@@ -209,10 +211,19 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const RangeScan& 
     throw Error("odometry: frame " + std::to_string(frames_.size()) +
                 ": a LiDAR sweep is not deskewed for a rolling shutter (rolling_shutter_readout_s must be 0; "
                 "lidarOdometryParams() sets it)");
-  if (segmented) return addView(timestamp, std::move(segmented->view), segmented->ms, false);
+  // Deskewed with the velocity the keyframe's sweep was deskewed with: both then keep the same
+  // residual skew, which the step between them does not see to first order (deskewed with
+  // different velocities, the step is off by their difference times the sweep, and the next
+  // velocity carries that on). A sweep becoming the keyframe is deskewed again with the step
+  // that measured it (addView).
   const auto t_seg = std::chrono::steady_clock::now();
+  if (params_.deskew_sweeps && keyframe_deskew_ && sweepTimed(sweep)) {
+    DepthView view = makeRangeView(deskewSweep(sweep, *keyframe_deskew_), params_.pair.segment, params_.pair.returns);
+    return addView(timestamp, std::move(view), msSince(t_seg), true, &sweep);
+  }
+  if (segmented) return addView(timestamp, std::move(segmented->view), segmented->ms, false, &sweep);
   DepthView view = makeRangeView(sweep, params_.pair.segment, params_.pair.returns);
-  return addView(timestamp, std::move(view), msSince(t_seg), false);
+  return addView(timestamp, std::move(view), msSince(t_seg), false, &sweep);
 }
 
 const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& depth_m,
@@ -240,7 +251,8 @@ const OdometryFrame& DepthOdometry::addFrame(double timestamp, const cv::Mat& de
   return addView(timestamp, std::move(view), msSince(t_seg), false);
 }
 
-const OdometryFrame& DepthOdometry::addView(double timestamp, DepthView view, double segmentation_ms, bool deskewed) {
+const OdometryFrame& DepthOdometry::addView(double timestamp, DepthView view, double segmentation_ms, bool deskewed,
+                                            const RangeScan* sweep) {
   const bool session_start = frames_.empty() || session_pending_;
   OdometryFrame f;
   f.index = frames_.size();
@@ -333,6 +345,17 @@ const OdometryFrame& DepthOdometry::addView(double timestamp, DepthView view, do
   if (new_keyframe) {
     f.keyframe = true;
     keyframe_index_ = f.index;
+    if (sweep && params_.deskew_sweeps && sweepTimed(*sweep)) {
+      if (velocity_) {  // the step just measured; the frame's own pose is unchanged
+        const auto t_seg = std::chrono::steady_clock::now();
+        view = makeRangeView(deskewSweep(*sweep, *velocity_), params_.pair.segment, params_.pair.returns);
+        f.segmentation_ms += msSince(t_seg);
+        f.deskewed = true;
+        keyframe_deskew_ = velocity_;
+      } else if (!f.deskewed) {
+        keyframe_deskew_.reset();
+      }  // else: deskewed with the previous keyframe's velocity, which stays this one's
+    }
     keyframe_view_ = view;
     keyframe_edges_.reset();
   }

@@ -9,7 +9,10 @@
 namespace gasp {
 
 ViewAhead::ViewAhead(const OdometryParams& params, bool enabled)
-    : superpixels_(params.pair.segment), returns_(params.pair.returns), enabled_(enabled && params.rolling_shutter_readout_s == 0.0) {}
+    : superpixels_(params.pair.segment),
+      returns_(params.pair.returns),
+      enabled_(enabled && params.rolling_shutter_readout_s == 0.0),
+      sweeps_enabled_(enabled_ && !params.deskew_sweeps) {}
 
 ViewAhead::~ViewAhead() {
   for (auto& f : pending_)
@@ -35,7 +38,7 @@ void ViewAhead::start(const cv::Mat& depth_m, const CameraIntrinsics& intrinsics
 }
 
 void ViewAhead::start(const RangeScan& sweep) {
-  if (!enabled_) return;
+  if (!sweeps_enabled_) return;
   // A scan makeRangeView() refuses fails here too: take() is then empty and addFrame() says why.
   pending_.push_back(std::async(std::launch::async, [sweep, superpixels = superpixels_, returns = returns_] {
     const auto t0 = std::chrono::steady_clock::now();

@@ -211,6 +211,7 @@ void odometryFields(P& p, F&& f) {
   f("max_speed_mps", p.max_speed_mps);
   f("max_rate_radps", p.max_rate_radps);
   f("rolling_shutter_readout_s", p.rolling_shutter_readout_s);
+  f("deskew_sweeps", p.deskew_sweeps);
   f("tracking", p.tracking);
   auto& s = p.scene_change;
   f("scene_change", s.enabled);

@@ -66,7 +66,7 @@ struct OdometryFrame {
   /// The pose came from the tracking path (OdometryParams::tracking): dense rounds from the
   /// constant-velocity prediction against the keyframe, certified; no association or RANSAC.
   bool tracking_path = false;
-  bool deskewed = false;       ///< the depth was deskewed for the rolling shutter before segmenting
+  bool deskewed = false;  ///< deskewed before segmenting: a camera's rolling shutter, a sweep's turn
   double segmentation_ms = 0.0;  ///< deskew + superpixels
   double registration_ms = 0.0;  ///< all registration attempts
 };
@@ -100,9 +100,13 @@ class DepthOdometry {
   /// Adds the next frame as a rotating LiDAR's sweep (range_view.h: binned, segmented with
   /// params.pair.segment, its returns kept for the pairs' last stage with params.pair.returns;
   /// lidarOdometryParams() are a LiDAR's). Poses are the sensor's (MRPT's LiDAR frame, x ahead,
-  /// z up). A sweep is not deskewed: throws gasp::Error when rolling_shutter_readout_s is not 0,
-  /// for a scan that is not a range image, and for timestamps as above. `segmented`: its view
-  /// made ahead (ViewAhead::start(const RangeScan&)).
+  /// z up), at the sweep's start (`timestamp`). With params.deskew_sweeps, a sweep whose columns
+  /// carry their times is carried to that pose (deskewSweep(), range_scan.h;
+  /// OdometryFrame::deskewed) with the velocity its keyframe's sweep was deskewed with, and, when
+  /// it becomes the keyframe, again with the step that measured it (odometry_params.h). Throws gasp::Error when rolling_shutter_readout_s is
+  /// not 0 (a camera's), for a scan that is not a range image, and for timestamps as above.
+  /// `segmented`: its view made ahead (ViewAhead::start(const RangeScan&)), used when the sweep is
+  /// not deskewed.
   const OdometryFrame& addFrame(double timestamp, const RangeScan& sweep,
                                 std::optional<SegmentedDepth> segmented = std::nullopt);
 
@@ -163,8 +167,10 @@ class DepthOdometry {
   /// Throws gasp::Error for a timestamp addFrame() refuses, and for a frame to track here or
   /// replayed (`tracked_elsewhere`) when the current session's frames are the other kind.
   void checkNext(double timestamp, bool tracked_elsewhere) const;
-  /// addFrame() once the frame's view is made.
-  const OdometryFrame& addView(double timestamp, DepthView view, double segmentation_ms, bool deskewed);
+  /// addFrame() once the frame's view is made; `sweep`: the LiDAR sweep it was made from (as read),
+  /// deskewed again when it becomes the keyframe (OdometryParams::deskew_sweeps).
+  const OdometryFrame& addView(double timestamp, DepthView view, double segmentation_ms, bool deskewed,
+                               const RangeScan* sweep = nullptr);
   /// track() with the registration `r` (T_ref_frame) already made.
   bool take(PairResult r, std::size_t ref_index, OdometryFrame& f, const char* attempt,
             const std::optional<Isometry3>& T_ref_predicted = std::nullopt, bool* visibility_refused = nullptr,
@@ -183,6 +189,9 @@ class DepthOdometry {
   /// Velocity of the last step (frames i-1 -> i) when both were tracked and it was plausible, in
   /// the camera's frame; empty otherwise.
   std::optional<CameraTwist> velocity_;
+  /// The velocity the keyframe's sweep was deskewed with (deskew_sweeps); empty: not deskewed. The
+  /// sweeps tracked against it are deskewed with the same.
+  std::optional<CameraTwist> keyframe_deskew_;
   std::vector<std::size_t> session_starts_;  ///< as sessionStarts()
   bool session_pending_ = false;             ///< startSession() called: the next frame starts one
   bool session_replayed_ = false;            ///< the current session's frames came from addTracked()

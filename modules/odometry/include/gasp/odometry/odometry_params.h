@@ -25,6 +25,15 @@ struct OdometryParams {
   /// 0.03, docs/pipeline.md "Rolling shutter"); 0 = off. Each frame is deskewed with the velocity
   /// of the last tracked step (frames i-2 -> i-1), so only the past is used.
   double rolling_shutter_readout_s = 0.0;
+  /// A rotating LiDAR's sweep is carried to the sensor's pose at its start (deskewSweep(),
+  /// range_scan.h): a sensor moving at 1 m/s moves 10 cm during a 10 Hz sweep. A sweep becoming
+  /// the keyframe is deskewed with the velocity of the step that measured it; the sweeps tracked
+  /// against it with that same velocity, so that the step between them sees no difference of
+  /// deskews (deskewed with different velocities, a step is off by about their difference times
+  /// the sweep, and the next velocity carries that on: the steps' errors oscillate and grow;
+  /// docs/lidar.md "Motion within a sweep"). Only sweeps whose columns carry their times
+  /// (sweepTimed(): a known duration, not a point cloud's azimuth bins).
+  bool deskew_sweeps = false;
   /// A frame both attempts refuse, one of them for violating the other view's free space, is
   /// registered to the previous frame once more with looser visibility limits while the
   /// constant-velocity prediction is narrow enough, and taken when the pose lies within its

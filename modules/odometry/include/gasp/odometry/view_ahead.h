@@ -4,8 +4,8 @@
 /// A frame's two stages are its segmentation (makeDepthView()) and its registration. The
 /// segmentation needs nothing of the odometry's state unless the frame is deskewed (the deskew
 /// needs the velocity its predecessor's registration measures), so with
-/// rolling_shutter_readout_s = 0 the next frames can be segmented on threads of their own while
-/// the current one is registered. The result is the same view addFrame() would make: the poses are
+/// rolling_shutter_readout_s = 0 (a camera's frames) or deskew_sweeps off (a LiDAR's sweeps) the
+/// next frames can be segmented on threads of their own while the current one is registered. The result is the same view addFrame() would make: the poses are
 /// identical, only sooner.
 #include <opencv2/core.hpp>
 
@@ -29,8 +29,9 @@ struct SegmentedDepth {
 /// Segmentations on background threads (std::async), taken in the order they were started.
 class ViewAhead {
  public:
-  /// Segments with `params.pair.segment`; does nothing when `params` deskew or `enabled` is
-  /// false (then every take() is empty and addFrame() segments as without it).
+  /// Segments with `params.pair.segment`; does nothing when `enabled` is false, for depth images
+  /// when `params` deskew them (rolling_shutter_readout_s), for sweeps when `params` deskew them
+  /// (deskew_sweeps): then every take() is empty and addFrame() segments as without it.
   explicit ViewAhead(const OdometryParams& params, bool enabled = true);
   ~ViewAhead();
   ViewAhead(const ViewAhead&) = delete;
@@ -51,7 +52,8 @@ class ViewAhead {
  private:
   SuperpixelParams superpixels_;
   ReturnsRefineParams returns_;
-  bool enabled_ = false;
+  bool enabled_ = false;         ///< depth images
+  bool sweeps_enabled_ = false;  ///< LiDAR sweeps
   std::deque<std::future<SegmentedDepth>> pending_;  ///< oldest first; invalid: not segmented
 };
 
