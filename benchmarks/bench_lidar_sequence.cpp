@@ -522,9 +522,13 @@ int main(int argc, char** argv) {
     if (deskew_truth) {  // each sweep carried to its start pose with the truth's velocity to the next sweep
       if (sweeps.size() < 2) throw gasp::Error("--deskew-truth: at least two sweeps");
       for (std::size_t k = 0; k < sweeps.size(); ++k) {
-        const std::size_t a = k + 1 < sweeps.size() ? k : k - 1;
-        sweeps[k] = gasp::deskewSweep(sweeps[k], gasp::twistBetween(truth[a].T_world_camera, truth[a + 1].T_world_camera,
-                                                                   truth[a + 1].timestamp - truth[a].timestamp));
+        const std::size_t a = k + 1 < sweeps.size() ? k : k - 1;  // the last sweep: the step before it
+        gasp::CameraTwist twist = gasp::twistBetween(truth[a].T_world_camera, truth[a + 1].T_world_camera,
+                                                     truth[a + 1].timestamp - truth[a].timestamp);
+        if (a != k)  // that step's velocity in sweep k's axes
+          twist.v_mps = (truth[a].T_world_camera.linear().transpose() * truth[k].T_world_camera.linear()).transpose() *
+                        twist.v_mps;
+        sweeps[k] = gasp::deskewSweep(sweeps[k], twist);
       }
     }
     std::printf("%s (%s): %zu sweeps of %s, %zu returns each on average\n\n", dir.c_str(), method.c_str(), sweeps.size(),

@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <set>
+
+#include <Eigen/Geometry>
 #include <vector>
 
 #include "gasp/core/error.h"
@@ -219,4 +221,30 @@ TEST(SimCameraPath, TheTwoRoomsWalkGoesOnceAroundInSmallSteps) {
   std::vector<gasp::sim::WalkWaypoint> up{{{0, 0, 1}, {0, 0, 2}, "up"}, {{1, 0, 1}, {2, 0, 1}, ""}};
   o.frames = 20;
   EXPECT_THROW(gasp::sim::makeWalkPath(up, o), gasp::Error);  // looks along the vertical
+}
+
+// poseAtTime: a constant velocity and turn between two poses (the position linear, the turn by
+// slerp), the first pose before the path, the last step continued past its end; timestamps that
+// do not increase are refused.
+TEST(SimCameraPath, PoseAtTimeInterpolatesAndContinuesTheLastStep) {
+  // A sensor moving at 2 m/s along x and turning at 30 deg/s about z, sampled every 0.1 s.
+  const auto truth = [](double t) {
+    gasp::Isometry3 T = gasp::Isometry3::Identity();
+    T.linear() = Eigen::AngleAxisd(30.0 / kRadToDeg * t, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    T.translation() = Eigen::Vector3d(2.0 * t, 0.5, 1.2);
+    return T;
+  };
+  gasp::Trajectory path;
+  for (int k = 0; k < 4; ++k) path.push_back({0.1 * k, truth(0.1 * k)});
+  for (const double t : {0.0, 0.03, 0.15, 0.3, 0.33, 0.45}) {  // within, at a pose, past the end
+    const gasp::Isometry3 e = truth(t).inverse() * gasp::sim::poseAtTime(path, t);
+    EXPECT_LT(e.translation().norm(), 1e-12) << t;
+    EXPECT_LT(Eigen::AngleAxisd(e.linear()).angle(), 1e-12) << t;
+  }
+  EXPECT_TRUE(gasp::sim::poseAtTime(path, -1.0).isApprox(truth(0.0), 1e-12));
+  EXPECT_THROW(gasp::sim::poseAtTime(path, std::nan("")), gasp::Error);
+  EXPECT_THROW(gasp::sim::poseAtTime(gasp::Trajectory(path.begin(), path.begin() + 1), 0.0), gasp::Error);
+  gasp::Trajectory repeated = path;
+  repeated[2].timestamp = repeated[1].timestamp;
+  EXPECT_THROW(gasp::sim::poseAtTime(repeated, 0.15), gasp::Error);
 }

@@ -164,6 +164,14 @@ TEST(SimLidar, AMovingSweepDeskewedWithItsTwistLiesOnTheSceneSeenFromItsStart) {
   const gasp::RangeScan same = gasp::deskewSweep(still, gasp::CameraTwist{});
   EXPECT_EQ(same.returnCount(), still.returnCount());
   EXPECT_GT(shareOnTheScene(room, same, T_world_start, 1e-4), 0.999);
+  // The columns span the sweep's duration: a half turn of 900 columns in 0.05 s (as MRPT gives a
+  // partial span's sweepDuration) fires its middle column at 0.025 s.
+  gasp::RangeScan half;
+  std::vector<double> azimuths;
+  for (int c = 0; c < 900; ++c) azimuths.push_back(-c * 0.2 * M_PI / 180.0);
+  half.setLayout(sensor.elevation_deg, azimuths);
+  half.sweep_duration_s = 0.05;
+  EXPECT_NEAR(gasp::columnTime(half, 450), 0.025, 1e-15);
   // Columns without times are refused, as is a twist that is not finite.
   gasp::RangeScan untimed = still;
   untimed.sweep_duration_s = 0.0;

@@ -158,7 +158,7 @@ RangeScan movedScan(const RangeScan& scan, const Isometry3& T_new_old) {
 }
 
 double columnTime(const RangeScan& scan, int col) {
-  return scan.sweep_duration_s * static_cast<double>(col) * std::abs(azimuthStep(scan)) / (2.0 * M_PI);
+  return scan.range_m.cols > 0 ? scan.sweep_duration_s * static_cast<double>(col) / scan.range_m.cols : 0.0;
 }
 
 bool sweepTimed(const RangeScan& scan) {

@@ -326,6 +326,9 @@ const OdometryFrame& DepthOdometry::addView(double timestamp, DepthView view, do
   f.registration_ms = msSince(t_reg);
 
   // The velocity of this step (both frames tracked), for the next frame's deskew and prediction.
+  // Computed first and assigned last, with the keyframe's deskewed view: a throw leaves the state.
+  std::optional<CameraTwist> next_velocity = velocity_;
+  std::optional<Isometry3> T_p_f_measured;  // the step, when it gave a velocity
   if (!session_start) {
     const OdometryFrame& p = frames_.back();
     const Isometry3 T_p_f = p.T_world_camera.inverse() * f.T_world_camera;
@@ -336,26 +339,36 @@ const OdometryFrame& DepthOdometry::addView(double timestamp, DepthView view, do
     // of such frames (a person walking through the view) is then held to one constant-velocity
     // prediction, and cannot drift off with what moves in the scene.
     if (f.tracked && p.tracked && implausibleMotion(T_p_f, dt, params_).empty()) {
-      if (!f.scene_change) velocity_ = twistBetween(p.T_world_camera, f.T_world_camera, dt);
+      if (!f.scene_change) next_velocity = twistBetween(p.T_world_camera, f.T_world_camera, dt), T_p_f_measured = T_p_f;
     } else {
-      velocity_.reset();
+      next_velocity.reset();
     }
   }
+  // A sweep becoming the keyframe is deskewed with the step that measured it (its velocity in
+  // this frame's axes), or kept as it is without one; the sweeps tracked against it are then
+  // deskewed with the same (addFrame).
+  std::optional<CameraTwist> next_keyframe_deskew = keyframe_deskew_;
+  if (new_keyframe) {
+    next_keyframe_deskew.reset();  // unless deskewed below or with the previous keyframe's velocity
+    if (sweep && params_.deskew_sweeps && sweepTimed(*sweep) && T_p_f_measured) {
+      CameraTwist twist = *next_velocity;
+      twist.v_mps = T_p_f_measured->linear().transpose() * twist.v_mps;  // w is the step's own axis
+      const auto t_seg = std::chrono::steady_clock::now();
+      view = makeRangeView(deskewSweep(*sweep, twist), params_.pair.segment, params_.pair.returns);
+      f.segmentation_ms += msSince(t_seg);
+      f.deskewed = true;
+      f.patches = static_cast<int>(view.segmentation.patches.size());
+      next_keyframe_deskew = twist;
+    } else if (sweep && f.deskewed) {
+      next_keyframe_deskew = keyframe_deskew_;
+    }
+  }
+  velocity_ = next_velocity;
+  keyframe_deskew_ = next_keyframe_deskew;
 
   if (new_keyframe) {
     f.keyframe = true;
     keyframe_index_ = f.index;
-    if (sweep && params_.deskew_sweeps && sweepTimed(*sweep)) {
-      if (velocity_) {  // the step just measured; the frame's own pose is unchanged
-        const auto t_seg = std::chrono::steady_clock::now();
-        view = makeRangeView(deskewSweep(*sweep, *velocity_), params_.pair.segment, params_.pair.returns);
-        f.segmentation_ms += msSince(t_seg);
-        f.deskewed = true;
-        keyframe_deskew_ = velocity_;
-      } else if (!f.deskewed) {
-        keyframe_deskew_.reset();
-      }  // else: deskewed with the previous keyframe's velocity, which stays this one's
-    }
     keyframe_view_ = view;
     keyframe_edges_.reset();
   }

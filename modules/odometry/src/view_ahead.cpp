@@ -12,7 +12,7 @@ ViewAhead::ViewAhead(const OdometryParams& params, bool enabled)
     : superpixels_(params.pair.segment),
       returns_(params.pair.returns),
       enabled_(enabled && params.rolling_shutter_readout_s == 0.0),
-      sweeps_enabled_(enabled_ && !params.deskew_sweeps) {}
+      deskew_sweeps_(params.deskew_sweeps) {}
 
 ViewAhead::~ViewAhead() {
   for (auto& f : pending_)
@@ -38,7 +38,12 @@ void ViewAhead::start(const cv::Mat& depth_m, const CameraIntrinsics& intrinsics
 }
 
 void ViewAhead::start(const RangeScan& sweep) {
-  if (!sweeps_enabled_) return;
+  if (!enabled_) return;
+  // A sweep the odometry may deskew is segmented there; its place in the queue is kept.
+  if (deskew_sweeps_ && sweepTimed(sweep)) {
+    pending_.emplace_back();
+    return;
+  }
   // A scan makeRangeView() refuses fails here too: take() is then empty and addFrame() says why.
   pending_.push_back(std::async(std::launch::async, [sweep, superpixels = superpixels_, returns = returns_] {
     const auto t0 = std::chrono::steady_clock::now();

@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "gasp/core/error.h"
-#include "gasp/core/rolling_shutter.h"
 
 namespace gasp::sim {
 
@@ -189,25 +188,25 @@ CameraPath makeWalkPath(const std::vector<WalkWaypoint>& walk, const CameraPathO
 Isometry3 poseAtTime(const Trajectory& poses, double t) {
   if (poses.size() < 2) throw Error("poseAtTime: a path of " + std::to_string(poses.size()) + " poses (at least 2)");
   if (!std::isfinite(t)) throw Error("poseAtTime: the time is not finite");
+  for (std::size_t k = 1; k < poses.size(); ++k)
+    if (!(poses[k].timestamp > poses[k - 1].timestamp))
+      throw Error("poseAtTime: the poses' timestamps must increase strictly (pose " + std::to_string(k) + ")");
   if (t <= poses.front().timestamp) return poses.front().T_world_camera;
   std::size_t i = 0;
   while (i + 2 < poses.size() && t > poses[i + 1].timestamp) ++i;  // [i, i + 1] holds t, or is the last step
   const StampedPose &a = poses[i], &b = poses[i + 1];
   const double s = (t - a.timestamp) / (b.timestamp - a.timestamp);
+  Isometry3 T = Isometry3::Identity();
+  T.translation() = (1.0 - s) * a.T_world_camera.translation() + s * b.T_world_camera.translation();
   if (s <= 1.0) {
     const Eigen::Quaterniond qa(a.T_world_camera.linear()), qb(b.T_world_camera.linear());
-    Isometry3 T = Isometry3::Identity();
     T.linear() = qa.slerp(s, qb).toRotationMatrix();
-    T.translation() = (1.0 - s) * a.T_world_camera.translation() + s * b.T_world_camera.translation();
     return T;
   }
-  // Past the last pose: the last step's twist continued from it.
-  const CameraTwist twist = twistBetween(a.T_world_camera, b.T_world_camera, b.timestamp - a.timestamp);
-  const double dt = t - b.timestamp, w = twist.w_radps.norm();
-  Isometry3 step = Isometry3::Identity();
-  if (w > 0.0) step.linear() = Eigen::AngleAxisd(w * dt, twist.w_radps / w).toRotationMatrix();
-  step.translation() = twist.v_mps * dt;
-  return b.T_world_camera * step;
+  // Past the last pose: the last step's world velocity and turn continued (s > 1 above).
+  const Eigen::AngleAxisd turn(a.T_world_camera.linear().transpose() * b.T_world_camera.linear());
+  T.linear() = b.T_world_camera.linear() * Eigen::AngleAxisd((s - 1.0) * turn.angle(), turn.axis()).toRotationMatrix();
+  return T;
 }
 
 }  // namespace gasp::sim

@@ -25,7 +25,7 @@ struct RangeScan {
   /// gives it (a Velodyne's packets: MRPT's calibrated point cloud); empty, or zero at a cell:
   /// the row's elevation and the column's azimuth.
   cv::Mat ray;
-  double sweep_duration_s = 0.0;
+  double sweep_duration_s = 0.0;  ///< [s] from the first column's firing to the end of the last's; 0 = not known
   Isometry3 T_robot_sensor = Isometry3::Identity();
 
   /// The unit ray of a cell in the sensor frame.
@@ -61,9 +61,10 @@ bool coversWholeTurn(const RangeScan& scan);
 /// turn; false outside a partial sweep). False for the zero vector.
 bool nearestCell(const RangeScan& scan, const Eigen::Vector3d& direction, int& row, int& col);
 
-/// The time of column `col`'s firing after the sweep's start [s]: the columns turn once in
-/// sweep_duration_s at a constant rate, in the order the sweep took them (col |azimuthStep| / 2 pi
-/// of the duration). 0 for every column when the duration is 0 (not known).
+/// The time of column `col`'s firing after the sweep's start [s]: the columns span
+/// sweep_duration_s at a constant rate, in the order the sweep took them (col / columns of the
+/// duration; MRPT's sweepDuration is the time over the scan's azimuth span). 0 for every column
+/// when the duration is 0 (not known).
 double columnTime(const RangeScan& scan, int col);
 /// Whether the columns carry their firing times: a known sweep duration (> 0), and columns in the
 /// order the sweep took them -- not a point cloud's (rangeScanFromPoints(): azimuth bins counted

@@ -29,9 +29,10 @@ struct SegmentedDepth {
 /// Segmentations on background threads (std::async), taken in the order they were started.
 class ViewAhead {
  public:
-  /// Segments with `params.pair.segment`; does nothing when `enabled` is false, for depth images
-  /// when `params` deskew them (rolling_shutter_readout_s), for sweeps when `params` deskew them
-  /// (deskew_sweeps): then every take() is empty and addFrame() segments as without it.
+  /// Segments with `params.pair.segment`; does nothing when `enabled` is false or `params` deskew
+  /// depth images (rolling_shutter_readout_s): then every take() is empty and addFrame() segments
+  /// as without it. With `params.deskew_sweeps` a sweep whose columns carry their times
+  /// (sweepTimed()) is not segmented ahead either: its take() is empty.
   explicit ViewAhead(const OdometryParams& params, bool enabled = true);
   ~ViewAhead();
   ViewAhead(const ViewAhead&) = delete;
@@ -52,8 +53,8 @@ class ViewAhead {
  private:
   SuperpixelParams superpixels_;
   ReturnsRefineParams returns_;
-  bool enabled_ = false;         ///< depth images
-  bool sweeps_enabled_ = false;  ///< LiDAR sweeps
+  bool enabled_ = false;
+  bool deskew_sweeps_ = false;  ///< timed sweeps are not segmented ahead
   std::deque<std::future<SegmentedDepth>> pending_;  ///< oldest first; invalid: not segmented
 };
 

@@ -107,7 +107,7 @@ Isometry3 lookAt(const Eigen::Vector3d& position, const Eigen::Vector3d& target,
 /// the position interpolated linearly and the orientation by slerp (a constant velocity between
 /// frames); before the first pose, the first; past the last, the last step's motion continued at
 /// its velocity (a sensor still moving at the end of the path). Throws gasp::Error for fewer than
-/// two poses or a t that is not finite.
+/// two poses, timestamps that do not increase strictly, or a t that is not finite.
 Isometry3 poseAtTime(const Trajectory& poses, double t);
 
 }  // namespace gasp::sim
