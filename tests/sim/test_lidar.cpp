@@ -137,12 +137,7 @@ TEST(SimLidar, AMovingSweepDeskewedWithItsTwistLiesOnTheSceneSeenFromItsStart) {
   drive.w_radps = Eigen::Vector3d(0.1, 0.05, 2.0);
   roll.w_radps = Eigen::Vector3d(120.0 * M_PI / 180.0, 0.0, 0.0);
   for (const gasp::CameraTwist& twist : {drive, roll}) {
-    const auto at = [&](double t) {
-      gasp::Isometry3 step = gasp::Isometry3::Identity();
-      step.linear() = Eigen::AngleAxisd(twist.w_radps.norm() * t, twist.w_radps.normalized()).toRotationMatrix();
-      step.translation() = twist.v_mps * t;
-      return T_world_start * step;
-    };
+    const auto at = [&](double t) { return T_world_start * gasp::twistMotion(twist, t); };
     const gasp::RangeScan moving = gasp::sim::simulateMovingLidarScan(room, sensor, at);
     // Column 0 is fired from the start pose, the last a step short of a turn later.
     EXPECT_DOUBLE_EQ(gasp::columnTime(moving, 0), 0.0);

@@ -50,29 +50,12 @@ const Sweeps& roomSweeps() {
 }
 
 /// A 16-laser LiDAR along the street's walk at 10 Hz (gasp-simulate --scene street --sensor
-/// lidar16 --frames 120 --rate 10), its first `count` sweeps: along the street at up to 4.5 m/s.
-Sweeps streetSweeps(int count) {
+/// lidar16 --frames `frames` --rate 10), its first `count` sweeps: with 120 frames, along the
+/// street at up to 4.5 m/s; with 240, 2.45 m/s. `moving` (--sweep-motion): each column fired from
+/// the path's pose at its time, so each sweep spans the step to the next.
+Sweeps streetSweeps(int count, int frames = 120, bool moving = false) {
   gasp::sim::CameraPathOptions o;
-  o.frames = 120;
-  o.rate_hz = 10.0;
-  const gasp::sim::Scene street = gasp::sim::makeScene("street");
-  const gasp::sim::CameraPath path = gasp::sim::makeWalkPath(street.walk, o);
-  const gasp::sim::LidarSensor lidar = gasp::sim::lidarSensor(16);
-  Sweeps out;
-  for (int i = 0; i < count; ++i) {
-    const Isometry3 T = gasp::sim::lidarPoseOfCamera(path.poses[static_cast<std::size_t>(i)].T_world_camera);
-    out.scans.push_back(gasp::sim::simulateLidarScan(street, lidar, T, 1, i));
-    out.truth.push_back({path.poses[static_cast<std::size_t>(i)].timestamp, T});
-  }
-  return out;
-}
-
-/// The first `count` sweeps of the street's walk at 10 Hz over 240 frames (gasp-simulate --scene
-/// street --sensor lidar16 --frames 240 --rate 10 --sweep-motion): along the street at 2.45 m/s,
-/// each column fired from the path's pose at its time, so each sweep spans 0.245 m.
-Sweeps movingStreetSweeps(int count) {
-  gasp::sim::CameraPathOptions o;
-  o.frames = 240;
+  o.frames = frames;
   o.rate_hz = 10.0;
   const gasp::sim::Scene street = gasp::sim::makeScene("street");
   const gasp::sim::CameraPath path = gasp::sim::makeWalkPath(street.walk, o);
@@ -81,8 +64,10 @@ Sweeps movingStreetSweeps(int count) {
   for (int i = 0; i < count; ++i) {
     const double t0 = path.poses[static_cast<std::size_t>(i)].timestamp;
     const auto at = [&](double t) { return gasp::sim::lidarPoseOfCamera(gasp::sim::poseAtTime(path.poses, t0 + t)); };
-    out.scans.push_back(gasp::sim::simulateMovingLidarScan(street, lidar, at, 1, i));
-    out.truth.push_back({t0, at(0.0)});
+    const Isometry3 T = gasp::sim::lidarPoseOfCamera(path.poses[static_cast<std::size_t>(i)].T_world_camera);
+    out.scans.push_back(moving ? gasp::sim::simulateMovingLidarScan(street, lidar, at, 1, i)
+                               : gasp::sim::simulateLidarScan(street, lidar, T, 1, i));
+    out.truth.push_back({t0, T});
   }
   return out;
 }
@@ -193,7 +178,7 @@ TEST(LidarOdometry, DeskewsTimedSweepsAsTheirKeyframeOnlyWhenAsked) {
 // docs/experiments/2026-12-01-lidar-sweep-motion.md). With a keyframe's velocity for the sweeps
 // tracked against it they stay within a centimetre.
 TEST(LidarOdometry, DeskewingMovingSweepsKeepsTheStepsFromFeedingBack) {
-  const Sweeps s = movingStreetSweeps(20);
+  const Sweeps s = streetSweeps(20, 240, true);
   gasp::OdometryParams p = gasp::lidarOdometryParams();
   p.deskew_sweeps = true;
   gasp::DepthOdometry odometry(p, s.truth.front().T_world_camera);

@@ -5,8 +5,8 @@
 #include <numeric>
 #include <string>
 #include <utility>
+#include <vector>
 
-#include <Eigen/Geometry>
 
 #include "gasp/core/error.h"
 #include "gasp/core/median.h"
@@ -139,22 +139,32 @@ void placeReturn(RangeScan& out, const Eigen::Vector3d& q) {
   out.ray.at<cv::Vec3f>(row, col) = cv::Vec3f(u.x(), u.y(), u.z());
 }
 
-}  // namespace
-
-RangeScan movedScan(const RangeScan& scan, const Isometry3& T_new_old) {
-  validateLayout(scan, "movedScan");
+/// The scan's returns moved column by column (T_new_old_of_column(c) for column c's returns), each
+/// put in the cell of its new direction (placeReturn). The scan's layout is validated.
+template <class TransformOfColumn>
+RangeScan rebinned(const RangeScan& scan, TransformOfColumn&& T_new_old_of_column) {
   const int rows = scan.range_m.rows, cols = scan.range_m.cols;
   RangeScan out = scan;
   // New buffers: assigning zeros() to the copied headers would write into the input's images.
   out.range_m = cv::Mat(rows, cols, CV_32FC1, cv::Scalar(0.0f));
   out.ray = cv::Mat(rows, cols, CV_32FC3, cv::Scalar(0.0f, 0.0f, 0.0f));
+  std::vector<Isometry3> T(static_cast<std::size_t>(cols));
+  for (int c = 0; c < cols; ++c) T[static_cast<std::size_t>(c)] = T_new_old_of_column(c);
+  // Row by row: where two returns land in one cell at the same range, the first placed stays.
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c) {
       const float d = scan.range_m.at<float>(r, c);
       if (!(d > 0.0f) || !std::isfinite(d)) continue;
-      placeReturn(out, T_new_old * (static_cast<double>(d) * scan.direction(r, c)));
+      placeReturn(out, T[static_cast<std::size_t>(c)] * (static_cast<double>(d) * scan.direction(r, c)));
     }
   return out;
+}
+
+}  // namespace
+
+RangeScan movedScan(const RangeScan& scan, const Isometry3& T_new_old) {
+  validateLayout(scan, "movedScan");
+  return rebinned(scan, [&](int) { return T_new_old; });
 }
 
 double columnTime(const RangeScan& scan, int col) {
@@ -172,23 +182,7 @@ RangeScan deskewSweep(const RangeScan& scan, const CameraTwist& twist) {
                 std::to_string(scan.sweep_duration_s) + " s" +
                 (scan.model == kPointCloudModel ? ", and a point cloud's columns are azimuth bins)" : ")"));
   if (!twist.v_mps.allFinite() || !twist.w_radps.allFinite()) throw Error("deskewSweep: the twist is not finite");
-  const int rows = scan.range_m.rows, cols = scan.range_m.cols;
-  RangeScan out = scan;
-  out.range_m = cv::Mat(rows, cols, CV_32FC1, cv::Scalar(0.0f));
-  out.ray = cv::Mat(rows, cols, CV_32FC3, cv::Scalar(0.0f, 0.0f, 0.0f));
-  const double w = twist.w_radps.norm();
-  for (int c = 0; c < cols; ++c) {
-    const double t = columnTime(scan, c);
-    const Eigen::Matrix3d R =
-        w > 0.0 ? Eigen::AngleAxisd(w * t, twist.w_radps / w).toRotationMatrix() : Eigen::Matrix3d::Identity();
-    const Eigen::Vector3d v_t = twist.v_mps * t;
-    for (int r = 0; r < rows; ++r) {
-      const float d = scan.range_m.at<float>(r, c);
-      if (!(d > 0.0f) || !std::isfinite(d)) continue;
-      placeReturn(out, R * (static_cast<double>(d) * scan.direction(r, c)) + v_t);
-    }
-  }
-  return out;
+  return rebinned(scan, [&](int c) { return twistMotion(twist, columnTime(scan, c)); });
 }
 
 RangeScan rangeScanFromPoints(const std::vector<Eigen::Vector3d>& points_sensor, const std::string& who) {

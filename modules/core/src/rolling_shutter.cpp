@@ -22,6 +22,14 @@ CameraTwist twistBetween(const Isometry3& T_world_a, const Isometry3& T_world_b,
   return twist;
 }
 
+Isometry3 twistMotion(const CameraTwist& twist, double dt_s) {
+  const double w = twist.w_radps.norm();
+  Isometry3 T = Isometry3::Identity();
+  if (w > 0.0) T.linear() = Eigen::AngleAxisd(w * dt_s, twist.w_radps / w).toRotationMatrix();
+  T.translation() = twist.v_mps * dt_s;
+  return T;
+}
+
 namespace {
 
 /// The pose of the camera at row r relative to the stamp's: exp([w dt]), v dt.
@@ -32,13 +40,10 @@ struct RowMotion {
 
 std::vector<RowMotion> rowMotions(int rows, const CameraTwist& twist, double readout_s) {
   std::vector<RowMotion> motions(static_cast<std::size_t>(rows));
-  const double w = twist.w_radps.norm();
   for (int r = 0; r < rows; ++r) {
     const double dt = (rows > 1 ? static_cast<double>(r) / (rows - 1) - 0.5 : 0.0) * readout_s;
-    auto& m = motions[static_cast<std::size_t>(r)];
-    m.R = w > 0.0 ? Eigen::AngleAxisd(w * dt, twist.w_radps / w).toRotationMatrix()
-                  : Eigen::Matrix3d::Identity();
-    m.t = twist.v_mps * dt;
+    const Isometry3 T = twistMotion(twist, dt);
+    motions[static_cast<std::size_t>(r)] = {T.linear(), T.translation()};
   }
   return motions;
 }

@@ -45,6 +45,11 @@ struct CameraTwist {
 /// Throws gasp::Error when dt_s is not positive and finite.
 CameraTwist twistBetween(const Isometry3& T_world_a, const Isometry3& T_world_b, double dt_s);
 
+/// The pose at dt_s relative to the pose at 0 of a sensor moving at the constant twist `twist`
+/// (in its own frame): rotation exp([w dt]), translation v dt (first order in the translation, as
+/// twistBetween()).
+Isometry3 twistMotion(const CameraTwist& twist, double dt_s);
+
 /// The depth image (CV_32FC1, metres; 0 or NaN = no depth) resampled to the camera pose at the
 /// image's stamp (the middle row); pixels without a source are 0. readout_s is the time from the first row to the
 /// last; negative when the sensor reads bottom-up; 0 returns a copy. Throws gasp::Error for
