@@ -435,22 +435,41 @@ void printSlide(std::size_t i, std::size_t j, const char* kind, const gasp::Isom
               costs[4] - *lowest, kSlides[static_cast<std::size_t>(lowest - costs.begin())]);
 }
 
-/// The claimed pose of one pair by the method, or nullopt for no estimate.
-std::optional<gasp::Isometry3> registerPair(const gasp::RangeScan& source, const gasp::RangeScan& target,
-                                            const std::string& method, const gasp::PairParams& params) {
+/// The claimed pose of one pair by the method (nullopt for no estimate), and whether stage 8
+/// found the sweeps moving and registered them again deskewed.
+struct PairOutcome {
+  std::optional<gasp::Isometry3> T_target_source;
+  bool deskewed = false;
+};
+
+PairOutcome registerPair(const gasp::RangeScan& source, const gasp::RangeScan& target, const std::string& method,
+                         const gasp::PairParams& params) {
+  PairOutcome out;
   if (method == "gasp") {
     const gasp::RangePairResult r = gasp::registerRangeScans(source, target, params);
-    if (r.pair.pose.success) return r.pair.pose.T_target_source;
-    return std::nullopt;
+    if (r.pair.pose.success) out.T_target_source = r.pair.pose.T_target_source;
+    out.deskewed = r.pair.sweep_motion.moving;
+    return out;
   }
 #ifdef GASP_HAVE_BASELINES
   const gasp::baselines::BaselineResult r =
       gasp::baselines::registerSweepsWithBaseline(source, target, gasp::baselines::BaselineMethod::kFpfh);
-  if (r.pose.success) return r.pose.T_target_source;
-  return std::nullopt;
+  if (r.pose.success) out.T_target_source = r.pose.T_target_source;
+  return out;
 #else
   throw gasp::Error("--method fpfh: built without the baselines (GASP_BUILD_BASELINES=OFF)");
 #endif
+}
+
+/// The truth's velocity over sweep k (a constant twist in its own frame): the step to the next
+/// sweep, or for the last sweep the step before it, in sweep k's axes.
+gasp::CameraTwist truthTwist(const gasp::Trajectory& truth, std::size_t k) {
+  const std::size_t a = k + 1 < truth.size() ? k : k - 1;
+  gasp::CameraTwist twist = gasp::twistBetween(truth[a].T_world_camera, truth[a + 1].T_world_camera,
+                                               truth[a + 1].timestamp - truth[a].timestamp);
+  if (a != k)
+    twist.v_mps = (truth[a].T_world_camera.linear().transpose() * truth[k].T_world_camera.linear()).transpose() * twist.v_mps;
+  return twist;
 }
 
 }  // namespace
@@ -521,15 +540,7 @@ int main(int argc, char** argv) {
                         " ground-truth poses");
     if (deskew_truth) {  // each sweep carried to its start pose with the truth's velocity to the next sweep
       if (sweeps.size() < 2) throw gasp::Error("--deskew-truth: at least two sweeps");
-      for (std::size_t k = 0; k < sweeps.size(); ++k) {
-        const std::size_t a = k + 1 < sweeps.size() ? k : k - 1;  // the last sweep: the step before it
-        gasp::CameraTwist twist = gasp::twistBetween(truth[a].T_world_camera, truth[a + 1].T_world_camera,
-                                                     truth[a + 1].timestamp - truth[a].timestamp);
-        if (a != k)  // that step's velocity in sweep k's axes
-          twist.v_mps = (truth[a].T_world_camera.linear().transpose() * truth[k].T_world_camera.linear()).transpose() *
-                        twist.v_mps;
-        sweeps[k] = gasp::deskewSweep(sweeps[k], twist);
-      }
+      for (std::size_t k = 0; k < sweeps.size(); ++k) sweeps[k] = gasp::deskewSweep(sweeps[k], truthTwist(truth, k));
     }
     std::printf("%s (%s): %zu sweeps of %s, %zu returns each on average\n\n", dir.c_str(), method.c_str(), sweeps.size(),
                 sweeps.front().model.c_str(), [&] {
@@ -553,6 +564,23 @@ int main(int argc, char** argv) {
                   "visibility violations %.3f / %.3f, occluded %.3f, returns refined %d (%s)\n",
                   r.pair.association.associations.size(), r.pair.pose.num_inliers, r.pair.guided_support, r.pair.dense_terms,
                   r.pair.uniqueness_log_ratio, r.pair.visibility.violation_ratio, r.pair.visibility.violation_ratio_lesser, r.pair.visibility.occluded_ratio, r.pair.returns_refined, r.pair.returns_reason.c_str());
+      {  // stage 8: the sweeps' motion against the truth's velocity over each sweep
+        const gasp::SweepMotion& m = r.pair.sweep_motion;
+        const gasp::CameraTwist ts = truthTwist(truth, i), tt = truthTwist(truth, j);
+        std::printf("sweep motion: estimated %d moving %d (%s) score F %.2f (bound %.2f, %d sectors), %d terms rms %.2f cm, %.0f ms\n"
+                    "  source v (%.3f %.3f %.3f) w (%.3f %.3f %.3f), truth v (%.3f %.3f %.3f) w (%.3f %.3f %.3f)\n"
+                    "  target v (%.3f %.3f %.3f) w (%.3f %.3f %.3f), truth v (%.3f %.3f %.3f) w (%.3f %.3f %.3f)\n",
+                    m.estimated, m.moving, m.reason.c_str(), m.score_f, m.score_bound, m.sectors, m.terms, 100.0 * m.rms_residual_m, m.ms,
+                    m.source_twist.v_mps.x(), m.source_twist.v_mps.y(), m.source_twist.v_mps.z(), m.source_twist.w_radps.x(),
+                    m.source_twist.w_radps.y(), m.source_twist.w_radps.z(), ts.v_mps.x(), ts.v_mps.y(), ts.v_mps.z(),
+                    ts.w_radps.x(), ts.w_radps.y(), ts.w_radps.z(), m.target_twist.v_mps.x(), m.target_twist.v_mps.y(),
+                    m.target_twist.v_mps.z(), m.target_twist.w_radps.x(), m.target_twist.w_radps.y(),
+                    m.target_twist.w_radps.z(), tt.v_mps.x(), tt.v_mps.y(), tt.v_mps.z(), tt.w_radps.x(), tt.w_radps.y(),
+                    tt.w_radps.z());
+        const gasp::Isometry3 em = T_true.inverse() * m.T_target_source;
+        std::printf("  its pose: error %.2f cm %.3f deg\n", 100.0 * em.translation().norm(),
+                    Eigen::AngleAxisd(em.linear()).angle() * 180.0 / M_PI);
+      }
       {  // the ground search on its own (ground_search.h), whether or not the pipeline ran it
         const gasp::GroundSearchResult g = gasp::groundSearch(*va.returns, *vb.returns, params.ground_search);
         const gasp::Isometry3 eg = T_true.inverse() * g.T_target_source;
@@ -633,10 +661,10 @@ int main(int argc, char** argv) {
       }
       return 0;
     }
-    std::printf("| Skip | Pairs | Right (5 cm, 0.5 deg) | Coarse (20 cm, 5 deg) | Wrong | No estimate (sharing >= 30 %%) | Median error of the right | Worst right | Median time [ms] |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|\n");
+    std::printf("| Skip | Pairs | Right (5 cm, 0.5 deg) | Coarse (20 cm, 5 deg) | Wrong | No estimate (sharing >= 30 %%) | Median error of the right | Worst right | Median time [ms] | Deskewed (stage 8) |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
     for (const int k : skips) {
-      int pairs = 0, right = 0, coarse = 0, wrong = 0, missed = 0;
+      int pairs = 0, right = 0, coarse = 0, wrong = 0, missed = 0, deskewed = 0;
       std::vector<double> cm, deg, ms;
       double worst_cm = 0.0, worst_deg = 0.0;
       for (std::size_t i = 0; i + static_cast<std::size_t>(k) < sweeps.size(); ++i) {
@@ -647,6 +675,7 @@ int main(int argc, char** argv) {
         std::optional<gasp::Matrix6d> information;
         if ((shares || nees || slides) && method == "gasp") {  // the pair's patch shares, information or slides too
           const gasp::RangePairResult r = gasp::registerRangeScans(sweeps[i], sweeps[j], params);
+          deskewed += r.pair.sweep_motion.moving;
           if (slides && (r.pair.returns_refined || (!r.pair.pose.success && r.pair.dense_rounds_run > 0))) {
             const gasp::Isometry3 T_true = truth[j].T_world_camera.inverse() * truth[i].T_world_camera;
             const gasp::DepthView va = gasp::makeRangeView(sweeps[i], params.segment, params.returns);
@@ -665,7 +694,9 @@ int main(int argc, char** argv) {
             if (shares) share = patchShares(r, sweeps[i], sweeps[j]);
           }
         } else {
-          T = registerPair(sweeps[i], sweeps[j], method, params);
+          const PairOutcome o = registerPair(sweeps[i], sweeps[j], method, params);
+          T = o.T_target_source;
+          deskewed += o.deskewed;
         }
         ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
         ++pairs;
@@ -702,9 +733,9 @@ int main(int argc, char** argv) {
           std::printf("wrong pose: sweeps %zu -> %zu, %.2f cm, %.3f deg off\n", i, j, e_cm, e_deg);
         }
       }
-      std::printf("| %d | %d | %d | %d | %d | %d (%d) | %.2f cm, %.3f deg | %.2f cm, %.3f deg | %.1f |\n", k, pairs, right,
-                  coarse, wrong, pairs - right - coarse - wrong, missed, median(cm), median(deg), worst_cm, worst_deg,
-                  median(ms));
+      std::printf("| %d | %d | %d | %d | %d | %d (%d) | %.2f cm, %.3f deg | %.2f cm, %.3f deg | %.1f | %d |\n", k, pairs,
+                  right, coarse, wrong, pairs - right - coarse - wrong, missed, median(cm), median(deg), worst_cm,
+                  worst_deg, median(ms), deskewed);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

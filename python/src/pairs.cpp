@@ -89,7 +89,7 @@ py::dict timingsDict(const PairTimings& t) {
   d["association_ms"] = t.association_ms, d["ransac_ms"] = t.ransac_ms, d["refine_ms"] = t.refine_ms;
   d["dense_ms"] = t.dense_ms, d["guided_ms"] = t.guided_ms, d["certify_ms"] = t.certify_ms;
   d["retry_segmentation_ms"] = t.retry_segmentation_ms, d["returns_ms"] = t.returns_ms;
-  d["ground_search_ms"] = t.ground_search_ms, d["total_ms"] = t.total();
+  d["ground_search_ms"] = t.ground_search_ms, d["sweep_motion_ms"] = t.sweep_motion_ms, d["total_ms"] = t.total();
   return d;
 }
 

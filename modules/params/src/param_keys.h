@@ -260,6 +260,9 @@ void lidarFields(P& p, F&& f) {
   f("dense_sample_spacing_deg", p.dense_sample_spacing_deg);
   f("ground_search", p.ground_search);
   f("ground_search_max_offset_m", p.ground_search_max_offset_m);
+  f("sweep_motion", p.sweep_motion);
+  f("sweep_speed_sigma_mps", p.sweep_speed_sigma_mps);
+  f("sweep_rate_sigma_radps", p.sweep_rate_sigma_radps);
 }
 
 /// The pose-graph optimiser (pose_graph_optimizer.h).

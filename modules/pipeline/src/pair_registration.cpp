@@ -13,6 +13,7 @@
 #include "gasp/core/stopwatch.h"
 #include "gasp/pipeline/model_error.h"
 #include "gasp/pipeline/pose_likelihood.h"
+#include "gasp/pipeline/range_view.h"
 #include "gasp/pipeline/symmetric_turns.h"
 #include "gasp/superpixels/depth_superpixels.h"
 #include "retry_policy.h"
@@ -27,6 +28,7 @@ void validate(const PairParams& p) {
   validate(p.certify);
   validate(p.retry);
   validate(p.returns);
+  validate(p.sweep_motion);
   validate(p.ground_search);
 }
 
@@ -578,6 +580,43 @@ PairResult retryAtFinerScale(const DepthView& source, const DepthView& target, c
   return r;
 }
 
+/// Stage 8 (sweep_motion.h): for two timed sweeps with a claimed pose, their motions estimated
+/// from it; moving sweeps are deskewed with their twists and registered again (without stage 8),
+/// and that registration, of the deskewed sweeps' views, becomes the result.
+void sweepMotionStage(const DepthView& source, const DepthView& target, const PairParams& p, PairResult& r) {
+  if (!p.sweep_motion.enabled || !r.pose.success || !source.returns || !target.returns ||
+      !sweepTimed(source.returns->scan()) || !sweepTimed(target.returns->scan()))
+    return;
+  const auto t0 = std::chrono::steady_clock::now();
+  SweepMotion m = estimateSweepMotion(*source.returns, *target.returns, r.pose.T_target_source, p.returns,
+                                      p.refine.solver, p.sweep_motion, target.superpixels.max_incidence_deg);
+  if (!m.moving) {
+    r.sweep_motion = std::move(m);
+    r.timings.sweep_motion_ms += msSince(t0);
+    return;
+  }
+  auto deskewed = std::make_shared<std::pair<DepthView, DepthView>>();
+  tbb::parallel_invoke(
+      [&] {
+        deskewed->first = makeRangeView(deskewSweep(source.returns->scan(), m.source_twist), source.superpixels, p.returns);
+      },
+      [&] {
+        deskewed->second = makeRangeView(deskewSweep(target.returns->scan(), m.target_twist), target.superpixels, p.returns);
+      });
+  PairParams once = p;
+  once.sweep_motion.enabled = false;
+  PairResult again = registerViews(deskewed->first, deskewed->second, once);
+  again.timings.addStages(r.timings);
+  again.timings.sweep_motion_ms += msSince(t0);
+  if (!again.retry_views) again.retry_views = std::move(deskewed);
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "the sweeps deskewed with their motion (score F %.2f over %d sectors): ", m.score_f,
+                m.sectors);
+  if (!again.pose.success) again.pose.reason = buf + again.pose.reason;
+  again.sweep_motion = std::move(m);
+  r = std::move(again);
+}
+
 bool retryApplies(const PairResult& r, const DepthView& source, const DepthView& target, const PairParams& p) {
   return p.retry.finer_area_factor > 0.0 && detail::finerScaleRetryApplies(r, source, target);
 }
@@ -589,6 +628,7 @@ PairResult registerViews(const DepthView& source, const DepthView& target, const
   PairResult r = registerAtScale(source, target, params, false);
   if (retryApplies(r, source, target, params)) r = retryAtFinerScale(source, target, params, std::move(r));
   refineOnTheReturns(source, target, params, true, r);  // a retry's views carry the same returns
+  sweepMotionStage(source, target, params, r);
   return r;
 }
 

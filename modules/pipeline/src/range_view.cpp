@@ -91,6 +91,9 @@ void validate(const LidarParams& p) {
   require(p.dense_sample_spacing_deg >= 0 && p.dense_sample_spacing_deg <= 90, "dense_sample_spacing_deg must be in [0, 90]");
   require(p.ground_search_max_offset_m > 0 && p.ground_search_max_offset_m <= 2.0 * GroundSearchParams{}.max_range_m,
           "ground_search_max_offset_m must be in (0, 80] m (twice the search's 40 m range)");
+  require(p.sweep_speed_sigma_mps > 0 && std::isfinite(p.sweep_speed_sigma_mps) && p.sweep_rate_sigma_radps > 0 &&
+              std::isfinite(p.sweep_rate_sigma_radps),
+          "sweep_speed_sigma_mps and sweep_rate_sigma_radps must be > 0 and finite");
   validate(returnsRefineParams(p));
 }
 
@@ -180,6 +183,9 @@ PairParams lidarPairParams(const LidarParams& lidar, const PairParams& camera) {
   p.returns = returnsRefineParams(lidar);
   p.ground_search.enabled = lidar.ground_search;
   p.ground_search.max_offset_m = lidar.ground_search_max_offset_m;
+  p.sweep_motion.enabled = lidar.sweep_motion;
+  p.sweep_motion.speed_sigma_mps = lidar.sweep_speed_sigma_mps;
+  p.sweep_motion.rate_sigma_radps = lidar.sweep_rate_sigma_radps;
   return p;
 }
 

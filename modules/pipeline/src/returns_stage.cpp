@@ -12,6 +12,7 @@
 
 #include "gasp/core/error.h"
 #include "free_space_verdict.h"
+#include "return_term.h"
 
 namespace gasp {
 
@@ -211,25 +212,33 @@ Eigen::Vector3d SweepReturns::fitNormal(int r, int c, const std::vector<Moments>
   return normal;
 }
 
+int returnTerm(const Eigen::Vector3d& pt, const SweepReturns& target, double gate, int look_up_columns, double min_cos,
+               Eigen::Vector3d& plane_point, Eigen::Vector3d& normal) {
+  const int i = target.lookUp(pt, look_up_columns);
+  if (i < 0) return -1;
+  const Eigen::Vector3d& n = target.normal(i);
+  const Eigen::Vector3d& q = target.point(i);
+  const double range = q.norm();
+  const double cos_i = std::abs(n.dot(q)) / range;
+  // In the plane, the point can be a cell's footprint away from the return it fell on.
+  if (cos_i < min_cos || (pt - q).norm() > gate + range * target.halfCellRad() / cos_i) return -1;
+  const Eigen::Vector3d x = target.surfaceNear(i, pt, target.planeTolerance());
+  if (std::abs(n.dot(pt - x)) > gate) return -1;
+  plane_point = x;
+  normal = n;
+  return i;
+}
+
 std::vector<PointToPlane> returnTerms(const std::vector<Eigen::Vector3d>& source_points, const SweepReturns& target,
                                       const Isometry3& T_target_source, double gate, int look_up_columns,
                                       double max_incidence_deg) {
   const double min_cos = std::cos(max_incidence_deg * M_PI / 180.0);
   const auto termsOf = [&](std::size_t begin, std::size_t end, std::vector<PointToPlane>& terms) {
+    Eigen::Vector3d x, n;
     for (std::size_t k = begin; k < end; ++k) {
       const Eigen::Vector3d& ps = source_points[k];
-      const Eigen::Vector3d pt = T_target_source * ps;
-      const int i = target.lookUp(pt, look_up_columns);
-      if (i < 0) continue;
-      const Eigen::Vector3d& n = target.normal(i);
-      const Eigen::Vector3d& q = target.point(i);
-      const double range = q.norm();
-      const double cos_i = std::abs(n.dot(q)) / range;
-      // In the plane, the point can be a cell's footprint away from the return it fell on.
-      if (cos_i < min_cos || (pt - q).norm() > gate + range * target.halfCellRad() / cos_i) continue;
-      const Eigen::Vector3d x = target.surfaceNear(i, pt, target.planeTolerance());
-      if (std::abs(n.dot(pt - x)) > gate) continue;
-      terms.push_back(PointToPlane{ps, x, n, 1.0});
+      if (returnTerm(T_target_source * ps, target, gate, look_up_columns, min_cos, x, n) >= 0)
+        terms.push_back(PointToPlane{ps, x, n, 1.0});
     }
   };
   // Blocks of points looked up concurrently, their terms joined in the points' order.

@@ -37,6 +37,7 @@
 #include "gasp/pipeline/refine_stage.h"
 #include "gasp/pipeline/retry_stage.h"
 #include "gasp/pipeline/returns_stage.h"
+#include "gasp/pipeline/sweep_motion.h"
 
 namespace gasp {
 
@@ -56,6 +57,8 @@ struct PairParams {
   /// The hypothesis for sweeps whose association gives no claimed pose: runs only when both views
   /// carry their returns (ground_search.h).
   GroundSearchParams ground_search;
+  /// Stage 8: runs only for two views of sweeps whose columns carry their times (sweep_motion.h).
+  SweepMotionParams sweep_motion;
 };
 
 /// Throws gasp::Error naming the stage and the first invalid parameter.
@@ -69,15 +72,18 @@ struct PairTimings {
   double retry_segmentation_ms = 0;  ///< the finer-scale retry's segmentation of both views (0: no retry)
   double returns_ms = 0;   ///< stage 7, the returns' rounds (LiDAR views)
   double ground_search_ms = 0;  ///< the ground search (LiDAR views association gave no claimed pose for)
+  /// Stage 8: the sweeps' motion estimated, and for moving sweeps their deskew and segmentation
+  /// (the second registration's stages are in the others).
+  double sweep_motion_ms = 0;
   double total() const {
     return association_ms + ransac_ms + refine_ms + dense_ms + guided_ms + certify_ms + retry_segmentation_ms +
-           returns_ms + ground_search_ms;
+           returns_ms + ground_search_ms + sweep_motion_ms;
   }
   /// Adds another attempt's stage times (all but retry_segmentation_ms).
   void addStages(const PairTimings& o) {
     association_ms += o.association_ms, ransac_ms += o.ransac_ms, refine_ms += o.refine_ms;
     dense_ms += o.dense_ms, guided_ms += o.guided_ms, certify_ms += o.certify_ms, returns_ms += o.returns_ms;
-    ground_search_ms += o.ground_search_ms;
+    ground_search_ms += o.ground_search_ms, sweep_motion_ms += o.sweep_motion_ms;
   }
 };
 
@@ -144,8 +150,9 @@ struct PairResult {
   PairTimings timings;
   /// The finer-scale retry ran (RetryParams::finer_area_factor): the default scale gave no estimate.
   bool retried = false;
-  /// Set when the result is the retry's (it found the estimate): the re-segmented source and target
-  /// views, to which association, used, correspondences and verified refer. Null: they refer to
+  /// Set when the result is the retry's (it found the estimate) or the deskewed sweeps' (stage 8):
+  /// the re-made source and target views, to which association, used, correspondences and verified
+  /// refer. Null: they refer to
   /// the views passed in; when the retry found nothing either, the result is the default scale's
   /// with both reasons. viewsOf() picks the right pair.
   std::shared_ptr<const std::pair<DepthView, DepthView>> retry_views;
@@ -168,10 +175,17 @@ struct PairResult {
   /// pose, the cells' refused pose is restored, both reasons in pose.reason, and these are unset.
   bool returns_fixed_free = false;
   std::string cells_reason;
+  /// Stage 8 (two timed sweeps, registerViews): the sweeps' own motions estimated from the claimed
+  /// pose. When sweep_motion.moving, both sweeps were deskewed with their twists and registered
+  /// again, and the rest of this result is that registration's, of the deskewed sweeps' views
+  /// (retry_views holds them); otherwise the result is the sweeps' as they were read, and
+  /// sweep_motion.reason says why (at rest by the Wald test, or not estimated).
+  SweepMotion sweep_motion;
 };
 
 /// The source and target views whose patches r's indices (association, used, verified) refer to:
-/// r.retry_views when set, else the views passed to registerViews().
+/// r.retry_views when set (the finer-scale retry's or the deskewed sweeps' views), else the views
+/// passed to registerViews().
 std::pair<const DepthView*, const DepthView*> viewsOf(const PairResult& r, const DepthView& source,
                                                       const DepthView& target);
 

@@ -64,6 +64,12 @@ struct LidarParams {
   /// [m, at most twice the search's 40 m range].
   bool ground_search = true;
   double ground_search_max_offset_m = 30.0;
+  /// Stage 8 (sweep_motion.h) for sweeps whose columns carry their times: each sweep's own motion
+  /// estimated with the pose, and moving sweeps deskewed and registered again. The twists' prior
+  /// (SweepMotionParams): a walking or driving robot's speed and turn rate (1 sigma per axis).
+  bool sweep_motion = true;
+  double sweep_speed_sigma_mps = 2.0;
+  double sweep_rate_sigma_radps = 1.0;
 };
 
 /// Throws gasp::Error naming the first parameter out of its range.
