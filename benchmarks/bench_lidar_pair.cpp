@@ -76,7 +76,7 @@ std::vector<LidarPair>& pairs() {
 }
 
 struct Run {
-  double segmentation = 0, pipeline = 0, returns = 0, total = 0, error_cm = -1, error_deg = -1;
+  double segmentation = 0, pipeline = 0, returns = 0, sweep_motion = 0, total = 0, error_cm = -1, error_deg = -1;
   bool success = false;
 };
 
@@ -87,7 +87,8 @@ Run runPair(const LidarPair& p) {
   run.total = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   run.segmentation = r.segmentation_ms;
   run.returns = r.pair.timings.returns_ms;
-  run.pipeline = run.total - run.segmentation - run.returns;
+  run.sweep_motion = r.pair.timings.sweep_motion_ms;
+  run.pipeline = run.total - run.segmentation - run.returns - run.sweep_motion;
   run.success = r.pair.pose.success;
   if (run.success) {
     const gasp::Isometry3 e = p.T_target_source.inverse() * r.pair.pose.T_target_source;
@@ -131,17 +132,19 @@ int main(int argc, char** argv) {
   int rest_argc = static_cast<int>(rest.size());
   benchmark::Initialize(&rest_argc, rest.data());
   benchmark::RunSpecifiedBenchmarks();
-  std::printf("\n| Pair | Returns | Segmentation [ms] | Pipeline [ms] | Returns' rounds [ms] | Total [ms] | Error |\n");
-  std::printf("|---|---|---|---|---|---|---|\n");
+  std::printf("\n| Pair | Returns | Segmentation [ms] | Pipeline [ms] | Returns' rounds [ms] | Sweep motion [ms] | Total [ms] | Error |\n");
+  std::printf("|---|---|---|---|---|---|---|---|\n");
   for (const LidarPair& p : pairs()) {
     const std::vector<Run>& r = runs()[p.name];
     if (r.empty()) continue;
-    std::vector<double> seg, pipe, ret, total;
-    for (const Run& x : r) seg.push_back(x.segmentation), pipe.push_back(x.pipeline), ret.push_back(x.returns), total.push_back(x.total);
+    std::vector<double> seg, pipe, ret, motion, total;
+    for (const Run& x : r)
+      seg.push_back(x.segmentation), pipe.push_back(x.pipeline), ret.push_back(x.returns), motion.push_back(x.sweep_motion),
+          total.push_back(x.total);
     char error[64] = "no estimate";
     if (r.front().success) std::snprintf(error, sizeof error, "%.2f cm, %.3f deg", r.front().error_cm, r.front().error_deg);
-    std::printf("| %s | %zu | %.1f | %.1f | %.1f | %.1f | %s |\n", p.name.c_str(), p.source.returnCount(), median(seg), median(pipe),
-                median(ret), median(total), error);
+    std::printf("| %s | %zu | %.1f | %.1f | %.1f | %.1f | %.1f | %s |\n", p.name.c_str(), p.source.returnCount(), median(seg),
+                median(pipe), median(ret), median(motion), median(total), error);
   }
   return 0;
 }

@@ -578,8 +578,9 @@ int main(int argc, char** argv) {
                     m.target_twist.w_radps.z(), tt.v_mps.x(), tt.v_mps.y(), tt.v_mps.z(), tt.w_radps.x(), tt.w_radps.y(),
                     tt.w_radps.z());
         const gasp::Isometry3 em = T_true.inverse() * m.T_target_source;
-        std::printf("  its pose: error %.2f cm %.3f deg\n", 100.0 * em.translation().norm(),
-                    Eigen::AngleAxisd(em.linear()).angle() * 180.0 / M_PI);
+        std::printf("  its pose: error %.2f cm %.3f deg (t %.2f %.2f %.2f cm)\n", 100.0 * em.translation().norm(),
+                    Eigen::AngleAxisd(em.linear()).angle() * 180.0 / M_PI, 100.0 * em.translation().x(),
+                    100.0 * em.translation().y(), 100.0 * em.translation().z());
       }
       {  // the ground search on its own (ground_search.h), whether or not the pipeline ran it
         const gasp::GroundSearchResult g = gasp::groundSearch(*va.returns, *vb.returns, params.ground_search);

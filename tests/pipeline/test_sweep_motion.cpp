@@ -151,6 +151,12 @@ TEST(SweepMotion, ThePairPipelineDeskewsMovingSweepsAndRegistersThemAgain) {
               r.pair.pose.success, r.pair.pose.reason.c_str(), r.pair.sweep_motion.moving, r.pair.sweep_motion.score_f,
               r.pair.sweep_motion.score_bound,
               100 * e.translation().norm(), angleDeg(e), r.pair.timings.total(), r.pair.timings.sweep_motion_ms);
+  const gasp::SweepMotion& m = r.pair.sweep_motion;
+  std::printf("  source v (%.2f %.2f %.2f) w (%.1f %.1f %.1f) deg/s, target v (%.2f %.2f %.2f) w (%.1f %.1f %.1f) deg/s\n",
+              m.source_twist.v_mps.x(), m.source_twist.v_mps.y(), m.source_twist.v_mps.z(),
+              m.source_twist.w_radps.x() / kDeg, m.source_twist.w_radps.y() / kDeg, m.source_twist.w_radps.z() / kDeg,
+              m.target_twist.v_mps.x(), m.target_twist.v_mps.y(), m.target_twist.v_mps.z(),
+              m.target_twist.w_radps.x() / kDeg, m.target_twist.w_radps.y() / kDeg, m.target_twist.w_radps.z() / kDeg);
   params.sweep_motion.enabled = false;
   const gasp::RangePairResult as_read = gasp::registerRangeScans(sa, sb, params);
   const Isometry3 e0 = T_true.inverse() * as_read.pair.pose.T_target_source;

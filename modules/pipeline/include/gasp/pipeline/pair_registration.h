@@ -175,11 +175,12 @@ struct PairResult {
   /// pose, the cells' refused pose is restored, both reasons in pose.reason, and these are unset.
   bool returns_fixed_free = false;
   std::string cells_reason;
-  /// Stage 8 (two timed sweeps, registerViews): the sweeps' own motions estimated from the claimed
-  /// pose. When sweep_motion.moving, both sweeps were deskewed with their twists and registered
-  /// again, and the rest of this result is that registration's, of the deskewed sweeps' views
-  /// (retry_views holds them); otherwise the result is the sweeps' as they were read, and
-  /// sweep_motion.reason says why (at rest by the Wald test, or not estimated).
+  /// Stage 8 (two timed sweeps, registerViews): the test at rest at the claimed pose and, when it
+  /// rejects rest, the sweeps' own motions estimated from it. When sweep_motion.moving, both
+  /// sweeps were deskewed with their twists and registered again, and the rest of this result is
+  /// that registration's, of the deskewed sweeps' views (retry_views holds them). Otherwise the
+  /// result is the sweeps' as they were read, and sweep_motion.reason says why (at rest, or not
+  /// estimated).
   SweepMotion sweep_motion;
 };
 
