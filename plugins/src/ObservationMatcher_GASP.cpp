@@ -89,9 +89,11 @@ MatchConstraint ObservationMatcher_GASP::match(const mrpt::obs::CObservation& a,
   MatchConstraint c;
   // b is the source, a the target: T_target_source = T_ca_cb (sensor frames).
   const PairResult r = registerViews(in.vb, in.va, in.pair);
-  // The finer-scale retry's patch indices refer to its own views, not to these views' patches.
-  c.finer_scale = r.retry_views != nullptr;
-  if (!c.finer_scale)
+  // The finer-scale retry's and the deskewed sweeps' patch indices refer to their own views, not
+  // to these views' patches.
+  c.finer_scale = r.retried && r.retry_views != nullptr;
+  c.deskewed = r.sweep_motion.moving;
+  if (!r.retry_views)
     for (const auto& s : r.association.associations) c.associations.emplace_back(s.b, s.a);
   c.inliers = r.pose.num_inliers;
   c.degenerate = r.pose.degenerate;

@@ -50,6 +50,9 @@ TEST(Statistics, OutOfDomainIsNamed) {
   EXPECT_THROW(gasp::regularizedIncompleteBeta(0.0, 1.0, 0.5), gasp::Error);
   EXPECT_THROW(gasp::regularizedIncompleteBeta(1.0, 1.0, 1.5), gasp::Error);
   EXPECT_THROW(gasp::fisherCdf(-1.0, 2, 3), gasp::Error);
+  // A quantile below the smallest double still ends the bisection.
+  const double tiny = gasp::fisherQuantile(0.01, 0.01, 1.0);
+  EXPECT_TRUE(tiny >= 0.0 && std::isfinite(tiny)) << tiny;
   EXPECT_THROW(gasp::fisherQuantile(1.0, 2, 3), gasp::Error);
   EXPECT_THROW(gasp::fisherQuantile(0.5, 0.0, 3), gasp::Error);
   EXPECT_THROW(gasp::fisherQuantile(std::nan(""), 2, 3), gasp::Error);

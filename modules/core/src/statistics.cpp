@@ -40,8 +40,10 @@ double regularizedIncompleteBeta(double a, double b, double x) {
     throw Error("regularizedIncompleteBeta: needs a, b > 0 and finite and x in [0, 1] (a " + std::to_string(a) +
                 ", b " + std::to_string(b) + ", x " + std::to_string(x) + ")");
   if (x == 0.0 || x == 1.0) return x;
-  const double log_front =
-      std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) + b * std::log1p(-x);
+  // lgamma_r: std::lgamma writes the global signgam, a data race between concurrent pairs.
+  int sign = 0;
+  const double log_front = ::lgamma_r(a + b, &sign) - ::lgamma_r(a, &sign) - ::lgamma_r(b, &sign) + a * std::log(x) +
+                           b * std::log1p(-x);
   if (x < (a + 1.0) / (a + b + 2.0)) return std::exp(log_front) * betaContinuedFraction(a, b, x) / a;
   return 1.0 - std::exp(log_front) * betaContinuedFraction(b, a, 1.0 - x) / b;
 }
@@ -63,8 +65,11 @@ double fisherQuantile(double p, double d1, double d2) {
     lo = hi, hi *= 2.0;
     if (hi > 1e300) return hi;  // p within rounding of 1
   }
-  while (hi - lo > 1e-9 * hi) {
+  // Bisection to a relative 1e-9; at most 2100 halvings reach any double from [0, 1e300], and a
+  // midpoint that no longer moves (a quantile below the smallest double) ends it too.
+  for (int i = 0; i < 2100 && hi - lo > 1e-9 * hi; ++i) {
     const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
     (fisherCdf(mid, d1, d2) < p ? lo : hi) = mid;
   }
   return 0.5 * (lo + hi);

@@ -596,18 +596,28 @@ void sweepMotionStage(const DepthView& source, const DepthView& target, const Pa
     return;
   }
   auto deskewed = std::make_shared<std::pair<DepthView, DepthView>>();
-  tbb::parallel_invoke(
-      [&] {
-        deskewed->first = makeRangeView(deskewSweep(source.returns->scan(), m.source_twist), source.superpixels, p.returns);
-      },
-      [&] {
-        deskewed->second = makeRangeView(deskewSweep(target.returns->scan(), m.target_twist), target.superpixels, p.returns);
-      });
+  try {
+    tbb::parallel_invoke(
+        [&] {
+          deskewed->first = makeRangeView(deskewSweep(source.returns->scan(), m.source_twist), source.superpixels, p.returns);
+        },
+        [&] {
+          deskewed->second = makeRangeView(deskewSweep(target.returns->scan(), m.target_twist), target.superpixels, p.returns);
+        });
+  } catch (const std::exception& e) {  // the pose as read stays, with why it was not deskewed
+    m.moving = false;
+    m.reason = std::string("sweep motion: the deskewed sweeps' views failed: ") + e.what();
+    r.sweep_motion = std::move(m);
+    r.timings.sweep_motion_ms += msSince(t0);
+    return;
+  }
+  const double own_ms = msSince(t0);  // the test, the estimate and the deskewed views
   PairParams once = p;
   once.sweep_motion.enabled = false;
   PairResult again = registerViews(deskewed->first, deskewed->second, once);
-  again.timings.addStages(r.timings);
-  again.timings.sweep_motion_ms += msSince(t0);
+  again.timings.addStages(r.timings);  // the first registration's stages, beside the second's
+  again.timings.retry_segmentation_ms += r.timings.retry_segmentation_ms;
+  again.timings.sweep_motion_ms += own_ms;
   if (!again.retry_views) again.retry_views = std::move(deskewed);
   char buf[160];
   std::snprintf(buf, sizeof buf, "the sweeps deskewed with their motion (score F %.2f over %d sectors): ", m.score_f,

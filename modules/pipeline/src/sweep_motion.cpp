@@ -27,7 +27,7 @@ void validate(const SweepMotionParams& p) {
   require(p.speed_sigma_mps > 0 && std::isfinite(p.speed_sigma_mps), "speed_sigma_mps must be > 0 and finite");
   require(p.rate_sigma_radps > 0 && std::isfinite(p.rate_sigma_radps), "rate_sigma_radps must be > 0 and finite");
   require(p.sectors >= 16 && p.sectors <= 4096, "sectors must be in [16, 4096]");
-  require(p.false_alarm > 0 && p.false_alarm < 1, "false_alarm must be in (0, 1)");
+  require(p.false_alarm >= 1e-12 && p.false_alarm < 1, "false_alarm must be in [1e-12, 1)");
 }
 
 namespace {

@@ -31,10 +31,14 @@ struct MatchConstraint {
   /// in a's robot frame ([m], [rad]): the refinement's (from its Jacobians, docs/registration.md)
   /// with the model error added (PairResult::edge_information, model_error.h).
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
-  std::vector<std::pair<int, int>> associations;  ///< (patch of a, patch of b); empty when finer_scale
+  std::vector<std::pair<int, int>> associations;  ///< (patch of a, patch of b); empty when finer_scale or deskewed
   /// The pose came from the finer-scale retry (PairParams::retry_area_factor): its patches are not
   /// those of the default decomposition, so no associations are listed.
   bool finer_scale = false;
+  /// Two sweeps that moved while taken, deskewed with their own motion and registered again
+  /// (stage 8, docs/lidar.md "Motion within a sweep"): the associations are between the deskewed
+  /// sweeps' patches, so none are listed.
+  bool deskewed = false;
   int inliers = 0;
   double time_ms = 0.0;
   std::string reason;  ///< why there is no estimate; for a partial pose, which directions are free

@@ -72,8 +72,8 @@ struct PairTimings {
   double retry_segmentation_ms = 0;  ///< the finer-scale retry's segmentation of both views (0: no retry)
   double returns_ms = 0;   ///< stage 7, the returns' rounds (LiDAR views)
   double ground_search_ms = 0;  ///< the ground search (LiDAR views association gave no claimed pose for)
-  /// Stage 8: the sweeps' motion estimated, and for moving sweeps their deskew and segmentation
-  /// (the second registration's stages are in the others).
+  /// Stage 8: the test at rest, the sweeps' motion estimated, and for moving sweeps their deskew
+  /// and segmentation (the second registration's stages are added to the others).
   double sweep_motion_ms = 0;
   double total() const {
     return association_ms + ransac_ms + refine_ms + dense_ms + guided_ms + certify_ms + retry_segmentation_ms +
