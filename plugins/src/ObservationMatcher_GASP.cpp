@@ -91,7 +91,7 @@ MatchConstraint ObservationMatcher_GASP::match(const mrpt::obs::CObservation& a,
   const PairResult r = registerViews(in.vb, in.va, in.pair);
   // The finer-scale retry's and the deskewed sweeps' patch indices refer to their own views, not
   // to these views' patches.
-  c.finer_scale = r.retried && r.retry_views != nullptr;
+  c.finer_scale = r.finer_scale;
   c.deskewed = r.sweep_motion.moving;
   if (!r.retry_views)
     for (const auto& s : r.association.associations) c.associations.emplace_back(s.b, s.a);

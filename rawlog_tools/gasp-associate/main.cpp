@@ -213,7 +213,7 @@ int main(int argc, char** argv) {
                 r.retried ? " (both attempts; the breakdown in brackets: the attempt shown)" : "",
                 va.segmentation.timings.total(), vb.segmentation.timings.total(), r.timings.association_ms,
                 s.features_ms, s.tree_ms, s.matching_ms, r.timings.ransac_ms, r.timings.refine_ms, r.timings.dense_ms);
-    if (r.retry_views)
+    if (r.finer_scale)
       std::printf("finer_scale_retry: yes (the default scale found no estimate; segmented again at %g x the patch "
                   "area in %.1f ms; the patches, associations, picture and scores here are of those views)\n",
                   params.retry.finer_area_factor, r.timings.retry_segmentation_ms);

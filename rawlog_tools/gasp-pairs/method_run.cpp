@@ -57,7 +57,7 @@ MethodRun runGasp(const std::string& method, std::size_t i, std::size_t j, Frame
   setVisibility(run, r.visibility);
   run.one_way = r.used_one_way ? 1 : 0;
   run.guided_support = r.guided_support;
-  run.finer_scale = r.retried && r.retry_views != nullptr;  // not the deskewed sweeps' views (stage 8)
+  run.finer_scale = r.finer_scale;
   run.slide_moved = r.slide.moved;
   run.dense_terms = r.dense_terms;
   run.dense_rounds = r.dense_rounds_run;

@@ -272,6 +272,7 @@ TEST(FinerScaleRetry, RunsOnlyWhenTheDefaultScaleGivesNoEstimate) {
   const PairResult r = registerViews(found.a, found.b);
   ASSERT_TRUE(r.pose.success) << r.pose.reason;
   EXPECT_FALSE(r.retried);
+  EXPECT_FALSE(r.finer_scale);
   EXPECT_EQ(r.retry_views, nullptr);
   EXPECT_EQ(r.timings.retry_segmentation_ms, 0.0);
   const auto [va, vb] = viewsOf(r, found.a, found.b);
@@ -286,6 +287,7 @@ TEST(FinerScaleRetry, RunsOnlyWhenTheDefaultScaleGivesNoEstimate) {
   const PairResult u = registerViews(a, b);
   EXPECT_FALSE(u.pose.success);
   EXPECT_TRUE(u.retried);
+  EXPECT_FALSE(u.finer_scale);
   EXPECT_EQ(u.retry_views, nullptr);
   EXPECT_GT(u.timings.retry_segmentation_ms, 0.0);
   EXPECT_NE(u.pose.reason.find("x the patch area: "), std::string::npos) << u.pose.reason;
@@ -333,6 +335,7 @@ TEST(FinerScaleRetry, FindsThePoseWhenThePatchesAreTooLargeForTheOverlap) {
   const PairResult r = registerViews(a, b, defaults);
   ASSERT_TRUE(r.pose.success) << r.pose.reason;
   EXPECT_TRUE(r.retried);
+  EXPECT_TRUE(r.finer_scale);
   ASSERT_NE(r.retry_views, nullptr);
   EXPECT_FALSE(r.used_one_way);
   const auto [va, vb] = viewsOf(r, a, b);

@@ -568,7 +568,7 @@ PairResult retryAtFinerScale(const DepthView& source, const DepthView& target, c
   total.addStages(retry.timings);
   total.retry_segmentation_ms = segmentation_ms;
   if (retry.pose.success || (retry.pose.partial && !r.pose.partial)) {  // a full pose, else a partial one
-    retry.retried = true;
+    retry.retried = retry.finer_scale = true;
     retry.retry_views = std::move(views);
     retry.timings = total;
     return retry;
@@ -757,7 +757,7 @@ ViewSetResult registerViewSets(const std::vector<const DepthView*>& sources,
       const auto& source = fine_sources.at(s);
       if (!source || !target) continue;
       ViewSetRegistration reg{s, t, registerAtScale(*source, *target, params, true), true};
-      reg.result.retried = true;
+      reg.result.retried = reg.result.finer_scale = true;
       if (!reg.result.pose.success) reg.result.pose.reason = detail::finerScaleReason(f, reg.result.pose.reason);
       out.registrations.push_back(std::move(reg));
     }

@@ -150,6 +150,8 @@ struct PairResult {
   PairTimings timings;
   /// The finer-scale retry ran (RetryParams::finer_area_factor): the default scale gave no estimate.
   bool retried = false;
+  /// The estimate is the finer-scale retry's (its patches, not the default decomposition's).
+  bool finer_scale = false;
   /// Set when the result is the retry's (it found the estimate) or the deskewed sweeps' (stage 8):
   /// the re-made source and target views, to which association, used, correspondences and verified
   /// refer. Null: they refer to
