@@ -627,6 +627,34 @@ TEST(SuperpixelMap, LikelihoodOfALidarSweepPrefersTheTruePose) {
   EXPECT_EQ(depth_map.computeObservationLikelihood(rotating, toCPose3D(P)), 0.0);
 }
 
+// A map of sweeps reads back with each sweep's normals as they were made: the grown windows'
+// noise (lidar.returns_normal_growth) is written with the view (serialization version 3), so the
+// normals fitted again on reading are the same.
+TEST(SuperpixelMap, SweepsReadBackWithTheirOwnNormals) {
+  const sim::Scene room = sim::makeScene("room");
+  CSuperpixelMap map;
+  map.creationOptions.lidar.returns_normal_growth = true;
+  Isometry3 P = Isometry3::Identity();
+  P.translation() = Eigen::Vector3d(0.2, 0.1, 1.0);
+  ASSERT_TRUE(map.insertObservation(toRotatingScan(sim::simulateLidarScan(room, sim::lidarSensor(64), P, 1, 0), "LIDAR")));
+  const auto& returns = *map.views().at(0).view.returns;
+  EXPECT_DOUBLE_EQ(returns.normalNoise(), map.creationOptions.lidar.range_sigma_m);
+  const auto bytes = serialize(map);
+  const auto copy = std::dynamic_pointer_cast<CSuperpixelMap>(deserialize(bytes));
+  ASSERT_TRUE(copy);
+  ASSERT_EQ(copy->views().size(), 1u);
+  const auto& again = *copy->views().at(0).view.returns;
+  EXPECT_DOUBLE_EQ(again.normalNoise(), returns.normalNoise());
+  int with_normal = 0, differ = 0;
+  for (int i = 0; i < returns.rows() * returns.cols(); ++i) {
+    with_normal += returns.normal(i).isZero() ? 0 : 1;
+    differ += returns.normal(i) == again.normal(i) ? 0 : 1;
+  }
+  EXPECT_GT(with_normal, 10000);
+  EXPECT_EQ(differ, 0);
+  EXPECT_EQ(serialize(*copy), bytes);
+}
+
 TEST(SuperpixelMapView, ColoursOfADistortedRegisteredFrameComeFromTheSamePixels) {
   // A registered RGB-D frame whose cameras both carry fr1's lens distortion: the view's depth is
   // resampled to the pinhole camera (makeDepthView), so the colour image must be too, or the

@@ -586,6 +586,56 @@ TEST(RangeScan, TheReturnsNormalsAreFittedOverAWindowSquareInViewAngle) {
   EXPECT_LT(errorDeg(s16.T_b_a, r.pair.pose.T_target_source), 0.5);
 }
 
+// The normal's window grows against the range noise (ReturnsRefineParams::normal_noise_m). On a
+// plane measured with 2 cm of noise a window passes the flatness test (0.3) only where its rows
+// spread 2 cm / 0.3 = 6.7 cm or more across the beam; a 64-laser sweep's three adjacent rows
+// (0.43 deg apart) do so beyond about 11 m, so in a room most of its returns got no normal, and
+// the returns' rounds and stage 8's test had few terms. Grown, the windows pass on the room's
+// planes, and the rounds started at the exact truth end nearer it. The spacing follows the rule:
+// adjacent rows while they spread enough, two apart just nearer, an eighth of the rows at most,
+// adjacent rows without noise.
+TEST(RangeScan, TheReturnsNormalWindowGrowsAgainstTheRangeNoise) {
+  const SimulatedSweepPair s64 = simulatedSweeps("room", 64, 52, 53);
+  EXPECT_EQ(gasp::lidarPairParams().returns.normal_noise_m, 0.0);  // off by default
+  gasp::LidarParams lidar;
+  lidar.returns_normal_growth = true;
+  const gasp::PairParams params = gasp::lidarPairParams(lidar);
+  EXPECT_DOUBLE_EQ(params.returns.normal_noise_m, lidar.range_sigma_m);
+  gasp::PairParams three_rows = params;
+  three_rows.returns.normal_noise_m = 0.0;
+  const gasp::SweepReturns a(s64.a, params.returns), b(s64.b, params.returns);
+  const gasp::SweepReturns a3(s64.a, three_rows.returns), b3(s64.b, three_rows.returns);
+
+  // Where three rows spread exactly 2 cm / 0.3: range * pitch * sqrt(2 / 3) = 6.7 cm.
+  const double three_rows_m = 0.02 / (params.returns.max_flatness * gasp::rowPitch(s64.a) * std::sqrt(2.0 / 3.0));
+  std::printf("three 64-laser rows suffice beyond %.1f m\n", three_rows_m);
+  EXPECT_EQ(b.windowRowSpacing(1.05 * three_rows_m), 1);
+  EXPECT_EQ(b.windowRowSpacing(0.95 * three_rows_m), 2);
+  EXPECT_EQ(b.windowRowSpacing(0.5), 64 / 8);  // near: an eighth of the rows
+  EXPECT_EQ(b3.windowRowSpacing(0.5), 1);
+
+  auto normals = [](const gasp::SweepReturns& s) {
+    int n = 0;
+    for (int i = 0; i < s.rows() * s.cols(); ++i) n += s.normal(i).isZero() ? 0 : 1;
+    return n;
+  };
+  std::printf("64-laser returns with a normal: %d with three rows, %d grown\n", normals(b3), normals(b));
+  EXPECT_GT(normals(b), 3 * normals(b3));
+
+  const gasp::RegistrationResult grown =
+      gasp::refineOnReturns(a, b, s64.T_b_a, params.returns, params.refine.solver, params.segment.max_incidence_deg);
+  const gasp::RegistrationResult narrow =
+      gasp::refineOnReturns(a3, b3, s64.T_b_a, three_rows.returns, params.refine.solver, params.segment.max_incidence_deg);
+  ASSERT_TRUE(grown.success) << grown.reason;
+  ASSERT_TRUE(narrow.success) << narrow.reason;
+  std::printf("the rounds from the truth end %.2f cm, %.3f deg off grown, %.2f cm, %.3f deg with three rows\n",
+              errorCm(s64.T_b_a, grown.T_target_source), errorDeg(s64.T_b_a, grown.T_target_source),
+              errorCm(s64.T_b_a, narrow.T_target_source), errorDeg(s64.T_b_a, narrow.T_target_source));
+  EXPECT_LT(errorCm(s64.T_b_a, grown.T_target_source), errorCm(s64.T_b_a, narrow.T_target_source));
+  EXPECT_LT(errorCm(s64.T_b_a, grown.T_target_source), 0.5);
+  EXPECT_LT(errorDeg(s64.T_b_a, grown.T_target_source), 0.1);
+}
+
 // A mapped point's term (returnTerms) is measured against the surface between the target's
 // returns around it (SweepReturns::surfaceNear), not against the nearest return's plane extended
 // to it. At 11 m a VLP-16's rows are 38 cm apart, so a point can fall 15-19 cm from the return it
@@ -762,28 +812,35 @@ TEST(SweepReturns, SurfaceNearIsThePlaneBetweenTheReturnsNearThePoint) {
 // The normals' running sums (SweepReturns: a row's window summed by two look-ups where all its
 // returns lie on the centre's surface, return by return elsewhere) give the planes a plain fit of
 // the same returns gives, on a room sweep whose furniture mixes both kinds of window and on a
-// street sweep reaching tens of metres (the sums' rounding grows with the range squared). Returns
-// with no other row on their surface (the three-row rule's, TheGroundsRingsGetNormals...) are left out.
+// street sweep reaching tens of metres (the sums' rounding grows with the range squared), with
+// the windows grown against the range noise where adjacent rows are not flat
+// (SweepReturns::windowRowSpacing). Returns with no other row on their surface (the three-row
+// rule's, TheGroundsRingsGetNormals...) are left out.
 class ReturnsNormalsRunningSums : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ReturnsNormalsRunningSums, GiveThePlainFitsPlanes) {
   const SimulatedSweepPair s = simulatedSweeps(GetParam(), 16, 10, 11);
-  const gasp::ReturnsRefineParams params = gasp::returnsRefineParams();
+  gasp::LidarParams lidar;
+  lidar.returns_normal_growth = true;  // grown windows too, where adjacent rows are not flat
+  const gasp::ReturnsRefineParams params = gasp::returnsRefineParams(lidar);
   const gasp::SweepReturns sweep(s.a, params);
   const int w = sweep.normalHalfWidth();
   ASSERT_EQ(w, 10);
-  auto plainFit = [&](int r, int c) -> Eigen::Vector3d {
+  const cv::Mat& ranges = sweep.scan().range_m;  // the reach compared as the sweep stores ranges
+  // The plain fit of the returns of `rows` in columns c - half .. c + half on (r, c)'s surface:
+  // NaN when fewer than two rows hold any, zero when not flat or, with `gate`, when a return
+  // lies farther than the sweep's plane tolerance from the plane along its ray.
+  auto plainFit = [&](int r, int c, const std::vector<int>& rows, int half, bool gate) -> Eigen::Vector3d {
     const Eigen::Vector3d& centre = sweep.point(r, c);
-    if (!centre.allFinite()) return Eigen::Vector3d::Zero();
-    const cv::Mat& ranges = sweep.scan().range_m;  // the reach compared as the sweep stores ranges
     const float range = ranges.at<float>(r, c), reach = 0.1f + 0.05f * range;
     std::vector<Eigen::Vector3d> q;
+    std::vector<float> q_range;
     int rows_used = 0;
-    for (int rr = std::max(0, r - 1); rr <= std::min(sweep.rows() - 1, r + 1); ++rr) {
+    for (const int rr : rows) {
       const std::size_t before = q.size();
-      for (int cc = std::max(0, c - w); cc <= std::min(sweep.cols() - 1, c + w); ++cc)
+      for (int cc = std::max(0, c - half); cc <= std::min(sweep.cols() - 1, c + half); ++cc)
         if (const Eigen::Vector3d& p = sweep.point(rr, cc); p.allFinite() && std::abs(ranges.at<float>(rr, cc) - range) <= reach)
-          q.push_back(p);
+          q.push_back(p), q_range.push_back(ranges.at<float>(rr, cc));
       rows_used += q.size() > before ? 1 : 0;
     }
     if (rows_used < 2) return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());  // the three-row rule's
@@ -796,14 +853,31 @@ TEST_P(ReturnsNormalsRunningSums, GiveThePlainFitsPlanes) {
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov / static_cast<double>(q.size()));
     const Eigen::Vector3d lambda = eig.eigenvalues().cwiseMax(0.0);
     if (!(lambda(1) > 0.0) || std::sqrt(lambda(0) / lambda(1)) > sweep.maxFlatness()) return Eigen::Vector3d::Zero();
-    const Eigen::Vector3d n = eig.eigenvectors().col(0);
-    return n.dot(centre) > 0.0 ? -n : n;
+    Eigen::Vector3d n = eig.eigenvectors().col(0);
+    if (n.dot(centre) > 0.0) n = -n;
+    if (gate)
+      for (std::size_t i = 0; i < q.size(); ++i)
+        if (std::abs(n.dot(q[i] - mean)) * static_cast<double>(q_range[i]) > sweep.planeTolerance() * std::abs(n.dot(q[i])))
+          return Eigen::Vector3d::Zero();
+    return n;
+  };
+  // Adjacent rows first, then, where they are not flat and the noise asks for it, rows k apart.
+  auto reference = [&](int r, int c) -> Eigen::Vector3d {
+    if (!sweep.point(r, c).allFinite()) return Eigen::Vector3d::Zero();
+    std::vector<int> adjacent;
+    for (int rr = std::max(0, r - 1); rr <= std::min(sweep.rows() - 1, r + 1); ++rr) adjacent.push_back(rr);
+    const Eigen::Vector3d n = plainFit(r, c, adjacent, w, false);
+    const int k = sweep.windowRowSpacing(ranges.at<float>(r, c));
+    if (n.hasNaN() || !n.isZero() || k == 1) return n;
+    const int centre_row = std::clamp(r, k, sweep.rows() - 1 - k);
+    const Eigen::Vector3d g = plainFit(r, c, {centre_row - k, centre_row, centre_row + k}, k * w, true);
+    return g.hasNaN() ? Eigen::Vector3d::Zero() : g;
   };
   int both = 0, differ = 0, one_only = 0, mixed_windows = 0;
   double worst_rad = 0.0;
   for (int r = 0; r < sweep.rows(); ++r)
     for (int c = 0; c < sweep.cols(); ++c) {
-      const Eigen::Vector3d expected = plainFit(r, c);
+      const Eigen::Vector3d expected = reference(r, c);
       if (expected.hasNaN()) continue;  // no other row on the surface: not fitted from the sums
       const Eigen::Vector3d& got = sweep.normal(r * sweep.cols() + c);
       if (expected.isZero() != got.isZero()) {

@@ -255,6 +255,7 @@ void lidarFields(P& p, F&& f) {
   f("returns_converged_m", p.returns_converged_m);
   f("returns_normal_half_width", p.returns_normal_half_width);
   f("returns_max_flatness", p.returns_max_flatness);
+  f("returns_normal_growth", p.returns_normal_growth);
   f("sweep_symmetry_test", p.symmetry_test);
   f("sweep_violation_nats", p.violation_nats);
   f("dense_sample_spacing_deg", p.dense_sample_spacing_deg);

@@ -106,6 +106,7 @@ ReturnsRefineParams returnsRefineParams(const LidarParams& p) {
   r.converged_m = p.returns_converged_m;
   r.normal_half_width = p.returns_normal_half_width;
   r.max_flatness = p.returns_max_flatness;
+  r.normal_noise_m = p.returns_normal_growth ? p.range_sigma_m : 0.0;
   r.basin_offset_m = 0.5 * r.gates_m[0];
   r.basin_tolerance_m = p.range_sigma_m;
   return r;

@@ -27,6 +27,7 @@ void validate(const ReturnsRefineParams& r) {
   require(r.converged_m >= 0 && std::isfinite(r.converged_m), "returns_converged_m must be >= 0 and finite");
   require(r.normal_half_width >= 0 && r.normal_half_width <= 100 && r.max_flatness > 0 && r.max_flatness <= 1,
           "returns_normal_half_width must be in [0, 100] (0: square in view angle) and returns_max_flatness in (0, 1]");
+  require(r.normal_noise_m >= 0 && std::isfinite(r.normal_noise_m), "the returns' normal noise must be >= 0 and finite (0: adjacent rows only)");
   require(r.basin_offset_m > 0 && std::isfinite(r.basin_offset_m) && r.basin_tolerance_m > 0 &&
               r.basin_tolerance_m < r.basin_offset_m,
           "the returns' basin tolerance must be > 0 and below their offset (a restart that did not move would pass)");
@@ -38,10 +39,16 @@ int squareNormalHalfWidth(const RangeScan& scan) {
 }
 
 SweepReturns::SweepReturns(const RangeScan& scan, const ReturnsRefineParams& p)
-    : scan_(scan), normal_half_width_(p.normal_half_width), max_flatness_(p.max_flatness), plane_tolerance_(p.gates_m.back()) {
+    : scan_(scan),
+      normal_half_width_(p.normal_half_width),
+      max_flatness_(p.max_flatness),
+      normal_noise_m_(p.normal_noise_m),
+      plane_tolerance_(p.gates_m.back()) {
   validate(p);
   validateLayout(scan_, "sweep returns");
   if (normal_half_width_ == 0) normal_half_width_ = squareNormalHalfWidth(scan_);
+  row_pitch_rad_ = rowPitch(scan_);
+  max_row_spacing_ = std::max(1, scan_.range_m.rows / 8);
   // Its own copy of the images: a driver may reuse its buffers for the next sweep.
   scan_.range_m = scan.range_m.clone();
   if (!scan.ray.empty()) scan_.ray = scan.ray.clone();
@@ -69,6 +76,15 @@ SweepReturns::SweepReturns(const RangeScan& scan, const ReturnsRefineParams& p)
   tbb::parallel_for(0, rows_, [&](int r) {
     for (int c = 0; c < cols_; ++c) normal_[index(r, c)] = fitNormal(r, c, prefix);
   });
+}
+
+int SweepReturns::windowRowSpacing(double range) const {
+  if (!(normal_noise_m_ > 0.0) || !(range > 0.0)) return 1;
+  // The spread the rows must reach, in row pitches at this range; three rows k apart spread
+  // k sqrt(2 / 3) pitches.
+  const double need = normal_noise_m_ / (max_flatness_ * range * row_pitch_rad_);
+  const double k = std::ceil(need / std::sqrt(2.0 / 3.0) - 1e-9);
+  return k >= static_cast<double>(max_row_spacing_) ? max_row_spacing_ : std::max(1, static_cast<int>(k));
 }
 
 int SweepReturns::lookUp(const Eigen::Vector3d& q, int reach) const {
@@ -160,6 +176,9 @@ bool SweepReturns::addRow(int row, int lo, int hi, float range, const std::vecto
 /// there is none or it is not flat. `prefix`: each row's running sums of its returns' moments
 /// (cols + 1 per row).
 /// - The same surface is first the returns whose ranges lie within 5 % + 0.1 m of the centre's.
+/// - Where those of three adjacent rows are not flat and spread too little across the beam for a
+///   plane measured with the range noise to pass (windowRowSpacing() > 1), three rows that far
+///   apart over as many times the columns (ReturnsRefineParams::normal_noise_m).
 /// - Where no other row's do (a surface seen at grazing incidence across the rows, as the ground
 ///   is: a VLP-16's rings on it lie metres apart in range), each of the three rows nearest r (r's
 ///   own and the two beside it, or the two inside it at the first and last row) contributes the
@@ -170,6 +189,8 @@ bool SweepReturns::addRow(int row, int lo, int hi, float range, const std::vecto
 Eigen::Vector3d SweepReturns::fitNormal(int r, int c, const std::vector<Moments>& prefix) const {
   const Eigen::Vector3d& centre = point_[index(r, c)];
   if (!centre.allFinite()) return Eigen::Vector3d::Zero();
+  const float range = scan_.range_m.at<float>(r, c);
+  const int k = windowRowSpacing(static_cast<double>(range));
   const int lo = std::max(0, c - normal_half_width_), hi = std::min(cols_ - 1, c + normal_half_width_);
   const auto flatNormal = [&](const Moments& m, Eigen::Vector3d& mean) -> Eigen::Vector3d {
     mean = m.s / m.n;
@@ -183,12 +204,45 @@ Eigen::Vector3d SweepReturns::fitNormal(int r, int c, const std::vector<Moments>
     const Eigen::Vector3d normal = eig.eigenvectors().col(0);
     return normal.dot(centre) > 0.0 ? -normal : normal;
   };
-  const float range = scan_.range_m.at<float>(r, c);
+  // Whether row rr's returns in [first_col, last_col] on the surface of a return at range `own`
+  // all lie on the plane (normal, through mean) within the last gate along their rays.
+  const auto rowOnPlane = [&](int rr, int first_col, int last_col, float own, const Eigen::Vector3d& normal,
+                              const Eigen::Vector3d& mean) {
+    const float reach = sameSurfaceReach(own);
+    const float* ranges = scan_.range_m.ptr<float>(rr);
+    for (int cc = first_col; cc <= last_col; ++cc)
+      if (const Eigen::Vector3d& q = point_[index(rr, cc)];
+          q.allFinite() && std::abs(ranges[cc] - own) <= reach &&
+          std::abs(normal.dot(q - mean)) * static_cast<double>(ranges[cc]) > plane_tolerance_ * std::abs(normal.dot(q)))
+        return false;
+    return true;
+  };
   Moments m;
   int rows_used = 0;
   for (int rr = std::max(0, r - 1); rr <= std::min(rows_ - 1, r + 1); ++rr) rows_used += addRow(rr, lo, hi, range, prefix, m) ? 1 : 0;
   Eigen::Vector3d mean;
-  if (rows_used >= 2) return m.n < 5 ? Eigen::Vector3d::Zero() : flatNormal(m, mean);
+  if (rows_used >= 2) {
+    if (m.n >= 5)
+      if (const Eigen::Vector3d normal = flatNormal(m, mean); !normal.isZero()) return normal;
+    if (k == 1) return Eigen::Vector3d::Zero();
+    // Three adjacent rows failed where the noise asks for more: three rows k apart (the two
+    // inside at the first and last rows), each over k times the columns.
+    const int grown_lo = std::max(0, c - k * normal_half_width_), grown_hi = std::min(cols_ - 1, c + k * normal_half_width_);
+    const int centre_row = std::clamp(r, k, rows_ - 1 - k);
+    const std::array<int, 3> grown_rows = {centre_row - k, centre_row, centre_row + k};
+    Moments g;
+    int grown_used = 0;
+    for (const int rr : grown_rows) grown_used += addRow(rr, grown_lo, grown_hi, range, prefix, g) ? 1 : 0;
+    if (grown_used < 2 || g.n < 5) return Eigen::Vector3d::Zero();
+    const Eigen::Vector3d normal = flatNormal(g, mean);
+    if (normal.isZero()) return normal;
+    // A grown window can hold a corner's other surface as a minority that the flatness test
+    // lets through with a tilted plane: every return in it must lie on the plane, within the
+    // last gate along its ray, as the ground's three rows must below.
+    for (const int rr : grown_rows)
+      if (!rowOnPlane(rr, grown_lo, grown_hi, range, normal, mean)) return Eigen::Vector3d::Zero();
+    return normal;
+  }
   if (rows_ < 3) return Eigen::Vector3d::Zero();
   const int first = std::clamp(r - 1, 0, rows_ - 3);  // the three rows nearest r (r's own at the ends)
   Moments rows3;
@@ -200,15 +254,8 @@ Eigen::Vector3d SweepReturns::fitNormal(int r, int c, const std::vector<Moments>
   }
   const Eigen::Vector3d normal = flatNormal(rows3, mean);
   if (normal.isZero()) return normal;
-  for (int rr = first; rr <= first + 2; ++rr) {
-    const float own = scan_.range_m.at<float>(rr, c), reach = sameSurfaceReach(own);
-    const float* ranges = scan_.range_m.ptr<float>(rr);
-    for (int cc = lo; cc <= hi; ++cc)
-      if (const Eigen::Vector3d& q = point_[index(rr, cc)];
-          q.allFinite() && std::abs(ranges[cc] - own) <= reach &&
-          std::abs(normal.dot(q - mean)) * static_cast<double>(ranges[cc]) > plane_tolerance_ * std::abs(normal.dot(q)))
-        return Eigen::Vector3d::Zero();
-  }
+  for (int rr = first; rr <= first + 2; ++rr)
+    if (!rowOnPlane(rr, lo, hi, scan_.range_m.at<float>(rr, c), normal, mean)) return Eigen::Vector3d::Zero();
   return normal;
 }
 

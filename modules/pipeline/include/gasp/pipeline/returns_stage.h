@@ -36,13 +36,26 @@ struct ReturnsRefineParams {
   int look_up_columns = 2;      ///< a point takes the nearest return with a normal within this many columns
   int max_rounds = 10;          ///< rounds in all (the last gate repeats until converged)
   double converged_m = 0.0005;  ///< RMS displacement of the source returns that ends the rounds [m]
-  /// A return's normal: a plane fitted to the 3 x (2 half_width + 1) returns around it, kept when
-  /// its thinnest spread is below max_flatness of the next (a surface, not an edge or foliage).
+  /// A return's normal: a plane fitted to the 3 x (2 half_width + 1) returns around it (grown
+  /// against the range noise: normal_noise_m), kept when its thinnest spread is below
+  /// max_flatness of the next (a surface, not an edge or foliage).
   /// 0: the columns that span the rows' pitch either side, so the window is square in view angle
   /// and the plane's tilt is determined as well along the rows as across them
   /// (squareNormalHalfWidth(): 10 for a VLP-16's 2 deg rows and 0.2 deg columns, 2 for 64 lasers).
   int normal_half_width = 0;
   double max_flatness = 0.3;
+  /// The range noise (1 sigma) [m] the window grows against. On a plane measured with noise
+  /// sigma the window's thinnest spread is sigma, so it can pass the flatness test only where its
+  /// rows spread at least sigma / max_flatness across the beam. Where the three adjacent rows
+  /// fail the test and spread less than that at the return's range (range * rowPitch *
+  /// sqrt(2 / 3)), the window is three rows k apart, for the least k that spreads enough, over k
+  /// times the columns (still square in view angle), at most a quarter of the rows apart in all
+  /// (k <= rows / 8); its plane is kept only when every one of its returns lies within the last
+  /// gate of it along its ray (a grown window can hold a corner's other surface as a minority).
+  /// With 2 cm and 0.3 a 64-laser sweep's adjacent rows spread enough beyond about 11 m, a
+  /// VLP-16's beyond about 2.3 m. 0, the default: adjacent rows only. Sweeps: the range noise
+  /// where `lidar.returns_normal_growth` is on (returnsRefineParams).
+  double normal_noise_m = 0.0;
   /// The returns fix a direction the cells left free (returnsBasin) when their rounds reach their
   /// pose again from starts basin_offset_m either side of it along its weakest translation, each
   /// ending within basin_tolerance_m of it [m, > 0]. Sweeps: half the first gate (a surface moved
@@ -87,10 +100,14 @@ class SweepReturns {
   Eigen::Vector3d surfaceNear(int i, const Eigen::Vector3d& q, double tolerance) const;
   /// Half the diagonal of a cell [rad]: how far in angle a point can lie from the return it fell on.
   double halfCellRad() const { return half_cell_rad_; }
-  /// The normal half-width (the effective one: squareNormalHalfWidth() for 0) and flatness the
-  /// normals were fitted with.
+  /// The normal half-width (the effective one: squareNormalHalfWidth() for 0), flatness and noise
+  /// the normals were fitted with.
   int normalHalfWidth() const { return normal_half_width_; }
   double maxFlatness() const { return max_flatness_; }
+  double normalNoise() const { return normal_noise_m_; }
+  /// The spacing in rows of the three rows of a grown window for a return at `range` [m]
+  /// (normal_noise_m): 1 where adjacent rows spread enough.
+  int windowRowSpacing(double range) const;
   /// How far from a return's plane a neighbour or a three-row window's return (along its ray) may
   /// lie and still be on it [m]: the rounds' last gate.
   double planeTolerance() const { return plane_tolerance_; }
@@ -118,6 +135,9 @@ class SweepReturns {
   double half_cell_rad_ = 0.0;
   int normal_half_width_ = 3;
   double max_flatness_ = 0.3;
+  double normal_noise_m_ = 0.0;
+  double row_pitch_rad_ = 0.0;
+  int max_row_spacing_ = 1;  ///< a grown window's row spacing at most (rows / 8, at least 1)
   double plane_tolerance_ = 0.08;  ///< the rounds' last gate [m]
   std::vector<Eigen::Vector3d> point_, normal_;
 };
