@@ -213,7 +213,7 @@ TEST(ParamsIo, AMapKeepsItsOptionsAndEachViewItsOwnSegmentationThroughSerializat
 }
 
 TEST(ParamsIo, VersionZeroMapsStillLoadAndUnknownVersionsAreRefused) {
-  // Without views the three versions have the same layout; only the version byte after the class
+  // Without views the four versions have the same layout; only the version byte after the class
   // name differs (MRPT's object format: class name, version, data, end marker).
   CSuperpixelMap map;
   map.creationOptions.superpixels.target_patch_area_m2 = 0.006;
@@ -225,7 +225,7 @@ TEST(ParamsIo, VersionZeroMapsStillLoadAndUnknownVersionsAreRefused) {
   const auto at = std::search(bytes.begin(), bytes.end(), name.begin(), name.end());
   ASSERT_NE(at, bytes.end());
   const std::size_t version_byte = static_cast<std::size_t>(at - bytes.begin()) + name.size();
-  ASSERT_EQ(bytes[version_byte], 2);
+  ASSERT_EQ(bytes[version_byte], 3);
   auto load = [&](std::uint8_t version) {
     bytes[version_byte] = version;
     mrpt::io::CMemoryStream in;
@@ -236,7 +236,8 @@ TEST(ParamsIo, VersionZeroMapsStillLoadAndUnknownVersionsAreRefused) {
   };
   EXPECT_EQ(load(0).creationOptions.superpixels.target_patch_area_m2, 0.006);
   EXPECT_EQ(load(1).creationOptions.superpixels.target_patch_area_m2, 0.006);
-  EXPECT_THROW(load(3), std::exception);
+  EXPECT_EQ(load(2).creationOptions.superpixels.target_patch_area_m2, 0.006);
+  EXPECT_THROW(load(4), std::exception);
 }
 
 // The params file every program loads (gasp/params/params_file.h) is also what the MRPT classes
