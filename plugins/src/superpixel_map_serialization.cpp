@@ -1,6 +1,7 @@
 // CSuperpixelMap's versioned serialization. Version 3: version 2's, a sweep's normal settings
 // ending with the range noise its normals' windows grew against (ReturnsRefineParams::
-// normal_noise_m); a version 2 sweep is read with three-row windows, as it was made.
+// normal_noise_m) and the plane tolerance they were checked with (the last gate); a version 2
+// sweep is read with adjacent-row windows, as it was made, and the default last gate.
 // Version 2: version 1's, each view led by its kind
 // (uint8): 0 a depth image's view as version 1 writes it (then its segmentation parameters); 1 a
 // LiDAR sweep's: timestamp, sensor label, T_map_camera (3x4), the sweep (model, timestamp, sweep
@@ -280,7 +281,7 @@ void CSuperpixelMap::serializeTo(mrpt::serialization::CArchive& out) const {
     out << optionsText(segmentation);
     if (sweep)
       out << static_cast<std::int32_t>(v.view.returns->normalHalfWidth()) << v.view.returns->maxFlatness()
-          << v.view.returns->normalNoise();
+          << v.view.returns->normalNoise() << v.view.returns->planeTolerance();
   }
 }
 
@@ -318,8 +319,8 @@ void CSuperpixelMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t ve
           if (half_width < 1 || half_width > 100)  // the effective one a view was made with (validate()'s range)
             THROW_EXCEPTION_FMT("the returns' normal half width %d out of range [1, 100]", half_width);
           returns.normal_half_width = half_width;
-          returns.normal_noise_m = 0.0;  // versions 2 and before: three-row windows
-          if (version >= 3) in >> returns.normal_noise_m;
+          returns.normal_noise_m = 0.0;  // version 2: adjacent rows, and the default last gate
+          if (version >= 3) in >> returns.normal_noise_m >> returns.gates_m.back();
           try {  // the scan's layout and the parameters are checked here
             v.view = makeRangeView(scan, segmentation.superpixels, returns);
             checkConsistency(v);

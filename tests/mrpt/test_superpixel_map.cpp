@@ -628,31 +628,58 @@ TEST(SuperpixelMap, LikelihoodOfALidarSweepPrefersTheTruePose) {
 }
 
 // A map of sweeps reads back with each sweep's normals as they were made: the grown windows'
-// noise (lidar.returns_normal_growth) is written with the view (serialization version 3), so the
-// normals fitted again on reading are the same.
+// noise (lidar.returns_normal_growth) and the plane tolerance (the last gate, 4 range sigmas) are
+// written with the view (serialization version 3), so the normals fitted again on reading are the
+// same, also with another range noise. A version 2 sweep record (without the two) reads with
+// adjacent rows and the default last gate, as such a map was made.
 TEST(SuperpixelMap, SweepsReadBackWithTheirOwnNormals) {
   const sim::Scene room = sim::makeScene("room");
-  CSuperpixelMap map;
-  map.creationOptions.lidar.returns_normal_growth = true;
   Isometry3 P = Isometry3::Identity();
   P.translation() = Eigen::Vector3d(0.2, 0.1, 1.0);
-  ASSERT_TRUE(map.insertObservation(toRotatingScan(sim::simulateLidarScan(room, sim::lidarSensor(64), P, 1, 0), "LIDAR")));
-  const auto& returns = *map.views().at(0).view.returns;
-  EXPECT_DOUBLE_EQ(returns.normalNoise(), map.creationOptions.lidar.range_sigma_m);
-  const auto bytes = serialize(map);
-  const auto copy = std::dynamic_pointer_cast<CSuperpixelMap>(deserialize(bytes));
-  ASSERT_TRUE(copy);
-  ASSERT_EQ(copy->views().size(), 1u);
-  const auto& again = *copy->views().at(0).view.returns;
-  EXPECT_DOUBLE_EQ(again.normalNoise(), returns.normalNoise());
-  int with_normal = 0, differ = 0;
-  for (int i = 0; i < returns.rows() * returns.cols(); ++i) {
-    with_normal += returns.normal(i).isZero() ? 0 : 1;
-    differ += returns.normal(i) == again.normal(i) ? 0 : 1;
+  const auto sweep = toRotatingScan(sim::simulateLidarScan(room, sim::lidarSensor(64), P, 1, 0), "LIDAR");
+  // The map's sweep, and the same sweep read back from `bytes`: their normals, how many differ.
+  auto readBack = [](const CSuperpixelMap& map, const std::vector<std::uint8_t>& bytes, int& with_normal) {
+    const auto copy = std::dynamic_pointer_cast<CSuperpixelMap>(deserialize(bytes));
+    if (!copy || copy->views().size() != 1u) return -1;
+    const auto& made = *map.views().at(0).view.returns;
+    const auto& again = *copy->views().at(0).view.returns;
+    EXPECT_EQ(again.normalNoise(), made.normalNoise());
+    EXPECT_EQ(again.planeTolerance(), made.planeTolerance());
+    int differ = 0;
+    with_normal = 0;
+    for (int i = 0; i < made.rows() * made.cols(); ++i) {
+      with_normal += made.normal(i).isZero() ? 0 : 1;
+      differ += made.normal(i) == again.normal(i) ? 0 : 1;
+    }
+    return differ;
+  };
+  {
+    CSuperpixelMap map;
+    map.creationOptions.lidar.returns_normal_growth = true;
+    map.creationOptions.lidar.range_sigma_m = 0.03;  // another noise: another last gate
+    ASSERT_TRUE(map.insertObservation(sweep));
+    EXPECT_DOUBLE_EQ(map.views().at(0).view.returns->normalNoise(), 0.03);
+    const auto bytes = serialize(map);
+    int with_normal = 0;
+    EXPECT_EQ(readBack(map, bytes, with_normal), 0);
+    EXPECT_GT(with_normal, 10000);
+    EXPECT_EQ(serialize(*std::dynamic_pointer_cast<CSuperpixelMap>(deserialize(bytes))), bytes);
   }
-  EXPECT_GT(with_normal, 10000);
-  EXPECT_EQ(differ, 0);
-  EXPECT_EQ(serialize(*copy), bytes);
+  {  // version 2: the record without the noise and the tolerance (two doubles before the end flag)
+    CSuperpixelMap map;
+    ASSERT_TRUE(map.insertObservation(sweep));
+    auto bytes = serialize(map);
+    const std::string name = "gasp::CSuperpixelMap";
+    const auto at = std::search(bytes.begin(), bytes.end(), name.begin(), name.end());
+    ASSERT_NE(at, bytes.end());
+    const std::size_t version_byte = static_cast<std::size_t>(at - bytes.begin()) + name.size();
+    ASSERT_EQ(bytes[version_byte], 3);
+    bytes[version_byte] = 2;
+    bytes.erase(bytes.end() - 1 - 2 * static_cast<std::ptrdiff_t>(sizeof(double)), bytes.end() - 1);
+    int with_normal = 0;
+    EXPECT_EQ(readBack(map, bytes, with_normal), 0);
+    EXPECT_GT(with_normal, 100);
+  }
 }
 
 TEST(SuperpixelMapView, ColoursOfADistortedRegisteredFrameComeFromTheSamePixels) {

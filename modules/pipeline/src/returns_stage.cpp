@@ -225,11 +225,12 @@ Eigen::Vector3d SweepReturns::fitNormal(int r, int c, const std::vector<Moments>
     if (m.n >= 5)
       if (const Eigen::Vector3d normal = flatNormal(m, mean); !normal.isZero()) return normal;
     if (k == 1) return Eigen::Vector3d::Zero();
-    // Three adjacent rows failed where the noise asks for more: three rows k apart (the two
-    // inside at the first and last rows), each over k times the columns.
+    // Three adjacent rows failed where the noise asks for more: three rows k apart, r's own
+    // among them (r and the two beyond it within k of the first and last rows), each over k
+    // times the columns. k <= rows / 8 leaves room for them.
     const int grown_lo = std::max(0, c - k * normal_half_width_), grown_hi = std::min(cols_ - 1, c + k * normal_half_width_);
-    const int centre_row = std::clamp(r, k, rows_ - 1 - k);
-    const std::array<int, 3> grown_rows = {centre_row - k, centre_row, centre_row + k};
+    const int first_row = r - k < 0 ? r : (r + k > rows_ - 1 ? r - 2 * k : r - k);
+    const std::array<int, 3> grown_rows = {first_row, first_row + k, first_row + 2 * k};
     Moments g;
     int grown_used = 0;
     for (const int rr : grown_rows) grown_used += addRow(rr, grown_lo, grown_hi, range, prefix, g) ? 1 : 0;
