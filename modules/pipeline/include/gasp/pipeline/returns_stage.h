@@ -48,10 +48,11 @@ struct ReturnsRefineParams {
   /// sigma the window's thinnest spread is sigma, so it can pass the flatness test only where its
   /// rows spread at least sigma / max_flatness across the beam. Where the three adjacent rows
   /// fail the test and spread less than that at the return's range (range * rowPitch *
-  /// sqrt(2 / 3)), the window is three rows k apart, for the least k that spreads enough, over k
-  /// times the columns (still square in view angle), at most a quarter of the rows apart in all
-  /// (k <= rows / 8); its plane is kept only when every one of its returns lies within the last
-  /// gate of it along its ray (a grown window can hold a corner's other surface as a minority).
+  /// sqrt(2 / 3)), the window is three rows k apart, the return's own among them, for the least k
+  /// that spreads enough, over k times the columns (still square in view angle), at most a quarter
+  /// of the rows apart in all (k <= rows / 8); its plane is kept only when every one of its
+  /// returns lies within the last gate of it along its ray (a grown window can hold a corner's
+  /// other surface as a minority).
   /// With 2 cm and 0.3 a 64-laser sweep's adjacent rows spread enough beyond about 11 m, a
   /// VLP-16's beyond about 2.3 m. 0, the default: adjacent rows only. Sweeps: the range noise
   /// where `lidar.returns_normal_growth` is on (returnsRefineParams).
