@@ -1,9 +1,11 @@
 // Speed of a LiDAR pair with no prior (registerRangeScans: both sweeps binned and segmented, the
 // pair pipeline, the returns' point-to-plane rounds) on simulated sweeps of 16, 32 and 64 lasers
 // in the furnished room, and on MRPT's real VLP-16 sweep against itself moved.
-//   build/ci/bin/bench_lidar_pair [--threads T] [google benchmark flags]
-// TBB runs with T threads (default 2). Afterwards a table gives the median time of each part and
-// the pose error of every pair.
+//   build/ci/bin/bench_lidar_pair [--threads T] [--params FILE] [google benchmark flags]
+// TBB runs with T threads (default 2). --params FILE: the params file's pair sections made a
+// LiDAR's by its lidar section (lidarPairParams), as bench_lidar_sequence takes them; the
+// defaults otherwise. Afterwards a table gives the median time of each part and the pose error
+// of every pair.
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
@@ -21,6 +23,8 @@
 #include <string>
 #include <vector>
 
+#include "gasp/core/error.h"
+#include "gasp/params/params_file.h"
 #include "gasp/pipeline/range_view.h"
 #include "gasp/rawlog/range_scan.h"
 #include "gasp/sim/lidar.h"
@@ -80,9 +84,14 @@ struct Run {
   bool success = false;
 };
 
+gasp::PairParams& pairParams() {
+  static gasp::PairParams p = gasp::lidarPairParams();
+  return p;
+}
+
 Run runPair(const LidarPair& p) {
   const auto t0 = std::chrono::steady_clock::now();
-  const gasp::RangePairResult r = gasp::registerRangeScans(p.source, p.target);
+  const gasp::RangePairResult r = gasp::registerRangeScans(p.source, p.target, pairParams());
   Run run;
   run.total = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   run.segmentation = r.segmentation_ms;
@@ -122,6 +131,16 @@ int main(int argc, char** argv) {
   for (int i = 0; i < argc; ++i) {
     if (std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
       threads = std::max(1, std::atoi(argv[++i]));
+      continue;
+    }
+    if (std::strcmp(argv[i], "--params") == 0 && i + 1 < argc) {
+      try {
+        const gasp::SlamParams file = gasp::readParamsFile(argv[++i]);
+        pairParams() = gasp::lidarPairParams(file.lidar, file.odometry.pair);
+      } catch (const gasp::Error& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+      }
       continue;
     }
     rest.push_back(argv[i]);

@@ -55,7 +55,7 @@ SweepReturns::SweepReturns(const RangeScan& scan, const ReturnsRefineParams& p)
   rows_ = scan_.range_m.rows;
   cols_ = scan_.range_m.cols;
   whole_turn_ = coversWholeTurn(scan_);
-  half_cell_rad_ = 0.5 * std::hypot(rowPitch(scan_), azimuthStep(scan_));
+  half_cell_rad_ = 0.5 * std::hypot(row_pitch_rad_, azimuthStep(scan_));
   const double nan = std::numeric_limits<double>::quiet_NaN();
   point_.assign(static_cast<std::size_t>(rows_) * static_cast<std::size_t>(cols_), Eigen::Vector3d::Constant(nan));
   normal_.assign(point_.size(), Eigen::Vector3d::Zero());
@@ -190,7 +190,6 @@ Eigen::Vector3d SweepReturns::fitNormal(int r, int c, const std::vector<Moments>
   const Eigen::Vector3d& centre = point_[index(r, c)];
   if (!centre.allFinite()) return Eigen::Vector3d::Zero();
   const float range = scan_.range_m.at<float>(r, c);
-  const int k = windowRowSpacing(static_cast<double>(range));
   const int lo = std::max(0, c - normal_half_width_), hi = std::min(cols_ - 1, c + normal_half_width_);
   const auto flatNormal = [&](const Moments& m, Eigen::Vector3d& mean) -> Eigen::Vector3d {
     mean = m.s / m.n;
@@ -224,6 +223,7 @@ Eigen::Vector3d SweepReturns::fitNormal(int r, int c, const std::vector<Moments>
   if (rows_used >= 2) {
     if (m.n >= 5)
       if (const Eigen::Vector3d normal = flatNormal(m, mean); !normal.isZero()) return normal;
+    const int k = windowRowSpacing(static_cast<double>(range));
     if (k == 1) return Eigen::Vector3d::Zero();
     // Three adjacent rows failed where the noise asks for more: three rows k apart, r's own
     // among them (r and the two beyond it within k of the first and last rows), each over k
