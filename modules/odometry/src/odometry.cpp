@@ -283,6 +283,19 @@ const OdometryFrame& DepthOdometry::addView(double timestamp, DepthView view, do
     const Isometry3 T_prev_frame = velocity_ ? stepOf(*velocity_, dt) : Isometry3::Identity();
     const Isometry3 T_key_predicted =
         frames_[keyframe_index_].T_world_camera.inverse() * frames_[prev].T_world_camera * T_prev_frame;
+    // Which prediction may hold a partial pose's free directions: a constant-velocity one (the
+    // previous step measured), or standing still from the session's first tracked frame (the
+    // motion model's initial state). After a frame that was not tracked the velocity is gone, but
+    // the motion it measured need not be: standing still there is no prediction, and its error
+    // is unbounded.
+    bool prediction_holds = velocity_.has_value();
+    if (!prediction_holds && frames_[prev].tracked) {
+      prediction_holds = true;  // unless a frame of this session was tracked before prev
+      for (std::size_t k = session_starts_.empty() ? 0 : session_starts_.back(); k < prev && prediction_holds; ++k)
+        prediction_holds = !frames_[k].tracked;
+    }
+    const std::optional<Isometry3> T_key_motion = prediction_holds ? std::optional(T_key_predicted) : std::nullopt;
+    const std::optional<Isometry3> T_prev_motion = prediction_holds ? std::optional(T_prev_frame) : std::nullopt;
     // The tracking path: from the constant-velocity prediction, the cheap stages only, taken when
     // the certificate claims a full pose within the prediction's gate; else the whole pipeline.
     // Only while the prediction's gate lies within the dense rounds' last gate: they then start
@@ -300,13 +313,13 @@ const OdometryFrame& DepthOdometry::addView(double timestamp, DepthView view, do
     }
     if (f.tracking_path ||
         track(view, *keyframe_view_, keyframe_index_, f, "against keyframe", params_.pair, std::nullopt,
-              &visibility_refused, T_key_predicted)) {
+              &visibility_refused, T_key_motion)) {
       const Isometry3 T_key_frame = frames_[keyframe_index_].T_world_camera.inverse() * f.T_world_camera;
       new_keyframe = translationNorm(T_key_frame) > params_.keyframe_distance_m ||
                      rotationAngle(T_key_frame) * 180.0 / M_PI > params_.keyframe_angle_deg;
     } else if (prev != keyframe_index_ &&
                track(view, *previous_view_, prev, f, "against the previous", params_.pair, std::nullopt,
-                     &visibility_refused, T_prev_frame)) {
+                     &visibility_refused, T_prev_motion)) {
       new_keyframe = true;  // the keyframe no longer reaches this far
     } else if (params_.scene_change.enabled && velocity_ && visibility_refused) {
       // A velocity exists only when the previous frame was tracked.
