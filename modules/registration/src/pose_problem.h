@@ -4,6 +4,7 @@
 // block per term) or on the 6 x 6 normal equations over the left perturbation xi = [rho; omega].
 #include <ceres/ceres.h>
 
+#include <cstddef>
 #include <vector>
 
 #include "gasp/registration/correspondence.h"
@@ -22,6 +23,9 @@ class PoseProblem {
  public:
   PoseProblem(const Isometry3& T_init, const RefinementParams& params);
 
+  /// Room for this many terms, so that adding them allocates once: thousands of dense terms
+  /// otherwise reallocate and copy (and touch fresh pages) at each doubling, in every round.
+  void reserve(std::size_t terms) { terms_.reserve(terms); }
   void addPatch(const PatchCorrespondence& c);  ///< forward term, and backward if bidirectional
   void addDense(const PointToPlane& term);
   int numResiduals() const { return static_cast<int>(terms_.size()); }

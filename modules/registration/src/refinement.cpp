@@ -54,6 +54,7 @@ RegistrationResult refinePose(const std::vector<PatchCorrespondence>& correspond
   }
 
   detail::PoseProblem problem(T_init, params);
+  problem.reserve((params.bidirectional ? 2 : 1) * correspondences.size() + dense.size());
   for (const auto& c : correspondences) problem.addPatch(c);
   for (const auto& d : dense) problem.addDense(d);
   if (problem.numResiduals() == 0) {
