@@ -279,7 +279,8 @@ const OdometryFrame& DepthOdometry::addView(double timestamp, DepthView view, do
     const double dt = timestamp - frames_[prev].timestamp;
     bool visibility_refused = false;  // by a strict attempt: the scene may have changed
     // The motion model's prediction of this frame (standing still without a velocity), in the
-    // keyframe's and the previous frame's frames: it holds a partial pose's free directions.
+    // keyframe's and the previous frame's frames: the tracking path's start, and, where it is a
+    // prediction (below), what holds a partial pose's free directions.
     const Isometry3 T_prev_frame = velocity_ ? stepOf(*velocity_, dt) : Isometry3::Identity();
     const Isometry3 T_key_predicted =
         frames_[keyframe_index_].T_world_camera.inverse() * frames_[prev].T_world_camera * T_prev_frame;
