@@ -590,11 +590,11 @@ void sweepMotionStage(const DepthView& source, const DepthView& target, const Pa
   const auto t0 = std::chrono::steady_clock::now();
   SweepMotion m = estimateSweepMotion(*source.returns, *target.returns, r.pose.T_target_source, p.returns,
                                       p.refine.solver, p.sweep_motion, target.superpixels.max_incidence_deg);
-  if (!m.moving) {
+  const auto asRead = [&] {  // the pose as read stays, with the verdict
     r.sweep_motion = std::move(m);
     r.timings.sweep_motion_ms += msSince(t0);
-    return;
-  }
+  };
+  if (!m.moving) return asRead();
   auto deskewed = std::make_shared<std::pair<DepthView, DepthView>>();
   try {
     tbb::parallel_invoke(
@@ -604,12 +604,10 @@ void sweepMotionStage(const DepthView& source, const DepthView& target, const Pa
         [&] {
           deskewed->second = makeRangeView(deskewSweep(target.returns->scan(), m.target_twist), target.superpixels, p.returns);
         });
-  } catch (const std::exception& e) {  // the pose as read stays, with why it was not deskewed
+  } catch (const std::exception& e) {  // with why it was not deskewed
     m.moving = false;
     m.reason = std::string("sweep motion: the deskewed sweeps' views failed: ") + e.what();
-    r.sweep_motion = std::move(m);
-    r.timings.sweep_motion_ms += msSince(t0);
-    return;
+    return asRead();
   }
   const double own_ms = msSince(t0);  // the test, the estimate and the deskewed views
   PairParams once = p;
