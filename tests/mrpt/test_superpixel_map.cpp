@@ -667,6 +667,7 @@ TEST(SuperpixelMap, SweepsReadBackWithTheirOwnNormals) {
   }
   {  // version 2: the record without the noise and the tolerance (two doubles before the end flag)
     CSuperpixelMap map;
+    map.creationOptions.lidar.returns_normal_growth = false;  // as a version 2 map's sweeps were made
     ASSERT_TRUE(map.insertObservation(sweep));
     auto bytes = serialize(map);
     const std::string name = "gasp::CSuperpixelMap";

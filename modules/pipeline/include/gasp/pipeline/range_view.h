@@ -49,9 +49,9 @@ struct LidarParams {
   int returns_normal_half_width = 0;  ///< 0: square in view angle (ReturnsRefineParams)
   double returns_max_flatness = 0.3;
   /// Grow a return's normal window against range_sigma_m where three adjacent rows are not flat
-  /// (ReturnsRefineParams::normal_noise_m): most 64-laser returns in a room get a normal, at
-  /// about 1.7 times the pair's time (docs/lidar.md "The returns' normals").
-  bool returns_normal_growth = false;
+  /// (ReturnsRefineParams::normal_noise_m): most 64-laser returns in a room get a normal, which
+  /// the 64-laser pair pays for in its segmentation (docs/lidar.md "The returns' normals").
+  bool returns_normal_growth = true;
   /// The certificate's symmetry test for sweeps (CertifyParams::symmetry_test): a sweep sees all
   /// around, so in a near-square room a pose turned a quarter matches walls to walls.
   bool symmetry_test = true;
