@@ -582,7 +582,8 @@ PairResult retryAtFinerScale(const DepthView& source, const DepthView& target, c
 
 /// Stage 8 (sweep_motion.h): for two timed sweeps with a claimed pose, their motions estimated
 /// from it; moving sweeps are deskewed with their twists and registered again (without stage 8),
-/// and that registration, of the deskewed sweeps' views, becomes the result.
+/// and that registration, of the deskewed sweeps' views, becomes the result. Sweeps at rest
+/// whose pose the motions the test cannot exclude leave undetermined get no estimate.
 void sweepMotionStage(const DepthView& source, const DepthView& target, const PairParams& p, PairResult& r) {
   if (!p.sweep_motion.enabled || !r.pose.success || !source.returns || !target.returns ||
       !sweepTimed(source.returns->scan()) || !sweepTimed(target.returns->scan()))
@@ -594,7 +595,13 @@ void sweepMotionStage(const DepthView& source, const DepthView& target, const Pa
     r.sweep_motion = std::move(m);
     r.timings.sweep_motion_ms += msSince(t0);
   };
-  if (!m.moving) return asRead();
+  if (!m.moving) {
+    if (!m.determined) {  // at rest, but a motion the test cannot exclude could move the pose
+      r.pose.success = false;
+      r.pose.reason = m.reason;
+    }
+    return asRead();
+  }
   auto deskewed = std::make_shared<std::pair<DepthView, DepthView>>();
   try {
     tbb::parallel_invoke(

@@ -1,6 +1,7 @@
 #include "gasp/pipeline/sweep_motion.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
 
@@ -8,6 +9,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -34,6 +36,7 @@ namespace {
 
 using Vector18d = Eigen::Matrix<double, 18, 1>;
 using Matrix18d = Eigen::Matrix<double, 18, 18>;
+using Matrix12d = Eigen::Matrix<double, 12, 12>;
 
 /// A return of the source sweep with its column's time.
 struct TimedReturn {
@@ -199,6 +202,35 @@ std::pair<double, int> sectorScoreTest(const std::vector<MotionTerm>& terms, con
   return {t2 * (K - 12) / (12.0 * (K - 1)), K};
 }
 
+/// The claimed pose's largest standard deviations with both twists unknown: the pose block of
+/// the inverse information (the Schur complement of the twists, their prior included), its
+/// translation [m] and its rotation [rad] times the RMS range of the terms' target points.
+struct FreeMotion {
+  double sigma_m = 0.0, rotation_m = 0.0;
+};
+
+FreeMotion freeMotion(const std::vector<MotionTerm>& terms, const NormalEquations& e) {
+  const Eigen::LDLT<Matrix12d> twists(e.H.bottomRightCorner<12, 12>());
+  const Eigen::Matrix<double, 6, 12> H_pt = e.H.topRightCorner<6, 12>();
+  const Eigen::Matrix<double, 6, 6> schur = e.H.topLeftCorner<6, 6>() - H_pt * twists.solve(H_pt.transpose());
+  const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> pose(schur);
+  FreeMotion out;
+  if (twists.info() != Eigen::Success || !twists.isPositive() || pose.info() != Eigen::Success || !pose.isPositive()) {
+    out.sigma_m = out.rotation_m = std::numeric_limits<double>::infinity();
+    return out;
+  }
+  const Eigen::Matrix<double, 6, 6> cov = pose.solve(Eigen::Matrix<double, 6, 6>::Identity());
+  const auto largest = [](const Eigen::Matrix3d& c) {
+    return std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(c).eigenvalues().maxCoeff()));
+  };
+  double r2 = 0.0;
+  for (const MotionTerm& m : terms) r2 += m.q.squaredNorm();
+  const double rms_range = terms.empty() ? 0.0 : std::sqrt(r2 / static_cast<double>(terms.size()));
+  out.sigma_m = largest(cov.topLeftCorner<3, 3>());
+  out.rotation_m = largest(cov.bottomRightCorner<3, 3>()) * rms_range;
+  return out;
+}
+
 }  // namespace
 
 SweepMotion estimateSweepMotion(const SweepReturns& source, const SweepReturns& target, const Isometry3& T_target_source,
@@ -250,9 +282,18 @@ SweepMotion estimateSweepMotion(const SweepReturns& source, const SweepReturns& 
     out.score_f = f;
     out.score_bound = fisherQuantile(1.0 - params.false_alarm, 12.0, sectors - 12.0);
     if (f <= out.score_bound) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "sweep motion: at rest (score F %.2f over %d sectors, at most %.2f)", f, sectors,
-                    out.score_bound);
+      const FreeMotion free = freeMotion(terms, e);
+      out.free_motion_sigma_m = free.sigma_m;
+      out.free_motion_rotation_m = free.rotation_m;
+      const double gate = p.gates_m.back();  // beyond it a return is not on the surface
+      out.determined = free.sigma_m <= gate && free.rotation_m <= gate;
+      char buf[300];
+      std::snprintf(buf, sizeof buf,
+                    "sweep motion: at rest (score F %.2f over %d sectors, at most %.2f); with the motions unknown "
+                    "the pose's sigma is %.2f cm, its rotation's %.2f cm at the terms' range (%s the returns' last "
+                    "gate, %.2f cm)",
+                    f, sectors, out.score_bound, 100.0 * free.sigma_m, 100.0 * free.rotation_m,
+                    out.determined ? "within" : "beyond", 100.0 * gate);
       return done(buf);
     }
   }

@@ -182,7 +182,8 @@ struct PairResult {
   /// sweeps were deskewed with their twists and registered again, and the rest of this result is
   /// that registration's, of the deskewed sweeps' views (retry_views holds them). Otherwise the
   /// result is the sweeps' as they were read, and sweep_motion.reason says why (at rest, or not
-  /// estimated).
+  /// estimated); at rest but not sweep_motion.determined, the pose is no estimate, with that
+  /// reason.
   SweepMotion sweep_motion;
 };
 

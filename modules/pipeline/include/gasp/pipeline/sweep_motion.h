@@ -23,6 +23,15 @@
 /// test that took every return as independent evidence finds "motion" in still sweeps' small
 /// modelling errors. Still sweeps end there; moving ones go on to the rounds, then are deskewed
 /// with their twists and registered again (registerViews()).
+///
+/// A pair the test takes for still keeps its pose only while that pose is determined whatever
+/// motion the test cannot exclude: with both twists unknown under their prior (the normal
+/// equations' Schur complement at the claimed pose), the pose's standard deviation must stay
+/// within the returns' last gate (the distance beyond which a return is not taken as on the
+/// surface: 4 range sigmas), its rotation's measured as the displacement it gives at the terms'
+/// RMS range. Where a motion common to both sweeps (which skews them alike) can move the pose
+/// further, which returns match is itself in doubt, and the pair has no estimate: such sweeps,
+/// rolling alike, had a cost minimum centimetres and degrees from the truth.
 #include <string>
 
 #include "gasp/core/pose.h"
@@ -66,6 +75,13 @@ struct SweepMotion {
   double rms_residual_m = 0.0;  ///< their RMS residual [m]
   double ms = 0.0;              ///< wall time of the estimate (not of the second registration)
   std::string reason;           ///< why not moving: at rest (the statistics) or not estimated
+  /// At rest: the claimed pose's largest standard deviation with both twists unknown under their
+  /// prior, of translation [m] and of rotation times the terms' RMS range [m] (per term, as the
+  /// solver's information), and whether both are within the returns' last gate. false: the pose
+  /// as read is not determined, and the pair has no estimate (registerViews()).
+  double free_motion_sigma_m = 0.0;
+  double free_motion_rotation_m = 0.0;
+  bool determined = true;
 };
 
 /// The rounds of stage 8 from T_target_source (both sweeps' returns, their column times from the
