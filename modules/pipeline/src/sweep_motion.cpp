@@ -282,17 +282,17 @@ SweepMotion estimateSweepMotion(const SweepReturns& source, const SweepReturns& 
     out.score_f = f;
     out.score_bound = fisherQuantile(1.0 - params.false_alarm, 12.0, sectors - 12.0);
     if (f <= out.score_bound) {
-      const FreeMotion free = freeMotion(terms, e);
-      out.free_motion_sigma_m = free.sigma_m;
-      out.free_motion_rotation_m = free.rotation_m;
+      const FreeMotion unknown = freeMotion(terms, e);
+      out.free_motion_sigma_m = unknown.sigma_m;
+      out.free_motion_rotation_m = unknown.rotation_m;
       const double gate = p.gates_m.back();  // beyond it a return is not on the surface
-      out.determined = free.sigma_m <= gate && free.rotation_m <= gate;
+      out.determined = unknown.sigma_m <= gate && unknown.rotation_m <= gate;
       char buf[300];
       std::snprintf(buf, sizeof buf,
                     "sweep motion: at rest (score F %.2f over %d sectors, at most %.2f); with the motions unknown "
                     "the pose's sigma is %.2f cm, its rotation's %.2f cm at the terms' range (%s the returns' last "
                     "gate, %.2f cm)",
-                    f, sectors, out.score_bound, 100.0 * free.sigma_m, 100.0 * free.rotation_m,
+                    f, sectors, out.score_bound, 100.0 * unknown.sigma_m, 100.0 * unknown.rotation_m,
                     out.determined ? "within" : "beyond", 100.0 * gate);
       return done(buf);
     }
